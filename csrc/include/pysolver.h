@@ -1,0 +1,162 @@
+/* pysolver kernel: public C interface.
+ *
+ * A compiled scene (psModel) is immutable after compilation; the workspace (psData) holds every
+ * scratch array the kernel needs, so nothing is allocated during integration. Both are filled by
+ * the Python compiler (pysolver/compiler.py); the arrays they point to are owned by the caller.
+ *
+ * Naming: ps_  functions take (model, data); psu_ pure math helpers; psd_ derivatives.
+ * The same declarations, without preprocessor lines, are in pysolver/_cdef.h for cffi.
+ */
+#ifndef PYSOLVER_H
+#define PYSOLVER_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Body kinds. */
+#define PS_BODY_POINT 0 /* 3 translational DOF: q = (x, y, z), u = (vx, vy, vz) */
+#define PS_BODY_RIGID 1 /* q = (x, y, z, e0, e1, e2, e3), u = (vx, vy, vz, wx, wy, wz) body frame */
+
+/* Kinds of a basis entry: what a local derivative direction of a tape stands for. */
+#define PS_BASIS_Y 0    /* a state entry y[idx] */
+#define PS_BASIS_YP 1   /* a state derivative entry yp[idx] */
+#define PS_BASIS_T 2    /* time */
+
+/* Width of one tape instruction in ints: op followed by 9 operands a0..a8. */
+#define PS_INSTR_WIDTH 10
+
+/* Tape opcodes. Operands a0..a7 follow the op; "slot" means an earlier instruction's result. */
+enum psOp {
+  PS_OP_CONST = 0,   /* a0: index into consts */
+  PS_OP_TIME,        /* simulation time */
+  PS_OP_ADD,         /* slot a0 + slot a1 */
+  PS_OP_SUB,
+  PS_OP_MUL,
+  PS_OP_DIV,
+  PS_OP_POW,
+  PS_OP_NEG,
+  PS_OP_ABS, PS_OP_ACOS, PS_OP_ASIN, PS_OP_ATAN, PS_OP_COS, PS_OP_COSH, PS_OP_SIN, PS_OP_SINH,
+  PS_OP_TAN, PS_OP_TANH, PS_OP_EXP, PS_OP_LOG, PS_OP_LOG10, PS_OP_SQRT, PS_OP_AINT, PS_OP_ANINT,
+  PS_OP_CLAMP01,     /* min(max(x, 0), 1) */
+  PS_OP_ATAN2, PS_OP_MOD, PS_OP_MAX, PS_OP_MIN, PS_OP_SIGN, PS_OP_DIM,
+  PS_OP_IF,          /* a0 selector; a1 if < 0, a2 if == 0, a3 if > 0 */
+  PS_OP_MEASURE,     /* a0 measure kind (psMeasure); a1..a4 markers i j k l (-1 = global);
+                        a5..a8 their body slots in the tape (-1 = ground or global) */
+  PS_OP_GDOT,        /* total time derivative of slot a0, a displacement expression */
+  PS_OP_AXDOT,       /* dot of axis a1 of marker a0 with axis a3 of marker a2 (-1 = global);
+                        a4, a5 their body slots */
+  PS_OP_COUNT
+};
+
+/* Marker measures. */
+enum psMeasure {
+  PS_M_DX = 0, PS_M_DY, PS_M_DZ, PS_M_DM,
+  PS_M_VX, PS_M_VY, PS_M_VZ, PS_M_VM, PS_M_VR,
+  PS_M_ACCX, PS_M_ACCY, PS_M_ACCZ,
+  PS_M_WX, PS_M_WY, PS_M_WZ,
+  PS_M_AX, PS_M_AY, PS_M_AZ,
+  PS_M_COUNT
+};
+
+/* Status codes returned by kernel functions. */
+#define PS_OK 0
+#define PS_ERR_NONFINITE 1 /* an expression or force evaluated to NaN or infinity */
+
+typedef struct psModel {
+  /* sizes */
+  int ny;                 /* number of states                                  */
+  int nbody;              /* number of moving bodies (ground excluded)          */
+  int nmarker;            /* number of markers                                  */
+  int ntape;              /* number of expression tapes                         */
+  int npen;               /* number of Force_Penalty elements                   */
+  int nsf;                /* number of Force_Scalar_TwoBody elements            */
+  int nout;               /* number of output channels (requests, flattened)    */
+  int hd_stride;          /* doubles per hyper-dual slot (largest basis, order 2) */
+  int max_slots;          /* largest tape length, in instructions              */
+  int max_bslots;         /* largest number of bodies one tape touches          */
+
+  /* scene constants */
+  double gravity[3];      /* gravitational acceleration, model units            */
+  double force_scale;     /* model force unit in mass*length/time^2             */
+
+  /* bodies */
+  int* body_type;         /* (nbody x 1) PS_BODY_*                              */
+  int* body_qadr;         /* (nbody x 1) index of the body's first q in y       */
+  int* body_uadr;         /* (nbody x 1) index of the body's first u in y       */
+  double* body_mass;      /* (nbody x 1)                                        */
+  double* body_inertia;   /* (nbody x 9) inertia tensor in the body frame       */
+
+  /* markers */
+  int* marker_body;       /* (nmarker x 1) body index, -1 for ground            */
+  double* marker_pos;     /* (nmarker x 3) origin in the body frame             */
+  double* marker_rot;     /* (nmarker x 9) axes in the body frame, row-major,
+                             columns are the marker's x, y, z axes              */
+
+  /* tapes */
+  int* tape_code_adr;     /* (ntape x 1) first instruction in code              */
+  int* tape_len;          /* (ntape x 1) number of instructions                 */
+  int* tape_basis_adr;    /* (ntape x 1) first basis entry in basis_*           */
+  int* tape_nbasis;       /* (ntape x 1) basis size, time included              */
+  int* tape_body_adr;     /* (ntape x 1) first body slot in tbody_*             */
+  int* tape_nbody;        /* (ntape x 1) number of bodies the tape touches      */
+  int* tape_order;        /* (ntape x 1) least derivative order it must run at  */
+  int* code;              /* (ncode x PS_INSTR_WIDTH) instructions              */
+  double* consts;         /* (nconst x 1)                                       */
+  int* basis_kind;        /* (nbasis x 1) PS_BASIS_*                            */
+  int* basis_idx;         /* (nbasis x 1) index into y or yp                    */
+  int* tbody_body;        /* (ntbody x 1) body index                            */
+  int* tbody_q;           /* (ntbody x 1) basis position of first q, -1 if none */
+  int* tbody_u;           /* (ntbody x 1) basis position of first u, -1 if none */
+  int* tbody_a;           /* (ntbody x 1) basis position of first u' (yp), -1   */
+
+  /* Force_Penalty: tape outputs g (slot) and F (slot) */
+  int* pen_tape;          /* (npen x 1)                                         */
+  int* pen_g;             /* (npen x 1) slot of g in the tape                   */
+  int* pen_f;             /* (npen x 1) slot of the force magnitude F           */
+
+  /* Force_Scalar_TwoBody */
+  int* sf_tape;           /* (nsf x 1)                                          */
+  int* sf_f;              /* (nsf x 1) slot of the magnitude                    */
+  int* sf_torque;         /* (nsf x 1) 1 for a torque about z of J, 0 a force   */
+  int* sf_i;              /* (nsf x 1) I marker                                 */
+  int* sf_j;              /* (nsf x 1) J marker                                 */
+
+  /* outputs (request channels): a tape and a slot, or tape -1 for NULL */
+  int* out_tape;          /* (nout x 1)                                         */
+  int* out_slot;          /* (nout x 1)                                         */
+} psModel;
+
+typedef struct psData {
+  double* slots;          /* (max_slots x hd_stride) tape registers             */
+  double* bcache;         /* (max_bslots x 24 x hd_stride) body kinematics      */
+  double* tmp;            /* (96 x hd_stride) scratch numbers                   */
+  double* res;            /* (ny x 1) residual scratch for ps_jacobian          */
+  long nres;              /* residual evaluations                               */
+  long njac;              /* Jacobian evaluations                               */
+  char msg[256];          /* message of the last error                          */
+} psData;
+
+/* Evaluate the DAE residual res = F(t, y, yp).
+ * All arrays have length m->ny. Returns PS_OK, or PS_ERR_NONFINITE with a message in d->msg. */
+int ps_residual(const psModel* m, psData* d, double t, const double* y, const double* yp,
+                double* res);
+
+/* Fill the dense iteration matrix J = dF/dy + cj * dF/dyp, row-major (ny x ny), exactly.
+ * Returns PS_OK or an error code with a message in d->msg. */
+int ps_jacobian(const psModel* m, psData* d, double t, const double* y, const double* yp,
+                double cj, double* jac);
+
+/* Evaluate every output channel into out (length m->nout); a NULL channel gives NaN.
+ * Returns PS_OK. */
+int ps_outputs(const psModel* m, psData* d, double t, const double* y, const double* yp,
+               double* out);
+
+/* Evaluate one tape at derivative order 0 and return its slot's value (for tests and tools). */
+double ps_eval_tape(const psModel* m, psData* d, int tape, int slot, double t, const double* y,
+                    const double* yp);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

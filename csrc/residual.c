@@ -1,0 +1,277 @@
+/* The residual F(t, y, yp) and its iteration matrix dF/dy + cj dF/dyp.
+ *
+ * The pipeline reads as a table of contents: inertia and kinematic rows, then penalty forces,
+ * then scalar two-body forces. The residual and the Jacobian share one assembly pass; with
+ * jac == NULL it computes values only.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "internal.h"
+
+/* Scratch numbers for force assembly in d->tmp (PS_TMP_TAPE and up). */
+#define F_RI 64
+#define F_RJ 67
+#define F_REL 70
+#define F_LEN 73
+#define F_DIR 74
+#define F_VEC 77
+#define F_MOM 80
+#define F_P 83
+#define F_CR 86
+#define F_SC 89
+#define F_Q 91
+#define F_CI 92
+
+typedef struct Assembly {
+  double* res;
+  double* jac; /* NULL: residual only */
+  double cj;
+  int ny;
+} Assembly;
+
+/* Subtract force_scale * Q from residual row `row`, and its derivatives from the Jacobian. */
+static void scatter(const psModel* m, const psuHD* c, int tape, int row, const double* Q,
+                    Assembly* as) {
+  double cf = m->force_scale;
+  as->res[row] -= cf * Q[0];
+  if (!as->jac) return;
+  int badr = m->tape_basis_adr[tape];
+  double* jrow = as->jac + (long)row * as->ny;
+  for (int j = 0; j < c->n; j++) {
+    int kind = m->basis_kind[badr + j];
+    if (kind == PS_BASIS_T) continue;
+    jrow[m->basis_idx[badr + j]] -= cf * Q[1 + j] * (kind == PS_BASIS_YP ? as->cj : 1.0);
+  }
+}
+
+/* Inertia, gravity and the kinematic rows q' - N(q) u of every body. */
+static void inertia_rows(const psModel* m, double t, const double* y, const double* yp,
+                         Assembly* as) {
+  (void)t;
+  int ny = as->ny;
+  double* J = as->jac;
+  for (int b = 0; b < m->nbody; b++) {
+    int qa = m->body_qadr[b], ua = m->body_uadr[b];
+    double mass = m->body_mass[b];
+    for (int i = 0; i < 3; i++) {
+      as->res[qa + i] = yp[qa + i] - y[ua + i];
+      as->res[ua + i] = mass * (yp[ua + i] - m->gravity[i]);
+      if (J) {
+        J[(long)(qa + i) * ny + qa + i] += as->cj;
+        J[(long)(qa + i) * ny + ua + i] -= 1.0;
+        J[(long)(ua + i) * ny + ua + i] += as->cj * mass;
+      }
+    }
+    if (m->body_type[b] != PS_BODY_RIGID) continue;
+    /* Euler parameters: e' = 1/2 G(e) w = 1/2 M(w) e */
+    const double* e = y + qa + 3;
+    const double* w = y + ua + 3;
+    double G[4][3] = {{-e[1], -e[2], -e[3]}, {e[0], -e[3], e[2]}, {e[3], e[0], -e[1]},
+                      {-e[2], e[1], e[0]}};
+    double M[4][4] = {{0, -w[0], -w[1], -w[2]}, {w[0], 0, w[2], -w[1]}, {w[1], -w[2], 0, w[0]},
+                      {w[2], w[1], -w[0], 0}};
+    for (int a = 0; a < 4; a++) {
+      double r = yp[qa + 3 + a];
+      for (int k = 0; k < 3; k++) r -= 0.5 * G[a][k] * w[k];
+      as->res[qa + 3 + a] = r;
+      if (J) {
+        double* jr = J + (long)(qa + 3 + a) * ny;
+        jr[qa + 3 + a] += as->cj;
+        for (int bb = 0; bb < 4; bb++) jr[qa + 3 + bb] -= 0.5 * M[a][bb];
+        for (int k = 0; k < 3; k++) jr[ua + 3 + k] -= 0.5 * G[a][k];
+      }
+    }
+    /* Euler's equations in the body frame: I w' + w x (I w) */
+    const double* I = m->body_inertia + 9 * b;
+    const double* wd = yp + ua + 3;
+    double Iw[3], Iwd[3];
+    for (int i = 0; i < 3; i++) {
+      Iw[i] = I[3 * i] * w[0] + I[3 * i + 1] * w[1] + I[3 * i + 2] * w[2];
+      Iwd[i] = I[3 * i] * wd[0] + I[3 * i + 1] * wd[1] + I[3 * i + 2] * wd[2];
+    }
+    for (int i = 0; i < 3; i++) {
+      int j = (i + 1) % 3, k = (i + 2) % 3;
+      as->res[ua + 3 + i] = Iwd[i] + w[j] * Iw[k] - w[k] * Iw[j];
+      if (!J) continue;
+      double* jr = J + (long)(ua + 3 + i) * ny + ua + 3;
+      for (int l = 0; l < 3; l++) {
+        /* d/dw_l of w_j (I w)_k - w_k (I w)_j */
+        double dv = w[j] * I[3 * k + l] - w[k] * I[3 * j + l];
+        if (l == j) dv += Iw[k];
+        if (l == k) dv -= Iw[j];
+        jr[l] += as->cj * I[3 * i + l] + dv;
+      }
+    }
+  }
+}
+
+/* Generalized forces of a global force F at a marker and a global moment M on its body. */
+static void apply_load(const psModel* m, psData* d, const psuHD* c, int tape, int mk, int slot,
+                       const double* F, const double* Mo, double sign, Assembly* as) {
+  if (slot < 0 || m->marker_body[mk] < 0) return;
+  int s = c->stride;
+  int b = m->tbody_body[m->tape_body_adr[tape] + slot];
+  int ua = m->body_uadr[b];
+  double* Q = ps_tmp(m, d, F_Q);
+  for (int i = 0; i < 3; i++) {
+    if (F) {
+      psu_hd_lin(c, Q, sign, F + i * s, 0.0, NULL, 0.0);
+      scatter(m, c, tape, ua + i, Q, as);
+    }
+  }
+  if (m->body_type[b] != PS_BODY_RIGID) return;
+  /* moment about the body origin, resolved in the body frame: A^T (p x F + M) */
+  double* mom = ps_tmp(m, d, F_CR);
+  double* sc = ps_tmp(m, d, F_SC);
+  if (F) {
+    double* p = ps_tmp(m, d, F_P);
+    const double* r = ps_bc(m, d, slot, PS_BC_R);
+    ps_marker_pos(m, d, c, mk, slot, p);
+    for (int i = 0; i < 3; i++) psu_hd_lin(c, p + i * s, 1.0, p + i * s, -1.0, r + i * s, 0.0);
+    psu_hd_cross(c, mom, p, F, sc);
+  } else {
+    for (int i = 0; i < 3; i++) psu_hd_const(c, mom + i * s, 0.0);
+  }
+  if (Mo)
+    for (int i = 0; i < 3; i++) psu_hd_lin(c, mom + i * s, 1.0, mom + i * s, 1.0, Mo + i * s, 0.0);
+  const double* A = ps_bc(m, d, slot, PS_BC_A);
+  for (int k = 0; k < 3; k++) {
+    psu_hd_mul(c, Q, A + k * s, mom);
+    for (int r = 1; r < 3; r++) {
+      psu_hd_mul(c, sc, A + (3 * r + k) * s, mom + r * s);
+      psu_hd_lin(c, Q, 1.0, Q, 1.0, sc, 0.0);
+    }
+    psu_hd_lin(c, Q, sign, Q, 0.0, NULL, 0.0);
+    scatter(m, c, tape, ua + 3 + k, Q, as);
+  }
+}
+
+/* Force_Penalty: Q_i = F * d(g')/du_i with F = -p g - p1 g' (smoothed when unilateral). */
+static void penalty_forces(const psModel* m, psData* d, double t, const double* y,
+                           const double* yp, Assembly* as) {
+  for (int p = 0; p < m->npen; p++) {
+    int tape = m->pen_tape[p];
+    int order = as->jac ? 2 : 1;
+    ps_tape_run(m, d, tape, order, t, y, yp);
+    psuHD c = {m->tape_nbasis[tape], order - 1, m->hd_stride};
+    const double* g = ps_slot(m, d, m->pen_g[p]);
+    const double* F = ps_slot(m, d, m->pen_f[p]);
+    double* ci = ps_tmp(m, d, F_CI);
+    double* Q = ps_tmp(m, d, F_Q);
+    double* sc = ps_tmp(m, d, F_SC);
+    int adr = m->tape_body_adr[tape];
+    for (int slot = 0; slot < m->tape_nbody[tape]; slot++) {
+      if (m->tbody_q[adr + slot] < 0) continue;
+      int b = m->tbody_body[adr + slot];
+      int nu = m->body_type[b] == PS_BODY_RIGID ? 6 : 3;
+      for (int i = 0; i < nu; i++) {
+        ps_rate_coeff(m, d, &c, g, tape, slot, i, ci, sc);
+        psu_hd_mul(&c, Q, F, ci);
+        scatter(m, &c, tape, m->body_uadr[b] + i, Q, as);
+      }
+    }
+  }
+}
+
+/* Force_Scalar_TwoBody: a force along the line from J to I, or a torque about z of J. */
+static void scalar_forces(const psModel* m, psData* d, double t, const double* y,
+                          const double* yp, Assembly* as) {
+  for (int k = 0; k < m->nsf; k++) {
+    int tape = m->sf_tape[k];
+    int order = (as->jac ? 1 : 0) + m->tape_order[tape];
+    ps_tape_run(m, d, tape, order, t, y, yp);
+    psuHD c = {m->tape_nbasis[tape], as->jac ? 1 : 0, m->hd_stride};
+    int s = c.stride;
+    const double* f = ps_slot(m, d, m->sf_f[k]);
+    int mi = m->sf_i[k], mj = m->sf_j[k];
+    /* body slots of I and J in this tape: the compiler puts them first */
+    int si = m->marker_body[mi] < 0 ? -1 : 0;
+    int sj = m->marker_body[mj] < 0 ? -1 : (m->marker_body[mi] < 0 ||
+                                             m->marker_body[mi] == m->marker_body[mj] ? 0 : 1);
+    double* vec = ps_tmp(m, d, F_VEC);
+    if (m->sf_torque[k]) {
+      double* X = ps_tmp(m, d, F_RI);
+      ps_marker_axes(m, d, &c, mj, sj, X);
+      for (int i = 0; i < 3; i++) psu_hd_mul(&c, vec + i * s, f, X + (3 * i + 2) * s);
+      apply_load(m, d, &c, tape, mi, si, NULL, vec, 1.0, as);
+      apply_load(m, d, &c, tape, mj, sj, NULL, vec, -1.0, as);
+    } else {
+      double* ri = ps_tmp(m, d, F_RI);
+      double* rj = ps_tmp(m, d, F_RJ);
+      double* rel = ps_tmp(m, d, F_REL);
+      double* len = ps_tmp(m, d, F_LEN);
+      ps_marker_pos(m, d, &c, mi, si, ri);
+      ps_marker_pos(m, d, &c, mj, sj, rj);
+      for (int i = 0; i < 3; i++) psu_hd_lin(&c, rel + i * s, 1.0, ri + i * s, -1.0, rj + i * s, 0.0);
+      psu_hd_dot(&c, len, rel, rel, ps_tmp(m, d, F_SC));
+      double L = sqrt(len[0]);
+      if (L == 0.0) continue; /* no direction: no force */
+      psu_hd_unary(&c, len, len, 1.0 / L, -0.5 / (L * L * L), 0.0);
+      for (int i = 0; i < 3; i++) {
+        psu_hd_mul(&c, vec + i * s, rel + i * s, len);
+        psu_hd_mul(&c, vec + i * s, vec + i * s, f);
+      }
+      apply_load(m, d, &c, tape, mi, si, vec, NULL, 1.0, as);
+      apply_load(m, d, &c, tape, mj, sj, vec, NULL, -1.0, as);
+    }
+  }
+}
+
+static int check_finite(psData* d, const double* v, int n, const char* what) {
+  for (int i = 0; i < n; i++) {
+    if (!isfinite(v[i])) {
+      snprintf(d->msg, sizeof(d->msg), "%s entry %d is not finite (%g)", what, i, v[i]);
+      return PS_ERR_NONFINITE;
+    }
+  }
+  return PS_OK;
+}
+
+static int assemble(const psModel* m, psData* d, double t, const double* y, const double* yp,
+                    Assembly* as) {
+  if (as->jac) memset(as->jac, 0, sizeof(double) * (size_t)m->ny * (size_t)m->ny);
+  inertia_rows(m, t, y, yp, as);
+  penalty_forces(m, d, t, y, yp, as);
+  scalar_forces(m, d, t, y, yp, as);
+  return PS_OK;
+}
+
+int ps_residual(const psModel* m, psData* d, double t, const double* y, const double* yp,
+                double* res) {
+  Assembly as = {res, NULL, 0.0, m->ny};
+  d->nres++;
+  assemble(m, d, t, y, yp, &as);
+  return check_finite(d, res, m->ny, "residual");
+}
+
+int ps_jacobian(const psModel* m, psData* d, double t, const double* y, const double* yp,
+                double cj, double* jac) {
+  Assembly as = {d->res, jac, cj, m->ny};
+  d->njac++;
+  assemble(m, d, t, y, yp, &as);
+  return check_finite(d, jac, m->ny * m->ny, "Jacobian");
+}
+
+int ps_outputs(const psModel* m, psData* d, double t, const double* y, const double* yp,
+               double* out) {
+  int last = -1;
+  for (int k = 0; k < m->nout; k++) {
+    int tape = m->out_tape[k];
+    if (tape < 0) {
+      out[k] = NAN;
+      continue;
+    }
+    if (tape != last) ps_tape_run(m, d, tape, m->tape_order[tape], t, y, yp);
+    last = tape;
+    out[k] = ps_slot(m, d, m->out_slot[k])[0];
+  }
+  return PS_OK;
+}
+
+double ps_eval_tape(const psModel* m, psData* d, int tape, int slot, double t, const double* y,
+                    const double* yp) {
+  ps_tape_run(m, d, tape, m->tape_order[tape], t, y, yp);
+  return ps_slot(m, d, slot)[0];
+}
