@@ -242,6 +242,9 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
                 double* res) {
   Assembly as = {res, NULL, 0.0, m->ny};
   d->nres++;
+  /* a new time means a new step attempt: counting them gives the failed attempts */
+  if (t != d->last_t || d->nres == 1) d->ntimes++;
+  d->last_t = t;
   assemble(m, d, t, y, yp, &as);
   return check_finite(d, res, m->ny, "residual");
 }

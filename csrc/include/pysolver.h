@@ -134,6 +134,8 @@ typedef struct psData {
   double* res;            /* (ny x 1) residual scratch for ps_jacobian          */
   long nres;              /* residual evaluations                               */
   long njac;              /* Jacobian evaluations                               */
+  long ntimes;            /* residual evaluations at a time other than the last */
+  double last_t;          /* time of the last residual evaluation              */
   char msg[256];          /* message of the last error                          */
 } psData;
 

@@ -1,0 +1,403 @@
+"""Compile a validated Model into the flat arrays of the C kernel's psModel.
+
+The state holds only what the scene has: per point body q = (x, y, z), u = (vx, vy, vz); per
+rigid body q = (x, y, z, e0..e3), u = (vx, vy, vz) global and (wx, wy, wz) in the body frame.
+Every expression becomes a tape: a register program over hyper-dual numbers whose basis is
+the q, u (and u' for accelerations) entries of the bodies it touches, plus time.
+"""
+import math
+
+import numpy as np
+
+from ._bindings import lib
+from .errors import DeckError
+from .model import e_from_rot
+
+W = lib.PS_INSTR_WIDTH
+_MEASURE = {name: getattr(lib, f"PS_M_{name}") for name in
+            ("DX", "DY", "DZ", "DM", "VX", "VY", "VZ", "VM", "VR", "ACCX", "ACCY", "ACCZ",
+             "WX", "WY", "WZ", "AX", "AY", "AZ")}
+_VEL = {"VX", "VY", "VZ", "VM", "VR", "WX", "WY", "WZ"}
+_ACC = {"ACCX", "ACCY", "ACCZ"}
+_UNARY = {n: getattr(lib, f"PS_OP_{n}") for n in
+          ("ABS", "ACOS", "ASIN", "ATAN", "COS", "COSH", "SIN", "SINH", "TAN", "TANH", "EXP",
+           "LOG", "LOG10", "SQRT", "AINT", "ANINT")}
+_BINARY = {n: getattr(lib, f"PS_OP_{n}") for n in ("ATAN2", "MOD", "MAX", "MIN", "SIGN", "DIM")}
+_ARITH = {"+": lib.PS_OP_ADD, "-": lib.PS_OP_SUB, "*": lib.PS_OP_MUL, "/": lib.PS_OP_DIV,
+          "**": lib.PS_OP_POW}
+# constant folding of arithmetic (Python floats follow the same IEEE rules as the kernel)
+_FOLD = {lib.PS_OP_ADD: lambda a, b: a + b, lib.PS_OP_SUB: lambda a, b: a - b,
+         lib.PS_OP_MUL: lambda a, b: a * b, lib.PS_OP_NEG: lambda a: -a}
+
+
+class Layout:
+    """Where each body's coordinates live in the state vector."""
+
+    def __init__(self, model):
+        self.bodies = [b for _, b in sorted(model.bodies.items()) if b.kind != "ground"]
+        self.index = {b.id: i for i, b in enumerate(self.bodies)}
+        self.qadr, self.uadr, self.names = [], [], []
+        off = 0
+        for b in self.bodies:
+            nq, nu = (3, 3) if b.kind == "point" else (7, 6)
+            self.qadr.append(off)
+            self.uadr.append(off + nq)
+            qn = ["x", "y", "z"] + (["e0", "e1", "e2", "e3"] if nu == 6 else [])
+            un = ["vx", "vy", "vz"] + (["wx", "wy", "wz"] if nu == 6 else [])
+            self.names += [f"body{b.id}.{n}" for n in qn + un]
+            off += nq + nu
+        self.ny = off
+
+    def initial_state(self):
+        y = np.zeros(self.ny)
+        for b, qa, ua in zip(self.bodies, self.qadr, self.uadr):
+            y[qa:qa + 3] = b.pos
+            y[ua:ua + 3] = b.vel
+            if b.kind == "rigid":
+                y[qa + 3:qa + 7] = e_from_rot(b.rot)
+                y[ua + 3:ua + 6] = b.omega
+        return y
+
+
+class _Tape:
+    """Builds one tape; instructions are hash-consed so shared subexpressions run once."""
+
+    def __init__(self, comp):
+        self.c = comp
+        self.code = []
+        self.memo = {}
+        self.bodies = []          # [body index, need_u, need_a]
+        self.slot_of = {}
+        self.touch = []           # stack of sets of body slots touched
+        self.has_gdot = False
+
+    def body_slot(self, bidx, need_u=False, need_a=False):
+        if bidx not in self.slot_of:
+            self.slot_of[bidx] = len(self.bodies)
+            self.bodies.append([bidx, False, False])
+        s = self.slot_of[bidx]
+        self.bodies[s][1] |= need_u or need_a
+        self.bodies[s][2] |= need_a
+        for t in self.touch:
+            t.add(s)
+        return s
+
+    def emit(self, op, *args):
+        row = (op,) + tuple(args) + (0,) * (W - 1 - len(args))
+        if row in self.memo:
+            return self.memo[row]
+        self.code.append(row)
+        self.memo[row] = len(self.code) - 1
+        return self.memo[row]
+
+    def const(self, v):
+        return self.emit(lib.PS_OP_CONST, self.c.const_index(float(v)))
+
+    def value(self, slot):
+        """The constant value of a slot, or None when it is not a constant."""
+        row = self.code[slot]
+        return self.c.consts[row[1]] if row[0] == lib.PS_OP_CONST else None
+
+    def op(self, op, *slots):
+        vals = [self.value(s) for s in slots]
+        if op in _FOLD and all(v is not None for v in vals):
+            return self.const(_FOLD[op](*vals))
+        if op == lib.PS_OP_POW:
+            return self.emit(op, slots[0], slots[1], int(vals[1] is not None))
+        return self.emit(op, *slots)
+
+    # smoothing functions, built from elementary operations on slots
+    def ramp(self, x, x0, x1):
+        d = self.op(lib.PS_OP_DIV, self.op(lib.PS_OP_SUB, x, x0), self.op(lib.PS_OP_SUB, x1, x0))
+        return self.emit(lib.PS_OP_CLAMP01, d)
+
+    def step(self, x, x0, h0, x1, h1, kind="STEP"):
+        D = self.ramp(x, x0, x1)
+        dh = self.op(lib.PS_OP_SUB, h1, h0)
+        mul, add, sub = lib.PS_OP_MUL, lib.PS_OP_ADD, lib.PS_OP_SUB
+        if kind == "STEP":      # D^2 (3 - 2D)
+            shape = self.op(mul, self.op(mul, D, D),
+                            self.op(sub, self.const(3), self.op(mul, self.const(2), D)))
+        elif kind == "STEP5":   # D^3 (10 - 15 D + 6 D^2)
+            poly = self.op(add, self.op(sub, self.const(10), self.op(mul, self.const(15), D)),
+                           self.op(mul, self.const(6), self.op(mul, D, D)))
+            shape = self.op(mul, self.op(mul, self.op(mul, D, D), D), poly)
+        else:                   # HAVSIN: (1 + sin(pi D - pi/2)) / 2
+            arg = self.op(sub, self.op(mul, self.const(math.pi), D), self.const(math.pi / 2))
+            shape = self.op(mul, self.const(0.5), self.op(add, self.const(1),
+                                                           self.emit(lib.PS_OP_SIN, arg)))
+        return self.op(add, h0, self.op(mul, dh, shape))
+
+
+class Compiler:
+    """Turns a Model into psModel arrays (see csrc/include/pysolver.h)."""
+
+    def __init__(self, model):
+        self.model = model
+        self.layout = Layout(model)
+        self.consts, self._cidx = [], {}
+        self.markers = sorted(model.markers)
+        self.midx = {mid: i for i, mid in enumerate(self.markers)}
+        self.tapes = []
+        self.stack = []
+
+    def const_index(self, v):
+        key = v if not math.isnan(v) else "nan"
+        if key not in self._cidx:
+            self._cidx[key] = len(self.consts)
+            self.consts.append(v)
+        return self._cidx[key]
+
+    # lowering of parse trees -------------------------------------------------------------
+    def marker(self, tape, mid, need_u=False, need_a=False):
+        """Return (marker index, body slot) for marker id `mid`; id 0 is the global frame."""
+        if not mid:
+            return -1, -1
+        m = self.model.markers[mid]
+        body = self.model.bodies[m.body]
+        if body.kind == "ground":
+            return self.midx[mid], -1
+        return self.midx[mid], tape.body_slot(self.layout.index[body.id], need_u, need_a)
+
+    def lower(self, tape, node):
+        tag = node[0]
+        if tag == "num":
+            return tape.const(node[1])
+        if tag == "name":
+            if node[1] == "TIME":
+                return tape.emit(lib.PS_OP_TIME)
+            from .expr import CONSTANTS
+            return tape.const(CONSTANTS[node[1]])
+        if tag == "neg":
+            return tape.op(lib.PS_OP_NEG, self.lower(tape, node[1]))
+        if tag == "bin":
+            return tape.op(_ARITH[node[1]], self.lower(tape, node[2]), self.lower(tape, node[3]))
+        name, args = node[1], node[2]
+        if name in _MEASURE:
+            return self.measure(tape, name, [int(a[1]) for a in args])
+        if name == "VARVAL":
+            return self.lower(tape, self.model.variables[int(args[0][1])].expr)
+        if name == "PFORCE":
+            return self.penalty_force(tape, int(args[0][1]))[1]
+        if name == "SFORCE":
+            return self.sforce_measure(tape, *(int(a[1]) for a in args))
+        slots = [self.lower(tape, a) for a in args]
+        if name in _UNARY:
+            return tape.op(_UNARY[name], *slots)
+        if name in _BINARY:
+            return tape.op(_BINARY[name], *slots)
+        if name in ("STEP", "STEP5", "HAVSIN"):
+            return tape.step(*slots, kind=name)
+        if name == "IF":
+            return tape.emit(lib.PS_OP_IF, *slots)
+        if name == "IMPACT":
+            return self.impact(tape, *slots)
+        if name == "BISTOP":
+            return self.bistop(tape, *slots)
+        raise AssertionError(name)
+
+    def measure(self, tape, name, ids):
+        need_u = name in _VEL or name in _ACC
+        need_a = name in _ACC
+        if name == "VM":            # VM(i, j, l): no resolution marker
+            ids = ids[:2] + [0] * (2 - len(ids[:2])) + [0] + ids[2:3]
+        elif name == "VR":
+            ids = ids[:2]
+        ids = ids + [0] * (4 - len(ids))
+        mk, sl = [], []
+        for k, mid in enumerate(ids):
+            u = need_u if k != 2 else False
+            i, s = self.marker(tape, mid, u, need_a if k != 2 else False)
+            mk.append(i)
+            sl.append(s)
+        return tape.emit(lib.PS_OP_MEASURE, _MEASURE[name], *mk, *sl)
+
+    def impact(self, t, x, xd, x1, k, e, cmax, d):
+        """IMPACT: k (x1 - x)^e - STEP(x, x1 - d, cmax, x1, 0) xd, at least 0, for x < x1."""
+        sub, mul = lib.PS_OP_SUB, lib.PS_OP_MUL
+        pen = t.op(lib.PS_OP_POW, t.op(sub, x1, x), e)
+        damp = t.op(mul, t.step(x, t.op(sub, x1, d), cmax, x1, t.const(0)), xd)
+        f = t.emit(lib.PS_OP_MAX, t.const(0), t.op(sub, t.op(mul, k, pen), damp))
+        zero = t.const(0)
+        return t.emit(lib.PS_OP_IF, t.op(sub, x, x1), f, zero, zero)
+
+    def bistop(self, t, x, xd, x1, x2, k, e, cmax, d):
+        """BISTOP: IMPACT-like walls at x1 (pushing up) and x2 (pushing down)."""
+        sub, mul, add = lib.PS_OP_SUB, lib.PS_OP_MUL, lib.PS_OP_ADD
+        zero = t.const(0)
+        low = t.op(sub, t.op(mul, k, t.op(lib.PS_OP_POW, t.op(sub, x1, x), e)),
+                   t.op(mul, t.step(x, t.op(sub, x1, d), cmax, x1, zero), xd))
+        low = t.emit(lib.PS_OP_MAX, low, zero)
+        high = t.op(sub, t.op(lib.PS_OP_NEG, t.op(mul, k, t.op(lib.PS_OP_POW, t.op(sub, x, x2), e))),
+                    t.op(mul, t.step(x, x2, zero, t.op(add, x2, d), cmax), xd))
+        high = t.emit(lib.PS_OP_MIN, high, zero)
+        upper = t.emit(lib.PS_OP_IF, t.op(sub, x, x2), zero, zero, high)
+        return t.emit(lib.PS_OP_IF, t.op(sub, x, x1), low, zero, upper)
+
+    def _guard(self, key):
+        if key in self.stack:
+            chain = " -> ".join(f"{k} {i}" for k, i in self.stack + [key])
+            raise DeckError(f"force measure cycle: {chain}", file=self.model.source.file,
+                            element=key[0], id=key[1])
+        self.stack.append(key)
+
+    def penalty_force(self, tape, pid):
+        """Return slots (g, F) of Force_Penalty `pid`: F = -p g - p1 g', smoothed if unilateral."""
+        self._guard(("Force_Penalty", pid))
+        p = self.model.penalties[pid]
+        touched = set()
+        tape.touch.append(touched)
+        g = self.lower(tape, p.expr)
+        tape.touch.pop()
+        for s in touched:                 # g' needs the velocities of g's bodies
+            tape.bodies[s][1] = True
+        mul, add = lib.PS_OP_MUL, lib.PS_OP_ADD
+        gd = None
+        if p.penalty1 > 0:
+            gd = tape.emit(lib.PS_OP_GDOT, g)
+            tape.has_gdot = True
+        if p.unilateral:
+            S = tape.step(g, tape.const(0), tape.const(0), tape.const(p.smoothing), tape.const(1))
+            k = tape.op(mul, tape.const(p.penalty), S)
+            c = tape.op(mul, tape.const(p.penalty1), S) if gd is not None else None
+        else:
+            k = tape.const(p.penalty)
+            c = tape.const(p.penalty1) if gd is not None else None
+        f = tape.op(mul, k, g)
+        if gd is not None:
+            f = tape.op(add, f, tape.op(mul, c, gd))
+        self.stack.pop()
+        return g, tape.op(lib.PS_OP_NEG, f)
+
+    def sforce_measure(self, tape, sid, jflag, comp, rm):
+        """SFORCE(id, jflag, comp, rm): 1 |force|, 2-4 force in rm, 5 |torque|, 6-8 torque."""
+        self._guard(("Force_Scalar_TwoBody", sid))
+        sf = self.model.sforces[sid]
+        f = self.lower(tape, sf.expr)
+        sign = -1.0 if jflag else 1.0
+        mul = lib.PS_OP_MUL
+        if (comp >= 5) != sf.torque:
+            out = tape.const(0)
+        elif comp in (1, 5):
+            out = tape.op(lib.PS_OP_ABS, f)
+        elif not sf.torque:
+            name = "DX DY DZ".split()[comp - 2]
+            along = tape.op(lib.PS_OP_DIV, self.measure(tape, name, [sf.i, sf.j, rm]),
+                            self.measure(tape, "DM", [sf.i, sf.j]))
+            out = tape.op(mul, tape.const(sign), tape.op(mul, f, along))
+        else:
+            mj, sj = self.marker(tape, sf.j)
+            mr, sr = self.marker(tape, rm)
+            ax = tape.emit(lib.PS_OP_AXDOT, mj, 2, mr, comp - 6, sj, sr)
+            out = tape.op(mul, tape.const(sign), tape.op(mul, f, ax))
+        self.stack.pop()
+        return out
+
+    # element tapes -------------------------------------------------------------------------
+    def new_tape(self):
+        t = _Tape(self)
+        self.tapes.append(t)
+        return len(self.tapes) - 1, t
+
+    def compile(self):
+        model = self.model
+        self.pen = []
+        for pid in sorted(model.penalties):
+            ti, t = self.new_tape()
+            g, f = self.penalty_force(t, pid)
+            self.pen.append((ti, g, f))
+        self.sf = []
+        for sid in sorted(model.sforces):
+            sf = model.sforces[sid]
+            ti, t = self.new_tape()
+            self.marker(t, sf.i)          # I's body first, then J's: the kernel relies on it
+            self.marker(t, sf.j)
+            f = self.lower(t, sf.expr)
+            self.sf.append((ti, f, int(sf.torque), self.midx[sf.i], self.midx[sf.j]))
+        self.out = []
+        self.channels = []
+        for rid in sorted(model.requests):
+            req = model.requests[rid]
+            ti, t = self.new_tape()
+            for k, e in enumerate(req.exprs):
+                self.out.append((ti, self.lower(t, e)) if e is not None else (-1, 0))
+                self.channels.append((rid, k))
+        return self.arrays()
+
+    def arrays(self):
+        """Return a dict of numpy arrays and sizes for the psModel fields."""
+        lay, model = self.layout, self.model
+        i32 = lambda v: np.ascontiguousarray(v, dtype=np.int32)
+        f64 = lambda v: np.ascontiguousarray(v, dtype=np.float64)
+        code, tcode, tlen, tbadr, tnb, tbody, tnbody, tord = [], [], [], [], [], [], [], []
+        bkind, bidx, tb_body, tb_q, tb_u, tb_a = [], [], [], [], [], []
+        for t in self.tapes:
+            tcode.append(len(code))
+            tlen.append(len(t.code))
+            code.extend(t.code)
+            tbadr.append(len(bkind))
+            tbody.append(len(tb_body))
+            tnbody.append(len(t.bodies))
+            tord.append(int(t.has_gdot))
+            n = 0
+            for bi, need_u, need_a in t.bodies:
+                b = lay.bodies[bi]
+                nq, nu = (3, 3) if b.kind == "point" else (7, 6)
+                tb_body.append(bi)
+                tb_q.append(n)
+                bkind += [lib.PS_BASIS_Y] * nq
+                bidx += list(range(lay.qadr[bi], lay.qadr[bi] + nq))
+                n += nq
+                tb_u.append(n if need_u else -1)
+                if need_u:
+                    bkind += [lib.PS_BASIS_Y] * nu
+                    bidx += list(range(lay.uadr[bi], lay.uadr[bi] + nu))
+                    n += nu
+                tb_a.append(n if need_a else -1)
+                if need_a:
+                    bkind += [lib.PS_BASIS_YP] * nu
+                    bidx += list(range(lay.uadr[bi], lay.uadr[bi] + nu))
+                    n += nu
+            bkind.append(lib.PS_BASIS_T)
+            bidx.append(0)
+            tnb.append(n + 1)
+        nmax = max(tnb, default=1)
+        # markers in their body's frame (ground markers: global)
+        mbody, mpos, mrot = [], [], []
+        for mid in self.markers:
+            m = model.markers[mid]
+            b = model.bodies[m.body]
+            if b.kind == "ground":
+                mbody.append(-1)
+                mpos.append(m.pos)
+                mrot.append(m.rot)
+            else:
+                mbody.append(lay.index[b.id])
+                mpos.append(b.rot.T @ (m.pos - b.pos))
+                mrot.append(b.rot.T @ m.rot)
+        inertia = [b.inertia if b.kind == "rigid" else np.zeros((3, 3)) for b in lay.bodies]
+        return dict(
+            ny=lay.ny, nbody=len(lay.bodies), nmarker=len(self.markers), ntape=len(self.tapes),
+            npen=len(self.pen), nsf=len(self.sf), nout=len(self.out),
+            hd_stride=1 + nmax + nmax * (nmax + 1) // 2,
+            max_slots=max(tlen, default=1) or 1, max_bslots=max(tnbody, default=1) or 1,
+            gravity=list(model.gravity), force_scale=model.force_scale,
+            body_type=i32([lib.PS_BODY_POINT if b.kind == "point" else lib.PS_BODY_RIGID
+                           for b in lay.bodies]),
+            body_qadr=i32(lay.qadr), body_uadr=i32(lay.uadr),
+            body_mass=f64([b.mass for b in lay.bodies]),
+            body_inertia=f64(np.array(inertia).reshape(-1)),
+            marker_body=i32(mbody), marker_pos=f64(np.array(mpos).reshape(-1)),
+            marker_rot=f64(np.array(mrot).reshape(-1)),
+            tape_code_adr=i32(tcode), tape_len=i32(tlen), tape_basis_adr=i32(tbadr),
+            tape_nbasis=i32(tnb), tape_body_adr=i32(tbody), tape_nbody=i32(tnbody),
+            tape_order=i32(tord), code=i32(np.array(code, dtype=np.int32).reshape(-1)),
+            consts=f64(self.consts), basis_kind=i32(bkind), basis_idx=i32(bidx),
+            tbody_body=i32(tb_body), tbody_q=i32(tb_q), tbody_u=i32(tb_u), tbody_a=i32(tb_a),
+            pen_tape=i32([p[0] for p in self.pen]), pen_g=i32([p[1] for p in self.pen]),
+            pen_f=i32([p[2] for p in self.pen]),
+            sf_tape=i32([s[0] for s in self.sf]), sf_f=i32([s[1] for s in self.sf]),
+            sf_torque=i32([s[2] for s in self.sf]), sf_i=i32([s[3] for s in self.sf]),
+            sf_j=i32([s[4] for s in self.sf]),
+            out_tape=i32([o[0] for o in self.out]), out_slot=i32([o[1] for o in self.out]),
+        )

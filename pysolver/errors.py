@@ -1,0 +1,54 @@
+"""Exceptions raised for bad input."""
+
+
+class DeckError(ValueError):
+    """A deck is malformed or inconsistent.
+
+    The message names where the problem is: file, line, element and id, attribute, and what
+    was expected. The same fields are available as attributes for programs.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong and what is expected.
+    file : str or None
+        Path of the deck.
+    line : int or None
+        1-based line of the element (XML) or statement (Python deck).
+    element : str or None
+        Element or statement name, e.g. ``Force_Penalty`` or ``PFORCE``.
+    id : int or None
+        The element's id, if it has one.
+    attribute : str or None
+        The attribute or argument at fault.
+    """
+
+    def __init__(self, message, file=None, line=None, element=None, id=None, attribute=None):
+        self.reason = message
+        self.file = file
+        self.line = line
+        self.element = element
+        self.id = id
+        self.attribute = attribute
+        super().__init__(self._format())
+
+    def _format(self):
+        where = []
+        if self.file:
+            where.append(str(self.file) + (f":{self.line}" if self.line else ""))
+        elif self.line:
+            where.append(f"line {self.line}")
+        if self.element:
+            where.append(self.element + (f" id={self.id}" if self.id is not None else ""))
+        if self.attribute:
+            where.append(f"attribute '{self.attribute}'")
+        return (", ".join(where) + ": " if where else "") + self.reason
+
+
+class ExpressionError(ValueError):
+    """A syntax or semantic error inside one expression string (column is 0-based)."""
+
+    def __init__(self, message, column=None):
+        self.reason = message
+        self.column = column
+        super().__init__(message if column is None else f"{message} (at column {column + 1})")

@@ -1,0 +1,123 @@
+"""A compiled scene bound to the C kernel: psModel + psData and fast call wrappers."""
+import numpy as np
+
+from ._bindings import ffi, lib
+from .compiler import Compiler
+
+_INT_FIELDS = ("ny", "nbody", "nmarker", "ntape", "npen", "nsf", "nout", "hd_stride",
+               "max_slots", "max_bslots")
+
+
+class Kernel:
+    """Owns the arrays of one compiled scene and its workspace.
+
+    Parameters
+    ----------
+    model : Model
+        A validated model.
+
+    Attributes
+    ----------
+    ny : int
+        Number of states.
+    layout : compiler.Layout
+        Where each body's coordinates are in the state.
+    channels : list of (request id, channel index)
+        Meaning of each entry of :meth:`outputs`.
+    """
+
+    def __init__(self, model):
+        comp = Compiler(model)
+        arrays = comp.compile()
+        self.layout = comp.layout
+        self.channels = comp.channels
+        self.ny = arrays["ny"]
+        self.ntape = arrays["ntape"]
+        self._keep = []
+        m = ffi.new("psModel *")
+        for key, val in arrays.items():
+            if key in _INT_FIELDS:
+                setattr(m, key, int(val))
+            elif key == "gravity":
+                m.gravity = list(val)
+            elif key == "force_scale":
+                m.force_scale = float(val)
+            else:
+                ctype = "int *" if val.dtype == np.int32 else "double *"
+                if val.size == 0:
+                    val = np.zeros(1, dtype=val.dtype)
+                self._keep.append(val)
+                setattr(m, key, ffi.cast(ctype, ffi.from_buffer(val)))
+        self.arrays = arrays
+        self.m = m
+        stride = arrays["hd_stride"]
+        self._work = {
+            "slots": np.zeros(arrays["max_slots"] * stride),
+            "bcache": np.zeros(arrays["max_bslots"] * 32 * stride),
+            "tmp": np.zeros(96 * stride),
+            "res": np.zeros(max(self.ny, 1)),
+        }
+        d = ffi.new("psData *")
+        for key, val in self._work.items():
+            setattr(d, key, ffi.cast("double *", ffi.from_buffer(val)))
+        self.d = d
+        self._out = np.zeros(max(arrays["nout"], 1))
+        self._bind()
+
+    def _bind(self):
+        m, d, fb = self.m, self.d, ffi.from_buffer
+        res_c, jac_c = lib.ps_residual, lib.ps_jacobian
+
+        def residual(t, y, yp, res):
+            return res_c(m, d, t, fb("double[]", y), fb("double[]", yp), fb("double[]", res))
+
+        def jacobian(t, y, yp, cj, jac):
+            return jac_c(m, d, t, fb("double[]", y), fb("double[]", yp), cj, fb("double[]", jac))
+
+        self.residual = residual
+        self.jacobian = jacobian
+
+    @property
+    def counters(self):
+        """Kernel call counters: residual and Jacobian evaluations."""
+        return {"nres": int(self.d.nres), "njac": int(self.d.njac)}
+
+    def reset_counters(self):
+        self.d.nres = 0
+        self.d.njac = 0
+
+    @property
+    def message(self):
+        """Message of the last kernel error."""
+        return ffi.string(self.d.msg).decode(errors="replace")
+
+    def outputs(self, t, y, yp):
+        """Return a copy of every request channel at (t, y, yp); NaN for NULL channels."""
+        lib.ps_outputs(self.m, self.d, t, ffi.from_buffer("double[]", y),
+                       ffi.from_buffer("double[]", yp), ffi.from_buffer("double[]", self._out))
+        return self._out[:len(self.channels)].copy()
+
+    def residual_array(self, t, y, yp):
+        """Return F(t, y, yp) as a new array (convenience for tests and tools)."""
+        res = np.zeros(self.ny)
+        self.residual(t, np.ascontiguousarray(y, float), np.ascontiguousarray(yp, float), res)
+        return res
+
+    def jacobian_array(self, t, y, yp, cj):
+        """Return dF/dy + cj dF/dyp as a new (ny, ny) array."""
+        jac = np.zeros((self.ny, self.ny))
+        self.jacobian(t, np.ascontiguousarray(y, float), np.ascontiguousarray(yp, float), cj, jac)
+        return jac
+
+    def consistent_yp(self, t, y, iters=4):
+        """Return yp with F(t, y, yp) = 0 by Newton's method on yp (F is linear in yp unless
+        expressions use accelerations)."""
+        yp = np.zeros(self.ny)
+        for _ in range(iters):
+            r = self.residual_array(t, y, yp)
+            A = self.jacobian_array(t, y, yp, 1.0) - self.jacobian_array(t, y, yp, 0.0)
+            dyp = np.linalg.solve(A, -r)
+            yp += dyp
+            if np.max(np.abs(dyp)) <= 1e-14 * (1 + np.max(np.abs(yp))):
+                break
+        return yp

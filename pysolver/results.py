@@ -1,0 +1,173 @@
+"""Results of a run: time-major arrays, request channels, statistics and writers."""
+import csv
+import os
+
+import numpy as np
+
+
+class Result:
+    """Outcome of :meth:`Model.run`.
+
+    Attributes
+    ----------
+    success : bool
+        False when the integration failed; ``message`` says why. Output rows up to the failure
+        are kept.
+    status : int
+        0 success; negative: an integrator failure code (SUNDIALS IDA's) or -100 for too many
+        steps.
+    message : str
+    t : ndarray, shape (n,)
+        Output times (print times of every Simulate command, the initial time first).
+    y, yp : ndarray, shape (n, ny)
+        States and their time derivatives at the output times; ``state_names`` names columns.
+    stats : dict
+        ``steps``, ``nres`` (residual evaluations), ``njac`` (Jacobian evaluations),
+        ``nfail`` (failed step attempts: error-test and convergence failures together),
+        ``nfev``/``njev`` as counted by IDA, ``outputs``.
+    timing : dict
+        Wall time in seconds: ``setup`` (compile, initial conditions), ``integrate``, ``total``.
+    meta : dict
+        pysolver version, deck path and SHA-256, integrator options.
+    """
+
+    def __init__(self, t, y, yp, outputs, channels, state_names, success, status, message,
+                 stats, timing, meta, labels=None):
+        self.t = np.asarray(t)
+        self.y = np.asarray(y)
+        self.yp = np.asarray(yp)
+        self.success = success
+        self.status = status
+        self.message = message
+        self.stats = stats
+        self.timing = timing
+        self.meta = meta
+        self.state_names = list(state_names)
+        self._labels = labels or {}
+        outputs = np.asarray(outputs).reshape(len(self.t), -1)
+        self._requests = {}
+        for col, (rid, k) in enumerate(channels):
+            arr = self._requests.setdefault(rid, np.full((len(self.t), 8), np.nan))
+            arr[:, k] = outputs[:, col]
+
+    @property
+    def request_ids(self):
+        """Ids of the Post_Request elements, sorted."""
+        return sorted(self._requests)
+
+    def request(self, id):
+        """Return Post_Request `id` as an (n, 8) array: channels expr1..expr8, NaN for NULL.
+
+        Raises
+        ------
+        KeyError
+            There is no request with that id.
+        """
+        if id not in self._requests:
+            raise KeyError(f"no Post_Request with id {id}; requests: {self.request_ids}")
+        return self._requests[id]
+
+    def columns(self):
+        """Return (names, 2-D array) of time and every non-NULL request channel."""
+        names, cols = ["time"], [self.t]
+        for rid in self.request_ids:
+            arr = self._requests[rid]
+            for k in range(8):
+                if not np.all(np.isnan(arr[:, k])) or self._labels.get((rid, k)):
+                    names.append(self._labels.get((rid, k)) or f"REQ{rid}.{k + 1}")
+                    cols.append(arr[:, k])
+        return names, np.column_stack(cols)
+
+    def to_dataframe(self):
+        """Return a pandas DataFrame indexed by time with one column per request channel.
+
+        Raises
+        ------
+        ImportError
+            pandas is not installed (``pip install pysolver[dataframe]``).
+        """
+        try:
+            import pandas as pd
+        except ImportError as err:
+            raise ImportError("to_dataframe needs pandas: pip install pandas") from err
+        names, data = self.columns()
+        return pd.DataFrame(data[:, 1:], index=pd.Index(data[:, 0], name="time"),
+                            columns=names[1:])
+
+    def save(self, path):
+        """Write the results: ``.csv`` (time and request channels) or ``.npz`` (everything).
+
+        Returns
+        -------
+        str
+            The path written.
+        """
+        path = os.fspath(path)
+        if path.lower().endswith(".npz"):
+            extra = {f"request_{rid}": self._requests[rid] for rid in self.request_ids}
+            np.savez(path, t=self.t, y=self.y, yp=self.yp, state_names=np.array(self.state_names),
+                     success=self.success, message=self.message, **extra)
+        elif path.lower().endswith(".csv"):
+            names, data = self.columns()
+            with open(path, "w", newline="") as fh:
+                w = csv.writer(fh)
+                w.writerow(names)
+                for row in data:
+                    w.writerow([repr(float(v)) for v in row])
+        else:
+            raise ValueError(f"unknown result format for {path!r}: use .csv or .npz")
+        return path
+
+    def plot(self, path=None):
+        """Plot every request channel against time, one panel per request.
+
+        Parameters
+        ----------
+        path : str, optional
+            Write the figure there (PNG, PDF, ... by suffix) instead of returning it open.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
+        import matplotlib
+        if path is not None:
+            matplotlib.use("Agg", force=False)
+        import matplotlib.pyplot as plt
+        ids = self.request_ids or [None]
+        fig, axes = plt.subplots(len(ids), 1, figsize=(8, 2.6 * len(ids)), sharex=True,
+                                 squeeze=False)
+        for ax, rid in zip(axes[:, 0], ids):
+            if rid is None:
+                for j, name in enumerate(self.state_names[:8]):
+                    ax.plot(self.t, self.y[:, j], label=name)
+            else:
+                arr = self._requests[rid]
+                for k in range(8):
+                    if not np.all(np.isnan(arr[:, k])):
+                        ax.plot(self.t, arr[:, k],
+                                label=self._labels.get((rid, k)) or f"expr{k + 1}")
+                ax.set_title(f"Post_Request {rid}", fontsize=9)
+            ax.legend(fontsize=7, loc="best")
+            ax.grid(True, alpha=0.3)
+        axes[-1, 0].set_xlabel("time")
+        fig.tight_layout()
+        if path is not None:
+            fig.savefig(path, dpi=110)
+            plt.close(fig)
+        return fig
+
+    def summary(self):
+        """Return the run's outcome and statistics as text."""
+        s = self.stats
+        lines = [f"success: {self.success} ({self.message})",
+                 f"outputs: {len(self.t)} rows, t = {self.t[0]:g} .. {self.t[-1]:g}",
+                 f"steps: {s['steps']}  residual evals: {s['nres']}  Jacobian evals: "
+                 f"{s['njac']}  failed step attempts: {s['nfail']}",
+                 f"wall time: setup {self.timing['setup']:.4f} s, integration "
+                 f"{self.timing['integrate']:.4f} s"]
+        return "\n".join(lines)
+
+    def __repr__(self):
+        return (f"<pysolver.Result success={self.success} n={len(self.t)} "
+                f"steps={self.stats.get('steps')} message={self.message!r}>")

@@ -1,0 +1,126 @@
+"""Transient simulation of a compiled scene with SUNDIALS IDA (scikit-sundae).
+
+IDA gets the kernel's residual and exact dense Jacobian. The driver advances one internal
+step at a time (``onestep``) so that it can count steps and sample outputs at print times
+from IDA's interpolant, without forcing steps to land on print times.
+"""
+import math
+import sys
+import time
+
+import numpy as np
+from sksundae.ida import IDA
+
+from .results import Result
+
+__version__ = "0.1.0"
+
+_OPTION_NAMES = ("integr_tol", "h_max", "h_min", "h0_max", "max_num_steps")
+
+
+def _print_times(t0, end, dt):
+    n = max(int(math.floor((end - t0) / dt + 1e-9)), 0)
+    times = t0 + dt * np.arange(1, n + 1)
+    times = times[times < end - 1e-12 * max(1.0, abs(end))]
+    return np.append(times, end)
+
+
+class _Progress:
+    """A one-line progress bar on standard error, shown only on a terminal for long runs."""
+
+    def __init__(self, t0, t1, enabled):
+        self.t0, self.t1 = t0, t1
+        self.enabled = sys.stderr.isatty() if enabled is None else enabled
+        self.auto = enabled is None
+        self.start = time.perf_counter()
+        self.last = self.start
+        self.shown = False
+
+    def update(self, t):
+        if not self.enabled:
+            return
+        now = time.perf_counter()
+        if now - self.last < 0.25 or (self.auto and now - self.start < 1.0):
+            return
+        self.last = now
+        frac = min(max((t - self.t0) / (self.t1 - self.t0), 0.0), 1.0)
+        bar = "#" * int(30 * frac)
+        sys.stderr.write(f"\r  [{bar:<30}] {100 * frac:5.1f}%  t = {t:.6g}")
+        sys.stderr.flush()
+        self.shown = True
+
+    def close(self):
+        if self.shown:
+            sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
+def run_model(model, progress=None, **overrides):
+    """Run every Simulate command of `model`; see :meth:`Model.run`."""
+    for key in overrides:
+        if key not in _OPTION_NAMES:
+            raise TypeError(f"unknown run option {key!r}; expected one of {_OPTION_NAMES}")
+    t_start = time.perf_counter()
+    kernel = model._kernel()
+    opts = {k: getattr(model.transient, k) for k in _OPTION_NAMES}
+    opts.update(overrides)
+    if not opts["integr_tol"] > 0:
+        raise ValueError("integr_tol must be > 0")
+    kernel.reset_counters()
+    kernel.d.ntimes = 0
+    y = kernel.layout.initial_state()
+    t = 0.0
+    yp = kernel.consistent_yp(t, y)
+    solver = IDA(lambda t, y, yp, res: kernel.residual(t, y, yp, res),
+                 jacfn=lambda t, y, yp, res, cj, JJ: kernel.jacobian(t, y, yp, cj, JJ),
+                 rtol=opts["integr_tol"], atol=opts["integr_tol"], linsolver="dense",
+                 max_step=opts["h_max"] or 0.0, min_step=opts["h_min"] or 0.0,
+                 first_step=opts["h0_max"] or 0.0, max_num_steps=100000)
+    solver.init_step(t, y, yp)
+    ts, ys, yps, outs = [t], [y.copy()], [yp.copy()], [kernel.outputs(t, y, yp)]
+    t_setup = time.perf_counter()
+    steps, status, message, success = 0, 0, "The simulation finished.", True
+    bar = _Progress(t, model.commands[-1].end_time, progress)
+    try:
+        for cmd in model.commands:
+            pending = list(_print_times(t, cmd.end_time, cmd.print_interval))
+            cmd_steps = 0
+            while pending:
+                sol = solver.step(cmd.end_time, method="onestep", tstop=cmd.end_time)
+                if not sol.success:
+                    success, status = False, int(sol.status)
+                    message = f"IDA failed at t = {float(sol.t):.6g}: {sol.message}"
+                    break
+                # after an interpolated output IDA first returns the step it already took
+                if float(sol.t) > t:
+                    steps += 1
+                    cmd_steps += 1
+                t = float(sol.t)
+                while pending and pending[0] <= t * (1 + 1e-15) + 1e-300:
+                    tp = pending.pop(0)
+                    o = sol if tp == t else solver.step(tp)
+                    ts.append(tp)
+                    ys.append(np.array(o.y))
+                    yps.append(np.array(o.yp))
+                    outs.append(kernel.outputs(tp, ys[-1], yps[-1]))
+                if cmd_steps >= opts["max_num_steps"] and pending:
+                    success, status = False, -100
+                    message = (f"more than max_num_steps = {opts['max_num_steps']} steps in one "
+                               f"Simulate command (stopped at t = {t:.6g})")
+                    break
+                bar.update(t)
+            if not success:
+                break
+    finally:
+        bar.close()
+    t_end = time.perf_counter()
+    counters = kernel.counters
+    stats = {"steps": steps, "nres": counters["nres"], "njac": counters["njac"],
+             "nfail": max(int(kernel.d.ntimes) - steps - 1, 0), "outputs": len(ts)}
+    timing = {"setup": t_setup - t_start, "integrate": t_end - t_setup,
+              "total": t_end - t_start}
+    meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
+            "options": opts, "ny": kernel.ny}
+    labels = {(r.id, k): n for r in model.requests.values() for k, n in enumerate(r.names) if n}
+    return Result(ts, ys, yps, outs, kernel.channels, kernel.layout.names, success, status,
+                  message, stats, timing, meta, labels)
