@@ -9,7 +9,7 @@ DECKS = ROOT / "decks"
 TEST_DECKS = pathlib.Path(__file__).resolve().parent / "decks"
 
 
-def fd_iteration_matrix(kernel, t, y, yp, cj, rel=1e-6):
+def fd_iteration_matrix(kernel, t, y, yp, cj, rel=1e-5):
     """Central finite-difference dF/dy + cj dF/dyp of the kernel residual."""
     n = kernel.ny
     J = np.zeros((n, n))
