@@ -260,12 +260,12 @@ def _unit(ctx, name, kind, raw):
 def _attributes(ctx):
     """Check names, presence and kinds of the element's attributes; return converted values."""
     schema = SCHEMA[ctx.tag]
+    if "id" in schema and "id" in ctx.attrs:
+        ctx.id = _convert(ctx, "id", "id", ctx.attrs["id"])
     for key in ctx.attrs:
         if key not in schema:
             raise ctx.error(f"unknown attribute; {ctx.tag} accepts "
                             f"{', '.join(sorted(schema)) or 'no attributes'}", key)
-    if "id" in schema and "id" in ctx.attrs:
-        ctx.id = _convert(ctx, "id", "id", ctx.attrs["id"])
     out = {}
     for key, (kind, required, default) in schema.items():
         if key in ctx.attrs:

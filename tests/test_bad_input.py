@@ -1,0 +1,138 @@
+"""Every kind of bad input gives one DeckError naming file, line, element, id and attribute."""
+import pytest
+
+import pysolver
+from pysolver import DeckError
+
+HEAD = '<MotionSolve>\n<Model>\n<Body_Rigid id="1" isground="TRUE"/>\n'
+BASE = ('<Reference_Marker id="10" body_id="2" pos_z="1"/>\n'
+        '<Body_Point id="2" cg_id="10" mass="1"/>\n')
+TAIL = '</Model>\n<Simulate analysis_type="Transient" end_time="1" print_interval="0.1"/>\n</MotionSolve>\n'
+
+
+def deck(body, base=BASE):
+    return HEAD + base + body + TAIL
+
+
+def check(text, line, element, attribute=None, id=None, match=None, fmt="xml"):
+    with pytest.raises(DeckError) as info:
+        pysolver.loads(text, fmt=fmt, file="scene." + fmt)
+    err = info.value
+    assert err.file == "scene." + fmt
+    assert err.line == line, str(err)
+    assert err.element == element, str(err)
+    assert err.attribute == attribute, str(err)
+    if id is not None:
+        assert err.id == id, str(err)
+    msg = str(err)
+    assert f"scene.{fmt}:{line}" in msg
+    if attribute:
+        assert f"attribute '{attribute}'" in msg
+    if match:
+        assert match in msg, msg
+    return err
+
+
+PEN = '<Force_Penalty id="7" expr="DZ(10)-1" penalty="10"{extra}/>\n'
+
+
+@pytest.mark.parametrize("body,attr,match", [
+    (PEN.format(extra=' penalty1="-1"'), "penalty1", "expected a value >= 0"),
+    ('<Force_Penalty id="7" expr="DZ(10)-1" penalty="-5"/>\n', "penalty", "expected a value > 0"),
+    (PEN.format(extra=' unilateral="TRUE" smoothing_factor="0"'), "smoothing_factor", "> 0"),
+    (PEN.format(extra=' unilateral="maybe"'), "unilateral", "expected TRUE or FALSE"),
+    (PEN.format(extra=' color="red"'), "color", "unknown attribute"),
+    ('<Force_Penalty id="7" expr="DZ(10)-1"/>\n', "penalty", "missing required attribute"),
+    ('<Force_Penalty id="7" expr="DZ(10)-1" penalty="ten"/>\n', "penalty", "expected a real number"),
+    ('<Force_Penalty id="7" expr="DZ(10) - " penalty="1"/>\n', "expr", "bad expression"),
+    ('<Force_Penalty id="7" expr="FOO(10)" penalty="1"/>\n', "expr", "unknown function FOO"),
+    ('<Force_Penalty id="7" expr="STEP(DZ(10),0,1)" penalty="1"/>\n', "expr",
+     "STEP takes 5 arguments, got 3"),
+    ('<Force_Penalty id="7" expr="DZ(99)" penalty="1"/>\n', "expr", "marker id 99"),
+    ('<Force_Penalty id="7" expr="VZ(10)" penalty="1"/>\n', "expr", "displacement measures only"),
+    ('<Force_Penalty id="7" expr="VARVAL(3)" penalty="1"/>\n', "expr", "variable id 3"),
+    ('<Force_Penalty id="7" type="USERSUB" script_name="a.m" interpreter="MATLAB" penalty="1"/>\n',
+     "interpreter", "MATLAB user subroutines are not supported"),
+])
+def test_force_penalty_attributes(body, attr, match):
+    check(deck(body), 6, "Force_Penalty", attr, id=7, match=match)
+
+
+def test_malformed_xml():
+    err = check(HEAD + BASE + "<Force_Penalty id='1'\n" + TAIL, 7, None, match="malformed XML")
+    assert "malformed" in str(err)
+
+
+def test_unknown_element():
+    check(deck('<Force_Magic id="1"/>\n'), 6, "Force_Magic", match="unknown element")
+
+
+def test_duplicate_id():
+    check(deck(PEN.format(extra="") + PEN.format(extra="")), 7, "Force_Penalty", "id", id=7,
+          match="duplicate penalty id 7 (first defined on line 6)")
+
+
+def test_marker_on_missing_body():
+    check(deck("", base='<Reference_Marker id="10" body_id="5"/>\n'), 4, "Reference_Marker",
+          "body_id", id=10, match="body 5 does not exist")
+
+
+def test_body_with_missing_marker():
+    check(deck("", base='<Body_Point id="2" cg_id="11" mass="1"/>\n'), 4, "Body_Point", "cg_id",
+          id=2, match="marker 11 does not exist")
+
+
+def test_wrong_type_of_id():
+    check(deck('<Post_Request id="x1" expr1="DZ(10)"/>\n'), 6, "Post_Request", "id",
+          match="expected a positive integer")
+
+
+def test_variable_cycle():
+    text = deck('<Reference_Variable id="1" expr="VARVAL(2)"/>\n'
+                '<Reference_Variable id="2" expr="VARVAL(1)+1"/>\n')
+    check(text, 6, "Reference_Variable", "expr", id=1, match="VARVAL cycle")
+
+
+def test_incomplete_orientation():
+    check(deck("", base='<Reference_Marker id="10" body_id="1" e0="1" e1="0"/>\n'), 4,
+          "Reference_Marker", "e2", id=10, match="incomplete")
+
+
+def test_simulate_without_end_time():
+    text = HEAD + BASE + '</Model>\n<Simulate analysis_type="Transient" print_interval="0.1"/>\n</MotionSolve>'
+    check(text, 7, "Simulate", "end_time", match="exactly one of end_time and duration")
+
+
+def test_usersub_in_python_deck_and_python_line_numbers():
+    text = ("PART(1, GROUND=True)\nMARKER(10, PART=2, QP=[0, 0, 1])\nPOINT_MASS(2, MASS=1, CM=10)\n"
+            "PFORCE(3, FUNCTION='DZ(10)-1', PENALTY=-1)\n")
+    check(text, 4, "Force_Penalty", "PENALTY", id=3, match="expected a value > 0", fmt="py")
+
+
+def test_python_deck_unknown_argument():
+    check("PART(1, GROUND=True)\nPFORCE(3, FUNCTON='DZ(10)', PENALTY=1)\n", 2, "PFORCE",
+          "FUNCTON", id=3, match="unknown argument", fmt="py")
+
+
+def test_python_deck_runtime_error_names_line():
+    check("PART(1, GROUND=True)\nx = 1/0\n", 2, None, match="ZeroDivisionError", fmt="py")
+
+
+def test_xml_deck_never_executes_code(tmp_path):
+    """External entities are not resolved and no file is read."""
+    secret = tmp_path / "secret.txt"
+    secret.write_text("TOPSECRET")
+    text = (f'<?xml version="1.0"?>\n<!DOCTYPE m [<!ENTITY x SYSTEM "file://{secret}">]>\n'
+            '<MotionSolve><Model><Body_Rigid id="1" isground="TRUE" label="&x;"/></Model></MotionSolve>')
+    try:
+        model = pysolver.loads(text)
+    except DeckError:
+        return
+    assert "TOPSECRET" not in repr(model.bodies[1].label)
+
+
+def test_nothing_runs_half_way():
+    """A deck with an error in its last element builds nothing: load raises before any run."""
+    text = deck(PEN.format(extra="") + '<Post_Request id="1" expr1="DZ(10"/>\n')
+    with pytest.raises(DeckError, match="Post_Request id=1"):
+        pysolver.loads(text)
