@@ -24,25 +24,46 @@
 #define F_Q 91
 #define F_CI 92
 
+/* Where derivatives go: a dense row-major matrix, or a list of (row, col, value) triplets
+ * whose order depends only on the model's structure (used for sparse CSC matrices). */
 typedef struct Assembly {
   double* res;
-  double* jac; /* NULL: residual only */
+  double* jac;   /* dense (ny x ny), or NULL */
+  double* trip;  /* triplet values, or NULL */
+  int* trow;     /* triplet rows, or NULL (values only) */
+  int* tcol;     /* triplet columns, or NULL */
+  int k;         /* number of triplets written */
+  int deriv;     /* 1 when derivatives are wanted */
   double cj;
   int ny;
 } Assembly;
+
+/* Add v to the iteration matrix entry (row, col). */
+static void jadd(Assembly* as, int row, int col, double v) {
+  if (as->jac) {
+    as->jac[(long)row * as->ny + col] += v;
+    return;
+  }
+  if (as->trow) {
+    as->trow[as->k] = row;
+    as->tcol[as->k] = col;
+  }
+  if (as->trip) as->trip[as->k] = v;
+  as->k++;
+}
 
 /* Subtract force_scale * Q from residual row `row`, and its derivatives from the Jacobian. */
 static void scatter(const psModel* m, const psuHD* c, int tape, int row, const double* Q,
                     Assembly* as) {
   double cf = m->force_scale;
   as->res[row] -= cf * Q[0];
-  if (!as->jac) return;
+  if (!as->deriv) return;
   int badr = m->tape_basis_adr[tape];
-  double* jrow = as->jac + (long)row * as->ny;
   for (int j = 0; j < c->n; j++) {
     int kind = m->basis_kind[badr + j];
     if (kind == PS_BASIS_T) continue;
-    jrow[m->basis_idx[badr + j]] -= cf * Q[1 + j] * (kind == PS_BASIS_YP ? as->cj : 1.0);
+    jadd(as, row, m->basis_idx[badr + j],
+         -cf * Q[1 + j] * (kind == PS_BASIS_YP ? as->cj : 1.0));
   }
 }
 
@@ -50,8 +71,7 @@ static void scatter(const psModel* m, const psuHD* c, int tape, int row, const d
 static void inertia_rows(const psModel* m, double t, const double* y, const double* yp,
                          Assembly* as) {
   (void)t;
-  int ny = as->ny;
-  double* J = as->jac;
+  int J = as->deriv;
   for (int b = 0; b < m->nbody; b++) {
     int qa = m->body_qadr[b], ua = m->body_uadr[b];
     double mass = m->body_mass[b];
@@ -59,9 +79,9 @@ static void inertia_rows(const psModel* m, double t, const double* y, const doub
       as->res[qa + i] = yp[qa + i] - y[ua + i];
       as->res[ua + i] = mass * (yp[ua + i] - m->gravity[i]);
       if (J) {
-        J[(long)(qa + i) * ny + qa + i] += as->cj;
-        J[(long)(qa + i) * ny + ua + i] -= 1.0;
-        J[(long)(ua + i) * ny + ua + i] += as->cj * mass;
+        jadd(as, qa + i, qa + i, as->cj);
+        jadd(as, qa + i, ua + i, -1.0);
+        jadd(as, ua + i, ua + i, as->cj * mass);
       }
     }
     if (m->body_type[b] != PS_BODY_RIGID) continue;
@@ -77,10 +97,9 @@ static void inertia_rows(const psModel* m, double t, const double* y, const doub
       for (int k = 0; k < 3; k++) r -= 0.5 * G[a][k] * w[k];
       as->res[qa + 3 + a] = r;
       if (J) {
-        double* jr = J + (long)(qa + 3 + a) * ny;
-        jr[qa + 3 + a] += as->cj;
-        for (int bb = 0; bb < 4; bb++) jr[qa + 3 + bb] -= 0.5 * M[a][bb];
-        for (int k = 0; k < 3; k++) jr[ua + 3 + k] -= 0.5 * G[a][k];
+        for (int bb = 0; bb < 4; bb++)
+          jadd(as, qa + 3 + a, qa + 3 + bb, (a == bb ? as->cj : 0.0) - 0.5 * M[a][bb]);
+        for (int k = 0; k < 3; k++) jadd(as, qa + 3 + a, ua + 3 + k, -0.5 * G[a][k]);
       }
     }
     /* Euler's equations in the body frame: I w' + w x (I w) */
@@ -95,13 +114,12 @@ static void inertia_rows(const psModel* m, double t, const double* y, const doub
       int j = (i + 1) % 3, k = (i + 2) % 3;
       as->res[ua + 3 + i] = Iwd[i] + w[j] * Iw[k] - w[k] * Iw[j];
       if (!J) continue;
-      double* jr = J + (long)(ua + 3 + i) * ny + ua + 3;
       for (int l = 0; l < 3; l++) {
         /* d/dw_l of w_j (I w)_k - w_k (I w)_j */
         double dv = w[j] * I[3 * k + l] - w[k] * I[3 * j + l];
         if (l == j) dv += Iw[k];
         if (l == k) dv -= Iw[j];
-        jr[l] += as->cj * I[3 * i + l] + dv;
+        jadd(as, ua + 3 + i, ua + 3 + l, as->cj * I[3 * i + l] + dv);
       }
     }
   }
@@ -153,7 +171,7 @@ static void penalty_forces(const psModel* m, psData* d, double t, const double* 
                            const double* yp, Assembly* as) {
   for (int p = 0; p < m->npen; p++) {
     int tape = m->pen_tape[p];
-    int order = as->jac ? 2 : 1;
+    int order = as->deriv ? 2 : 1;
     ps_tape_run(m, d, tape, order, t, y, yp);
     psuHD c = {m->tape_nbasis[tape], order - 1, m->hd_stride};
     const double* g = ps_slot(m, d, m->pen_g[p]);
@@ -180,9 +198,9 @@ static void scalar_forces(const psModel* m, psData* d, double t, const double* y
                           const double* yp, Assembly* as) {
   for (int k = 0; k < m->nsf; k++) {
     int tape = m->sf_tape[k];
-    int order = (as->jac ? 1 : 0) + m->tape_order[tape];
+    int order = as->deriv + m->tape_order[tape];
     ps_tape_run(m, d, tape, order, t, y, yp);
-    psuHD c = {m->tape_nbasis[tape], as->jac ? 1 : 0, m->hd_stride};
+    psuHD c = {m->tape_nbasis[tape], as->deriv, m->hd_stride};
     int s = c.stride;
     const double* f = ps_slot(m, d, m->sf_f[k]);
     int mi = m->sf_i[k], mj = m->sf_j[k];
@@ -207,8 +225,11 @@ static void scalar_forces(const psModel* m, psData* d, double t, const double* y
       for (int i = 0; i < 3; i++) psu_hd_lin(&c, rel + i * s, 1.0, ri + i * s, -1.0, rj + i * s, 0.0);
       psu_hd_dot(&c, len, rel, rel, ps_tmp(m, d, F_SC));
       double L = sqrt(len[0]);
-      if (L == 0.0) continue; /* no direction: no force */
-      psu_hd_unary(&c, len, len, 1.0 / L, -0.5 / (L * L * L), 0.0);
+      /* coincident markers: no direction, no force (derivatives still written as zeros) */
+      if (L == 0.0)
+        psu_hd_const(&c, len, 0.0);
+      else
+        psu_hd_unary(&c, len, len, 1.0 / L, -0.5 / (L * L * L), 0.0);
       for (int i = 0; i < 3; i++) {
         psu_hd_mul(&c, vec + i * s, rel + i * s, len);
         psu_hd_mul(&c, vec + i * s, vec + i * s, f);
@@ -232,6 +253,7 @@ static int check_finite(psData* d, const double* v, int n, const char* what) {
 static int assemble(const psModel* m, psData* d, double t, const double* y, const double* yp,
                     Assembly* as) {
   if (as->jac) memset(as->jac, 0, sizeof(double) * (size_t)m->ny * (size_t)m->ny);
+  as->k = 0;
   inertia_rows(m, t, y, yp, as);
   penalty_forces(m, d, t, y, yp, as);
   scalar_forces(m, d, t, y, yp, as);
@@ -240,7 +262,7 @@ static int assemble(const psModel* m, psData* d, double t, const double* y, cons
 
 int ps_residual(const psModel* m, psData* d, double t, const double* y, const double* yp,
                 double* res) {
-  Assembly as = {res, NULL, 0.0, m->ny};
+  Assembly as = {res, NULL, NULL, NULL, NULL, 0, 0, 0.0, m->ny};
   d->nres++;
   /* a new time means a new step attempt: counting them gives the failed attempts */
   if (t != d->last_t || d->nres == 1) d->ntimes++;
@@ -251,10 +273,31 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
 
 int ps_jacobian(const psModel* m, psData* d, double t, const double* y, const double* yp,
                 double cj, double* jac) {
-  Assembly as = {d->res, jac, cj, m->ny};
+  Assembly as = {d->res, jac, NULL, NULL, NULL, 0, 1, cj, m->ny};
   d->njac++;
   assemble(m, d, t, y, yp, &as);
   return check_finite(d, jac, m->ny * m->ny, "Jacobian");
+}
+
+int ps_jacobian_pattern(const psModel* m, psData* d, int* rows, int* cols) {
+  /* the structure does not depend on values: assemble once at a harmless state */
+  double* y = d->res;
+  for (int i = 0; i < m->ny; i++) y[i] = 0.0;
+  for (int b = 0; b < m->nbody; b++)
+    if (m->body_type[b] == PS_BODY_RIGID) y[m->body_qadr[b] + 3] = 1.0;
+  Assembly as = {d->res + m->ny, NULL, NULL, rows, cols, 0, 1, 1.0, m->ny};
+  assemble(m, d, 0.0, y, y, &as);
+  return as.k;
+}
+
+int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, const double* yp,
+                    double cj, const int* map, int ntrip, double* data, int nnz) {
+  Assembly as = {d->res, NULL, d->trip, NULL, NULL, 0, 1, cj, m->ny};
+  d->njac++;
+  assemble(m, d, t, y, yp, &as);
+  for (int i = 0; i < nnz; i++) data[i] = 0.0;
+  for (int k = 0; k < ntrip; k++) data[map[k]] += d->trip[k];
+  return check_finite(d, data, nnz, "Jacobian");
 }
 
 int ps_outputs(const psModel* m, psData* d, double t, const double* y, const double* yp,

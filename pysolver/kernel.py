@@ -55,14 +55,47 @@ class Kernel:
             "slots": np.zeros(arrays["max_slots"] * stride),
             "bcache": np.zeros(arrays["max_bslots"] * 32 * stride),
             "tmp": np.zeros(96 * stride),
-            "res": np.zeros(max(self.ny, 1)),
+            "res": np.zeros(max(2 * self.ny, 1)),
+            "trip": np.zeros(1),
         }
         d = ffi.new("psData *")
-        for key, val in self._work.items():
-            setattr(d, key, ffi.cast("double *", ffi.from_buffer(val)))
         self.d = d
+        self._set_work()
         self._out = np.zeros(max(arrays["nout"], 1))
+        self._sparse = None
         self._bind()
+
+    def _set_work(self):
+        for key, val in self._work.items():
+            setattr(self.d, key, ffi.cast("double *", ffi.from_buffer(val)))
+
+    def sparsity(self):
+        """Return the iteration matrix's structure as a scipy CSC matrix (built once).
+
+        Each structural nonzero is the kernel writing a derivative there for some state; the
+        kernel's triplets are mapped onto this matrix's data array in ``jacobian_csc``.
+        """
+        if self._sparse is None:
+            import scipy.sparse as sp
+            n = lib.ps_jacobian_pattern(self.m, self.d, ffi.NULL, ffi.NULL)
+            rows = np.zeros(max(n, 1), dtype=np.int32)
+            cols = np.zeros(max(n, 1), dtype=np.int32)
+            lib.ps_jacobian_pattern(self.m, self.d, ffi.cast("int *", ffi.from_buffer(rows)),
+                                    ffi.cast("int *", ffi.from_buffer(cols)))
+            rows, cols = rows[:n], cols[:n]
+            pattern = sp.csc_matrix((np.ones(n), (rows, cols)), shape=(self.ny, self.ny))
+            pattern.sum_duplicates()
+            pattern.sort_indices()
+            # data index of each (row, col): position of row within its column's slice
+            lookup = {(int(r), int(c)): k for c in range(self.ny)
+                      for k, r in zip(range(pattern.indptr[c], pattern.indptr[c + 1]),
+                                      pattern.indices[pattern.indptr[c]:pattern.indptr[c + 1]])}
+            tmap = np.array([lookup[(int(r), int(c))] for r, c in zip(rows, cols)],
+                            dtype=np.int32)
+            self._work["trip"] = np.zeros(max(n, 1))
+            self._set_work()
+            self._sparse = (pattern, tmap, n)
+        return self._sparse[0]
 
     def _bind(self):
         m, d, fb = self.m, self.d, ffi.from_buffer
@@ -76,6 +109,22 @@ class Kernel:
 
         self.residual = residual
         self.jacobian = jacobian
+
+    def jacobian_csc_fn(self):
+        """Return a scikit-sundae ``jacfn`` filling the CSC data array of :meth:`sparsity`."""
+        self.sparsity()
+        pattern, tmap, ntrip = self._sparse
+        m, d, fb = self.m, self.d, ffi.from_buffer
+        cmap = ffi.cast("int *", fb(tmap))
+        nnz = pattern.nnz
+        csc_c = lib.ps_jacobian_csc
+
+        def jacobian(t, y, yp, res, cj, data):
+            return csc_c(m, d, t, fb("double[]", y), fb("double[]", yp), cj, cmap, ntrip,
+                         fb("double[]", data), nnz)
+
+        jacobian.keep_alive = tmap   # cmap points into it
+        return jacobian
 
     @property
     def counters(self):
@@ -102,6 +151,15 @@ class Kernel:
         res = np.zeros(self.ny)
         self.residual(t, np.ascontiguousarray(y, float), np.ascontiguousarray(yp, float), res)
         return res
+
+    def jacobian_csc_array(self, t, y, yp, cj):
+        """Return the iteration matrix through the sparse path, as a scipy CSC matrix."""
+        pattern = self.sparsity().copy()
+        fn = self.jacobian_csc_fn()
+        data = np.zeros(pattern.nnz)
+        fn(t, np.ascontiguousarray(y, float), np.ascontiguousarray(yp, float), None, cj, data)
+        pattern.data[:] = data
+        return pattern
 
     def jacobian_array(self, t, y, yp, cj):
         """Return dF/dy + cj dF/dyp as a new (ny, ny) array."""

@@ -7,6 +7,7 @@ from IDA's interpolant, without forcing steps to land on print times.
 import math
 import sys
 import time
+import warnings
 
 import numpy as np
 from sksundae.ida import IDA
@@ -15,7 +16,10 @@ from .results import Result
 
 __version__ = "0.1.0"
 
-_OPTION_NAMES = ("integr_tol", "h_max", "h_min", "h0_max", "max_num_steps")
+_OPTION_NAMES = ("integr_tol", "h_max", "h_min", "h0_max", "max_num_steps", "linsolver")
+
+#: With linsolver="auto", scenes with at least this many states use the sparse solver.
+SPARSE_THRESHOLD = 300
 
 
 def _print_times(t0, end, dt):
@@ -62,20 +66,32 @@ def run_model(model, progress=None, **overrides):
             raise TypeError(f"unknown run option {key!r}; expected one of {_OPTION_NAMES}")
     t_start = time.perf_counter()
     kernel = model._kernel()
-    opts = {k: getattr(model.transient, k) for k in _OPTION_NAMES}
+    opts = {k: getattr(model.transient, k, None) for k in _OPTION_NAMES}
+    opts["linsolver"] = "auto"
     opts.update(overrides)
     if not opts["integr_tol"] > 0:
         raise ValueError("integr_tol must be > 0")
+    if opts["linsolver"] not in ("auto", "dense", "sparse"):
+        raise ValueError(f"linsolver must be 'auto', 'dense' or 'sparse', not {opts['linsolver']!r}")
+    sparse = opts["linsolver"] == "sparse" or (opts["linsolver"] == "auto"
+                                               and kernel.ny >= SPARSE_THRESHOLD)
     kernel.reset_counters()
     kernel.d.ntimes = 0
     y = kernel.layout.initial_state()
     t = 0.0
     yp = kernel.consistent_yp(t, y)
-    solver = IDA(lambda t, y, yp, res: kernel.residual(t, y, yp, res),
-                 jacfn=lambda t, y, yp, res, cj, JJ: kernel.jacobian(t, y, yp, cj, JJ),
-                 rtol=opts["integr_tol"], atol=opts["integr_tol"], linsolver="dense",
-                 max_step=opts["h_max"] or 0.0, min_step=opts["h_min"] or 0.0,
-                 first_step=opts["h0_max"] or 0.0, max_num_steps=100000)
+    if sparse:
+        linear = dict(linsolver="sparse", sparsity=kernel.sparsity(),
+                      jacfn=kernel.jacobian_csc_fn())
+    else:
+        linear = dict(linsolver="dense",
+                      jacfn=lambda t, y, yp, res, cj, JJ: kernel.jacobian(t, y, yp, cj, JJ))
+    with warnings.catch_warnings():
+        # scikit-sundae warns that our exact jacfn replaces its sparse difference quotients
+        warnings.simplefilter("ignore", UserWarning)
+        solver = IDA(kernel.residual, rtol=opts["integr_tol"], atol=opts["integr_tol"],
+                     max_step=opts["h_max"] or 0.0, min_step=opts["h_min"] or 0.0,
+                     first_step=opts["h0_max"] or 0.0, max_num_steps=100000, **linear)
     solver.init_step(t, y, yp)
     ts, ys, yps, outs = [t], [y.copy()], [yp.copy()], [kernel.outputs(t, y, yp)]
     t_setup = time.perf_counter()
@@ -119,6 +135,7 @@ def run_model(model, progress=None, **overrides):
              "nfail": max(int(kernel.d.ntimes) - steps - 1, 0), "outputs": len(ts)}
     timing = {"setup": t_setup - t_start, "integrate": t_end - t_setup,
               "total": t_end - t_start}
+    opts["linsolver"] = "sparse" if sparse else "dense"
     meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
             "options": opts, "ny": kernel.ny}
     labels = {(r.id, k): n for r in model.requests.values() for k, n in enumerate(r.names) if n}

@@ -90,9 +90,10 @@ def test_several_simulate_commands_continue(decks):
 
 
 def _cli(*args):
-    # run outside the checkout so that the installed package is the one imported
+    # the subprocess imports the same pysolver as these tests
+    env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(pysolver.__file__)))
     return subprocess.run([sys.executable, "-m", "pysolver", *args], capture_output=True,
-                          text=True, cwd=os.path.dirname(sys.executable))
+                          text=True, env=env)
 
 
 def test_cli_run_and_check(decks, tmp_path):

@@ -131,7 +131,8 @@ typedef struct psData {
   double* slots;          /* (max_slots x hd_stride) tape registers             */
   double* bcache;         /* (max_bslots x 24 x hd_stride) body kinematics      */
   double* tmp;            /* (96 x hd_stride) scratch numbers                   */
-  double* res;            /* (ny x 1) residual scratch for ps_jacobian          */
+  double* res;            /* (2 ny x 1) residual scratch for the Jacobian        */
+  double* trip;           /* (ntrip x 1) Jacobian triplet values (sparse mode)  */
   long nres;              /* residual evaluations                               */
   long njac;              /* Jacobian evaluations                               */
   long ntimes;            /* residual evaluations at a time other than the last */
@@ -148,6 +149,16 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
  * Returns PS_OK or an error code with a message in d->msg. */
 int ps_jacobian(const psModel* m, psData* d, double t, const double* y, const double* yp,
                 double cj, double* jac);
+
+/* Count the structural nonzeros of the iteration matrix as (row, col) triplets, in the order
+ * ps_jacobian_csc produces their values. rows and cols may be NULL (count only); a triplet may
+ * repeat an entry (values are summed). d->res must hold 2 ny doubles. Returns the count. */
+int ps_jacobian_pattern(const psModel* m, psData* d, int* rows, int* cols);
+
+/* Fill the CSC data array (length nnz) of the iteration matrix: triplet k is added to
+ * data[map[k]]. d->trip must hold ntrip doubles. Returns PS_OK or an error code. */
+int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, const double* yp,
+                    double cj, const int* map, int ntrip, double* data, int nnz);
 
 /* Evaluate every output channel into out (length m->nout); a NULL channel gives NaN.
  * Returns PS_OK. */
