@@ -105,8 +105,9 @@ void ps_body_cache(const psModel* m, psData* d, const psuHD* c, int tape, double
     for (int i = 0; i < 4; i++) psu_hd_var(c, e + i * s, y[qa + 3 + i], qp >= 0 ? qp + 3 + i : -1);
     rotation_from_e(m, d, c, A, e);
     for (int i = 0; i < 3; i++) psu_hd_var(c, wb + i * s, y[ua + 3 + i], up >= 0 ? up + 3 + i : -1);
-    mat_vec(c, w, A, wb, ps_tmp(m, d, TMP_X));
-    {
+    /* global angular velocity and acceleration only for tapes that measure them */
+    if (up >= 0) mat_vec(c, w, A, wb, ps_tmp(m, d, TMP_X));
+    if (ap >= 0) {
       double* wdot = ps_tmp(m, d, TMP_C1);
       for (int i = 0; i < 3; i++)
         psu_hd_var(c, wdot + i * s, yp ? yp[ua + 3 + i] : 0.0, ap >= 0 ? ap + 3 + i : -1);

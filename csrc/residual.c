@@ -264,8 +264,13 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
                 double* res) {
   Assembly as = {res, NULL, NULL, NULL, NULL, 0, 0, 0.0, m->ny};
   d->nres++;
-  /* a new time means a new step attempt: counting them gives the failed attempts */
-  if (t != d->last_t || d->nres == 1) d->ntimes++;
+  /* A new time is a new step attempt; IDA retries a failed attempt (error test or
+   * convergence) from the same base with a smaller step, so a new time below the last one
+   * means the last attempt failed. Steps taken = ntimes - nfail - (initial evaluations). */
+  if (d->nres == 1 || t != d->last_t) {
+    if (d->nres > 1 && t < d->last_t) d->nfail++;
+    d->ntimes++;
+  }
   d->last_t = t;
   assemble(m, d, t, y, yp, &as);
   return check_finite(d, res, m->ny, "residual");

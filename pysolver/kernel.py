@@ -129,11 +129,15 @@ class Kernel:
     @property
     def counters(self):
         """Kernel call counters: residual and Jacobian evaluations."""
-        return {"nres": int(self.d.nres), "njac": int(self.d.njac)}
+        return {"nres": int(self.d.nres), "njac": int(self.d.njac),
+                "attempts": int(self.d.ntimes), "nfail": int(self.d.nfail)}
 
     def reset_counters(self):
+        """Zero the call and step-attempt counters."""
         self.d.nres = 0
         self.d.njac = 0
+        self.d.ntimes = 0
+        self.d.nfail = 0
 
     @property
     def message(self):

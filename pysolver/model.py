@@ -381,7 +381,10 @@ class Model:
             error is a terminal and the run takes longer than one second.
         **options
             Override ``Param_Transient`` for this run: ``integr_tol``, ``h_max``, ``h_min``,
-            ``h0_max``, ``max_num_steps`` (same meaning and units as in the deck).
+            ``h0_max``, ``max_num_steps`` (same meaning and units as in the deck). Also
+            ``linsolver``: ``"auto"`` (default: dense below 300 states, sparse CSC from 300),
+            ``"dense"`` or ``"sparse"``; ``jacobian``: ``"exact"`` (default, the kernel's) or
+            ``"dq"`` (IDA's difference quotients, for comparison only).
 
         Returns
         -------

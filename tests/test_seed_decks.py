@@ -69,7 +69,7 @@ def test_catenary_violation_scales_with_one_over_penalty(decks):
     assert 50 < ratio < 200
 
 
-@pytest.mark.parametrize("name", SEEDS + ["torque_free_spin"])
+@pytest.mark.parametrize("name", SEEDS + ["torque_free_spin", "spinning_top"])
 def test_xml_and_python_decks_agree(decks, name):
     a = pysolver.load(decks / f"{name}.xml").run()
     b = pysolver.load(decks / f"{name}.py").run()

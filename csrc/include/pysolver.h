@@ -135,7 +135,8 @@ typedef struct psData {
   double* trip;           /* (ntrip x 1) Jacobian triplet values (sparse mode)  */
   long nres;              /* residual evaluations                               */
   long njac;              /* Jacobian evaluations                               */
-  long ntimes;            /* residual evaluations at a time other than the last */
+  long ntimes;            /* step attempts: residual evaluations at a new time  */
+  long nfail;             /* failed step attempts (a new time below the last)   */
   double last_t;          /* time of the last residual evaluation              */
   char msg[256];          /* message of the last error                          */
 } psData;

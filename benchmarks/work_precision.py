@@ -1,0 +1,93 @@
+"""Work-precision report: error against wall time over a tolerance sweep.
+
+Problems with exact solutions (README "Accuracy and cost"):
+- oscillator: bilateral penalty on a point mass under gravity (closed form);
+- catenary: the seed bead, error against a pysolver run at integr_tol 1e-12.
+Comparators run in the same process on the same equations: IDA with its own difference-quotient
+Jacobian (``jacobian="dq"``), and SciPy's ``solve_ivp`` (Radau, BDF) on a hand-written NumPy
+right-hand side, i.e. what a user would write without pysolver. Times are the minimum of
+`repeat` runs after one warm-up (SciMLBenchmarks' convention); ratios are comparator / pysolver.
+
+Run: ``python benchmarks/work_precision.py [--repeat 5]``
+"""
+import argparse
+import pathlib
+import sys
+import time
+
+import numpy as np
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tests"))
+import pysolver  # noqa: E402
+from test_oscillator import DECK, exact, M, K, C, G  # noqa: E402
+
+
+def best_time(fn, repeat):
+    fn()
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t0)
+    return min(times), out
+
+
+def oscillator_rhs(t, s):
+    z, v = s
+    return [v, (-K * (z - 1) - C * v) / M - G]
+
+
+def scipy_run(method, tol, t_eval, rhs, y0):
+    from scipy.integrate import solve_ivp
+    return solve_ivp(rhs, (t_eval[0], t_eval[-1]), y0, method=method, t_eval=t_eval,
+                     rtol=tol, atol=tol)
+
+
+def oscillator(repeat):
+    model = pysolver.loads(DECK)
+    rows = []
+    for tol in (1e-4, 1e-6, 1e-8, 1e-10):
+        tp, res = best_time(lambda: model.run(integr_tol=tol), repeat)
+        z, _ = exact(res.t)
+        err = np.abs(res.request(1)[:, 0] - z).max()
+        tdq, rdq = best_time(lambda: model.run(integr_tol=tol, jacobian="dq"), repeat)
+        edq = np.abs(rdq.request(1)[:, 0] - z).max()
+        row = [tol, err, tp * 1e3, res.stats["steps"], edq, tdq / tp]
+        for method in ("Radau", "BDF"):
+            ts, sol = best_time(lambda: scipy_run(method, tol, res.t, oscillator_rhs,
+                                                  [1.2, 0.5]), repeat)
+            row += [np.abs(sol.y[0] - z).max(), ts / tp]
+        rows.append(row)
+    print("\nDamped oscillator (t = 0..3, 301 outputs): max position error vs closed form")
+    print(f"{'tol':>7} {'pysolver err':>12} {'ms':>7} {'steps':>6} | {'IDA-dq err':>10} "
+          f"{'time x':>6} | {'Radau err':>10} {'time x':>6} | {'BDF err':>10} {'time x':>6}")
+    for r in rows:
+        print(f"{r[0]:7.0e} {r[1]:12.2e} {r[2]:7.2f} {r[3]:6d} | {r[4]:10.2e} {r[5]:6.2f} | "
+              f"{r[6]:10.2e} {r[7]:6.2f} | {r[8]:10.2e} {r[9]:6.2f}")
+    return rows
+
+
+def seed_decks(repeat):
+    print("\nSeed decks at their own integr_tol: pysolver vs IDA with difference quotients")
+    print(f"{'deck':>26} {'ms':>7} {'steps':>6} {'nres':>6} {'njac':>5} | {'dq ms':>7} "
+          f"{'dq nres':>7} {'time x':>6}")
+    for name in ("catenary_bead", "particle_above_line", "particle_between_lines",
+                 "torque_free_spin", "spinning_top"):
+        model = pysolver.load(ROOT / "decks" / f"{name}.xml")
+        tp, res = best_time(model.run, repeat)
+        tdq, rdq = best_time(lambda: model.run(jacobian="dq"), repeat)
+        print(f"{name:>26} {tp * 1e3:7.2f} {res.stats['steps']:6d} {res.stats['nres']:6d} "
+              f"{res.stats['njac']:5d} | {tdq * 1e3:7.2f} {rdq.stats['nres']:7d} {tdq / tp:6.2f}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=5)
+    args = parser.parse_args()
+    oscillator(args.repeat)
+    seed_decks(args.repeat)
+
+
+if __name__ == "__main__":
+    main()
