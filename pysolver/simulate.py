@@ -42,11 +42,11 @@ class _Progress:
         self.last = self.start
         self.shown = False
 
-    def update(self, t):
+    def update(self, t, force=False):
         if not self.enabled:
             return
         now = time.perf_counter()
-        if now - self.last < 0.25 or (self.auto and now - self.start < 1.0):
+        if not force and (now - self.last < 0.25 or (self.auto and now - self.start < 1.0)):
             return
         self.last = now
         frac = min(max((t - self.t0) / (self.t1 - self.t0), 0.0), 1.0)
@@ -55,8 +55,10 @@ class _Progress:
         sys.stderr.flush()
         self.shown = True
 
-    def close(self):
-        if self.shown:
+    def close(self, t):
+        """Show the final state (always when asked for explicitly) and end the line."""
+        if self.shown or (self.enabled and not self.auto):
+            self.update(t, force=True)
             sys.stderr.write("\n")
             sys.stderr.flush()
 
@@ -136,7 +138,7 @@ def run_model(model, progress=None, **overrides):
             if not success:
                 break
     finally:
-        bar.close()
+        bar.close(t)
     t_end = time.perf_counter()
     counters = kernel.counters
     stats = {"steps": _steps(kernel), "nres": counters["nres"], "njac": counters["njac"],

@@ -1,0 +1,81 @@
+"""Units, case-insensitive names, command sequencing, and the progress bar."""
+import io
+
+import numpy as np
+import pytest
+
+import pysolver
+from pysolver.units import force_scale
+
+
+@pytest.mark.parametrize("units,scale", [
+    (("KILOGRAM", "METER", "SECOND", "NEWTON"), 1.0),
+    (("KILOGRAM", "MILLIMETER", "SECOND", "NEWTON"), 1000.0),
+    (("GRAM", "CENTIMETER", "SECOND", "DYNE"), 1.0),
+    (("SLUG", "FOOT", "SECOND", "POUND_FORCE"), 1.0),
+    (("MEGAGRAM", "MILLIMETER", "SECOND", "NEWTON"), 1.0),
+    (("KILOGRAM", "MILLIMETER", "MILLISECOND", "KILONEWTON"), 1.0),
+])
+def test_force_scale(units, scale):
+    assert force_scale(*units) == pytest.approx(scale, rel=1e-12)
+
+
+def test_names_are_case_insensitive():
+    deck = """<motionsolve><MODEL>
+      <body_rigid ID="1" IsGround="true"/>
+      <REFERENCE_MARKER id="10" BODY_ID="2" Pos_Z="1"/>
+      <Body_point Id="2" cg_ID="10" MASS="2"/>
+      <force_gravity GRAV_Z="-10"/>
+      <FORCE_PENALTY id="1" EXPR="dz(10)-1" Penalty="100"/>
+      <post_request ID="1" expr1="Dz(10)"/>
+      </MODEL><command><simulate ANALYSIS_TYPE="transient" END_TIME="0.1" num_step="10"/></command>
+      <STOP/></motionsolve>"""
+    res = pysolver.loads(deck).run()
+    assert res.success and len(res.t) == 11
+
+
+def test_commands_after_stop_are_ignored():
+    deck = """<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+      <Reference_Marker id="10" body_id="2" pos_z="1"/><Body_Point id="2" cg_id="10" mass="1"/>
+      </Model>
+      <Simulate analysis_type="Transient" end_time="0.5" num_step="5"/>
+      <Stop/>
+      <Simulate analysis_type="Transient" end_time="9" num_step="5"/>
+      </MotionSolve>"""
+    res = pysolver.loads(deck).run()
+    assert res.t[-1] == 0.5
+
+
+def test_free_fall_units_mm():
+    """Free fall in mm for 0.1 s: z = z0 - g t^2 / 2 exactly (no forces but gravity)."""
+    deck = """<MotionSolve><Model><Units mass="KILOGRAM" length="MILLIMETER" time="SECOND" force="NEWTON"/>
+      <Body_Rigid id="1" isground="TRUE"/>
+      <Reference_Marker id="10" body_id="2" pos_z="100"/><Body_Point id="2" cg_id="10" mass="3"/>
+      <Force_Gravity grav_z="-9810"/><Post_Request id="1" expr1="DZ(10)" expr2="ACCZ(10)"/>
+      </Model><Simulate analysis_type="Transient" end_time="0.1" num_step="10"/></MotionSolve>"""
+    res = pysolver.loads(deck).run(integr_tol=1e-10)
+    np.testing.assert_allclose(res.request(1)[:, 0], 100 - 0.5 * 9810 * res.t ** 2, atol=1e-8)
+    np.testing.assert_allclose(res.request(1)[:, 1], -9810, rtol=1e-10)
+
+
+def test_force_units_scale_applied_forces():
+    """A 1 N constant force on 1 kg in kg/mm/s/N accelerates at 1000 mm/s^2."""
+    deck = """<MotionSolve><Model><Units mass="KILOGRAM" length="MILLIMETER" time="SECOND" force="NEWTON"/>
+      <Body_Rigid id="1" isground="TRUE"/><Reference_Marker id="1" body_id="1"/>
+      <Reference_Marker id="10" body_id="2" pos_x="100"/><Body_Point id="2" cg_id="10" mass="1"/>
+      <Force_Scalar_TwoBody id="1" type="Force" i_marker_id="10" j_marker_id="1" val="1"/>
+      <Post_Request id="1" expr1="ACCX(10)" expr2="SFORCE(1,0,2,0)"/>
+      </Model><Simulate analysis_type="Transient" end_time="0.01" num_step="2"/></MotionSolve>"""
+    res = pysolver.loads(deck).run(integr_tol=1e-10)
+    np.testing.assert_allclose(res.request(1)[:, :2], [[1000.0, 1.0]] * 3, rtol=1e-9)
+
+
+def test_progress_bar_when_asked(decks, monkeypatch):
+    err = io.StringIO()
+    monkeypatch.setattr("sys.stderr", err)
+    pysolver.load(decks / "catenary_bead.xml").run(progress=True)
+    assert "100.0%" in err.getvalue()
+    err2 = io.StringIO()
+    monkeypatch.setattr("sys.stderr", err2)
+    pysolver.load(decks / "catenary_bead.xml").run()   # not a terminal: silent
+    assert err2.getvalue() == ""
