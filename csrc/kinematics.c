@@ -174,24 +174,24 @@ void ps_marker_vel(const psModel* m, psData* d, const psuHD* c, int mk, int slot
   for (int i = 0; i < 3; i++) psu_hd_lin(c, V + i * s, 1.0, v + i * s, 1.0, wxp + i * s, 0.0);
 }
 
-void ps_marker_omega(const psModel* m, psData* d, const psuHD* c, int mk, int slot, double* W) {
+/* A body vector of the cache (angular velocity or acceleration) for a marker; zero on ground. */
+static void body_vector(const psModel* m, psData* d, const psuHD* c, int mk, int slot, int k,
+                        double* out) {
   int s = c->stride;
   for (int i = 0; i < 3; i++) {
     if (on_ground(m, mk, slot))
-      psu_hd_const(c, W + i * s, 0.0);
+      psu_hd_const(c, out + i * s, 0.0);
     else
-      psu_hd_copy(c, W + i * s, ps_bc(m, d, slot, PS_BC_W) + i * s);
+      psu_hd_copy(c, out + i * s, ps_bc(m, d, slot, k) + i * s);
   }
 }
 
+void ps_marker_omega(const psModel* m, psData* d, const psuHD* c, int mk, int slot, double* W) {
+  body_vector(m, d, c, mk, slot, PS_BC_W, W);
+}
+
 void ps_marker_alpha(const psModel* m, psData* d, const psuHD* c, int mk, int slot, double* Al) {
-  int s = c->stride;
-  for (int i = 0; i < 3; i++) {
-    if (on_ground(m, mk, slot))
-      psu_hd_const(c, Al + i * s, 0.0);
-    else
-      psu_hd_copy(c, Al + i * s, ps_bc(m, d, slot, PS_BC_AL) + i * s);
-  }
+  body_vector(m, d, c, mk, slot, PS_BC_AL, Al);
 }
 
 void ps_marker_acc(const psModel* m, psData* d, const psuHD* c, int mk, int slot, double* Acc) {

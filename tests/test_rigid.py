@@ -104,3 +104,27 @@ def test_heavy_top_against_lagrange_reference(decks):
     assert gap_soft < 1.5e-5 and gap_stiff < 1.5e-6
     assert dz_soft < 5e-5 and daz_soft < 4e-3
     assert 8 < dz_soft / dz_stiff < 12 and 8 < daz_soft / daz_stiff < 12
+
+
+def test_scalar_force_and_torque_on_a_rigid_body():
+    """Initial accelerations from SFORCE: a force at an offset marker gives F/m and
+    J^-1 (r x F); a torque about z of J gives T / Izz about that axis."""
+    deck = """<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+      <Reference_Marker id="1" body_id="1" pos_x="3" pos_y="0.5" pos_z="0.2"/>
+      <Reference_Marker id="2" body_id="1" psi="0.4" theta="0.6" phi="0.1"/>
+      <Reference_Marker id="20" body_id="2"/>
+      <Reference_Marker id="21" body_id="2" pos_x="0.2" pos_y="0.1" pos_z="-0.3"/>
+      <Body_Rigid id="2" cg_id="20" mass="2" inertia_xx="0.3" inertia_yy="0.4" inertia_zz="0.5"/>
+      <Force_Scalar_TwoBody id="1" type="Force" i_marker_id="21" j_marker_id="1" val="-7"/>
+      <Force_Scalar_TwoBody id="2" type="Torque" i_marker_id="20" j_marker_id="2" val="1.5"/>
+      </Model><Simulate analysis_type="Transient" end_time="0.001" num_step="1"/></MotionSolve>"""
+    res = pysolver.loads(deck).run()
+    model = pysolver.loads(deck)
+    r = np.array([0.2, 0.1, -0.3])
+    d = r - np.array([3, 0.5, 0.2])
+    F = -7 * d / np.linalg.norm(d)
+    zJ = model.markers[2].rot[:, 2]
+    J = np.diag([0.3, 0.4, 0.5])
+    np.testing.assert_allclose(res.yp[0, 7:10], F / 2, rtol=1e-12)
+    np.testing.assert_allclose(res.yp[0, 10:13], np.linalg.solve(J, np.cross(r, F) + 1.5 * zJ),
+                               rtol=1e-12)
