@@ -3,6 +3,7 @@ import json
 import os
 import pickle
 import subprocess
+import tempfile
 import sys
 
 import numpy as np
@@ -90,10 +91,10 @@ def test_several_simulate_commands_continue(decks):
 
 
 def _cli(*args):
-    # the subprocess imports the same pysolver as these tests
+    # the subprocess imports the same pysolver as these tests (not a checkout in its cwd)
     env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(pysolver.__file__)))
     return subprocess.run([sys.executable, "-m", "pysolver", *args], capture_output=True,
-                          text=True, env=env)
+                          text=True, env=env, cwd=tempfile.gettempdir())
 
 
 def test_cli_run_and_check(decks, tmp_path):
