@@ -190,8 +190,7 @@ static void measure(const psModel* m, psData* d, const psuHD* c, double* out, co
     case PS_M_VR: {
       double* vrel = ps_tmp(m, d, T_VREL);
       double* len = ps_tmp(m, d, T_C2);
-      int b[9] = {a[0], a[1], a[2], -1, -1, a[5], a[6], -1, -1};
-      rel_velocity(m, d, c, b, vrel, rel);
+      rel_velocity(m, d, c, a, vrel, rel);
       psu_hd_dot(c, out, vrel, rel, sc);
       norm3(c, len, rel, sc);
       if (len[0] == 0.0)

@@ -199,10 +199,8 @@ class Compiler:
     def measure(self, tape, name, ids):
         need_u = name in _VEL or name in _ACC
         need_a = name in _ACC
-        if name == "VM":            # VM(i, j, l): no resolution marker
+        if name in ("VM", "VR"):    # VM(i, j, l), VR(i, j, l): no resolution marker
             ids = ids[:2] + [0] * (2 - len(ids[:2])) + [0] + ids[2:3]
-        elif name == "VR":
-            ids = ids[:2]
         ids = ids + [0] * (4 - len(ids))
         mk, sl = [], []
         for k, mid in enumerate(ids):

@@ -28,7 +28,7 @@ MATH1 = ("ABS", "ACOS", "ASIN", "ATAN", "COS", "COSH", "SIN", "SINH", "TAN", "TA
 MATH2 = ("ATAN2", "MOD", "MAX", "MIN", "SIGN", "DIM")
 MEASURES = {
     "DX": (1, 3), "DY": (1, 3), "DZ": (1, 3), "DM": (1, 2),
-    "VX": (1, 4), "VY": (1, 4), "VZ": (1, 4), "VM": (1, 3), "VR": (1, 2),
+    "VX": (1, 4), "VY": (1, 4), "VZ": (1, 4), "VM": (1, 3), "VR": (1, 3),
     "ACCX": (1, 4), "ACCY": (1, 4), "ACCZ": (1, 4),
     "WX": (1, 3), "WY": (1, 3), "WZ": (1, 3),
     "AX": (1, 2), "AY": (1, 2), "AZ": (1, 2),
