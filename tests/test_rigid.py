@@ -128,3 +128,20 @@ def test_scalar_force_and_torque_on_a_rigid_body():
     np.testing.assert_allclose(res.yp[0, 7:10], F / 2, rtol=1e-12)
     np.testing.assert_allclose(res.yp[0, 10:13], np.linalg.solve(J, np.cross(r, F) + 1.5 * zJ),
                                rtol=1e-12)
+
+
+def test_measures_in_a_rotating_frame():
+    """A ground point seen from a frame spinning at w about z: velocity -w x r, acceleration
+    -w^2 r (centripetal), both resolved in the ground frame here."""
+    deck = """<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+      <Reference_Marker id="1" body_id="1" pos_x="1"/>
+      <Reference_Marker id="20" body_id="2"/>
+      <Body_Rigid id="2" cg_id="20" mass="1" inertia_xx="1" inertia_yy="1" inertia_zz="1" w_ic_z="2"/>
+      <Post_Request id="1" expr1="VX(1,20,0,20)" expr2="VY(1,20,0,20)" expr3="ACCX(1,20,0,20)"
+        expr4="ACCY(1,20,0,20)" expr5="VR(1,20,20)" expr6="VM(1,20,20)" expr7="WZ(20,1,20)"
+        expr8="AZ(20)"/>
+      </Model><Simulate analysis_type="Transient" end_time="0.5" num_step="5"/></MotionSolve>"""
+    res = pysolver.loads(deck).run(integr_tol=1e-10)
+    R = res.request(1)
+    np.testing.assert_allclose(R[:, :7], [[0, -2, -4, 0, 0, 2, 2]] * len(res.t), atol=1e-9)
+    np.testing.assert_allclose(R[:, 7], 2 * res.t, atol=1e-8)   # AZ: the body turns at 2 rad/s
