@@ -266,9 +266,10 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
   d->nres++;
   /* A new time is a new step attempt; IDA retries a failed attempt (error test or
    * convergence) from the same base with a smaller step, so a new time below the last one
-   * means the last attempt failed. Steps taken = ntimes - nfail - (initial evaluations). */
-  if (d->nres == 1 || t != d->last_t) {
-    if (d->nres > 1 && t < d->last_t) d->nfail++;
+   * means the last attempt failed. The driver sets last_t to the time of every (re)start,
+   * so steps taken = ntimes - nfail. */
+  if (t != d->last_t) {
+    if (t < d->last_t) d->nfail++;
     d->ntimes++;
   }
   d->last_t = t;
@@ -303,6 +304,27 @@ int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, cons
   for (int i = 0; i < nnz; i++) data[i] = 0.0;
   for (int k = 0; k < ntrip; k++) data[map[k]] += d->trip[k];
   return check_finite(d, data, nnz, "Jacobian");
+}
+
+int ps_roots(const psModel* m, psData* d, double t, const double* y, const double* yp,
+             double* g) {
+  int last = -1;
+  d->nroots++;
+  for (int k = 0; k < m->nsensor; k++) {
+    int tape = m->sensor_tape[k];
+    if (tape != last) ps_tape_run(m, d, tape, m->tape_order[tape], t, y, yp);
+    last = tape;
+    double f = ps_slot(m, d, m->sensor_slot[k])[0];
+    double v = m->sensor_value[k], tol = m->sensor_tol[k];
+    int armed = d->sensor_armed[k];
+    d->sensor_f[k] = f;
+    switch (m->sensor_compare[k]) {
+      case PS_CMP_GE: g[k] = armed ? f - v : (v - tol) - f; break;
+      case PS_CMP_LT: g[k] = armed ? v - f : f - (v + tol); break;
+      default: g[k] = armed ? tol - fabs(f - v) : fabs(f - v) - 2.0 * tol; break;
+    }
+  }
+  return PS_OK;
 }
 
 int ps_outputs(const psModel* m, psData* d, double t, const double* y, const double* yp,

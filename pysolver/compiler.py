@@ -70,6 +70,7 @@ class _Tape:
         self.slot_of = {}
         self.touch = []           # stack of sets of body slots touched
         self.has_gdot = False
+        self.uses_senval = False
 
     def body_slot(self, bidx, need_u=False, need_a=False):
         if bidx not in self.slot_of:
@@ -140,6 +141,7 @@ class Compiler:
         self.midx = {mid: i for i, mid in enumerate(self.markers)}
         self.tapes = []
         self.stack = []
+        self.eidx = {eid: i for i, eid in enumerate(sorted(model.evaluates))}
 
     def const_index(self, v):
         key = v if not math.isnan(v) else "nan"
@@ -181,6 +183,9 @@ class Compiler:
             return self.penalty_force(tape, int(args[0][1]))[1]
         if name == "SFORCE":
             return self.sforce_measure(tape, *(int(a[1]) for a in args))
+        if name == "SENVAL":
+            tape.uses_senval = True
+            return tape.emit(lib.PS_OP_SENVAL, self.eidx[int(args[0][1])])
         slots = [self.lower(tape, a) for a in args]
         if name in _UNARY:
             return tape.op(_UNARY[name], *slots)
@@ -312,6 +317,19 @@ class Compiler:
             self.marker(t, sf.j)
             f = self.lower(t, sf.expr)
             self.sf.append((ti, f, int(sf.torque), self.midx[sf.i], self.midx[sf.j]))
+        # forces that read SENVAL need a restart with consistent yp when a value is stored
+        self.forces_use_senval = any(self.tapes[t].uses_senval for t, *_ in self.pen + self.sf)
+        self.sensor = []
+        cmp = {"GE": lib.PS_CMP_GE, "LT": lib.PS_CMP_LT, "EQ": lib.PS_CMP_EQ}
+        for sid in sorted(model.sensors):
+            se = model.sensors[sid]
+            ti, t = self.new_tape()
+            self.sensor.append((ti, self.lower(t, se.expr), cmp[se.compare], se.value,
+                                se.error_tol))
+        self.evaluate = []
+        for eid in sorted(model.evaluates):
+            ti, t = self.new_tape()
+            self.evaluate.append((ti, self.lower(t, model.evaluates[eid].expr)))
         self.out = []
         self.channels = []
         for rid in sorted(model.requests):
@@ -398,4 +416,9 @@ class Compiler:
             sf_torque=i32([s[2] for s in self.sf]), sf_i=i32([s[3] for s in self.sf]),
             sf_j=i32([s[4] for s in self.sf]),
             out_tape=i32([o[0] for o in self.out]), out_slot=i32([o[1] for o in self.out]),
+            nsensor=len(self.sensor), sensor_tape=i32([x[0] for x in self.sensor]),
+            sensor_slot=i32([x[1] for x in self.sensor]),
+            sensor_compare=i32([x[2] for x in self.sensor]),
+            sensor_value=f64([x[3] for x in self.sensor]),
+            sensor_tol=f64([x[4] for x in self.sensor]),
         )

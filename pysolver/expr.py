@@ -38,11 +38,11 @@ FUNCTIONS = {
     **{f: (2, 2) for f in MATH2},
     **MEASURES,
     "STEP": (5, 5), "STEP5": (5, 5), "HAVSIN": (5, 5), "IMPACT": (7, 7), "BISTOP": (8, 8),
-    "IF": (4, 4), "VARVAL": (1, 1), "PFORCE": (1, 1), "SFORCE": (4, 4),
+    "IF": (4, 4), "VARVAL": (1, 1), "PFORCE": (1, 1), "SFORCE": (4, 4), "SENVAL": (1, 1),
 }
 #: Functions whose arguments are element ids (integer literals).
 ID_ARGS = {**{m: "marker" for m in MEASURES}, "VARVAL": "variable", "PFORCE": "penalty",
-           "SFORCE": "sforce"}
+           "SFORCE": "sforce", "SENVAL": "evaluate"}
 
 _TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eEdD][+-]?\d+)?|\.\d+(?:[eEdD][+-]?\d+)?)"
                     r"|([A-Za-z_][A-Za-z_0-9]*)|(\*\*|[-+*/(),:]))")
@@ -186,8 +186,6 @@ def _check(node):
         _check(node[3])
     elif tag == "call":
         name, args, col = node[1], node[2], node[3]
-        if name == "SENVAL":
-            raise ExpressionError("SENVAL needs Sensor_Evaluate, which is not supported yet", col)
         if name not in FUNCTIONS:
             raise ExpressionError(f"unknown function {name}", col)
         lo, hi = FUNCTIONS[name]

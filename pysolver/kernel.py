@@ -5,7 +5,7 @@ from ._bindings import ffi, lib
 from .compiler import Compiler
 
 _INT_FIELDS = ("ny", "nbody", "nmarker", "ntape", "npen", "nsf", "nout", "hd_stride",
-               "max_slots", "max_bslots")
+               "max_slots", "max_bslots", "nsensor")
 
 
 class Kernel:
@@ -31,6 +31,11 @@ class Kernel:
         arrays = comp.compile()
         self.layout = comp.layout
         self.channels = comp.channels
+        self.sensor_ids = sorted(model.sensors)
+        self.evaluate_ids = sorted(model.evaluates)
+        self.evaluate_tapes = comp.evaluate
+        self.forces_use_senval = comp.forces_use_senval
+        self.nsensor = arrays["nsensor"]
         self.ny = arrays["ny"]
         self.ntape = arrays["ntape"]
         self._keep = []
@@ -57,7 +62,10 @@ class Kernel:
             "tmp": np.zeros(96 * stride),
             "res": np.zeros(max(2 * self.ny, 1)),
             "trip": np.zeros(1),
+            "senval": np.zeros(max(len(model.evaluates), 1)),
+            "sensor_f": np.zeros(max(self.nsensor, 1)),
         }
+        self.armed = np.ones(max(self.nsensor, 1), dtype=np.int32)
         d = ffi.new("psData *")
         self.d = d
         self._set_work()
@@ -68,6 +76,37 @@ class Kernel:
     def _set_work(self):
         for key, val in self._work.items():
             setattr(self.d, key, ffi.cast("double *", ffi.from_buffer(val)))
+        self.d.sensor_armed = ffi.cast("int *", ffi.from_buffer(self.armed))
+
+    @property
+    def senval(self):
+        """Stored Sensor_Evaluate values, in evaluate-id order (a view the kernel reads)."""
+        return self._work["senval"]
+
+    @property
+    def sensor_f(self):
+        """Sensor expressions at the last root evaluation, in sensor-id order."""
+        return self._work["sensor_f"]
+
+    def roots(self, t, y, yp, g):
+        """Fill g with every sensor's root function (see ps_roots)."""
+        fb = ffi.from_buffer
+        return lib.ps_roots(self.m, self.d, t, fb("double[]", y), fb("double[]", yp),
+                            fb("double[]", g))
+
+    def sensor_values(self, t, y, yp):
+        """Return a copy of every sensor expression at (t, y, yp)."""
+        g = np.zeros(max(self.nsensor, 1))
+        self.roots(t, np.ascontiguousarray(y, float), np.ascontiguousarray(yp, float), g)
+        self.d.nroots -= 1          # a driver query, not one of IDA's root evaluations
+        return self.sensor_f[:self.nsensor].copy()
+
+    def evaluate(self, k, t, y, yp):
+        """Evaluate Sensor_Evaluate number k (in id order) at (t, y, yp)."""
+        tape, slot = self.evaluate_tapes[k]
+        return lib.ps_eval_tape(self.m, self.d, tape, slot, t,
+                                ffi.from_buffer("double[]", np.ascontiguousarray(y, float)),
+                                ffi.from_buffer("double[]", np.ascontiguousarray(yp, float)))
 
     def sparsity(self):
         """Return the iteration matrix's structure as a scipy CSC matrix (built once).
@@ -130,7 +169,8 @@ class Kernel:
     def counters(self):
         """Kernel call counters: residual and Jacobian evaluations."""
         return {"nres": int(self.d.nres), "njac": int(self.d.njac),
-                "attempts": int(self.d.ntimes), "nfail": int(self.d.nfail)}
+                "attempts": int(self.d.ntimes), "nfail": int(self.d.nfail),
+                "nroots": int(self.d.nroots)}
 
     def reset_counters(self):
         """Zero the call and step-attempt counters."""
@@ -138,6 +178,7 @@ class Kernel:
         self.d.njac = 0
         self.d.ntimes = 0
         self.d.nfail = 0
+        self.d.nroots = 0
 
     @property
     def message(self):

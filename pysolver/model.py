@@ -75,13 +75,27 @@ SCHEMA = {
                  "start_time": ("float", OPT, None), "end_time": ("float", OPT, None),
                  "duration": ("pos", OPT, None), "print_interval": ("pos", OPT, None),
                  "num_step": ("id", OPT, None), "print_increment": ("id", OPT, None)},
+    "Sensor_Event": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                     "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
+                     "expr": ("expr", OPT, None), "value": ("float", OPT, 0.0),
+                     "compare": (("GE", "LT", "EQ", "LE"), OPT, "GE"),
+                     "error_tol": ("nonneg", OPT, 1e-3), "evaluate_id": ("id", OPT, None),
+                     "dt": ("pos", OPT, None), "stepsize": ("pos", OPT, None),
+                     "zero_crossing": ("float", OPT, None), "hmax": ("pos", OPT, None),
+                     "halt": ("bool", OPT, False), "print": ("bool", OPT, False),
+                     "restart": ("bool", OPT, False), "verbose": ("bool", OPT, False),
+                     "return": ("bool", OPT, False), **_USERSUB},
+    "Sensor_Evaluate": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                        "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
+                        "expr": ("expr", OPT, None), **_USERSUB},
     "Stop": {},
 }
 COMMANDS = ("Simulate", "Stop")
 CANONICAL = {name.lower(): name for name in SCHEMA}
 _ID_KIND = {"Reference_Marker": "marker", "Body_Rigid": "body", "Body_Point": "body",
             "Force_Penalty": "penalty", "Force_Scalar_TwoBody": "sforce",
-            "Reference_Variable": "variable", "Post_Request": "request"}
+            "Reference_Variable": "variable", "Post_Request": "request",
+            "Sensor_Event": "sensor", "Sensor_Evaluate": "evaluate"}
 
 
 @dataclasses.dataclass
@@ -143,6 +157,50 @@ class Request:
     exprs: list            # 8 entries: parse tree or None
     texts: list
     names: list
+    label: str = ""
+
+
+@dataclasses.dataclass
+class Sensor:
+    """A Sensor_Event: watch ``expr`` against ``value`` and act when it fires."""
+    id: int
+    expr: tuple
+    text: str
+    value: float
+    compare: str           # "GE", "LT" or "EQ" (Adams' LE reads as LT)
+    error_tol: float
+    evaluate_id: int = None
+    dt: float = None
+    stepsize: float = None
+    zero_crossing: float = None
+    hmax: float = None
+    halt: bool = False
+    print: bool = False
+    restart: bool = False
+    verbose: bool = False
+    ret: bool = False
+    label: str = ""
+
+    def actions(self):
+        """Names of the actions this sensor takes when it fires, in the order they run."""
+        names = []
+        for key in ("evaluate_id", "dt", "stepsize", "hmax", "zero_crossing"):
+            if getattr(self, key) is not None:
+                names.append(key)
+        for key in ("restart", "print", "verbose", "halt"):
+            if getattr(self, key):
+                names.append(key)
+        if self.ret:
+            names.append("return")
+        return names
+
+
+@dataclasses.dataclass
+class Evaluate:
+    """A Sensor_Evaluate: stored when a parent sensor fires, read by SENVAL(id)."""
+    id: int
+    expr: tuple
+    text: str
     label: str = ""
 
 
@@ -365,6 +423,8 @@ class Model:
         self.sforces = {}
         self.variables = {}
         self.requests = {}
+        self.sensors = {}
+        self.evaluates = {}
         self.transient = Transient()
         self.commands = []
         self.has_units = False
@@ -427,6 +487,11 @@ class Model:
         for r in self.requests.values():
             used = [t for t in r.texts if t]
             lines.append(f"Post_Request {r.id}: {len(used)} channel(s)")
+        for se in self.sensors.values():
+            lines.append(f"Sensor_Event {se.id}: {se.text} {se.compare} {se.value:g} "
+                         f"(error_tol {se.error_tol:g}) -> {', '.join(se.actions()) or 'log'}")
+        for ev in self.evaluates.values():
+            lines.append(f"Sensor_Evaluate {ev.id}: {ev.text}")
         t = self.transient
         lines.append(f"Param_Transient: integr_tol={t.integr_tol:g} h_max={t.h_max} "
                      f"h_min={t.h_min:g} h0_max={t.h0_max}")
@@ -655,6 +720,27 @@ def _force_like(model, ctx, a):
         model.variables[a["id"]] = Variable(a["id"], a["expr"][0], a["expr"][1], a["label"])
         model._where = getattr(model, "_where", {})
         model._where[("variable", a["id"])] = ctx
+    elif tag == "Sensor_Event":
+        _reject_usersub(ctx, a)
+        if a["expr"] is None:
+            raise ctx.error("missing required attribute for type EXPRESSION", "expr")
+        zc = a["zero_crossing"]
+        if zc is not None and not 0 < zc < 1:
+            raise ctx.error(f"got {zc:g}; expected 0 < zero_crossing < 1", "zero_crossing")
+        compare = "LT" if a["compare"] == "LE" else a["compare"]
+        model.sensors[a["id"]] = Sensor(a["id"], a["expr"][0], a["expr"][1], a["value"], compare,
+                                        a["error_tol"], a["evaluate_id"], a["dt"],
+                                        a["stepsize"], zc, a["hmax"], a["halt"], a["print"],
+                                        a["restart"], a["verbose"], a["return"], a["label"])
+        model._where = getattr(model, "_where", {})
+        model._where[("sensor", a["id"])] = ctx
+    elif tag == "Sensor_Evaluate":
+        _reject_usersub(ctx, a)
+        if a["expr"] is None:
+            raise ctx.error("missing required attribute for type EXPRESSION", "expr")
+        model.evaluates[a["id"]] = Evaluate(a["id"], a["expr"][0], a["expr"][1], a["label"])
+        model._where = getattr(model, "_where", {})
+        model._where[("evaluate", a["id"])] = ctx
     elif tag == "Post_Request":
         exprs = [a[f"expr{k}"] for k in range(1, 9)]
         model.requests[a["id"]] = Request(a["id"], [_parsed(e) for e in exprs],
@@ -667,7 +753,8 @@ def _force_like(model, ctx, a):
 def _check_references(model):
     """Every id an expression names must exist; penalty g must depend on displacements only."""
     tables = {"marker": model.markers, "variable": model.variables,
-              "penalty": model.penalties, "sforce": model.sforces}
+              "penalty": model.penalties, "sforce": model.sforces,
+              "evaluate": model.evaluates}
     where = getattr(model, "_where", {})
     items = []
     for p in model.penalties.values():
@@ -680,6 +767,14 @@ def _check_references(model):
         for k, e in enumerate(r.exprs):
             if e is not None:
                 items.append((("request", r.id), f"expr{k + 1}", e))
+    for se in model.sensors.values():
+        items.append((("sensor", se.id), "expr", se.expr))
+        if se.evaluate_id is not None and se.evaluate_id not in model.evaluates:
+            ctx = where[("sensor", se.id)]
+            ctx.id = se.id
+            raise ctx.error(f"Sensor_Evaluate {se.evaluate_id} does not exist", "evaluate_id")
+    for ev in model.evaluates.values():
+        items.append((("evaluate", ev.id), "expr", ev.expr))
     for key, attr, tree in items:
         ctx = where[key]
         ctx.id = key[1]

@@ -1,10 +1,18 @@
 """Transient simulation of a compiled scene with SUNDIALS IDA (scikit-sundae).
 
-IDA gets the kernel's residual and exact dense Jacobian. The driver asks IDA for each print
-time in turn (IDA interpolates; steps do not land on print times) with the command's end time
-as a hard stop. Steps and failed attempts are counted by the kernel from the times of the
-residual calls, so the driver costs one Python call per output, not per step.
+IDA gets the kernel's residual, its exact Jacobian (dense, or sparse CSC for large scenes) and,
+when the scene has sensors, one root function per sensor evaluated in C. The driver asks IDA
+for each print time in turn (IDA interpolates; steps do not land on print times) with the
+command's end time as a hard stop, so Python runs once per output, per event and per kernel
+call, not per step. Steps and failed attempts are counted by the kernel from the times of the
+residual calls.
+
+Scenes with a ``zero_crossing`` sensor are stepped one internal step at a time instead, so
+that the last converged step before an event is known and can be restored (restore-and-shrink,
+seed 003 Comment 3). Scenes without one pay nothing for it.
 """
+import collections
+import dataclasses
 import math
 import sys
 import time
@@ -22,6 +30,35 @@ _OPTION_NAMES = ("integr_tol", "h_max", "h_min", "h0_max", "max_num_steps", "lin
 
 #: With linsolver="auto", scenes with at least this many states use the sparse solver.
 SPARSE_THRESHOLD = 300
+
+#: Events (firings and re-armings) allowed at one instant before the run stops as chattering.
+CHATTER_LIMIT = 100
+
+_ROOT_RETURN = 2
+_TOO_MUCH_WORK = -1
+
+
+@dataclasses.dataclass
+class Event:
+    """One sensor firing.
+
+    Attributes
+    ----------
+    time : float
+        Event time (IDA's root, just after the crossing).
+    sensor : int
+        Sensor_Event id.
+    label : str
+    value : float
+        The sensor's expression at the event.
+    actions : list of str
+        Actions taken, in order (e.g. ``["evaluate_id", "halt"]``).
+    """
+    time: float
+    sensor: int
+    label: str
+    value: float
+    actions: list
 
 
 def _print_times(t0, end, dt):
@@ -49,7 +86,7 @@ class _Progress:
         if not force and (now - self.last < 0.25 or (self.auto and now - self.start < 1.0)):
             return
         self.last = now
-        frac = min(max((t - self.t0) / (self.t1 - self.t0), 0.0), 1.0)
+        frac = min(max((t - self.t0) / max(self.t1 - self.t0, 1e-300), 0.0), 1.0)
         bar = "#" * int(30 * frac)
         sys.stderr.write(f"\r  [{bar:<30}] {100 * frac:5.1f}%  t = {t:.6g}")
         sys.stderr.flush()
@@ -63,11 +100,306 @@ class _Progress:
             sys.stderr.flush()
 
 
-def _steps(kernel):
-    """Steps IDA has taken: step attempts (new residual times) less failures, less the
-    evaluation at the initial time (see ps_residual)."""
-    c = kernel.counters
-    return max(c["attempts"] - c["nfail"] - 1, 0)
+class _Stop(Exception):
+    """Ends the run: success flag, status and message."""
+
+    def __init__(self, success, status, message):
+        super().__init__(message)
+        self.success, self.status, self.message = success, status, message
+
+
+class _Driver:
+    """One run of a model: the IDA object, the state, outputs, events and counters."""
+
+    def __init__(self, model, kernel, opts, progress):
+        self.model, self.kernel, self.opts = model, kernel, opts
+        self.sensors = [model.sensors[i] for i in kernel.sensor_ids]
+        self.eidx = {eid: i for i, eid in enumerate(kernel.evaluate_ids)}
+        self.onestep = any(s.zero_crossing for s in self.sensors)
+        self.sparse = opts["linsolver"] == "sparse" or (opts["linsolver"] == "auto"
+                                                        and kernel.ny >= SPARSE_THRESHOLD)
+        self.hmax = opts["h_max"]          # None: unbounded
+        self.hmin = opts["h_min"] or 0.0
+        self.saved_bounds = None           # (hmax, hmin) while a zero-crossing search runs
+        self.zc_pending = set()
+        self.verbose_active = set()
+        self.steps_seen = collections.deque(maxlen=3)   # last converged steps (onestep mode)
+        self.ts, self.ys, self.yps, self.outs = [], [], [], []
+        self.events, self.log = [], []
+        self.nrearms = 0
+        self.chatter = (None, 0)
+        self.bar = _Progress(0.0, model.commands[-1].end_time, progress)
+        self.solver = None
+        self.bounds = None
+        self.nstarts = 0
+        self.ida_done = [0, 0]             # nfev, njev of IDA objects already replaced
+        self.ida_last = (0, 0)             # of the current one, from its last result
+
+    # integrator ------------------------------------------------------------------------
+    def _linear(self):
+        k = self.kernel
+        if self.sparse:
+            lin = dict(linsolver="sparse", sparsity=k.sparsity(), jacfn=k.jacobian_csc_fn())
+        else:
+            lin = dict(linsolver="dense",
+                       jacfn=lambda t, y, yp, res, cj, JJ: k.jacobian(t, y, yp, cj, JJ))
+        if self.opts["jacobian"] == "dq":      # IDA's own difference quotients, for comparison
+            lin.pop("jacfn")
+        return lin
+
+    def start(self, first_step=None):
+        """(Re)start IDA at the current state: a cold restart (order 1, history dropped).
+        A new IDA object is built only when the step bounds change."""
+        bounds = (self.hmax or 0.0, self.hmin, first_step or self.opts["h0_max"] or 0.0)
+        self.kernel.d.last_t = self.t      # restarts are not step attempts (see ps_residual)
+        if self.solver is None or bounds != self.bounds:
+            self.ida_done[0] += self.ida_last[0]
+            self.ida_done[1] += self.ida_last[1]
+            self.ida_last = (0, 0)
+            options = dict(rtol=self.opts["integr_tol"], atol=self.opts["integr_tol"],
+                           max_step=bounds[0], min_step=bounds[1], first_step=bounds[2],
+                           max_num_steps=min(self.opts["max_num_steps"] + 1, 2 ** 31 - 1),
+                           **self._linear())
+            if self.sensors:
+                k = self.kernel
+                ev = lambda t, y, yp, g: k.roots(t, y, yp, g)  # noqa: E731
+                ev.direction = [1] * len(self.sensors)
+                ev.terminal = [True] * len(self.sensors)
+                options.update(eventsfn=ev, num_events=len(self.sensors))
+                self.eventsfn = ev
+            with warnings.catch_warnings():
+                # scikit-sundae warns that the exact jacfn replaces its sparse DQ Jacobian
+                warnings.simplefilter("ignore", UserWarning)
+                self.solver = IDA(self.kernel.residual, **options)
+            self.bounds = bounds
+        self.nstarts += 1
+        self.solver.init_step(self.t, self.y, self.yp)
+        self.steps_seen.clear()
+        self.steps_seen.append((self.t, self.y.copy(), self.yp.copy()))
+
+    def steps(self):
+        c = self.kernel.counters
+        return c["attempts"] - c["nfail"]
+
+    # outputs ---------------------------------------------------------------------------
+    def output(self, t, y, yp):
+        if self.ts and t <= self.ts[-1]:
+            return
+        self.ts.append(t)
+        self.ys.append(np.array(y))
+        self.yps.append(np.array(yp))
+        self.outs.append(self.kernel.outputs(t, self.ys[-1], self.yps[-1]))
+        if self.verbose_active:
+            f = self.kernel.sensor_values(t, self.ys[-1], self.yps[-1])
+            for k in sorted(self.verbose_active):
+                se = self.sensors[k]
+                self.log.append(f"t = {t:.9g}: Sensor_Event {se.id} active "
+                                f"(value {f[k]:.6g} {se.compare} {se.value:g})")
+        self.bar.update(t)
+
+    # events ----------------------------------------------------------------------------
+    def _holds(self, k, f):
+        se = self.sensors[k]
+        if se.compare == "GE":
+            return f >= se.value
+        if se.compare == "LT":
+            return f < se.value
+        return abs(f - se.value) <= se.error_tol
+
+    def initial_events(self):
+        """Sensors whose condition already holds at the start fire at the start."""
+        if not self.sensors:
+            return {}
+        f = self.kernel.sensor_values(self.t, self.y, self.yp)
+        fired = [k for k in range(len(self.sensors)) if self._holds(k, f[k])]
+        return self.fire(fired, f) if fired else {}
+
+    def on_root(self, sol):
+        """Handle an IDA root return; returns the actions that affect the command loop."""
+        info = self.eventsfn._i[-1]
+        for lst in (self.eventsfn._i, self.eventsfn._t, self.eventsfn._y, self.eventsfn._yp):
+            lst.clear()                   # scikit-sundae keeps every event; we do not need to
+        self.t, self.y, self.yp = float(sol.t), np.array(sol.y), np.array(sol.yp)
+        self._check_chatter()
+        armed = self.kernel.armed
+        crossed = [k for k in range(len(self.sensors)) if info[k] != 0]
+        fired = [k for k in crossed if armed[k]]
+        rearmed = [k for k in crossed if not armed[k]]
+        # restore-and-shrink for zero_crossing sensors seen for the first time
+        search = [k for k in fired if self.sensors[k].zero_crossing and k not in self.zc_pending]
+        if search and len(self.steps_seen) >= 1 and self.steps_seen[-1][0] < self.t:
+            self.restore_and_shrink(search)
+            return {}
+        for k in rearmed:
+            armed[k] = 1
+            self.nrearms += 1
+            self.verbose_active.discard(k)
+        if not fired:
+            return {}
+        f = self.kernel.sensor_values(self.t, self.y, self.yp)
+        return self.fire(fired, f)
+
+    def _check_chatter(self):
+        t0, n = self.chatter
+        if t0 is not None and abs(self.t - t0) <= 1e-12 * max(1.0, abs(self.t)):
+            n += 1
+        else:
+            t0, n = self.t, 1
+        self.chatter = (t0, n)
+        if n > CHATTER_LIMIT:
+            raise _Stop(False, -200, f"sensor events chatter: {n} events at t = {self.t:.9g} "
+                        "without time advancing; check the sensors' error_tol")
+
+    def restore_and_shrink(self, search):
+        """Go back to the last converged step before the event and approach it again with
+        hmax and hmin scaled by zero_crossing. "Current hmax" when h_max is unbounded is the
+        size of the last step completed before the event."""
+        t_prev, y_prev, yp_prev = self.steps_seen[-1]
+        if self.hmax:
+            current = self.hmax
+        elif len(self.steps_seen) >= 2:
+            current = self.steps_seen[-1][0] - self.steps_seen[-2][0]
+        else:
+            current = self.t - t_prev
+        zc = min(self.sensors[k].zero_crossing for k in search)
+        self.zc_pending.update(search)
+        if self.saved_bounds is None:
+            self.saved_bounds = (self.hmax, self.hmin)
+        self.hmax, self.hmin = zc * current, zc * self.hmin
+        self.t, self.y, self.yp = t_prev, y_prev.copy(), yp_prev.copy()
+        for k in search:
+            se = self.sensors[k]
+            self.log.append(f"t = {t_prev:.9g}: Sensor_Event {se.id} zero crossing: back to the "
+                            f"last converged step, hmax {self.hmax:.3g}")
+        self.start()
+
+    def fire(self, fired, f):
+        """Run the actions of the sensors that fired at the current time, in id order."""
+        k_ = self.kernel
+        flow = {}
+        restart, first_step, emit = False, None, False
+        for k in fired:
+            se = self.sensors[k]
+            k_.armed[k] = 0
+            actions = se.actions()
+            if k in self.zc_pending:
+                self.zc_pending.discard(k)
+                if not self.zc_pending and self.saved_bounds is not None:
+                    self.hmax, self.hmin = self.saved_bounds
+                    self.saved_bounds = None
+                    restart = True
+            if se.evaluate_id is not None:
+                idx = self.eidx[se.evaluate_id]
+                k_.senval[idx] = k_.evaluate(idx, self.t, self.y, self.yp)
+                restart |= k_.forces_use_senval
+            if se.dt is not None:
+                flow["dt"] = se.dt
+            if se.stepsize is not None:
+                first_step = se.stepsize if first_step is None else min(first_step, se.stepsize)
+            if se.hmax is not None:
+                self.hmax = se.hmax
+                if self.saved_bounds is not None:
+                    self.saved_bounds = (se.hmax, self.saved_bounds[1])
+                restart = True
+            restart |= se.restart
+            emit |= se.print or se.halt
+            if se.verbose:
+                self.verbose_active.add(k)
+            if se.halt:
+                flow["halt"] = se.id
+            if se.ret:
+                flow["return"] = se.id
+            self.events.append(Event(self.t, se.id, se.label, float(f[k]), actions))
+            self.log.append(f"t = {self.t:.9g}: Sensor_Event {se.id} fired (value {f[k]:.6g} "
+                            f"{se.compare} {se.value:g}): {', '.join(actions) or 'log only'}")
+        if restart or first_step is not None:
+            if k_.forces_use_senval:
+                self.yp = k_.consistent_yp(self.t, self.y)
+            if self.solver is not None:       # at t0 the run starts the integrator later
+                self.start(first_step)
+            else:
+                self.first_step0 = first_step
+        if emit:
+            self.output(self.t, self.y, self.yp)
+        return flow
+
+    # the command loop ------------------------------------------------------------------
+    def run_command(self, cmd):
+        dt = cmd.print_interval
+        pending = collections.deque(_print_times(self.t, cmd.end_time, dt))
+        start_steps = self.steps()
+        while pending:
+            if self.onestep:
+                sol = self.solver.step(cmd.end_time, method="onestep", tstop=cmd.end_time)
+            else:
+                sol = self.solver.step(pending[0], tstop=cmd.end_time)
+            if sol.status == _TOO_MUCH_WORK or self.steps() - start_steps > self.opts["max_num_steps"]:
+                raise _Stop(False, -100, f"more than max_num_steps = "
+                            f"{self.opts['max_num_steps']} steps in one Simulate command "
+                            f"(stopped at t = {float(sol.t):.6g})")
+            self.ida_last = (int(sol.nfev), int(sol.njev))
+            if not sol.success:
+                raise _Stop(False, int(sol.status),
+                            f"IDA failed at t = {float(sol.t):.6g}: {sol.message}")
+            t = float(sol.t)
+            if self.onestep:
+                # outputs up to t come from the interpolant of the step just taken
+                while pending and pending[0] <= t:
+                    o = self.solver.step(pending.popleft())
+                    self.output(float(o.t), o.y, o.yp)
+                if sol.status != _ROOT_RETURN and t > self.steps_seen[-1][0]:
+                    self.steps_seen.append((t, np.array(sol.y), np.array(sol.yp)))
+            if sol.status == _ROOT_RETURN:
+                flow = self.on_root(sol)
+                if "halt" in flow:
+                    self.output(self.t, self.y, self.yp)
+                    raise _Stop(True, 1, f"halted by Sensor_Event {flow['halt']} at "
+                                f"t = {self.t:.9g}")
+                if "return" in flow:
+                    self.output(self.t, self.y, self.yp)
+                    return
+                if "dt" in flow:
+                    dt = flow["dt"]
+                    pending = collections.deque(_print_times(self.t, cmd.end_time, dt))
+                # after restore-and-shrink, outputs past the restored time are redone
+                while self.onestep and self.ts and self.ts[-1] > self.t:
+                    pending.appendleft(self.ts.pop())
+                    self.ys.pop()
+                    self.yps.pop()
+                    self.outs.pop()
+                continue
+            if not self.onestep:
+                pending.popleft()
+                self.output(t, sol.y, sol.yp)
+            self.t, self.y, self.yp = t, np.array(sol.y), np.array(sol.yp)
+
+    def run(self):
+        k = self.kernel
+        k.reset_counters()
+        k.armed[:] = 1
+        k.senval[:] = 0.0
+        self.t = 0.0
+        self.y = k.layout.initial_state()
+        k.d.last_t = self.t
+        self.yp = k.consistent_yp(self.t, self.y)
+        t_start = time.perf_counter()
+        status, message, success = 0, "The simulation finished.", True
+        try:
+            flow = self.initial_events()
+            self.output(self.t, self.y, self.yp)
+            if "halt" in flow:
+                raise _Stop(True, 1, f"halted by Sensor_Event {flow['halt']} at t = {self.t:.9g}")
+            self.start(getattr(self, "first_step0", None))
+            self.setup_time = time.perf_counter() - t_start
+            for cmd in self.model.commands:
+                self.run_command(cmd)
+        except _Stop as stop:
+            success, status, message = stop.success, stop.status, stop.message
+        finally:
+            self.bar.close(self.t)
+        if not hasattr(self, "setup_time"):
+            self.setup_time = time.perf_counter() - t_start
+        return success, status, message
 
 
 def run_model(model, progress=None, **overrides):
@@ -81,75 +413,31 @@ def run_model(model, progress=None, **overrides):
     opts["linsolver"] = "auto"
     opts["jacobian"] = "exact"
     opts.update(overrides)
-    if opts["jacobian"] not in ("exact", "dq"):
-        raise ValueError(f"jacobian must be 'exact' or 'dq', not {opts['jacobian']!r}")
     if not opts["integr_tol"] > 0:
         raise ValueError("integr_tol must be > 0")
     if opts["linsolver"] not in ("auto", "dense", "sparse"):
         raise ValueError(f"linsolver must be 'auto', 'dense' or 'sparse', not {opts['linsolver']!r}")
-    sparse = opts["linsolver"] == "sparse" or (opts["linsolver"] == "auto"
-                                               and kernel.ny >= SPARSE_THRESHOLD)
-    kernel.reset_counters()
-    y = kernel.layout.initial_state()
-    t = 0.0
-    yp = kernel.consistent_yp(t, y)
-    if sparse:
-        linear = dict(linsolver="sparse", sparsity=kernel.sparsity(),
-                      jacfn=kernel.jacobian_csc_fn())
-    else:
-        linear = dict(linsolver="dense",
-                      jacfn=lambda t, y, yp, res, cj, JJ: kernel.jacobian(t, y, yp, cj, JJ))
-    if opts["jacobian"] == "dq":           # IDA's own difference quotients, for comparison
-        linear.pop("jacfn")
-    with warnings.catch_warnings():
-        # scikit-sundae warns that our exact jacfn replaces its sparse difference quotients
-        warnings.simplefilter("ignore", UserWarning)
-        solver = IDA(kernel.residual, rtol=opts["integr_tol"], atol=opts["integr_tol"],
-                     max_step=opts["h_max"] or 0.0, min_step=opts["h_min"] or 0.0,
-                     first_step=opts["h0_max"] or 0.0,
-                     max_num_steps=min(opts["max_num_steps"] + 1, 2 ** 31 - 1), **linear)
-    solver.init_step(t, y, yp)
-    ts, ys, yps, outs = [t], [y.copy()], [yp.copy()], [kernel.outputs(t, y, yp)]
-    t_setup = time.perf_counter()
-    status, message, success = 0, "The simulation finished.", True
-    sol = None
-    bar = _Progress(t, model.commands[-1].end_time, progress)
-    try:
-        for cmd in model.commands:
-            start_steps = _steps(kernel)
-            for tp in _print_times(t, cmd.end_time, cmd.print_interval):
-                sol = solver.step(tp, tstop=cmd.end_time)
-                if sol.status == -1 or _steps(kernel) - start_steps > opts["max_num_steps"]:
-                    # IDA's "too much work" is the same limit, counted within one output
-                    success, status = False, -100
-                    message = (f"more than max_num_steps = {opts['max_num_steps']} steps in one "
-                               f"Simulate command (stopped at t = {float(sol.t):.6g})")
-                    break
-                if not sol.success:
-                    success, status = False, int(sol.status)
-                    message = f"IDA failed at t = {float(sol.t):.6g}: {sol.message}"
-                    break
-                t = float(sol.t)
-                ts.append(t)
-                ys.append(np.array(sol.y))
-                yps.append(np.array(sol.yp))
-                outs.append(kernel.outputs(t, ys[-1], yps[-1]))
-                bar.update(t)
-            if not success:
-                break
-    finally:
-        bar.close(t)
+    if opts["jacobian"] not in ("exact", "dq"):
+        raise ValueError(f"jacobian must be 'exact' or 'dq', not {opts['jacobian']!r}")
+    drv = _Driver(model, kernel, opts, progress)
+    t_setup0 = time.perf_counter()
+    success, status, message = drv.run()
     t_end = time.perf_counter()
     counters = kernel.counters
-    stats = {"steps": _steps(kernel), "nres": counters["nres"], "njac": counters["njac"],
-             "nfail": counters["nfail"], "outputs": len(ts),
-             "ida_nfev": int(sol.nfev) if sol is not None else 0,
-             "ida_njev": int(sol.njev) if sol is not None else 0}
-    timing = {"setup": t_setup - t_start, "integrate": t_end - t_setup,
-              "total": t_end - t_start}
-    opts["linsolver"] = "sparse" if sparse else "dense"
+    stats = {"steps": drv.steps(), "nres": counters["nres"], "njac": counters["njac"],
+             "nfail": counters["nfail"], "outputs": len(drv.ts), "nroots": counters["nroots"],
+             "nevents": len(drv.events), "nrearms": drv.nrearms,
+             "nrestarts": max(drv.nstarts - 1, 0),
+             "ida_nfev": drv.ida_done[0] + drv.ida_last[0],
+             "ida_njev": drv.ida_done[1] + drv.ida_last[1]}
+    setup = (t_setup0 - t_start) + drv.setup_time
+    timing = {"setup": setup, "integrate": (t_end - t_start) - setup, "total": t_end - t_start}
+    opts["linsolver"] = "sparse" if drv.sparse else "dense"
     meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
-            "options": opts, "ny": kernel.ny}
+            "options": opts, "ny": kernel.ny, "stepping": "onestep" if drv.onestep else "normal"}
     labels = {(r.id, k): n for r in model.requests.values() for k, n in enumerate(r.names) if n}
-    return Result(ts, ys, yps, outs, kernel.channels, kernel.layout.names, success, status,
-                  message, stats, timing, meta, labels)
+    res = Result(drv.ts, drv.ys, drv.yps, drv.outs, kernel.channels, kernel.layout.names,
+                 success, status, message, stats, timing, meta, labels)
+    res.events = drv.events
+    res.log = drv.log
+    return res

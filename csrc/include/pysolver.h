@@ -46,6 +46,7 @@ enum psOp {
   PS_OP_GDOT,        /* total time derivative of slot a0, a displacement expression */
   PS_OP_AXDOT,       /* dot of axis a1 of marker a0 with axis a3 of marker a2 (-1 = global);
                         a4, a5 their body slots */
+  PS_OP_SENVAL,      /* stored value d->senval[a0] of a Sensor_Evaluate (constant between events) */
   PS_OP_COUNT
 };
 
@@ -58,6 +59,11 @@ enum psMeasure {
   PS_M_AX, PS_M_AY, PS_M_AZ,
   PS_M_COUNT
 };
+
+/* Sensor comparisons. */
+#define PS_CMP_GE 0
+#define PS_CMP_LT 1
+#define PS_CMP_EQ 2
 
 /* Status codes returned by kernel functions. */
 #define PS_OK 0
@@ -72,6 +78,7 @@ typedef struct psModel {
   int npen;               /* number of Force_Penalty elements                   */
   int nsf;                /* number of Force_Scalar_TwoBody elements            */
   int nout;               /* number of output channels (requests, flattened)    */
+  int nsensor;            /* number of Sensor_Event elements                    */
   int hd_stride;          /* doubles per hyper-dual slot (largest basis, order 2) */
   int max_slots;          /* largest tape length, in instructions              */
   int max_bslots;         /* largest number of bodies one tape touches          */
@@ -122,6 +129,13 @@ typedef struct psModel {
   int* sf_i;              /* (nsf x 1) I marker                                 */
   int* sf_j;              /* (nsf x 1) J marker                                 */
 
+  /* Sensor_Event: expression f in a tape slot, compared with value */
+  int* sensor_tape;       /* (nsensor x 1)                                      */
+  int* sensor_slot;       /* (nsensor x 1)                                      */
+  int* sensor_compare;    /* (nsensor x 1) PS_CMP_*                             */
+  double* sensor_value;   /* (nsensor x 1) threshold                            */
+  double* sensor_tol;     /* (nsensor x 1) error_tol                            */
+
   /* outputs (request channels): a tape and a slot, or tape -1 for NULL */
   int* out_tape;          /* (nout x 1)                                         */
   int* out_slot;          /* (nout x 1)                                         */
@@ -135,6 +149,12 @@ typedef struct psData {
   double* trip;           /* (ntrip x 1) Jacobian triplet values (sparse mode)  */
   long nres;              /* residual evaluations                               */
   long njac;              /* Jacobian evaluations                               */
+  double* senval;         /* (nevaluate x 1) stored Sensor_Evaluate values      */
+  int* sensor_armed;      /* (nsensor x 1) 1 armed (watching for its event),
+                             0 fired and waiting to re-arm                      */
+  double* sensor_f;       /* (nsensor x 1) sensor expressions at the last
+                             ps_roots call                                      */
+  long nroots;            /* root-function evaluations                          */
   long ntimes;            /* step attempts: residual evaluations at a new time  */
   long nfail;             /* failed step attempts (a new time below the last)   */
   double last_t;          /* time of the last residual evaluation              */
@@ -160,6 +180,13 @@ int ps_jacobian_pattern(const psModel* m, psData* d, int* rows, int* cols);
  * data[map[k]]. d->trip must hold ntrip doubles. Returns PS_OK or an error code. */
 int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, const double* yp,
                     double cj, const int* map, int ntrip, double* data, int nnz);
+
+/* Evaluate the root function of every sensor into g (length m->nsensor): an event is a
+ * crossing of g from negative to positive. Armed GE: f - value; armed LT: value - f; armed
+ * EQ: tol - |f - value|. A fired sensor watches for re-arming instead: GE (value - tol) - f,
+ * LT f - (value + tol), EQ |f - value| - 2 tol. Writes f into d->sensor_f. Returns PS_OK. */
+int ps_roots(const psModel* m, psData* d, double t, const double* y, const double* yp,
+             double* g);
 
 /* Evaluate every output channel into out (length m->nout); a NULL channel gives NaN.
  * Returns PS_OK. */
