@@ -1,5 +1,6 @@
 """Command line: ``pysolver run DECK [-o DIR]`` and ``pysolver check DECK``."""
 import argparse
+import dataclasses
 import json
 import os
 import sys
@@ -21,7 +22,11 @@ def _run(args):
         json.dump({"success": res.success, "status": res.status, "message": res.message,
                    "stats": res.stats, "timing": res.timing,
                    "meta": {k: v for k, v in res.meta.items() if k != "options"},
-                   "options": res.meta["options"]}, fh, indent=2)
+                   "options": res.meta["options"],
+                   "events": [dataclasses.asdict(e) for e in res.events],
+                   "log": res.log}, fh, indent=2)
+    for line in res.log:
+        print(line)
     print(res.summary())
     print(f"wrote {csv_path}, {png_path}, {stats_path}")
     return 0 if res.success else 1

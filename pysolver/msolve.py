@@ -23,7 +23,7 @@ import threading
 _STATE = threading.local()
 
 __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "VARIABLE",
-           "REQUEST", "INTEGRATOR", "SIMULATE", "STOP"]
+           "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR"]
 
 
 class _Recorder:
@@ -151,6 +151,24 @@ def SFORCE(id, I=None, J=None, TRANSLATION=False, ROTATION=False, **kw):
     _emit("SFORCE", "Force_Scalar_TwoBody",
           {"I": "i_marker_id", "J": "j_marker_id", "FUNCTION": "expr", "TYPE": "type",
            "LABEL": "label"}, id, I=I, J=J, **kw)
+
+
+def SENSOR(id, EVALUATE=None, **kw):
+    """Event sensor: FUNCTION, VALUE, ERROR, OPERATOR (GE, LT, EQ; LE reads as LT),
+    ZERO_CROSSING, DT, HMAX, STEPSIZE, HALT, PRINT, RESTART, RETURN, VERBOSE, LABEL. EVALUATE is
+    an expression stored when the sensor fires and read with SENVAL(id) (a Sensor_Evaluate with
+    the sensor's id); ROUTINE, SCRIPT for user subroutines."""
+    if EVALUATE not in (None, ""):
+        _emit("SENSOR", "Sensor_Evaluate", {"FUNCTION": "expr"}, id, FUNCTION=EVALUATE)
+        kw["EVALUATE_ID"] = id
+    if any(k.upper() in ("ROUTINE", "SCRIPT") for k in kw):
+        kw.setdefault("TYPE", "USERSUB")
+    _emit("SENSOR", "Sensor_Event",
+          {"FUNCTION": "expr", "VALUE": "value", "ERROR": "error_tol", "OPERATOR": "compare",
+           "ZERO_CROSSING": "zero_crossing", "DT": "dt", "HMAX": "hmax", "STEPSIZE": "stepsize",
+           "HALT": "halt", "PRINT": "print", "RESTART": "restart", "RETURN": "return",
+           "VERBOSE": "verbose", "LABEL": "label", "EVALUATE_ID": "evaluate_id",
+           "ROUTINE": "usrsub_fnc_name", "SCRIPT": "script_name", "TYPE": "type"}, id, **kw)
 
 
 def VARIABLE(id, **kw):

@@ -29,6 +29,12 @@ class Result:
         Wall time in seconds: ``setup`` (compile, initial conditions), ``integrate``, ``total``.
     meta : dict
         pysolver version, deck path and SHA-256, integrator options.
+    events : list of pysolver.simulate.Event
+        One record per sensor firing: ``time``, ``sensor`` (id), ``label``, ``value`` (the
+        sensor's expression then) and ``actions`` taken.
+    log : list of str
+        The event log: firings, zero-crossing searches, and (verbose sensors) each output row
+        while a sensor is active.
     """
 
     def __init__(self, t, y, yp, outputs, channels, state_names, success, status, message,
@@ -44,11 +50,33 @@ class Result:
         self.meta = meta
         self.state_names = list(state_names)
         self._labels = labels or {}
+        self.events = []
+        self.log = []
         outputs = np.asarray(outputs).reshape(len(self.t), -1)
         self._requests = {}
         for col, (rid, k) in enumerate(channels):
             arr = self._requests.setdefault(rid, np.full((len(self.t), 8), np.nan))
             arr[:, k] = outputs[:, col]
+
+    @property
+    def t_events(self):
+        """Times of the sensor firings, shape (k,) (SciPy's name)."""
+        return np.array([e.time for e in self.events])
+
+    @property
+    def i_events(self):
+        """Sensor ids of the firings, shape (k,)."""
+        return np.array([e.sensor for e in self.events], dtype=int)
+
+    @property
+    def nfev(self):
+        """Residual evaluations (SciPy's name for stats["nres"])."""
+        return self.stats["nres"]
+
+    @property
+    def njev(self):
+        """Jacobian evaluations (SciPy's name for stats["njac"])."""
+        return self.stats["njac"]
 
     @property
     def request_ids(self):
@@ -106,7 +134,8 @@ class Result:
         if path.lower().endswith(".npz"):
             extra = {f"request_{rid}": self._requests[rid] for rid in self.request_ids}
             np.savez(path, t=self.t, y=self.y, yp=self.yp, state_names=np.array(self.state_names),
-                     success=self.success, message=self.message, **extra)
+                     success=self.success, message=self.message, t_events=self.t_events,
+                     i_events=self.i_events, **extra)
         elif path.lower().endswith(".csv"):
             names, data = self.columns()
             with open(path, "w", newline="") as fh:
@@ -166,6 +195,9 @@ class Result:
                  f"{s['njac']}  failed step attempts: {s['nfail']}",
                  f"wall time: setup {self.timing['setup']:.4f} s, integration "
                  f"{self.timing['integrate']:.4f} s"]
+        if "nevents" in s and (s["nevents"] or s["nroots"]):
+            lines.insert(3, f"sensor events: {s['nevents']}  re-armed: {s['nrearms']}  "
+                            f"restarts: {s['nrestarts']}  root evaluations: {s['nroots']}")
         return "\n".join(lines)
 
     def __repr__(self):

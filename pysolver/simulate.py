@@ -173,6 +173,7 @@ class _Driver:
                 self.solver = IDA(self.kernel.residual, **options)
             self.bounds = bounds
         self.nstarts += 1
+        self.fresh = True
         self.solver.init_step(self.t, self.y, self.yp)
         self.steps_seen.clear()
         self.steps_seen.append((self.t, self.y.copy(), self.yp.copy()))
@@ -329,8 +330,11 @@ class _Driver:
         pending = collections.deque(_print_times(self.t, cmd.end_time, dt))
         start_steps = self.steps()
         while pending:
-            if self.onestep:
+            # after a (re)start IDA sizes its first step from the distance to the requested
+            # time; asking for the command's end keeps that choice independent of print times
+            if self.onestep or self.fresh:
                 sol = self.solver.step(cmd.end_time, method="onestep", tstop=cmd.end_time)
+                self.fresh = False
             else:
                 sol = self.solver.step(pending[0], tstop=cmd.end_time)
             if sol.status == _TOO_MUCH_WORK or self.steps() - start_steps > self.opts["max_num_steps"]:
@@ -342,13 +346,11 @@ class _Driver:
                 raise _Stop(False, int(sol.status),
                             f"IDA failed at t = {float(sol.t):.6g}: {sol.message}")
             t = float(sol.t)
-            if self.onestep:
-                # outputs up to t come from the interpolant of the step just taken
-                while pending and pending[0] <= t:
-                    o = self.solver.step(pending.popleft())
-                    self.output(float(o.t), o.y, o.yp)
-                if sol.status != _ROOT_RETURN and t > self.steps_seen[-1][0]:
-                    self.steps_seen.append((t, np.array(sol.y), np.array(sol.yp)))
+            # outputs up to t: the returned point itself, or IDA's interpolant
+            while pending and pending[0] <= t:
+                tp = pending.popleft()
+                o = sol if tp == t else self.solver.step(tp)
+                self.output(float(o.t), o.y, o.yp)
             if sol.status == _ROOT_RETURN:
                 flow = self.on_root(sol)
                 if "halt" in flow:
@@ -362,15 +364,14 @@ class _Driver:
                     dt = flow["dt"]
                     pending = collections.deque(_print_times(self.t, cmd.end_time, dt))
                 # after restore-and-shrink, outputs past the restored time are redone
-                while self.onestep and self.ts and self.ts[-1] > self.t:
+                while self.ts and self.ts[-1] > self.t:
                     pending.appendleft(self.ts.pop())
                     self.ys.pop()
                     self.yps.pop()
                     self.outs.pop()
                 continue
-            if not self.onestep:
-                pending.popleft()
-                self.output(t, sol.y, sol.yp)
+            if self.onestep and t > self.steps_seen[-1][0]:
+                self.steps_seen.append((t, np.array(sol.y), np.array(sol.yp)))
             self.t, self.y, self.yp = t, np.array(sol.y), np.array(sol.yp)
 
     def run(self):
