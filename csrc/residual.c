@@ -321,7 +321,11 @@ int ps_roots(const psModel* m, psData* d, double t, const double* y, const doubl
     switch (m->sensor_compare[k]) {
       case PS_CMP_GE: g[k] = armed ? f - v : (v - tol) - f; break;
       case PS_CMP_LT: g[k] = armed ? v - f : f - (v + tol); break;
-      default: g[k] = armed ? tol - fabs(f - v) : fabs(f - v) - 2.0 * tol; break;
+      default: {
+        double side = d->sensor_side[k];
+        g[k] = armed ? side * (v + side * tol - f) : fabs(f - v) - 2.0 * tol;
+        break;
+      }
     }
   }
   return PS_OK;

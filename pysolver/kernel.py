@@ -64,6 +64,7 @@ class Kernel:
             "trip": np.zeros(1),
             "senval": np.zeros(max(len(model.evaluates), 1)),
             "sensor_f": np.zeros(max(self.nsensor, 1)),
+            "sensor_side": np.ones(max(self.nsensor, 1)),
         }
         self.armed = np.ones(max(self.nsensor, 1), dtype=np.int32)
         d = ffi.new("psData *")
@@ -82,6 +83,11 @@ class Kernel:
     def senval(self):
         """Stored Sensor_Evaluate values, in evaluate-id order (a view the kernel reads)."""
         return self._work["senval"]
+
+    @property
+    def sensor_side(self):
+        """Side (+1 above, -1 below the value) from which each armed EQ sensor approaches."""
+        return self._work["sensor_side"]
 
     @property
     def sensor_f(self):

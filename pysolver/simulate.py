@@ -31,8 +31,10 @@ _OPTION_NAMES = ("integr_tol", "h_max", "h_min", "h0_max", "max_num_steps", "lin
 #: With linsolver="auto", scenes with at least this many states use the sparse solver.
 SPARSE_THRESHOLD = 300
 
-#: Events (firings and re-armings) allowed at one instant before the run stops as chattering.
+#: Events (firings and re-armings) allowed within CHATTER_WINDOW * max(1, |t|) of time before
+#: the run stops as chattering (Zeno behaviour, or a sensor that re-fires at the same instant).
 CHATTER_LIMIT = 100
+CHATTER_WINDOW = 1e-9
 
 _ROOT_RETURN = 2
 _TOO_MUCH_WORK = -1
@@ -124,10 +126,11 @@ class _Driver:
         self.zc_pending = set()
         self.verbose_active = set()
         self.steps_seen = collections.deque(maxlen=3)   # last converged steps (onestep mode)
+        self.dt = None
         self.ts, self.ys, self.yps, self.outs = [], [], [], []
         self.events, self.log = [], []
         self.nrearms = 0
-        self.chatter = (None, 0)
+        self.recent = collections.deque(maxlen=CHATTER_LIMIT)
         self.bar = _Progress(0.0, model.commands[-1].end_time, progress)
         self.solver = None
         self.bounds = None
@@ -176,7 +179,19 @@ class _Driver:
         self.fresh = True
         self.solver.init_step(self.t, self.y, self.yp)
         self.steps_seen.clear()
-        self.steps_seen.append((self.t, self.y.copy(), self.yp.copy()))
+        self.remember_step()
+
+    def remember_step(self):
+        """Keep a converged step, with everything an event may change, for restore-and-shrink."""
+        if not self.onestep:
+            if not self.steps_seen:
+                self.steps_seen.append((self.t, None, None, None))
+            return
+        k = self.kernel
+        snap = (k.armed.copy(), k.senval.copy(), k.sensor_side.copy(), len(self.events),
+                len(self.log), self.hmax, frozenset(self.verbose_active), self.dt,
+                self.nrearms)
+        self.steps_seen.append((self.t, self.y.copy(), self.yp.copy(), snap))
 
     def steps(self):
         c = self.kernel.counters
@@ -207,13 +222,22 @@ class _Driver:
             return f < se.value
         return abs(f - se.value) <= se.error_tol
 
+    def _rearms(self, k, f):
+        se = self.sensors[k]
+        if se.compare == "GE":
+            return f < se.value - se.error_tol
+        if se.compare == "LT":
+            return f > se.value + se.error_tol
+        return abs(f - se.value) > 2 * se.error_tol
+
     def initial_events(self):
         """Sensors whose condition already holds at the start fire at the start."""
         if not self.sensors:
             return {}
         f = self.kernel.sensor_values(self.t, self.y, self.yp)
-        fired = [k for k in range(len(self.sensors)) if self._holds(k, f[k])]
-        return self.fire(fired, f) if fired else {}
+        for k in range(len(self.sensors)):
+            self.arm(k, f[k])
+        return self.settle(set(), set())
 
     def on_root(self, sol):
         """Handle an IDA root return; returns the actions that affect the command loop."""
@@ -228,38 +252,73 @@ class _Driver:
         rearmed = [k for k in crossed if not armed[k]]
         # restore-and-shrink for zero_crossing sensors seen for the first time
         search = [k for k in fired if self.sensors[k].zero_crossing and k not in self.zc_pending]
-        if search and len(self.steps_seen) >= 1 and self.steps_seen[-1][0] < self.t:
+        if search and self.steps_seen[-1][0] < self.t:
             self.restore_and_shrink(search)
-            return {}
+            return {"restored": True}
+        # IDA saw these crossings: take them as they are, then settle the rest
+        f = self.kernel.sensor_values(self.t, self.y, self.yp)
         for k in rearmed:
-            armed[k] = 1
+            self.arm(k, f[k])
             self.nrearms += 1
             self.verbose_active.discard(k)
-        if not fired:
-            return {}
-        f = self.kernel.sensor_values(self.t, self.y, self.yp)
-        return self.fire(fired, f)
+        flow = self.fire(fired, f) if fired else {}
+        flow.update(self.settle(set(fired), set(rearmed)))
+        return flow
+
+    def arm(self, k, f):
+        """Arm sensor k; an EQ sensor remembers from which side it approaches its value."""
+        self.kernel.armed[k] = 1
+        self.kernel.sensor_side[k] = 1.0 if f >= self.sensors[k].value else -1.0
+
+    def settle(self, fired, rearmed):
+        """Event iteration at one instant: actions may change what the sensors see (SENVAL,
+        restarts), so re-arm and fire until nothing changes; each sensor fires and re-arms at
+        most once per instant, which bounds the loop."""
+        flow = {}
+        armed = self.kernel.armed
+        while True:
+            f = self.kernel.sensor_values(self.t, self.y, self.yp)
+            up = [k for k in range(len(self.sensors))
+                  if not armed[k] and k not in rearmed and self._rearms(k, f[k])]
+            for k in up:
+                self.arm(k, f[k])
+                self.nrearms += 1
+                self.verbose_active.discard(k)
+                rearmed.add(k)
+                self._check_chatter()
+            now = [k for k in range(len(self.sensors))
+                   if armed[k] and k not in fired and self._holds(k, f[k])]
+            if now:
+                fired.update(now)
+                self._check_chatter()
+                flow.update(self.fire(now, f))
+            if not up and not now:
+                return flow
 
     def _check_chatter(self):
-        t0, n = self.chatter
-        if t0 is not None and abs(self.t - t0) <= 1e-12 * max(1.0, abs(self.t)):
-            n += 1
-        else:
-            t0, n = self.t, 1
-        self.chatter = (t0, n)
-        if n > CHATTER_LIMIT:
-            raise _Stop(False, -200, f"sensor events chatter: {n} events at t = {self.t:.9g} "
-                        "without time advancing; check the sensors' error_tol")
+        self.recent.append(self.t)
+        if (len(self.recent) == CHATTER_LIMIT
+                and self.recent[-1] - self.recent[0] <= CHATTER_WINDOW * max(1.0, abs(self.t))):
+            raise _Stop(False, -200, f"sensor events chatter: {CHATTER_LIMIT} events between "
+                        f"t = {self.recent[0]:.12g} and {self.recent[-1]:.12g}; the sensors keep "
+                        "re-firing without time advancing (give them an error_tol band)")
 
     def restore_and_shrink(self, search):
         """Go back to the last converged step before the event and approach it again with
         hmax and hmin scaled by zero_crossing. "Current hmax" when h_max is unbounded is the
         size of the last step completed before the event."""
-        t_prev, y_prev, yp_prev = self.steps_seen[-1]
+        t_prev, y_prev, yp_prev, snap = self.steps_seen[-1]
+        # everything the events inside this step changed goes back too: they will recur
+        k = self.kernel
+        (armed, senval, side, nev, nlog, hmax, verbose, dt, nrearms) = snap
+        k.armed[:], k.senval[:], k.sensor_side[:] = armed, senval, side
+        del self.events[nev:]
+        del self.log[nlog:]
+        self.hmax, self.verbose_active, self.dt, self.nrearms = hmax, set(verbose), dt, nrearms
         if self.hmax:
             current = self.hmax
         elif len(self.steps_seen) >= 2:
-            current = self.steps_seen[-1][0] - self.steps_seen[-2][0]
+            current = t_prev - self.steps_seen[-2][0]
         else:
             current = self.t - t_prev
         zc = min(self.sensors[k].zero_crossing for k in search)
@@ -326,8 +385,8 @@ class _Driver:
 
     # the command loop ------------------------------------------------------------------
     def run_command(self, cmd):
-        dt = cmd.print_interval
-        pending = collections.deque(_print_times(self.t, cmd.end_time, dt))
+        self.dt = cmd.print_interval
+        pending = collections.deque(_print_times(self.t, cmd.end_time, self.dt))
         start_steps = self.steps()
         while pending:
             # after a (re)start IDA sizes its first step from the distance to the requested
@@ -361,18 +420,22 @@ class _Driver:
                     self.output(self.t, self.y, self.yp)
                     return
                 if "dt" in flow:
-                    dt = flow["dt"]
-                    pending = collections.deque(_print_times(self.t, cmd.end_time, dt))
-                # after restore-and-shrink, outputs past the restored time are redone
-                while self.ts and self.ts[-1] > self.t:
-                    pending.appendleft(self.ts.pop())
-                    self.ys.pop()
-                    self.yps.pop()
-                    self.outs.pop()
+                    self.dt = flow["dt"]
+                    pending = collections.deque(_print_times(self.t, cmd.end_time, self.dt))
+                if flow.get("restored"):
+                    # outputs past the restored time are redone, on the schedule of that time
+                    while self.ts and self.ts[-1] > self.t:
+                        self.ts.pop()
+                        self.ys.pop()
+                        self.yps.pop()
+                        self.outs.pop()
+                    last = self.ts[-1] if self.ts else self.t
+                    pending = collections.deque(
+                        tp for tp in _print_times(last, cmd.end_time, self.dt))
                 continue
-            if self.onestep and t > self.steps_seen[-1][0]:
-                self.steps_seen.append((t, np.array(sol.y), np.array(sol.yp)))
             self.t, self.y, self.yp = t, np.array(sol.y), np.array(sol.yp)
+            if self.onestep and t > self.steps_seen[-1][0]:
+                self.remember_step()
 
     def run(self):
         k = self.kernel

@@ -154,6 +154,8 @@ typedef struct psData {
                              0 fired and waiting to re-arm                      */
   double* sensor_f;       /* (nsensor x 1) sensor expressions at the last
                              ps_roots call                                      */
+  double* sensor_side;    /* (nsensor x 1) EQ sensors: +1 when armed above the
+                             value, -1 below                                    */
   long nroots;            /* root-function evaluations                          */
   long ntimes;            /* step attempts: residual evaluations at a new time  */
   long nfail;             /* failed step attempts (a new time below the last)   */
@@ -183,8 +185,10 @@ int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, cons
 
 /* Evaluate the root function of every sensor into g (length m->nsensor): an event is a
  * crossing of g from negative to positive. Armed GE: f - value; armed LT: value - f; armed
- * EQ: tol - |f - value|. A fired sensor watches for re-arming instead: GE (value - tol) - f,
- * LT f - (value + tol), EQ |f - value| - 2 tol. Writes f into d->sensor_f. Returns PS_OK. */
+ * EQ entering the band |f - value| <= tol from its side s: s (value + s tol - f) (one crossing,
+ * so a fast pass through a narrow band is not missed). A fired sensor watches for re-arming
+ * instead: GE (value - tol) - f, LT f - (value + tol), EQ |f - value| - 2 tol. Writes f into
+ * d->sensor_f. Returns PS_OK. */
 int ps_roots(const psModel* m, psData* d, double t, const double* y, const double* yp,
              double* g);
 
