@@ -48,6 +48,7 @@ def test_contact_onset_exact_flight_time(decks):
     """The ball reaches the penalty plane z = 0 after sqrt(2 h / g); a sensor on the constraint
     g = -DZ and the zero-crossing sensor on the force both find it."""
     text = (decks / "contact_onset_zero_crossing.xml").read_text().replace(
+        'integr_tol="1e-3"', 'integr_tol="1e-10"').replace(
         "<Post_Request", '<Sensor_Event id="2" expr="-DZ(10)" compare="GE" value="0" '
         'error_tol="1e-9"/>\n<Post_Request')
     res = pysolver.loads(text).run()
@@ -59,29 +60,37 @@ def test_contact_onset_exact_flight_time(decks):
     assert 0 < first_force - exact < 1e-6
 
 
-def _contact(zero_crossing, tol=1e-5, hmax=None):
-    sensor = (f'<Sensor_Event id="1" expr="-PFORCE(1)" compare="GE" value="1e-3" error_tol="1e-9"'
-              + (f' zero_crossing="{zero_crossing}"' if zero_crossing else "") + "/>")
-    deck = ball(sensor, z0=1.0, end=0.47, dt=1e-5, tol=tol, extra=(
-        '<Force_Penalty id="1" expr="-DZ(10)" penalty="1e6" unilateral="TRUE" '
-        'smoothing_factor="1e-4"/>'))
-    deck = deck.replace('expr3="TIME"', 'expr3="-PFORCE(1)"')
-    return pysolver.loads(deck).run(**({"h_max": hmax} if hmax else {}))
+def _contact(decks, zero_crossing, z0=1.0, **options):
+    text = (decks / "contact_onset_zero_crossing.xml").read_text()
+    text = text.replace('zero_crossing="0.01"', f'zero_crossing="{zero_crossing}"'
+                        if zero_crossing else "").replace('pos_z="1"', f'pos_z="{z0}"')
+    text = text.replace('end_time="0.6"', f'end_time="{math.sqrt(2 * z0 / G) + 0.05}"')
+    res = pysolver.loads(text).run(**options)
+    (ev,) = [e for e in res.events if e.sensor == 1][:1]
+    return ev.time, res.request(1)[list(res.t).index(ev.time)], res
 
 
-def test_zero_crossing_improves_first_contact():
-    """Restore-and-shrink: the force in the first 0.5 ms of contact against a reference run
-    with h_max = 1e-6 (seed 003 Comment 3)."""
-    ref = _contact(None, tol=1e-9, hmax=1e-6)
-    onset = ref.events[0].time
-    window = (ref.t >= onset) & (ref.t <= onset + 5e-4)
-    plain, zc = _contact(None), _contact(0.01)
-    err = {name: np.abs(r.request(1)[window, 2] - ref.request(1)[window, 2]).max()
-           for name, r in (("plain", plain), ("zc", zc))}
-    assert err["zc"] < 0.05 * err["plain"], err
-    assert abs(zc.events[0].time - onset) < 1e-8
-    assert "zero crossing" in zc.log[0] and zc.stats["nrestarts"] == 2
-    assert plain.meta["stepping"] == "normal" and zc.meta["stepping"] == "onestep"
+HEIGHTS = [0.5, 0.8, 1.0, 1.5, 2.0, 3.0]
+
+
+def test_zero_crossing_improves_first_contact(decks):
+    """Restore-and-shrink (seed 003 Comment 3) at the default integr_tol 1e-3: the velocity at
+    the first contact against a reference at integr_tol 1e-11 (which agrees with h_max = 1e-5
+    to 3e-10 m/s). Without it the state there is interpolated from a step that went into the
+    contact; how deep depends on where the step happens to land, so six drop heights are
+    compared: zero crossing is never worse and better by over 10x overall (measured: 49x)."""
+    plain_err, zc_err = [], []
+    for z0 in HEIGHTS:
+        t_ref, ref, _ = _contact(decks, None, z0, integr_tol=1e-11)
+        t_plain, plain, r_plain = _contact(decks, None, z0)
+        t_zc, zc, r_zc = _contact(decks, 0.01, z0)
+        plain_err.append(abs(plain[1] - ref[1]))
+        zc_err.append(abs(zc[1] - ref[1]))
+        assert abs(t_zc - t_ref) < 1e-5 and abs(t_plain - t_ref) < 1e-3
+        assert "zero crossing" in r_zc.log[0] and r_zc.stats["nrestarts"] == 2
+    assert all(z <= p for z, p in zip(zc_err, plain_err)), (zc_err, plain_err)
+    assert sum(plain_err) > 10 * sum(zc_err), (zc_err, plain_err)
+    assert r_plain.meta["stepping"] == "normal" and r_zc.meta["stepping"] == "onestep"
 
 
 def test_two_crossings_inside_one_step_are_missed_without_h_max():
