@@ -331,6 +331,19 @@ int ps_roots(const psModel* m, psData* d, double t, const double* y, const doubl
   return PS_OK;
 }
 
+double ps_power(const psModel* m, const double* y, const double* yp) {
+  double p = 0.0;
+  for (int b = 0; b < m->nbody; b++) {
+    int ua = m->body_uadr[b];
+    for (int i = 0; i < 3; i++) p += m->body_mass[b] * y[ua + i] * yp[ua + i];
+    if (m->body_type[b] != PS_BODY_RIGID) continue;
+    const double* I = m->body_inertia + 9 * b;
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) p += y[ua + 3 + i] * I[3 * i + j] * yp[ua + 3 + j];
+  }
+  return p;
+}
+
 int ps_outputs(const psModel* m, psData* d, double t, const double* y, const double* yp,
                double* out) {
   int last = -1;

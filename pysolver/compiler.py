@@ -133,8 +133,9 @@ class _Tape:
 class Compiler:
     """Turns a Model into psModel arrays (see csrc/include/pysolver.h)."""
 
-    def __init__(self, model):
+    def __init__(self, model, conservative=False):
         self.model = model
+        self.conservative = conservative   # MKEAM: velocity-dependent terms (damping) removed
         self.layout = Layout(model)
         self.consts, self._cidx = [], {}
         self.markers = sorted(model.markers)
@@ -202,6 +203,8 @@ class Compiler:
         raise AssertionError(name)
 
     def measure(self, tape, name, ids):
+        if self.conservative and (name in _VEL or name in _ACC):
+            return tape.const(0.0)
         need_u = name in _VEL or name in _ACC
         need_a = name in _ACC
         if name in ("VM", "VR"):    # VM(i, j, l), VR(i, j, l): no resolution marker
@@ -256,7 +259,7 @@ class Compiler:
             tape.bodies[s][1] = True
         mul, add = lib.PS_OP_MUL, lib.PS_OP_ADD
         gd = None
-        if p.penalty1 > 0:
+        if p.penalty1 > 0 and not self.conservative:
             gd = tape.emit(lib.PS_OP_GDOT, g)
             tape.has_gdot = True
         if p.unilateral:

@@ -15,6 +15,9 @@ class Kernel:
     ----------
     model : Model
         A validated model.
+    conservative : bool, optional
+        Compile without velocity-dependent terms (penalty1 and velocity measures read as 0),
+        for MKEAM's undamped motion.
 
     Attributes
     ----------
@@ -26,8 +29,8 @@ class Kernel:
         Meaning of each entry of :meth:`outputs`.
     """
 
-    def __init__(self, model):
-        comp = Compiler(model)
+    def __init__(self, model, conservative=False):
+        comp = Compiler(model, conservative)
         arrays = comp.compile()
         self.layout = comp.layout
         self.channels = comp.channels
@@ -196,6 +199,11 @@ class Kernel:
         lib.ps_outputs(self.m, self.d, t, ffi.from_buffer("double[]", y),
                        ffi.from_buffer("double[]", yp), ffi.from_buffer("double[]", self._out))
         return self._out[:len(self.channels)].copy()
+
+    def power(self, y, yp):
+        """Rate of change of the kinetic energy (model units)."""
+        fb = ffi.from_buffer
+        return lib.ps_power(self.m, fb("double[]", y), fb("double[]", yp))
 
     def residual_array(self, t, y, yp):
         """Return F(t, y, yp) as a new array (convenience for tests and tools)."""

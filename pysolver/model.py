@@ -71,6 +71,12 @@ SCHEMA = {
                      "type": (("EXPRESSION",), OPT, "EXPRESSION"), "comment": ("str", OPT, ""),
                      **{f"expr{k}": ("expr?", OPT, None) for k in range(1, 9)},
                      **{f"name{k}": ("str", OPT, None) for k in range(1, 9)}},
+    "Param_Static": {"method": (("FIM_D", "FIM_S", "MKEAM"), OPT, "FIM_D"),
+                     "max_ke_tol": ("pos", OPT, 1e-5), "max_dq_tol": ("pos", OPT, 1e-3),
+                     "max_num_iter": ("id", OPT, 100), "max_imbalance": ("pos", OPT, 1e-4),
+                     "max_error": ("pos", OPT, 1e-4), "stability": ("nonneg", OPT, 1e-10),
+                     "compliance_delta": ("pos", OPT, 1e-3), "tlimit": ("pos", OPT, 20.0),
+                     "alimit": ("pos", OPT, 0.17453292519943295), "label": ("str", OPT, "")},
     "Simulate": {"analysis_type": (("TRANSIENT", "STATIC", "QUASI-STATIC"), REQ, None),
                  "start_time": ("float", OPT, None), "end_time": ("float", OPT, None),
                  "duration": ("pos", OPT, None), "print_interval": ("pos", OPT, None),
@@ -212,6 +218,21 @@ class Transient:
     h_min: float = 0.0
     h0_max: float = None
     max_num_steps: int = 1000000
+
+
+@dataclasses.dataclass
+class Static:
+    """Settings of ``Param_Static`` (seed 004 defaults); see :mod:`pysolver.statics`."""
+    method: str = "FIM_D"
+    max_ke_tol: float = 1e-5
+    max_dq_tol: float = 1e-3
+    max_num_iter: int = 100
+    max_imbalance: float = 1e-4
+    max_error: float = 1e-4
+    stability: float = 1e-10
+    compliance_delta: float = 1e-3
+    tlimit: float = 20.0               # pysolver extension: Adams' TLIMIT, length units
+    alimit: float = 0.17453292519943295  # pysolver extension: Adams' ALIMIT (10 deg), radians
 
 
 @dataclasses.dataclass
@@ -426,6 +447,7 @@ class Model:
         self.sensors = {}
         self.evaluates = {}
         self.transient = Transient()
+        self.static = Static()
         self.commands = []
         self.has_units = False
         self._compiled = None
@@ -455,12 +477,15 @@ class Model:
         from .simulate import run_model
         return run_model(self, progress=progress, **options)
 
-    def _kernel(self):
-        """The compiled kernel of this model, built on first use and reused by every run."""
+    def _kernel(self, conservative=False):
+        """The compiled kernel of this model, built on first use and reused by every run
+        (a second one without damping for MKEAM)."""
         if self._compiled is None:
+            self._compiled = {}
+        if conservative not in self._compiled:
             from .kernel import Kernel
-            self._compiled = Kernel(self)
-        return self._compiled
+            self._compiled[conservative] = Kernel(self, conservative)
+        return self._compiled[conservative]
 
     def summary(self):
         """Return a short human-readable listing of what the deck contains."""
@@ -495,9 +520,13 @@ class Model:
         t = self.transient
         lines.append(f"Param_Transient: integr_tol={t.integr_tol:g} h_max={t.h_max} "
                      f"h_min={t.h_min:g} h0_max={t.h0_max}")
+        st = self.static
+        if any(c.analysis != "TRANSIENT" for c in self.commands):
+            lines.append(f"Param_Static: method={st.method} max_imbalance={st.max_imbalance:g} "
+                         f"max_error={st.max_error:g} stability={st.stability:g}")
         for c in self.commands:
-            lines.append(f"Simulate {c.analysis.lower()}: end_time={c.end_time:g} "
-                         f"print_interval={c.print_interval:g}")
+            lines.append(f"Simulate {c.analysis.lower()}: end_time={c.end_time:g}"
+                         + (f" print_interval={c.print_interval:g}" if c.print_interval else ""))
         lines.append(f"states: {self.num_states()}")
         return "\n".join(lines)
 
@@ -555,6 +584,8 @@ def build_model(elements, source):
             markers_raw[a["id"]] = (ctx, a)
         elif canon in ("Body_Rigid", "Body_Point"):
             bodies_raw.append((ctx, a))
+        elif canon == "Param_Static":
+            model.static = Static(**{k: a[k] for k in SCHEMA["Param_Static"] if k != "label"})
         elif canon == "Param_Transient":
             model.transient = Transient(a["integr_tol"], a["h_max"], a["h_min"], a["h0_max"],
                                         a["max_num_steps"])
@@ -565,6 +596,11 @@ def build_model(elements, source):
         else:
             later.append((ctx, a))
     _bodies(model, bodies_raw, markers_raw)
+    for cmd in model.commands:
+        if cmd.analysis == "QUASI-STATIC" and model.static.method == "MKEAM":
+            raise DeckError("MKEAM does not do quasi-static analyses (seed 004); use FIM_D or "
+                            "FIM_S in Param_Static", file=source.file, line=cmd.line,
+                            element="Simulate", attribute="analysis_type")
     for ctx, a in later:
         _force_like(model, ctx, a)
     _check_references(model)
@@ -575,9 +611,18 @@ def build_model(elements, source):
 
 
 def _simulate(ctx, a, model, t_prev):
-    if a["analysis_type"] != "TRANSIENT":
-        raise ctx.error(f"analysis_type {a['analysis_type']} is not supported yet; "
-                        "only TRANSIENT runs in this version", "analysis_type")
+    if a["analysis_type"] == "STATIC":
+        # an equilibrium at the current time, or at end_time when given
+        given = [k for k in ("duration", "print_interval", "num_step", "print_increment")
+                 if a[k] is not None]
+        if given:
+            raise ctx.error("a Static analysis takes no duration or output interval", given[0])
+        end = t_prev if a["end_time"] is None else a["end_time"]
+        if end < t_prev:
+            raise ctx.error(f"end_time {end:g} is before the current time {t_prev:g}",
+                            "end_time")
+        model.commands.append(Simulate("STATIC", end, 0.0, ctx.line))
+        return end
     if a["start_time"] is not None and abs(a["start_time"] - t_prev) > 1e-12:
         raise ctx.error(f"start_time must equal the time the previous command ended "
                         f"({t_prev:g})", "start_time")
@@ -595,7 +640,7 @@ def _simulate(ctx, a, model, t_prev):
         dt = (end - t_prev) / a["num_step"]
     else:
         dt = (end - t_prev) / 100.0
-    model.commands.append(Simulate("TRANSIENT", end, dt, ctx.line))
+    model.commands.append(Simulate(a["analysis_type"], end, dt, ctx.line))
     return end
 
 

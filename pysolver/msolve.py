@@ -23,7 +23,7 @@ import threading
 _STATE = threading.local()
 
 __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "VARIABLE",
-           "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR"]
+           "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM"]
 
 
 class _Recorder:
@@ -195,8 +195,18 @@ def INTEGRATOR(**kw):
                                             "TYPE": "integrator_type"}, **kw)
 
 
+def EQUILIBRIUM(**kw):
+    """Static settings (Param_Static): METHOD (FIM_D, FIM_S, MKEAM), MAX_KE_TOL, MAX_DQ_TOL,
+    MAXIT (max_num_iter), IMBALANCE (max_imbalance), ERROR (max_error), STABILITY,
+    COMPLIANCE_DELTA."""
+    _emit("EQUILIBRIUM", "Param_Static",
+          {"METHOD": "method", "MAX_KE_TOL": "max_ke_tol", "MAX_DQ_TOL": "max_dq_tol",
+           "MAXIT": "max_num_iter", "IMBALANCE": "max_imbalance", "ERROR": "max_error",
+           "STABILITY": "stability", "COMPLIANCE_DELTA": "compliance_delta"}, **kw)
+
+
 def SIMULATE(**kw):
-    """Run: TYPE (TRANSIENT), END or DURATION, DTOUT or STEPS."""
+    """Run: TYPE (TRANSIENT, STATIC, QUASI-STATIC), END or DURATION, DTOUT or STEPS."""
     _emit("SIMULATE", "Simulate", {"TYPE": "analysis_type", "END": "end_time",
                                    "DURATION": "duration", "DTOUT": "print_interval",
                                    "STEPS": "num_step", "START": "start_time"}, **kw)

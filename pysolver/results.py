@@ -35,6 +35,9 @@ class Result:
     log : list of str
         The event log: firings, zero-crossing searches, and (verbose sensors) each output row
         while a sensor is active.
+    statics : list of pysolver.statics.StaticResult
+        One record per static solve (each output of a quasi-static analysis): method,
+        iterations, imbalance, error, success, message, compliance.
     """
 
     def __init__(self, t, y, yp, outputs, channels, state_names, success, status, message,
@@ -52,11 +55,18 @@ class Result:
         self._labels = labels or {}
         self.events = []
         self.log = []
+        self.statics = []
         outputs = np.asarray(outputs).reshape(len(self.t), -1)
         self._requests = {}
         for col, (rid, k) in enumerate(channels):
             arr = self._requests.setdefault(rid, np.full((len(self.t), 8), np.nan))
             arr[:, k] = outputs[:, col]
+
+    @property
+    def compliance(self):
+        """Compliance matrix (inverse stiffness) at the last static equilibrium, deck length
+        per deck force, in the coordinates ``statics[-1].coordinates``; None without statics."""
+        return self.statics[-1].compliance if self.statics else None
 
     @property
     def t_events(self):

@@ -21,6 +21,7 @@ import warnings
 import numpy as np
 from sksundae.ida import IDA
 
+from . import statics
 from .results import Result
 
 __version__ = "0.1.0"
@@ -129,6 +130,7 @@ class _Driver:
         self.dt = None
         self.ts, self.ys, self.yps, self.outs = [], [], [], []
         self.events, self.log = [], []
+        self.statics = []
         self.nrearms = 0
         self.recent = collections.deque(maxlen=CHATTER_LIMIT)
         self.bar = _Progress(0.0, model.commands[-1].end_time, progress)
@@ -199,8 +201,11 @@ class _Driver:
 
     # outputs ---------------------------------------------------------------------------
     def output(self, t, y, yp):
-        if self.ts and t <= self.ts[-1]:
+        if self.ts and t < self.ts[-1]:
             return
+        if self.ts and t == self.ts[-1]:      # a later answer at the same time replaces it
+            for lst in (self.ts, self.ys, self.yps, self.outs):
+                lst.pop()
         self.ts.append(t)
         self.ys.append(np.array(y))
         self.yps.append(np.array(yp))
@@ -437,6 +442,46 @@ class _Driver:
             if self.onestep and t > self.steps_seen[-1][0]:
                 self.remember_step()
 
+    # statics ---------------------------------------------------------------------------
+    def _after_static(self, t, y):
+        """Continue from an equilibrium: velocities zero, consistent yp, IDA restarted later."""
+        self.t, self.y = t, y
+        self.yp = self.kernel.consistent_yp(t, y)
+        self.kernel.d.last_t = t
+        self.need_start = True
+
+    def run_static(self, cmd):
+        y, res = statics.solve_static(self.model, cmd.end_time, self.y, self.model.static,
+                                      self.opts["integr_tol"])
+        self.statics.append(res)
+        if not res.success:
+            raise _Stop(False, -300, f"static analysis at t = {cmd.end_time:g}: {res.message}")
+        self._after_static(cmd.end_time, y)
+        self.output(self.t, self.y, self.yp)
+
+    def run_quasi_static(self, cmd):
+        params = self.model.static
+        times = _print_times(self.t, cmd.end_time, cmd.print_interval)
+        if params.method == "FIM_D":
+            out, results, _ = statics.quasi_static(self.model, self.t, self.y, times, params,
+                                                   self.model.transient)
+            self.statics.extend(results)
+            for tp, y in out:
+                self._after_static(tp, y)
+                self.output(tp, self.y, self.yp)
+            if not results[-1].success or len(out) < len(times) + 1:
+                raise _Stop(False, -300, f"quasi-static analysis: {results[-1].message}")
+            return
+        prob = statics.StaticProblem(self.kernel)
+        y = self.y
+        for tp in [self.t] + list(times):
+            y, res = statics.fim_s(prob, tp, y, params)
+            self.statics.append(statics._finish(prob, tp, y, params, res))
+            if not res.success:
+                raise _Stop(False, -300, f"quasi-static analysis at t = {tp:g}: {res.message}")
+            self._after_static(tp, y)
+            self.output(tp, self.y, self.yp)
+
     def run(self):
         k = self.kernel
         k.reset_counters()
@@ -453,10 +498,19 @@ class _Driver:
             self.output(self.t, self.y, self.yp)
             if "halt" in flow:
                 raise _Stop(True, 1, f"halted by Sensor_Event {flow['halt']} at t = {self.t:.9g}")
-            self.start(getattr(self, "first_step0", None))
+            self.need_start = True
             self.setup_time = time.perf_counter() - t_start
             for cmd in self.model.commands:
-                self.run_command(cmd)
+                if cmd.analysis == "STATIC":
+                    self.run_static(cmd)
+                elif cmd.analysis == "QUASI-STATIC":
+                    self.run_quasi_static(cmd)
+                else:
+                    if self.need_start:
+                        self.start(getattr(self, "first_step0", None))
+                        self.first_step0 = None
+                        self.need_start = False
+                    self.run_command(cmd)
         except _Stop as stop:
             success, status, message = stop.success, stop.status, stop.message
         finally:
@@ -498,10 +552,12 @@ def run_model(model, progress=None, **overrides):
     timing = {"setup": setup, "integrate": (t_end - t_start) - setup, "total": t_end - t_start}
     opts["linsolver"] = "sparse" if drv.sparse else "dense"
     meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
-            "options": opts, "ny": kernel.ny, "stepping": "onestep" if drv.onestep else "normal"}
+            "options": opts, "ny": kernel.ny, "stepping": "onestep" if drv.onestep else "normal",
+            "static": dataclasses.asdict(model.static)}
     labels = {(r.id, k): n for r in model.requests.values() for k, n in enumerate(r.names) if n}
     res = Result(drv.ts, drv.ys, drv.yps, drv.outs, kernel.channels, kernel.layout.names,
                  success, status, message, stats, timing, meta, labels)
     res.events = drv.events
     res.log = drv.log
+    res.statics = drv.statics
     return res

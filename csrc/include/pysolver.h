@@ -192,6 +192,10 @@ int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, cons
 int ps_roots(const psModel* m, psData* d, double t, const double* y, const double* yp,
              double* g);
 
+/* Return the rate of change of the kinetic energy, sum of m v.v' + w.(I w') over bodies, in
+ * model units (the root function of MKEAM's kinetic-energy peaks). */
+double ps_power(const psModel* m, const double* y, const double* yp);
+
 /* Evaluate every output channel into out (length m->nout); a NULL channel gives NaN.
  * Returns PS_OK. */
 int ps_outputs(const psModel* m, psData* d, double t, const double* y, const double* yp,

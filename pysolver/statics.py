@@ -1,0 +1,403 @@
+"""Static and quasi-static equilibrium (Param_Static, seed 004).
+
+The static equations are the dynamic rows of the kernel's residual with every velocity and
+acceleration zero: F(q, t) = M (0 - g) - Q(q, 0, t) = 0, one row per velocity coordinate u.
+Rigid bodies have seven position coordinates (Euler parameters) but six velocity coordinates, so
+Newton works in increments of u's kind: a translation and a rotation vector in the body frame,
+applied as q <- q (+) N(q) du with the exact exponential map for rotations. The stiffness in
+those coordinates is K = dF/dq N(q), from the kernel's exact Jacobian.
+
+- FIM_S: Newton-Raphson on F = 0 with K + sqrt(stability) M; converged when the largest
+  imbalance is below max_imbalance (deck force units) and the largest increment below max_error.
+- MKEAM: integrate the undamped system (penalty1 and velocity terms removed), stop at each
+  kinetic-energy peak (an IDA root of -dKE/dt), zero the velocities, restart; converged when the
+  peak energy is below max_ke_tol and the largest relative change of q between peaks below
+  max_dq_tol. The stable point found is then polished by FIM_S (which stays at that equilibrium).
+- FIM_D: quasi-statics as an index-1 DAE in q alone (F(q, t) = 0 plus |e| = 1 for each rigid
+  body) integrated by IDA with the Param_Transient tolerances; FIM_S at the first and the last
+  point and whenever the integration fails. A pure static solve with FIM_D means FIM_S.
+"""
+import dataclasses
+import math
+import warnings
+
+import numpy as np
+from sksundae.ida import IDA
+
+
+@dataclasses.dataclass
+class StaticResult:
+    """Outcome of one static solve.
+
+    Attributes
+    ----------
+    time : float
+    method : str
+        The method that produced the answer (``"MKEAM+FIM_S"`` for a polished MKEAM).
+    success : bool
+    message : str
+    iterations : int
+        Newton iterations (FIM_S), kinetic-energy peaks (MKEAM), or IDA steps (FIM_D).
+    imbalance : float
+        Largest force imbalance at the answer, deck force units.
+    error : float
+        Largest increment of the last Newton iteration (or relative change between the last
+        two peaks for MKEAM).
+    compliance : ndarray
+        Inverse of the regularised stiffness (K + sqrt(stability) M)^-1 at the answer, in the
+        velocity-like coordinates of ``coordinates`` (deck length per deck force).
+    coordinates : list of str
+    """
+    time: float
+    method: str
+    success: bool
+    message: str
+    iterations: int
+    imbalance: float
+    error: float
+    compliance: np.ndarray = None
+    coordinates: list = None
+
+
+class StaticProblem:
+    """The static equations of one compiled kernel, in increment coordinates."""
+
+    def __init__(self, kernel):
+        self.k = kernel
+        lay = kernel.layout
+        self.cf = kernel.arrays["force_scale"]
+        rows, names, qcols, M = [], [], [], []
+        for b, qa, ua in zip(lay.bodies, lay.qadr, lay.uadr):
+            nu = 6 if b.kind == "rigid" else 3
+            rows += list(range(ua, ua + nu))
+            qcols += list(range(qa, qa + (7 if nu == 6 else 3)))
+            names += [f"body{b.id}.{c}" for c in ("dx", "dy", "dz", "rx", "ry", "rz")[:nu]]
+            blk = np.eye(nu) * b.mass
+            if nu == 6:
+                blk[3:, 3:] = b.inertia
+            M.append(blk)
+        self.rows = np.array(rows, dtype=int)
+        self.qcols = np.array(qcols, dtype=int)
+        self.names = names
+        self.n = len(rows)
+        self.M = _block_diag(M, self.n)
+        self.zero = np.zeros(kernel.ny)
+
+    def state(self, y):
+        """Positions of y with every velocity set to zero."""
+        y = np.array(y, dtype=float)
+        y[self.rows] = 0.0
+        return y
+
+    def imbalance(self, t, y):
+        """F(q, t) in model units (mass * length / time^2)."""
+        return self.k.residual_array(t, y, self.zero)[self.rows]
+
+    def N(self, y):
+        """dq/du at y: identity for translations, 1/2 G(e) for Euler parameters (7 x 6 blocks)."""
+        N = np.zeros((len(self.qcols), self.n))
+        r = c = 0
+        for b in self.k.layout.bodies:
+            N[r:r + 3, c:c + 3] = np.eye(3)
+            if b.kind == "rigid":
+                qa = self.k.layout.qadr[self.k.layout.index[b.id]]
+                e0, e1, e2, e3 = y[qa + 3:qa + 7]
+                N[r + 3:r + 7, c + 3:c + 6] = 0.5 * np.array(
+                    [[-e1, -e2, -e3], [e0, -e3, e2], [e3, e0, -e1], [-e2, e1, e0]])
+                r, c = r + 7, c + 6
+            else:
+                r, c = r + 3, c + 3
+        return N
+
+    def N_pinv(self, y):
+        """Pseudo-inverse of N(q): identity for translations, 4 N^T / |e|^2 for rotations."""
+        N = self.N(y)
+        P = N.T.copy()
+        r = c = 0
+        for b in self.k.layout.bodies:
+            if b.kind == "rigid":
+                blk = N[r + 3:r + 7, c + 3:c + 6]
+                P[c + 3:c + 6, r + 3:r + 7] = blk.T / (blk.T @ blk)[0, 0]
+                r, c = r + 7, c + 6
+            else:
+                r, c = r + 3, c + 3
+        return P
+
+    def stiffness(self, t, y):
+        """K = dF/dq N(q), model units."""
+        J = self.k.jacobian_array(t, y, self.zero, 0.0)
+        return J[np.ix_(self.rows, self.qcols)] @ self.N(y)
+
+    def apply(self, y, du):
+        """q <- q (+) du: translations added, rotations by the exponential map (body frame)."""
+        y = y.copy()
+        c = 0
+        for b, qa in zip(self.k.layout.bodies, self.k.layout.qadr):
+            y[qa:qa + 3] += du[c:c + 3]
+            if b.kind == "rigid":
+                th = du[c + 3:c + 6]
+                a = np.linalg.norm(th)
+                dq = np.concatenate([[math.cos(a / 2)],
+                                     (math.sin(a / 2) / a) * th if a > 0 else 0.5 * th])
+                e = _quat_mul(y[qa + 3:qa + 7], dq)
+                y[qa + 3:qa + 7] = e / np.linalg.norm(e)
+                c += 6
+            else:
+                c += 3
+        return y
+
+
+def _block_diag(blocks, n):
+    M = np.zeros((n, n))
+    i = 0
+    for blk in blocks:
+        k = blk.shape[0]
+        M[i:i + k, i:i + k] = blk
+        i += k
+    return M
+
+
+def _quat_mul(p, q):
+    p0, pv = p[0], p[1:]
+    q0, qv = q[0], q[1:]
+    return np.concatenate([[p0 * q0 - pv @ qv], p0 * qv + q0 * pv + np.cross(pv, qv)])
+
+
+def _limit(prob, du, tlimit, alimit):
+    """Scale an increment so that no translation exceeds tlimit and no rotation alimit
+    (Adams' TLIMIT and ALIMIT), keeping its direction."""
+    scale = 1.0
+    c = 0
+    for b in prob.k.layout.bodies:
+        scale = min(scale, tlimit / max(np.abs(du[c:c + 3]).max(), 1e-300))
+        if b.kind == "rigid":
+            scale = min(scale, alimit / max(np.linalg.norm(du[c + 3:c + 6]), 1e-300))
+            c += 6
+        else:
+            c += 3
+    return du * scale
+
+
+def fim_s(prob, t, y, params, max_iter=None):
+    """Newton-Raphson on the force imbalance; returns (y, StaticResult).
+
+    Each increment is limited to params.tlimit per translation and params.alimit per rotation
+    (Adams' TLIMIT, ALIMIT). Plain limited Newton is tried first; if it fails, Newton with a
+    step-halving search (halve while the step raises the imbalance and the next correction
+    would be larger still), which crosses contact onsets that make plain Newton cycle. The
+    search can stall where a neutral direction amplifies tiny moments, which plain Newton
+    does not mind; so each covers the other's failure."""
+    y1, r1 = _newton(prob, t, y, params, max_iter, search=False)
+    if r1.success:
+        return y1, r1
+    y2, r2 = _newton(prob, t, y, params, max_iter, search=True)
+    if r2.success:
+        r2.iterations += r1.iterations
+        r2.message += f" (with step halving, after {r1.iterations} plain iterations)"
+        return y2, r2
+    return y1, r1
+
+
+def _newton(prob, t, y, params, max_iter, search):
+    y = prob.state(y)
+    reg = math.sqrt(params.stability) * prob.M
+    max_iter = max_iter or params.max_num_iter
+    F = prob.imbalance(t, y)
+    err = math.inf
+    best, best_it = np.abs(F).max(), 0
+    for it in range(1, max_iter + 1):
+        if not search and it - best_it > 10:
+            break                     # plain Newton is cycling: let the search take over
+        A = prob.stiffness(t, y) + reg
+        try:
+            du = np.linalg.solve(A, -F)
+        except np.linalg.LinAlgError:
+            du = None
+        if du is None or not np.all(np.isfinite(du)):
+            imb = np.abs(F).max() / prob.cf
+            return y, StaticResult(t, "FIM_S", False,
+                                   f"FIM_S: the stiffness matrix is singular at iteration {it} "
+                                   f"(a neutral equilibrium?): set Param_Static stability > 0; "
+                                   f"imbalance reached {imb:.3g}", it - 1, imb, err)
+        du = _limit(prob, du, params.tlimit, params.alimit)
+        # accept a step that does not raise the imbalance, or whose next Newton correction
+        # (with this matrix) is smaller than the step itself (Deuflhard's natural monotonicity,
+        # in displacement units, so that a stiff joint's transient force does not veto it);
+        # otherwise halve it
+        f0 = np.abs(F).max()
+        for _ in range(30 if search else 1):
+            y1 = prob.apply(y, du)
+            F1 = prob.imbalance(t, y1)
+            if np.abs(F1).max() <= f0:
+                break
+            try:
+                nxt = np.abs(np.linalg.solve(A, -F1)).max()
+            except np.linalg.LinAlgError:
+                nxt = math.inf
+            if nxt < np.abs(du).max():
+                break
+            du = 0.5 * du
+        y, F = y1, F1
+        if np.abs(F).max() < best:
+            best, best_it = np.abs(F).max(), it
+        err = np.abs(du).max()
+        imb = np.abs(F).max() / prob.cf
+        if imb < params.max_imbalance and err < params.max_error:
+            return y, StaticResult(t, "FIM_S", True, f"FIM_S converged in {it} iterations", it,
+                                   imb, err)
+    imb = np.abs(F).max() / prob.cf
+    return y, StaticResult(t, "FIM_S", False,
+                           f"FIM_S did not converge in {it} iterations: imbalance "
+                           f"reached {imb:.3g} (max_imbalance {params.max_imbalance:g}), last "
+                           f"increment {err:.3g}", it, imb, err)
+
+
+def mkeam(prob_c, t, y, params, tol):
+    """Maximum kinetic energy attrition on the undamped kernel; returns (y, StaticResult)."""
+    k = prob_c.k
+    y = prob_c.state(y)
+    ev = lambda tau, yy, yyp, g: g.__setitem__(0, -k.power(yy, yyp))  # noqa: E731
+    ev.direction = [1]
+    ev.terminal = [True]
+    res = lambda tau, yy, yyp, r: k.residual(t, yy, yyp, r)  # noqa: E731  (time frozen)
+    jac = lambda tau, yy, yyp, r, cj, J: k.jacobian(t, yy, yyp, cj, J)  # noqa: E731
+    solver = IDA(res, jacfn=jac, eventsfn=ev, num_events=1, rtol=tol, atol=tol,
+                 max_num_steps=100000)
+    q_prev = y.copy()
+    ke = dq = math.inf
+    horizon = 1e6
+    for it in range(1, params.max_num_iter + 1):
+        yp = k.consistent_yp(t, y)
+        solver.init_step(0.0, y, yp)
+        for lst in (ev._i, ev._t, ev._y, ev._yp):
+            lst.clear()
+        sol = solver.step(horizon, tstop=horizon)
+        if sol.status != 2:
+            # no kinetic-energy peak: at rest already, or the motion never turns
+            return y, StaticResult(t, "MKEAM", it > 1 and sol.success,
+                                   f"MKEAM: no kinetic-energy peak in iteration {it} "
+                                   f"({sol.message})", it, np.abs(prob_c.imbalance(t, y)).max()
+                                   / prob_c.cf, dq)
+        yr = np.array(sol.y)
+        u = yr[prob_c.rows]
+        ke = 0.5 * u @ prob_c.M @ u / prob_c.cf
+        y = prob_c.state(yr)
+        q = y[prob_c.qcols]
+        dq = np.max(np.abs(q - q_prev[prob_c.qcols]) / np.maximum(1.0, np.abs(q)))
+        q_prev = y.copy()
+        if ke < params.max_ke_tol and dq < params.max_dq_tol:
+            return y, StaticResult(t, "MKEAM", True, f"MKEAM converged after {it} "
+                                   "kinetic-energy peaks", it,
+                                   np.abs(prob_c.imbalance(t, y)).max() / prob_c.cf, dq)
+    return y, StaticResult(t, "MKEAM", False, f"MKEAM did not converge in "
+                           f"{params.max_num_iter} peaks: last peak energy {ke:.3g}, relative "
+                           f"change {dq:.3g}", params.max_num_iter,
+                           np.abs(prob_c.imbalance(t, y)).max() / prob_c.cf, dq)
+
+
+def compliance(prob, t, y, params):
+    """(K + sqrt(stability) M)^-1 in deck length per deck force, or None when singular."""
+    A = prob.stiffness(t, y) + math.sqrt(params.stability) * prob.M
+    try:
+        return np.linalg.inv(A / prob.cf)
+    except np.linalg.LinAlgError:
+        return None
+
+
+def solve_static(model, t, y, params, tol):
+    """One static solve at time t from y with the deck's method; returns (y, StaticResult)."""
+    prob = StaticProblem(model._kernel())
+    if params.method == "MKEAM":
+        y1, r1 = mkeam(StaticProblem(model._kernel(conservative=True)), t, y, params, tol)
+        if not r1.success:
+            return y1, _finish(prob, t, y1, params, r1)
+        y2, r2 = fim_s(prob, t, y1, params)
+        r2.method = "MKEAM+FIM_S"
+        r2.iterations = r1.iterations
+        r2.message = r1.message + "; " + r2.message
+        return y2, _finish(prob, t, y2, params, r2)
+    y1, r1 = fim_s(prob, t, y, params)
+    return y1, _finish(prob, t, y1, params, r1)
+
+
+def _finish(prob, t, y, params, res):
+    res.compliance = compliance(prob, t, y, params)
+    res.coordinates = prob.names
+    return res
+
+
+def quasi_static(model, t0, y0, times, params, transient):
+    """FIM_D: follow F(q, t) = 0 from (t0, y0) through `times` with IDA; FIM_S polishes the
+    first and last points and restarts the integration wherever it fails.
+
+    Returns (list of (t, y) at `times`, list of StaticResult, steps)."""
+    kernel = model._kernel()
+    prob = StaticProblem(kernel)
+    y, first = fim_s(prob, t0, y0, params)
+    results = [_finish(prob, t0, y, params, first)]
+    if not first.success:
+        return [], results, 0
+    lay = kernel.layout
+    rigid = [qa + 3 for b, qa in zip(lay.bodies, lay.qadr) if b.kind == "rigid"]
+    nq = len(prob.qcols)
+    qpos = {q: i for i, q in enumerate(prob.qcols)}
+    reg = math.sqrt(params.stability) * prob.M
+
+    def embed(q):
+        yy = np.zeros(kernel.ny)
+        yy[prob.qcols] = q
+        return yy
+
+    def residual(t, q, qp, r):
+        r[:prob.n] = prob.imbalance(t, embed(q)) / prob.cf
+        for i, e in enumerate(rigid):
+            j = qpos[e]
+            r[prob.n + i] = q[j:j + 4] @ q[j:j + 4] - 1.0
+
+    def jacobian(t, q, qp, r, cj, JJ):
+        yy = embed(q)
+        J = kernel.jacobian_array(t, yy, prob.zero, 0.0)[np.ix_(prob.rows, prob.qcols)]
+        # regularised like FIM_S: sqrt(stability) M mapped back to q increments (N^+)
+        JJ[:prob.n, :] = (J + reg @ prob.N_pinv(yy)) / prob.cf
+        for i, e in enumerate(rigid):
+            j = qpos[e]
+            JJ[prob.n + i, :] = 0.0
+            JJ[prob.n + i, j:j + 4] = 2.0 * q[j:j + 4]
+
+    def rate(t, q):
+        """dq/dt on the equilibrium path: -(dR/dq)^-1 dR/dt (dR/dt by central differences)."""
+        h = 1e-6 * max(1.0, abs(t))
+        rp, rm, JJ = np.zeros(nq), np.zeros(nq), np.zeros((nq, nq))
+        residual(t + h, q, None, rp)
+        residual(t - h, q, None, rm)
+        jacobian(t, q, None, None, 0.0, JJ)
+        return -np.linalg.solve(JJ, (rp - rm) / (2 * h))
+
+    tol = transient.integr_tol
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        solver = IDA(residual, jacfn=jacobian, rtol=tol, atol=tol,
+                     algebraic_idx=list(range(nq)), max_num_steps=100000)
+    t, q = t0, y[prob.qcols].copy()
+    solver.init_step(t, q, rate(t, q))
+    out, steps = [(t0, y)], 0
+    for i, tp in enumerate(times):
+        sol = solver.step(tp)
+        if not sol.success:
+            # FIM_S from the last good point to this output, then integrate on from there
+            yy, r = fim_s(prob, tp, embed(q), params)
+            results.append(_finish(prob, tp, yy, params, r))
+            if not r.success:
+                return out, results, steps
+            q = yy[prob.qcols].copy()
+            solver.init_step(tp, q, rate(tp, q))
+        else:
+            q = np.array(sol.y)
+        if i == len(times) - 1:
+            yy, r = fim_s(prob, tp, embed(q), params)
+            results.append(_finish(prob, tp, yy, params, r))
+            q = yy[prob.qcols].copy()
+        out.append((tp, embed(q)))
+        t = tp
+    steps = kernel.counters["nres"]
+    return out, results, steps
