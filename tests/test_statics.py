@@ -1,0 +1,152 @@
+"""Static and quasi-static equilibrium: FIM_S, MKEAM, FIM_D (seed 004)."""
+import math
+
+import numpy as np
+import pytest
+
+import pysolver
+from test_seed_decks import rest_penetration
+
+
+def load(decks, name, **replace):
+    text = (decks / name).read_text()
+    for old, new in replace.items():
+        text = text.replace(old, new)
+    return pysolver.loads(text)
+
+
+def with_method(decks, name, method, extra=""):
+    return load(decks, name, **{'method="FIM_S"': f'method="{method}"{extra}'})
+
+
+@pytest.mark.parametrize("method,max_iter", [("FIM_S", 40), ("MKEAM", 10)])
+def test_seed3_static_from_100_mm_away(decks, method, max_iter):
+    model = with_method(decks, "static_seed3.xml", method)
+    start = model.markers[10].pos
+    g = rest_penetration(1e4, 9.81, 1.0)
+    assert np.hypot(start[0], start[2] - (1 - g)) == pytest.approx(100.0, abs=0.1)
+    res = model.run()
+    assert res.success, res.message
+    st = res.statics[0]
+    assert st.success and st.iterations <= max_iter and st.imbalance < 1e-8
+    x, z = res.request(1)[0, :2]
+    assert abs(x) < 1e-8 and abs(z - (1 - g)) < 1e-8
+    # the transient that follows starts at rest in equilibrium and stays there
+    np.testing.assert_allclose(res.request(1)[:, 1], 1 - g, atol=1e-8)
+    assert st.method == ("MKEAM+FIM_S" if method == "MKEAM" else "FIM_S")
+
+
+def test_pendulum_fim_s_finds_the_top_and_mkeam_the_bottom(decks):
+    top = with_method(decks, "static_pendulum.xml", "FIM_S").run()
+    bottom = with_method(decks, "static_pendulum.xml", "MKEAM").run()
+    assert top.success and bottom.success
+    sag = 9.81 / 1e6            # the joint carries the weight: m g / penalty
+    np.testing.assert_allclose(top.request(1)[0, :4], [0, 0, 0.5 - sag, sag], atol=1e-9)
+    np.testing.assert_allclose(bottom.request(1)[0, :4], [0, 0, -0.5 - sag, sag], atol=1e-9)
+    assert top.statics[0].iterations <= 20 and bottom.statics[0].iterations <= 10
+    # the equilibria are those of rotation increments: unit Euler parameters
+    e = top.y[0, 3:7]
+    assert abs(np.linalg.norm(e) - 1) < 1e-14
+    # stiffness: upright is unstable (a negative eigenvalue), hanging is stable
+    k_top = np.linalg.eigvalsh(np.linalg.inv(top.compliance) + np.linalg.inv(top.compliance).T)
+    k_bot = np.linalg.eigvalsh(np.linalg.inv(bottom.compliance) + np.linalg.inv(bottom.compliance).T)
+    assert k_top.min() < -1 and k_bot.min() > -1e-3
+
+
+@pytest.mark.parametrize("stability", ["1e-10", "1e-4", "1e-1"])
+def test_neutral_equilibrium_needs_stability_and_does_not_depend_on_it(decks, stability):
+    res = load(decks, "static_neutral_floor.xml",
+               **{'stability="1e-10"': f'stability="{stability}"'}).run()
+    assert res.success
+    g = rest_penetration(0.5e5, 2 * 9.81, 1e-3)   # one penalty: k g S = m g
+    x, y, z, f = res.request(1)[0, :4]
+    assert (x, y) == (0.3, -0.2)
+    assert abs(z + g) < 1e-12 and f == pytest.approx(-2 * 9.81, abs=1e-9)
+
+
+def test_neutral_equilibrium_is_singular_without_stability(decks):
+    res = load(decks, "static_neutral_floor.xml", **{'stability="1e-10"': 'stability="0"'}).run()
+    assert not res.success and res.status == -300
+    assert "singular" in res.message and "stability" in res.message
+    assert "imbalance reached" in res.message
+
+
+def test_non_convergence_reports_the_imbalance(decks):
+    res = with_method(decks, "static_seed3.xml", "FIM_S",
+                      ' max_num_iter="3"').run()
+    assert not res.success
+    assert "did not converge" in res.message and "imbalance reached" in res.message
+
+
+def test_compliance_is_the_inverse_stiffness(decks):
+    """A small extra vertical load F moves the rest point by C F (C from the static result)."""
+    base = load(decks, "static_neutral_floor.xml").run()
+    C = base.compliance
+    assert base.statics[0].coordinates == ["body2.dx", "body2.dy", "body2.dz"]
+    extra = ('<Reference_Marker id="2" body_id="1" pos_x="0.3" pos_y="-0.2" pos_z="10"/>'
+             '<Force_Scalar_TwoBody id="9" type="Force" i_marker_id="10" j_marker_id="2" '
+             'val="1e-4"/><Post_Request')
+    pushed = load(decks, "static_neutral_floor.xml", **{"<Post_Request": extra}).run()
+    assert pushed.success, pushed.message
+    dz = pushed.request(1)[0, 2] - base.request(1)[0, 2]
+    # the force pushes away from marker 2 above: -0.01 N along z
+    assert dz == pytest.approx(C[2, 2] * -1e-4, rel=1e-5)   # pushed down by 1e-4 N
+    assert C[2, 2] > 0 and C[0, 2] == pytest.approx(0, abs=1e-15)
+    # the neutral directions have the compliance of the stability term only: 1 / (sqrt(s) m)
+    assert C[0, 0] == pytest.approx(1 / (math.sqrt(1e-10) * 2), rel=1e-12)
+
+
+def test_quasi_static_fim_d_agrees_with_fim_s_and_costs_less(decks):
+    fim_d = load(decks, "quasi_static_stack.xml").run()
+    fim_s = load(decks, "quasi_static_stack.xml", **{'method="FIM_D"': 'method="FIM_S"'}).run()
+    assert fim_d.success and fim_s.success
+    np.testing.assert_array_equal(fim_d.t, fim_s.t)
+    assert len(fim_d.t) == 101
+    # every output an equilibrium: positions agree to max_error (1e-6)
+    assert np.abs(fim_d.request(1)[:, :5] - fim_s.request(1)[:, :5]).max() < 1e-6
+    # the floor carries the weight and the load 100 t
+    np.testing.assert_allclose(fim_d.request(1)[:, 5], -(5 * 0.5 * 9.81 + 100 * fim_d.t),
+                               rtol=1e-6)
+    # FIM_D follows the path with IDA's predictor: fewer kernel evaluations than a Newton solve
+    # per output (timings in benchmarks/statics.py)
+    assert fim_d.stats["nres"] < 0.8 * fim_s.stats["nres"]
+    assert fim_d.statics[0].success and fim_d.statics[-1].success and len(fim_d.statics) == 2
+
+
+def test_static_and_python_statement(tmp_path):
+    deck = tmp_path / "s.py"
+    deck.write_text(
+        "PART(1, GROUND=True)\nMARKER(10, PART=2, QP=[0, 0, 0.05])\nPOINT_MASS(2, MASS=2, CM=10)\n"
+        "ACCGRAV(KGRAV=-9.81)\n"
+        "PFORCE(1, FUNCTION='-DZ(10)', PENALTY=1e5, PENALTY1=100, UNILATERAL=True, "
+        "SMOOTHING_FACTOR=1e-3)\n"
+        "EQUILIBRIUM(METHOD='FIM_S', IMBALANCE=1e-9, ERROR=1e-12)\n"
+        "REQUEST(1, F1='DZ(10)')\nSIMULATE(TYPE='STATIC')\n")
+    res = pysolver.load(deck).run()
+    assert res.success
+    assert res.request(1)[0, 0] == pytest.approx(-rest_penetration(0.5e5, 2 * 9.81, 1e-3), abs=1e-12)
+
+
+@pytest.mark.parametrize("attrs,attr,match", [
+    ('method="NEWTON"', "method", "expected one of FIM_D, FIM_S, MKEAM"),
+    ('max_imbalance="0"', "max_imbalance", "expected a value > 0"),
+    ('stability="-1"', "stability", "expected a value >= 0"),
+    ('max_num_iter="2.5"', "max_num_iter", "expected a positive integer"),
+    ('compliance_delta="x"', "compliance_delta", "expected a real number"),
+])
+def test_bad_param_static(decks, attrs, attr, match):
+    text = (decks / "static_seed3.xml").read_text().replace(
+        '<Param_Static method="FIM_S" max_imbalance="1e-8" max_error="1e-10"/>',
+        f'<Param_Static {attrs}/>')
+    with pytest.raises(pysolver.DeckError, match=match) as info:
+        pysolver.loads(text, file="s.xml")
+    assert info.value.attribute == attr and info.value.element == "Param_Static"
+    assert info.value.line == 17
+
+
+def test_mkeam_quasi_static_is_rejected(decks):
+    text = (decks / "quasi_static_stack.xml").read_text().replace('method="FIM_D"',
+                                                                  'method="MKEAM"')
+    with pytest.raises(pysolver.DeckError, match="MKEAM does not do quasi-static") as info:
+        pysolver.loads(text)
+    assert info.value.element == "Simulate" and info.value.attribute == "analysis_type"
