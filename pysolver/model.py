@@ -451,6 +451,7 @@ class Model:
         self.commands = []
         self.has_units = False
         self._compiled = None
+        self._where = {}          # (kind, id) -> location of the element, for errors
 
     # public API -------------------------------------------------------------------------
     def run(self, progress=None, **options):
@@ -743,7 +744,6 @@ def _force_like(model, ctx, a):
         model.penalties[a["id"]] = Penalty(a["id"], a["expr"][0], a["expr"][1], a["penalty"],
                                            a["penalty1"], a["unilateral"],
                                            a["smoothing_factor"], a["label"])
-        model._where = getattr(model, "_where", {})
         model._where[("penalty", a["id"])] = ctx
     elif tag == "Force_Scalar_TwoBody":
         if a["usrsub_dll_name"] or a["script_name"]:
@@ -759,11 +759,9 @@ def _force_like(model, ctx, a):
                 raise ctx.error(f"marker {a[key]} does not exist", key)
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
                                              a["j_marker_id"], val[0], val[1], a["label"])
-        model._where = getattr(model, "_where", {})
         model._where[("sforce", a["id"])] = ctx
     elif tag == "Reference_Variable":
         model.variables[a["id"]] = Variable(a["id"], a["expr"][0], a["expr"][1], a["label"])
-        model._where = getattr(model, "_where", {})
         model._where[("variable", a["id"])] = ctx
     elif tag == "Sensor_Event":
         _reject_usersub(ctx, a)
@@ -777,21 +775,18 @@ def _force_like(model, ctx, a):
                                         a["error_tol"], a["evaluate_id"], a["dt"],
                                         a["stepsize"], zc, a["hmax"], a["halt"], a["print"],
                                         a["restart"], a["verbose"], a["return"], a["label"])
-        model._where = getattr(model, "_where", {})
         model._where[("sensor", a["id"])] = ctx
     elif tag == "Sensor_Evaluate":
         _reject_usersub(ctx, a)
         if a["expr"] is None:
             raise ctx.error("missing required attribute for type EXPRESSION", "expr")
         model.evaluates[a["id"]] = Evaluate(a["id"], a["expr"][0], a["expr"][1], a["label"])
-        model._where = getattr(model, "_where", {})
         model._where[("evaluate", a["id"])] = ctx
     elif tag == "Post_Request":
         exprs = [a[f"expr{k}"] for k in range(1, 9)]
         model.requests[a["id"]] = Request(a["id"], [_parsed(e) for e in exprs],
                                           [e[1] if e else None for e in exprs],
                                           [a[f"name{k}"] for k in range(1, 9)], a["label"])
-        model._where = getattr(model, "_where", {})
         model._where[("request", a["id"])] = ctx
 
 
@@ -800,7 +795,7 @@ def _check_references(model):
     tables = {"marker": model.markers, "variable": model.variables,
               "penalty": model.penalties, "sforce": model.sforces,
               "evaluate": model.evaluates}
-    where = getattr(model, "_where", {})
+    where = model._where
     items = []
     for p in model.penalties.values():
         items.append((("penalty", p.id), "expr", p.expr))
