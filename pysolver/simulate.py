@@ -444,9 +444,10 @@ class _Driver:
 
     # statics ---------------------------------------------------------------------------
     def _after_static(self, t, y):
-        """Continue from an equilibrium: velocities zero, consistent yp, IDA restarted later."""
+        """Continue from an equilibrium: velocities zero and, since the forces balance there,
+        yp = 0 is consistent; IDA is restarted when a transient follows."""
         self.t, self.y = t, y
-        self.yp = self.kernel.consistent_yp(t, y)
+        self.yp = np.zeros_like(y)
         self.kernel.d.last_t = t
         self.need_start = True
 

@@ -109,7 +109,7 @@ def test_quasi_static_fim_d_agrees_with_fim_s_and_costs_less(decks):
                                rtol=1e-6)
     # FIM_D follows the path with IDA's predictor: fewer kernel evaluations than a Newton solve
     # per output (timings in benchmarks/statics.py)
-    assert fim_d.stats["nres"] < 0.8 * fim_s.stats["nres"]
+    assert fim_d.stats["nres"] < 0.5 * fim_s.stats["nres"]
     assert fim_d.statics[0].success and fim_d.statics[-1].success and len(fim_d.statics) == 2
 
 
