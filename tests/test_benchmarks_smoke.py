@@ -1,0 +1,53 @@
+"""The benchmark scripts run (once, quickly) so that they cannot rot; their figures are in the
+README and come from running them in full."""
+import contextlib
+import importlib.util
+import io
+import os
+import subprocess
+import sys
+
+import pysolver
+from conftest import ROOT
+
+BENCH = ROOT / "benchmarks"
+
+
+def _module(name):
+    spec = importlib.util.spec_from_file_location(f"bench_{name}", BENCH / f"{name}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _output(fn, *args):
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        fn(*args)
+    return buf.getvalue()
+
+
+def test_work_precision_report_runs():
+    mod = _module("work_precision")
+    out = _output(mod.oscillator, 1)
+    assert "Damped oscillator" in out and "1e-10" in out
+
+
+def test_sensor_accuracy_report_runs():
+    out = _output(_module("sensor_accuracy").event_times)
+    assert "contact onset" in out
+
+
+def test_statics_report_runs():
+    out = _output(_module("statics").main)
+    assert "FIM_D" in out and "faster" in out
+
+
+def test_pytest_benchmark_suite_runs_once():
+    env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(pysolver.__file__)))
+    p = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
+                        str(BENCH / "test_bench.py"), "--benchmark-disable", "-k",
+                        "catenary or chain"], capture_output=True, text=True, env=env,
+                       cwd=str(BENCH))
+    assert p.returncode == 0, p.stdout[-2000:] + p.stderr[-2000:]
+    assert " passed" in p.stdout
