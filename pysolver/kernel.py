@@ -155,8 +155,12 @@ class Kernel:
         def jacobian(t, y, yp, cj, jac):
             return jac_c(m, d, t, fb("double[]", y), fb("double[]", yp), cj, fb("double[]", jac))
 
+        def jacobian_ida(t, y, yp, res, cj, jac):
+            return jac_c(m, d, t, fb("double[]", y), fb("double[]", yp), cj, fb("double[]", jac))
+
         self.residual = residual
         self.jacobian = jacobian
+        self.jacobian_ida = jacobian_ida      # scikit-sundae's jacfn signature, no extra frame
 
     def jacobian_csc_fn(self):
         """Return a scikit-sundae ``jacfn`` filling the CSC data array of :meth:`sparsity`."""

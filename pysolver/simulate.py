@@ -146,8 +146,7 @@ class _Driver:
         if self.sparse:
             lin = dict(linsolver="sparse", sparsity=k.sparsity(), jacfn=k.jacobian_csc_fn())
         else:
-            lin = dict(linsolver="dense",
-                       jacfn=lambda t, y, yp, res, cj, JJ: k.jacobian(t, y, yp, cj, JJ))
+            lin = dict(linsolver="dense", jacfn=k.jacobian_ida)
         if self.opts["jacobian"] == "dq":      # IDA's own difference quotients, for comparison
             lin.pop("jacfn")
         return lin
