@@ -232,12 +232,21 @@ class Kernel:
 
     def consistent_yp(self, t, y, iters=4):
         """Return yp with F(t, y, yp) = 0 by Newton's method on yp (F is linear in yp unless
-        expressions use accelerations)."""
+        expressions use accelerations). dF/dyp is the difference of the iteration matrix at
+        cj = 1 and cj = 0; large scenes use the sparse path."""
+        sparse = self.ny >= 300
+        if sparse:
+            from scipy.sparse.linalg import spsolve
         yp = np.zeros(self.ny)
         for _ in range(iters):
             r = self.residual_array(t, y, yp)
-            A = self.jacobian_array(t, y, yp, 1.0) - self.jacobian_array(t, y, yp, 0.0)
-            dyp = np.linalg.solve(A, -r)
+            if sparse:
+                A = (self.jacobian_csc_array(t, y, yp, 1.0)
+                     - self.jacobian_csc_array(t, y, yp, 0.0)).tocsc()
+                dyp = spsolve(A, -r)
+            else:
+                A = self.jacobian_array(t, y, yp, 1.0) - self.jacobian_array(t, y, yp, 0.0)
+                dyp = np.linalg.solve(A, -r)
             yp += dyp
             if np.max(np.abs(dyp)) <= 1e-14 * (1 + np.max(np.abs(yp))):
                 break

@@ -487,11 +487,11 @@ class _Driver:
         k.reset_counters()
         k.armed[:] = 1
         k.senval[:] = 0.0
+        t_start = time.perf_counter()
         self.t = 0.0
         self.y = k.layout.initial_state()
         k.d.last_t = self.t
         self.yp = k.consistent_yp(self.t, self.y)
-        t_start = time.perf_counter()
         status, message, success = 0, "The simulation finished.", True
         try:
             flow = self.initial_events()
