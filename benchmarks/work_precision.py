@@ -19,6 +19,7 @@ import numpy as np
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(ROOT / "benchmarks"))
 import pysolver  # noqa: E402
 from test_oscillator import DECK, exact, M, K, C, G  # noqa: E402
 
@@ -81,12 +82,42 @@ def seed_decks(repeat):
               f"{res.stats['njac']:5d} | {tdq * 1e3:7.2f} {rdq.stats['nres']:7d} {tdq / tp:6.2f}")
 
 
+def seed3_comparators(repeat):
+    """Seed example 3: pysolver against the same equations as a hand-written NumPy residual on
+    the same scikit-sundae IDA (IDA's difference-quotient Jacobian), error in (x, z) at the
+    outputs against a pysolver run at integr_tol 1e-12."""
+    from sksundae.ida import IDA
+    from comparators import initial_state, residual
+    model = pysolver.load(ROOT / "decks" / "particle_between_lines.xml")
+    ref = model.run(integr_tol=1e-12).request(1)[:, :2]
+    print("\nSeed example 3 (x, z over 3 s, 601 outputs): pysolver vs a NumPy residual on IDA")
+    print(f"{'tol':>7} {'pysolver err':>12} {'ms':>7} | {'NumPy+IDA err':>13} {'ms':>8} "
+          f"{'time x':>6}")
+    rows = []
+    for tol in (1e-4, 1e-6, 1e-8):
+        tp, res = best_time(lambda: model.run(integr_tol=tol), repeat)
+        ep = np.abs(res.request(1)[:, :2] - ref).max()
+        y0, yp0 = initial_state()
+
+        def numpy_run():
+            solver = IDA(residual, rtol=tol, atol=tol, max_num_steps=100000)
+            return solver.solve(res.t, y0, yp0)
+
+        tn, sol = best_time(numpy_run, repeat)
+        en = np.abs(sol.y[:, :2] - ref).max()
+        rows.append((tol, ep, tp, en, tn))
+        print(f"{tol:7.0e} {ep:12.2e} {tp * 1e3:7.2f} | {en:13.2e} {tn * 1e3:8.2f} "
+              f"{tn / tp:6.1f}")
+    return rows
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5)
     args = parser.parse_args()
     oscillator(args.repeat)
     seed_decks(args.repeat)
+    seed3_comparators(args.repeat)
 
 
 if __name__ == "__main__":
