@@ -672,7 +672,7 @@ def _bodies(model, bodies_raw, markers_raw):
         frames[mid] = (p, R)
         return frames[mid]
 
-    for mid, (ctx, a) in markers_raw.items():
+    for mid, (_, a) in markers_raw.items():
         p, R = frame(mid)
         model.markers[mid] = Marker(mid, a["body_id"], p, R, a["label"])
 
