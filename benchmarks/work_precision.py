@@ -111,6 +111,39 @@ def seed3_comparators(repeat):
     return rows
 
 
+def plain_c_ida(tol, repeat):
+    """Run benchmarks/c_ida/seed3_ida (built on first use): (steps, nres, njac, seconds, xz)."""
+    import subprocess
+    exe = ROOT / "benchmarks" / "c_ida" / "seed3_ida"
+    if not exe.exists():
+        subprocess.run(["bash", str(exe.parent / "build.sh")], check=True, capture_output=True)
+    out = subprocess.run([str(exe), repr(tol), str(repeat)], check=True, capture_output=True,
+                         text=True).stdout.split("\n")
+    steps, nres, njac, sec = out[0].split()
+    xz = np.array([[float(v) for v in line.split()] for line in out[1:] if line.strip()])
+    return int(steps), int(nres), int(njac), float(sec), xz
+
+
+def seed3_plain_c(repeat):
+    """Seed example 3: pysolver against plain C IDA with a hand-written residual and Jacobian
+    (the SUNDIALS 7.9 libraries of the scikit-sundae wheel), same output times and tolerance."""
+    model = pysolver.load(ROOT / "decks" / "particle_between_lines.xml")
+    ref = model.run(integr_tol=1e-12).request(1)[:, :2]
+    print("\nSeed example 3: pysolver vs plain C IDA (hand-written residual and Jacobian)")
+    print(f"{'tol':>7} {'pysolver err':>12} {'steps':>6} {'ms':>7} | {'C IDA err':>10} "
+          f"{'steps':>6} {'ms':>7} | {'pysolver / C':>12}")
+    rows = []
+    for tol in (1e-4, 1e-6, 1e-8):
+        tp, res = best_time(lambda: model.run(integr_tol=tol), repeat)
+        steps, nres, njac, tc, xz = plain_c_ida(tol, max(repeat, 3))
+        ep = np.abs(res.request(1)[:, :2] - ref).max()
+        ec = np.abs(xz - ref).max()
+        rows.append((tol, ep, tp, ec, tc))
+        print(f"{tol:7.0e} {ep:12.2e} {res.stats['steps']:6d} {tp * 1e3:7.2f} | {ec:10.2e} "
+              f"{steps:6d} {tc * 1e3:7.3f} | {tp / tc:12.1f}")
+    return rows
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5)
@@ -118,6 +151,7 @@ def main():
     oscillator(args.repeat)
     seed_decks(args.repeat)
     seed3_comparators(args.repeat)
+    seed3_plain_c(args.repeat)
 
 
 if __name__ == "__main__":

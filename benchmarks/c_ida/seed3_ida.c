@@ -1,0 +1,151 @@
+/* Seed example 3 (particle between two lines, kg/mm/s/N) in plain C on SUNDIALS IDA with a
+ * hand-written residual and Jacobian: the lower bound for pysolver's design (issue 5).
+ *
+ * Built against the SUNDIALS 7.9 shared libraries that the scikit-sundae wheel ships (see
+ * build.sh); the few API declarations needed are written out below because the wheel ships no
+ * headers. Usage: seed3_ida RTOL REPEAT -> prints "steps nres njac seconds" and the outputs.
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+typedef double sunrealtype;
+typedef int64_t sunindextype;
+typedef struct _generic_N_Vector* N_Vector;
+typedef struct _generic_SUNMatrix* SUNMatrix;
+typedef struct _generic_SUNLinearSolver* SUNLinearSolver;
+typedef struct SUNContext_* SUNContext;
+typedef int (*IDAResFn)(sunrealtype, N_Vector, N_Vector, N_Vector, void*);
+typedef int (*IDALsJacFn)(sunrealtype, sunrealtype, N_Vector, N_Vector, N_Vector, SUNMatrix, void*,
+                          N_Vector, N_Vector, N_Vector);
+int SUNContext_Create(int comm, SUNContext* ctx);
+int SUNContext_Free(SUNContext* ctx);
+N_Vector N_VNew_Serial(sunindextype n, SUNContext ctx);
+sunrealtype* N_VGetArrayPointer(N_Vector v);
+void N_VDestroy(N_Vector v);
+void* IDACreate(SUNContext ctx);
+int IDAInit(void* mem, IDAResFn res, sunrealtype t0, N_Vector y0, N_Vector yp0);
+int IDASStolerances(void* mem, sunrealtype rtol, sunrealtype atol);
+int IDASetMaxNumSteps(void* mem, long mxsteps);
+int IDASetStopTime(void* mem, sunrealtype tstop);
+SUNMatrix SUNDenseMatrix(sunindextype m, sunindextype n, SUNContext ctx);
+sunrealtype* SUNDenseMatrix_Data(SUNMatrix a);
+SUNLinearSolver SUNLinSol_Dense(N_Vector y, SUNMatrix a, SUNContext ctx);
+int IDASetLinearSolver(void* mem, SUNLinearSolver ls, SUNMatrix a);
+int IDASetJacFn(void* mem, IDALsJacFn jac);
+int IDASolve(void* mem, sunrealtype tout, sunrealtype* tret, N_Vector y, N_Vector yp, int itask);
+int IDAGetNumSteps(void* mem, long* n);
+int IDAGetNumResEvals(void* mem, long* n);
+int IDAGetNumJacEvals(void* mem, long* n);
+void IDAFree(void** mem);
+int SUNLinSolFree(SUNLinearSolver ls);
+void SUNMatDestroy(SUNMatrix a);
+
+#define K 1e4
+#define C 1e2
+#define M 1.0
+#define GRAV 9810.0
+#define CF 1000.0
+
+/* Smoothed penalty of g = 1 + sx x - z: force f, and df/dg, df/dgdot. */
+static void penalty(double g, double gd, double* f, double* fg, double* fgd) {
+  *f = *fg = *fgd = 0.0;
+  if (g <= 0.0) return;
+  double d = g < 1.0 ? g : 1.0, s = d * d * (3 - 2 * d), ds = g < 1.0 ? 6 * d * (1 - d) : 0.0;
+  *f = -K * s * g - C * s * gd;
+  *fg = -K * (ds * g + s) - C * ds * gd;
+  *fgd = -C * s;
+}
+
+static int res(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void* ud) {
+  (void)t; (void)ud;
+  double *y = N_VGetArrayPointer(yy), *yp = N_VGetArrayPointer(yyp), *r = N_VGetArrayPointer(rr);
+  double fx = 0, fz = 0;
+  for (int k = 0; k < 2; k++) {
+    double sx = k ? -1.0 : 1.0, f, fg, fgd;
+    penalty(1 + sx * y[0] - y[1], sx * y[2] - y[3], &f, &fg, &fgd);
+    fx += f * sx;
+    fz -= f;
+  }
+  r[0] = yp[0] - y[2];
+  r[1] = yp[1] - y[3];
+  r[2] = M * yp[2] - CF * fx;
+  r[3] = M * (yp[3] + GRAV) - CF * fz;
+  return 0;
+}
+
+static int jac(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yyp, N_Vector rr, SUNMatrix J,
+               void* ud, N_Vector t1, N_Vector t2, N_Vector t3) {
+  (void)t; (void)yyp; (void)rr; (void)ud; (void)t1; (void)t2; (void)t3;
+  double* y = N_VGetArrayPointer(yy);
+  double* a = SUNDenseMatrix_Data(J); /* column-major 4 x 4 */
+#define A(i, j) a[(j) * 4 + (i)]
+  for (int i = 0; i < 16; i++) a[i] = 0.0;
+  A(0, 0) = cj; A(0, 2) = -1; A(1, 1) = cj; A(1, 3) = -1; A(2, 2) = cj * M; A(3, 3) = cj * M;
+  for (int k = 0; k < 2; k++) {
+    double sx = k ? -1.0 : 1.0, f, fg, fgd;
+    double grad[4] = {sx, -1, 0, 0}, gdot_v[4] = {0, 0, sx, -1}, dir[2] = {sx, -1};
+    penalty(1 + sx * y[0] - y[1], sx * y[2] - y[3], &f, &fg, &fgd);
+    for (int i = 0; i < 2; i++)     /* rows: generalized force on x (2) and z (3) */
+      for (int j = 0; j < 4; j++)
+        A(2 + i, j) -= CF * dir[i] * (fg * grad[j] + fgd * gdot_v[j]);
+  }
+#undef A
+  return 0;
+}
+
+int main(int argc, char** argv) {
+  double rtol = argc > 1 ? atof(argv[1]) : 1e-6;
+  int repeat = argc > 2 ? atoi(argv[2]) : 5;
+  double best = 1e30;
+  long nst = 0, nre = 0, nje = 0;
+  static double out[601][2];
+  for (int rep = 0; rep < repeat; rep++) {
+    SUNContext ctx;
+    SUNContext_Create(0, &ctx);
+    N_Vector y = N_VNew_Serial(4, ctx), yp = N_VNew_Serial(4, ctx);
+    double *yv = N_VGetArrayPointer(y), *ypv = N_VGetArrayPointer(yp);
+    yv[0] = 100; yv[1] = 120; yv[2] = 0; yv[3] = 0;
+    ypv[0] = 0; ypv[1] = 0; ypv[2] = 0; ypv[3] = -GRAV;
+    struct timespec a, b;
+    clock_gettime(CLOCK_MONOTONIC, &a);
+    void* mem = IDACreate(ctx);
+    IDAInit(mem, res, 0.0, y, yp);
+    IDASStolerances(mem, rtol, rtol);
+    IDASetMaxNumSteps(mem, 1000000);
+    SUNMatrix J = SUNDenseMatrix(4, 4, ctx);
+    SUNLinearSolver LS = SUNLinSol_Dense(y, J, ctx);
+    IDASetLinearSolver(mem, LS, J);
+    IDASetJacFn(mem, jac);
+    IDASetStopTime(mem, 3.0);
+    double t;
+    out[0][0] = 100; out[0][1] = 120;
+    /* like pysolver: the first call asks for the end time in one-step mode */
+    IDASolve(mem, 3.0, &t, y, yp, 2 /* IDA_ONE_STEP */);
+    for (int k = 1; k <= 600; k++) {
+      double tp = 0.005 * k;
+      if (t < tp) IDASolve(mem, tp, &t, y, yp, 1 /* IDA_NORMAL */);
+      if (t > tp) { /* interpolate: IDA_NORMAL with tout behind tn returns the interpolant */
+        IDASolve(mem, tp, &t, y, yp, 1);
+      }
+      out[k][0] = yv[0]; out[k][1] = yv[1];
+    }
+    clock_gettime(CLOCK_MONOTONIC, &b);
+    double sec = (b.tv_sec - a.tv_sec) + 1e-9 * (b.tv_nsec - a.tv_nsec);
+    if (sec < best) best = sec;
+    IDAGetNumSteps(mem, &nst);
+    IDAGetNumResEvals(mem, &nre);
+    IDAGetNumJacEvals(mem, &nje);
+    IDAFree(&mem);
+    SUNLinSolFree(LS);
+    SUNMatDestroy(J);
+    N_VDestroy(y);
+    N_VDestroy(yp);
+    SUNContext_Free(&ctx);
+  }
+  printf("%ld %ld %ld %.9f\n", nst, nre, nje, best);
+  for (int k = 0; k <= 600; k++) printf("%.17g %.17g\n", out[k][0], out[k][1]);
+  return 0;
+}
