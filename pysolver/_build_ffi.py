@@ -16,7 +16,7 @@ import cffi
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 HEADER = ROOT / "csrc" / "include" / "pysolver.h"
-SOURCES = ["hd.c", "kinematics.c", "tape.c", "residual.c"]
+SOURCES = ["hd.c", "kinematics.c", "tape.c", "residual.c", "ida.c"]
 
 
 def cdef_from_header(text):
@@ -37,7 +37,7 @@ def make_builder():
         sources=[str(ROOT / "csrc" / s) for s in SOURCES],
         include_dirs=[str(ROOT / "csrc" / "include"), str(ROOT / "csrc")],
         extra_compile_args=["-std=c99", "-O2", "-D_DEFAULT_SOURCE"],
-        libraries=["m"],
+        libraries=["m", "dl"],
     )
     return ffibuilder
 

@@ -14,6 +14,7 @@ seed 003 Comment 3). Scenes without one pay nothing for it.
 import collections
 import dataclasses
 import math
+import os
 import sys
 import time
 import warnings
@@ -21,13 +22,13 @@ import warnings
 import numpy as np
 from sksundae.ida import IDA
 
-from . import statics
+from . import cida, statics
 from .results import Result
 
 __version__ = "0.1.0"
 
 _OPTION_NAMES = ("integr_tol", "h_max", "h_min", "h0_max", "max_num_steps", "linsolver",
-                 "jacobian")
+                 "jacobian", "backend")
 
 #: With linsolver="auto", scenes with at least this many states use the sparse solver.
 SPARSE_THRESHOLD = 300
@@ -121,6 +122,13 @@ class _Driver:
         self.onestep = any(s.zero_crossing for s in self.sensors)
         self.sparse = opts["linsolver"] == "sparse" or (opts["linsolver"] == "auto"
                                                         and kernel.ny >= SPARSE_THRESHOLD)
+        # IDA called from C where it can be (dense, exact Jacobian); scikit-sundae otherwise
+        want_c = opts["backend"] in ("auto", "c") and not self.sparse and \
+            opts["jacobian"] == "exact"
+        self.use_c = want_c and cida.available()
+        if opts["backend"] == "c" and not self.use_c:
+            raise ValueError("backend='c' needs the dense exact-Jacobian path and SUNDIALS "
+                             "libraries from the scikit-sundae wheel")
         self.hmax = opts["h_max"]          # None: unbounded
         self.hmin = opts["h_min"] or 0.0
         self.saved_bounds = None           # (hmax, hmin) while a zero-crossing search runs
@@ -139,6 +147,7 @@ class _Driver:
         self.nstarts = 0
         self.ida_done = [0, 0]             # nfev, njev of IDA objects already replaced
         self.ida_last = (0, 0)             # of the current one, from its last result
+        self.ida_fail = [0, 0]             # error-test and convergence failures (C driver)
 
     # integrator ------------------------------------------------------------------------
     def _linear(self):
@@ -157,25 +166,29 @@ class _Driver:
         bounds = (self.hmax or 0.0, self.hmin, first_step or self.opts["h0_max"] or 0.0)
         self.kernel.d.last_t = self.t      # restarts are not step attempts (see ps_residual)
         if self.solver is None or bounds != self.bounds:
-            self.ida_done[0] += self.ida_last[0]
-            self.ida_done[1] += self.ida_last[1]
-            self.ida_last = (0, 0)
+            self._retire_solver()
+            if self.use_c:
+                self.solver = cida.CIDA(self.kernel, self.opts["integr_tol"],
+                                        self.opts["integr_tol"], bounds[0], bounds[1], bounds[2],
+                                        min(self.opts["max_num_steps"] + 1, 2 ** 31 - 1))
+                self.bounds = bounds
             options = dict(rtol=self.opts["integr_tol"], atol=self.opts["integr_tol"],
                            max_step=bounds[0], min_step=bounds[1], first_step=bounds[2],
                            max_num_steps=min(self.opts["max_num_steps"] + 1, 2 ** 31 - 1),
                            **self._linear())
-            if self.sensors:
+            if self.sensors and not self.use_c:
                 k = self.kernel
                 ev = lambda t, y, yp, g: k.roots(t, y, yp, g)  # noqa: E731
                 ev.direction = [1] * len(self.sensors)
                 ev.terminal = [True] * len(self.sensors)
                 options.update(eventsfn=ev, num_events=len(self.sensors))
                 self.eventsfn = ev
-            with warnings.catch_warnings():
-                # scikit-sundae warns that the exact jacfn replaces its sparse DQ Jacobian
-                warnings.simplefilter("ignore", UserWarning)
-                self.solver = IDA(self.kernel.residual, **options)
-            self.bounds = bounds
+            if not self.use_c:
+                with warnings.catch_warnings():
+                    # scikit-sundae warns that the exact jacfn replaces its sparse DQ Jacobian
+                    warnings.simplefilter("ignore", UserWarning)
+                    self.solver = IDA(self.kernel.residual, **options)
+                self.bounds = bounds
         self.nstarts += 1
         self.fresh = True
         self.solver.init_step(self.t, self.y, self.yp)
@@ -194,12 +207,27 @@ class _Driver:
                 self.nrearms)
         self.steps_seen.append((self.t, self.y.copy(), self.yp.copy(), snap))
 
+    def _retire_solver(self):
+        """Keep the counters of an IDA object that is being replaced."""
+        if self.solver is None:
+            return
+        if self.use_c:
+            st = self.solver.stats()
+            self.ida_done[0] += st[1]
+            self.ida_done[1] += st[2]
+            self.ida_fail[0] += st[3]
+            self.ida_fail[1] += st[4]
+        else:
+            self.ida_done[0] += self.ida_last[0]
+            self.ida_done[1] += self.ida_last[1]
+        self.ida_last = (0, 0)
+
     def steps(self):
         c = self.kernel.counters
         return c["attempts"] - c["nfail"]
 
     # outputs ---------------------------------------------------------------------------
-    def output(self, t, y, yp):
+    def output(self, t, y, yp, out=None):
         if self.ts and t < self.ts[-1]:
             return
         if self.ts and t == self.ts[-1]:      # a later answer at the same time replaces it
@@ -208,7 +236,8 @@ class _Driver:
         self.ts.append(t)
         self.ys.append(np.array(y))
         self.yps.append(np.array(yp))
-        self.outs.append(self.kernel.outputs(t, self.ys[-1], self.yps[-1]))
+        self.outs.append(self.kernel.outputs(t, self.ys[-1], self.yps[-1]) if out is None
+                         else out)
         if self.verbose_active:
             f = self.kernel.sensor_values(t, self.ys[-1], self.yps[-1])
             for k in sorted(self.verbose_active):
@@ -245,9 +274,12 @@ class _Driver:
 
     def on_root(self, sol):
         """Handle an IDA root return; returns the actions that affect the command loop."""
-        info = self.eventsfn._i[-1]
-        for lst in (self.eventsfn._i, self.eventsfn._t, self.eventsfn._y, self.eventsfn._yp):
-            lst.clear()                   # scikit-sundae keeps every event; we do not need to
+        if getattr(sol, "roots", None) is not None:
+            info = sol.roots
+        else:
+            info = self.eventsfn._i[-1]
+            for lst in (self.eventsfn._i, self.eventsfn._t, self.eventsfn._y, self.eventsfn._yp):
+                lst.clear()               # scikit-sundae keeps every event; we do not need to
         self.t, self.y, self.yp = float(sol.t), np.array(sol.y), np.array(sol.yp)
         self._check_chatter()
         armed = self.kernel.armed
@@ -398,6 +430,11 @@ class _Driver:
             if self.onestep or self.fresh:
                 sol = self.solver.step(cmd.end_time, method="onestep", tstop=cmd.end_time)
                 self.fresh = False
+            elif self.use_c and not self.verbose_active:
+                # the C driver runs through all pending outputs until an event or the end
+                sol, Y, YP, REQ, n = self.solver.outputs(list(pending), cmd.end_time)
+                for i in range(n):
+                    self.output(pending.popleft(), Y[i], YP[i], REQ[i].copy())
             else:
                 sol = self.solver.step(pending[0], tstop=cmd.end_time)
             if sol.status == _TOO_MUCH_WORK or self.steps() - start_steps > self.opts["max_num_steps"]:
@@ -530,7 +567,10 @@ def run_model(model, progress=None, **overrides):
     opts = {k: getattr(model.transient, k, None) for k in _OPTION_NAMES}
     opts["linsolver"] = "auto"
     opts["jacobian"] = "exact"
+    opts["backend"] = os.environ.get("PYSOLVER_BACKEND", "auto")
     opts.update(overrides)
+    if opts["backend"] not in ("auto", "c", "sksundae"):
+        raise ValueError(f"backend must be 'auto', 'c' or 'sksundae', not {opts['backend']!r}")
     if not opts["integr_tol"] > 0:
         raise ValueError("integr_tol must be > 0")
     if opts["linsolver"] not in ("auto", "dense", "sparse"):
@@ -541,16 +581,19 @@ def run_model(model, progress=None, **overrides):
     t_setup0 = time.perf_counter()
     success, status, message = drv.run()
     t_end = time.perf_counter()
+    drv._retire_solver()
     counters = kernel.counters
     stats = {"steps": drv.steps(), "nres": counters["nres"], "njac": counters["njac"],
              "nfail": counters["nfail"], "outputs": len(drv.ts), "nroots": counters["nroots"],
              "nevents": len(drv.events), "nrearms": drv.nrearms,
              "nrestarts": max(drv.nstarts - 1, 0),
-             "ida_nfev": drv.ida_done[0] + drv.ida_last[0],
-             "ida_njev": drv.ida_done[1] + drv.ida_last[1]}
+             "ida_nfev": drv.ida_done[0], "ida_njev": drv.ida_done[1],
+             "netf": drv.ida_fail[0] if drv.use_c else None,
+             "ncfn": drv.ida_fail[1] if drv.use_c else None}
     setup = (t_setup0 - t_start) + drv.setup_time
     timing = {"setup": setup, "integrate": (t_end - t_start) - setup, "total": t_end - t_start}
     opts["linsolver"] = "sparse" if drv.sparse else "dense"
+    opts["backend"] = "c" if drv.use_c else "sksundae"
     meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
             "options": opts, "ny": kernel.ny, "stepping": "onestep" if drv.onestep else "normal",
             "static": dataclasses.asdict(model.static)}

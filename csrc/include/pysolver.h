@@ -168,6 +168,57 @@ typedef struct psData {
 int ps_residual(const psModel* m, psData* d, double t, const double* y, const double* yp,
                 double* res);
 
+/* SUNDIALS IDA opened at run time from shared libraries, and one integration with it
+ * (csrc/ida.c). The caller allocates it zeroed; ps_ida_load fills the function table. */
+typedef struct psIDA {
+  void* lib[5];           /* dlopen handles: core, nvecserial, sunmatrixdense,
+                             sunlinsoldense, ida                                */
+  void* fn[40];           /* SUNDIALS functions, in csrc/ida.c order            */
+  int loaded;             /* 1 after a successful ps_ida_load                   */
+  void* ctx;              /* SUNContext of the current integration              */
+  void* mem;              /* IDA memory                                         */
+  void* y;                /* N_Vector state                                     */
+  void* yp;               /* N_Vector state derivative                          */
+  void* A;                /* dense matrix                                       */
+  void* LS;               /* dense linear solver                                */
+  const psModel* m;       /* model being integrated                             */
+  psData* d;              /* its workspace                                      */
+  char msg[256];          /* message of the last error                          */
+} psIDA;
+
+/* Open the five SUNDIALS 7 shared libraries (paths) and look up the functions used.
+ * Returns PS_OK, or -1 with a message in s->msg. */
+int ps_ida_load(psIDA* s, const char* core, const char* nvec, const char* mat, const char* ls,
+                const char* ida);
+
+/* Start an integration of (m, d) at (t0, y0, yp0) with a dense linear solver, the kernel's
+ * Jacobian and, if the model has sensors, its root functions with directions rootdir (length
+ * m->nsensor). hmax, hmin, h0 <= 0 mean IDA's defaults. Returns PS_OK or -1. */
+int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* y0,
+                const double* yp0, double rtol, double atol, double hmax, double hmin, double h0,
+                long mxsteps, const int* rootdir);
+
+/* Cold-restart the current integration at (t0, y0, yp0). Returns IDA's flag. */
+int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0);
+
+/* One IDASolve call toward tout (one internal step if onestep) never passing tstop; copies the
+ * state into y, yp; on a root return (2) fills rootsfound. Returns IDA's flag. */
+int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret, double* y,
+                 double* yp, int* rootsfound);
+
+/* Advance through the nout output times, writing states (nout x ny) and request outputs
+ * (nout x m->nout); stops early on a root (flag 2, rootsfound filled, tret the root time) or a
+ * failure (< 0). *nreached is the number of outputs written. Returns the last IDA flag. */
+int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, double* y_out,
+                   double* yp_out, double* req_out, int* nreached, double* tret, int* rootsfound);
+
+/* IDA's counters: steps, residual evaluations, Jacobian evaluations, error-test failures,
+ * nonlinear convergence failures, root-function evaluations (out has 6 entries). */
+void ps_ida_stats(psIDA* s, long* out);
+
+/* Free the current integration (the libraries stay open). s may be unused. */
+void ps_ida_free(psIDA* s);
+
 /* Fill the dense iteration matrix J = dF/dy + cj * dF/dyp, row-major (ny x ny), exactly.
  * Returns PS_OK or an error code with a message in d->msg. */
 int ps_jacobian(const psModel* m, psData* d, double t, const double* y, const double* yp,
