@@ -433,8 +433,13 @@ class _Driver:
             elif self.use_c and not self.verbose_active:
                 # the C driver runs through all pending outputs until an event or the end
                 sol, Y, YP, REQ, n = self.solver.outputs(list(pending), cmd.end_time)
-                for i in range(n):
-                    self.output(pending.popleft(), Y[i], YP[i], REQ[i].copy())
+                times = [pending.popleft() for _ in range(n)]
+                if n:
+                    self.ts.extend(times)
+                    self.ys.extend(Y)
+                    self.yps.extend(YP)
+                    self.outs.extend(REQ)
+                    self.bar.update(times[-1])
             else:
                 sol = self.solver.step(pending[0], tstop=cmd.end_time)
             if sol.status == _TOO_MUCH_WORK or self.steps() - start_steps > self.opts["max_num_steps"]:
