@@ -8,7 +8,9 @@ Jacobian (``jacobian="dq"``), and SciPy's ``solve_ivp`` (Radau, BDF) on a hand-w
 right-hand side, i.e. what a user would write without pysolver. Times are the minimum of
 `repeat` runs after one warm-up (SciMLBenchmarks' convention); ratios are comparator / pysolver.
 
-Run: ``python benchmarks/work_precision.py [--repeat 5]``
+Run: ``python benchmarks/work_precision.py [--repeat 5] [--out DIR]``; besides the tables on
+standard output it writes work_precision.csv, work_precision.md and a log-log PNG of error
+against time (one line per solver) into benchmarks/out/.
 """
 import argparse
 import pathlib
@@ -22,6 +24,9 @@ sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 import pysolver  # noqa: E402
 from test_oscillator import DECK, exact, M, K, C, G  # noqa: E402
+
+
+POINTS = []   # (problem, solver, tolerance, error, seconds) for the report files
 
 
 def best_time(fn, repeat):
@@ -55,17 +60,23 @@ def oscillator(repeat):
         tdq, rdq = best_time(lambda: model.run(integr_tol=tol, jacobian="dq"), repeat)
         edq = np.abs(rdq.request(1)[:, 0] - z).max()
         row = [tol, err, tp * 1e3, res.stats["steps"], edq, tdq / tp]
-        for method in ("Radau", "BDF"):
+        POINTS.append(("oscillator", "pysolver", tol, err, tp))
+        POINTS.append(("oscillator", "IDA + DQ Jacobian (scikit-sundae)", tol, edq, tdq))
+        for method in ("Radau", "BDF", "LSODA"):
             ts, sol = best_time(lambda: scipy_run(method, tol, res.t, oscillator_rhs,
                                                   [1.2, 0.5]), repeat)
-            row += [np.abs(sol.y[0] - z).max(), ts / tp]
+            e = np.abs(sol.y[0] - z).max()
+            row += [e, ts / tp]
+            POINTS.append(("oscillator", f"SciPy {method}", tol, e, ts))
         rows.append(row)
     print("\nDamped oscillator (t = 0..3, 301 outputs): max position error vs closed form")
     print(f"{'tol':>7} {'pysolver err':>12} {'ms':>7} {'steps':>6} | {'IDA-dq err':>10} "
-          f"{'time x':>6} | {'Radau err':>10} {'time x':>6} | {'BDF err':>10} {'time x':>6}")
+          f"{'time x':>6} | {'Radau err':>10} {'time x':>6} | {'BDF err':>10} {'time x':>6} | "
+          f"{'LSODA err':>10} {'time x':>6}")
     for r in rows:
         print(f"{r[0]:7.0e} {r[1]:12.2e} {r[2]:7.2f} {r[3]:6d} | {r[4]:10.2e} {r[5]:6.2f} | "
-              f"{r[6]:10.2e} {r[7]:6.2f} | {r[8]:10.2e} {r[9]:6.2f}")
+              f"{r[6]:10.2e} {r[7]:6.2f} | {r[8]:10.2e} {r[9]:6.2f} | {r[10]:10.2e} "
+              f"{r[11]:6.2f}")
     return rows
 
 
@@ -106,6 +117,8 @@ def seed3_comparators(repeat):
         tn, sol = best_time(numpy_run, repeat)
         en = np.abs(sol.y[:, :2] - ref).max()
         rows.append((tol, ep, tp, en, tn))
+        POINTS.append(("seed example 3", "pysolver", tol, ep, tp))
+        POINTS.append(("seed example 3", "NumPy residual + IDA (scikit-sundae)", tol, en, tn))
         print(f"{tol:7.0e} {ep:12.2e} {tp * 1e3:7.2f} | {en:13.2e} {tn * 1e3:8.2f} "
               f"{tn / tp:6.1f}")
     return rows
@@ -139,19 +152,55 @@ def seed3_plain_c(repeat):
         ep = np.abs(res.request(1)[:, :2] - ref).max()
         ec = np.abs(xz - ref).max()
         rows.append((tol, ep, tp, ec, tc))
+        POINTS.append(("seed example 3", "plain C IDA, hand-written", tol, ec, tc))
         print(f"{tol:7.0e} {ep:12.2e} {res.stats['steps']:6d} {tp * 1e3:7.2f} | {ec:10.2e} "
               f"{steps:6d} {tc * 1e3:7.3f} | {tp / tc:12.1f}")
     return rows
 
 
+def write_report(outdir):
+    """Write work_precision.csv, work_precision.md and work_precision.png into outdir."""
+    import csv
+    outdir = pathlib.Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    with open(outdir / "work_precision.csv", "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["problem", "solver", "tolerance", "max_error", "seconds"])
+        w.writerows(POINTS)
+    with open(outdir / "work_precision.md", "w") as fh:
+        fh.write("| problem | solver | tolerance | max error | ms |\n|---|---|---|---|---|\n")
+        for p, name, tol, err, sec in POINTS:
+            fh.write(f"| {p} | {name} | {tol:.0e} | {err:.2e} | {sec * 1e3:.3f} |\n")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    problems = sorted({p[0] for p in POINTS})
+    fig, axes = plt.subplots(1, len(problems), figsize=(6 * len(problems), 4.5), squeeze=False)
+    for ax, prob in zip(axes[0], problems):
+        for name in sorted({p[1] for p in POINTS if p[0] == prob}):
+            pts = sorted((p[3], p[4]) for p in POINTS if p[0] == prob and p[1] == name)
+            ax.loglog([e for e, _ in pts], [t * 1e3 for _, t in pts], "o-", label=name)
+        ax.set_xlabel("max error")
+        ax.set_ylabel("wall time, ms (best of runs)")
+        ax.set_title(prob)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(outdir / "work_precision.png", dpi=110)
+    print(f"\nwrote {outdir / 'work_precision.csv'}, .md and .png")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--out", default=str(ROOT / "benchmarks" / "out"),
+                        help="folder for work_precision.csv/.md/.png")
     args = parser.parse_args()
     oscillator(args.repeat)
     seed_decks(args.repeat)
     seed3_comparators(args.repeat)
     seed3_plain_c(args.repeat)
+    write_report(args.out)
 
 
 if __name__ == "__main__":
