@@ -160,6 +160,27 @@ class _Driver:
             lin.pop("jacfn")
         return lin
 
+    def _new_solver(self, bounds):
+        """An IDA object with these step bounds (max, min, first): driven from C when possible,
+        otherwise scikit-sundae's, with the sensors' root functions."""
+        tol = self.opts["integr_tol"]
+        mxsteps = min(self.opts["max_num_steps"] + 1, 2 ** 31 - 1)
+        if self.use_c:
+            return cida.CIDA(self.kernel, tol, tol, *bounds, mxsteps)
+        options = dict(rtol=tol, atol=tol, max_step=bounds[0], min_step=bounds[1],
+                       first_step=bounds[2], max_num_steps=mxsteps, **self._linear())
+        if self.sensors:
+            k = self.kernel
+            ev = lambda t, y, yp, g: k.roots(t, y, yp, g)  # noqa: E731
+            ev.direction = [1] * len(self.sensors)
+            ev.terminal = [True] * len(self.sensors)
+            options.update(eventsfn=ev, num_events=len(self.sensors))
+            self.eventsfn = ev
+        with warnings.catch_warnings():
+            # scikit-sundae warns that the exact jacfn replaces its sparse DQ Jacobian
+            warnings.simplefilter("ignore", UserWarning)
+            return IDA(self.kernel.residual, **options)
+
     def start(self, first_step=None):
         """(Re)start IDA at the current state: a cold restart (order 1, history dropped).
         A new IDA object is built only when the step bounds change."""
@@ -167,28 +188,8 @@ class _Driver:
         self.kernel.d.last_t = self.t      # restarts are not step attempts (see ps_residual)
         if self.solver is None or bounds != self.bounds:
             self._retire_solver()
-            if self.use_c:
-                self.solver = cida.CIDA(self.kernel, self.opts["integr_tol"],
-                                        self.opts["integr_tol"], bounds[0], bounds[1], bounds[2],
-                                        min(self.opts["max_num_steps"] + 1, 2 ** 31 - 1))
-                self.bounds = bounds
-            options = dict(rtol=self.opts["integr_tol"], atol=self.opts["integr_tol"],
-                           max_step=bounds[0], min_step=bounds[1], first_step=bounds[2],
-                           max_num_steps=min(self.opts["max_num_steps"] + 1, 2 ** 31 - 1),
-                           **self._linear())
-            if self.sensors and not self.use_c:
-                k = self.kernel
-                ev = lambda t, y, yp, g: k.roots(t, y, yp, g)  # noqa: E731
-                ev.direction = [1] * len(self.sensors)
-                ev.terminal = [True] * len(self.sensors)
-                options.update(eventsfn=ev, num_events=len(self.sensors))
-                self.eventsfn = ev
-            if not self.use_c:
-                with warnings.catch_warnings():
-                    # scikit-sundae warns that the exact jacfn replaces its sparse DQ Jacobian
-                    warnings.simplefilter("ignore", UserWarning)
-                    self.solver = IDA(self.kernel.residual, **options)
-                self.bounds = bounds
+            self.solver = self._new_solver(bounds)
+            self.bounds = bounds
         self.nstarts += 1
         self.fresh = True
         self.solver.init_step(self.t, self.y, self.yp)
