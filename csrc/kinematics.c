@@ -4,6 +4,8 @@
  * entries. ps_body_cache seeds those entries and derives rotation matrices, global angular
  * velocities and accelerations once per tape run; the marker functions build on that cache.
  */
+#include <stddef.h>
+
 #include "internal.h"
 
 /* Scratch numbers in d->tmp reserved for the marker functions and the body cache. */
@@ -91,16 +93,8 @@ void ps_body_cache(const psModel* m, psData* d, const psuHD* c, int tape, double
       psu_hd_var(c, v + i * s, y[ua + i], up >= 0 ? up + i : -1);
       psu_hd_var(c, acc + i * s, yp ? yp[ua + i] : 0.0, ap >= 0 ? ap + i : -1);
     }
-    if (m->body_type[b] == PS_BODY_POINT) {
-      for (int i = 0; i < 9; i++) psu_hd_const(c, A + i * s, (i % 4 == 0) ? 1.0 : 0.0);
-      for (int i = 0; i < 3; i++) {
-        psu_hd_const(c, w + i * s, 0.0);
-        psu_hd_const(c, al + i * s, 0.0);
-        psu_hd_const(c, wb + i * s, 0.0);
-      }
-      for (int i = 0; i < 4; i++) psu_hd_const(c, e + i * s, i == 0 ? 1.0 : 0.0);
-      continue;
-    }
+    /* a point body has no rotation: the marker functions never read its A, w, alpha, e */
+    if (m->body_type[b] == PS_BODY_POINT) continue;
     /* rotation: Euler parameters, body angular velocity, and their global images */
     for (int i = 0; i < 4; i++) psu_hd_var(c, e + i * s, y[qa + 3 + i], qp >= 0 ? qp + 3 + i : -1);
     rotation_from_e(m, d, c, A, e);
@@ -133,20 +127,30 @@ static int on_ground(const psModel* m, int mk, int slot) {
   return mk < 0 || slot < 0 || m->marker_body[mk] < 0;
 }
 
+/* A marker on a point body: translated rigidly, never rotated. */
+static int on_point(const psModel* m, int mk) {
+  return m->body_type[m->marker_body[mk]] == PS_BODY_POINT;
+}
+
 void ps_marker_pos(const psModel* m, psData* d, const psuHD* c, int mk, int slot, double* R) {
   int s = c->stride;
   if (on_ground(m, mk, slot)) {
     for (int i = 0; i < 3; i++) psu_hd_const(c, R + i * s, mk < 0 ? 0.0 : m->marker_pos[3 * mk + i]);
     return;
   }
-  double* p = marker_offset(m, d, c, mk, slot);
   const double* r = ps_bc(m, d, slot, PS_BC_R);
+  if (on_point(m, mk)) {
+    for (int i = 0; i < 3; i++)
+      psu_hd_lin(c, R + i * s, 1.0, r + i * s, 0.0, NULL, m->marker_pos[3 * mk + i]);
+    return;
+  }
+  double* p = marker_offset(m, d, c, mk, slot);
   for (int i = 0; i < 3; i++) psu_hd_lin(c, R + i * s, 1.0, r + i * s, 1.0, p + i * s, 0.0);
 }
 
 void ps_marker_axes(const psModel* m, psData* d, const psuHD* c, int mk, int slot, double* X) {
   int s = c->stride;
-  if (on_ground(m, mk, slot)) {
+  if (on_ground(m, mk, slot) || on_point(m, mk)) {
     for (int i = 0; i < 9; i++)
       psu_hd_const(c, X + i * s, mk < 0 ? ((i % 4 == 0) ? 1.0 : 0.0) : m->marker_rot[9 * mk + i]);
     return;
@@ -167,6 +171,10 @@ void ps_marker_vel(const psModel* m, psData* d, const psuHD* c, int mk, int slot
     for (int i = 0; i < 3; i++) psu_hd_const(c, V + i * s, 0.0);
     return;
   }
+  if (on_point(m, mk)) {
+    for (int i = 0; i < 3; i++) psu_hd_copy(c, V + i * s, ps_bc(m, d, slot, PS_BC_V) + i * s);
+    return;
+  }
   double* p = marker_offset(m, d, c, mk, slot);
   double* wxp = ps_tmp(m, d, TMP_C1);
   psu_hd_cross(c, wxp, ps_bc(m, d, slot, PS_BC_W), p, ps_tmp(m, d, TMP_X));
@@ -179,7 +187,7 @@ static void body_vector(const psModel* m, psData* d, const psuHD* c, int mk, int
                         double* out) {
   int s = c->stride;
   for (int i = 0; i < 3; i++) {
-    if (on_ground(m, mk, slot))
+    if (on_ground(m, mk, slot) || on_point(m, mk))
       psu_hd_const(c, out + i * s, 0.0);
     else
       psu_hd_copy(c, out + i * s, ps_bc(m, d, slot, k) + i * s);
@@ -198,6 +206,11 @@ void ps_marker_acc(const psModel* m, psData* d, const psuHD* c, int mk, int slot
   int s = c->stride;
   if (on_ground(m, mk, slot)) {
     for (int i = 0; i < 3; i++) psu_hd_const(c, Acc + i * s, 0.0);
+    return;
+  }
+  if (on_point(m, mk)) {
+    for (int i = 0; i < 3; i++)
+      psu_hd_copy(c, Acc + i * s, ps_bc(m, d, slot, PS_BC_ACC) + i * s);
     return;
   }
   /* a = a0 + alpha x p + w x (w x p) */
