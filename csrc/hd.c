@@ -1,19 +1,19 @@
 /* Hyper-dual arithmetic: exact first and second derivatives by forward-mode differentiation.
  *
  * Layout of one number: v[0] value, v[1 + i] dv/dx_i, v[1 + n + P(i, j)] d2v/dx_i dx_j for
- * i <= j with P the packed upper-triangle index. Each function writes the Hessian first, then
- * the gradient, then the value, entry by entry, so an output may alias an input.
+ * i <= j < nh with P the packed upper-triangle index. Each function writes the Hessian first,
+ * then the gradient, then the value, entry by entry, so an output may alias an input.
  */
 #include "internal.h"
 
-int psu_hd_size(int n, int order) {
+int psu_hd_size(int n, int nh, int order) {
   if (order <= 0) return 1;
   if (order == 1) return 1 + n;
-  return 1 + n + n * (n + 1) / 2;
+  return 1 + n + nh * (nh + 1) / 2;
 }
 
 void psu_hd_const(const psuHD* c, double* out, double v) {
-  int sz = psu_hd_size(c->n, c->order);
+  int sz = psu_hd_size(c->n, c->nh, c->order);
   out[0] = v;
   for (int i = 1; i < sz; i++) out[i] = 0.0;
 }
@@ -24,21 +24,21 @@ void psu_hd_var(const psuHD* c, double* out, double v, int pos) {
 }
 
 void psu_hd_copy(const psuHD* c, double* out, const double* a) {
-  int sz = psu_hd_size(c->n, c->order);
+  int sz = psu_hd_size(c->n, c->nh, c->order);
   if (out == a) return;
   for (int i = 0; i < sz; i++) out[i] = a[i];
 }
 
 void psu_hd_zero_hessian(const psuHD* c, double* out) {
   if (c->order < 2) return;
-  int sz = psu_hd_size(c->n, 2);
+  int sz = psu_hd_size(c->n, c->nh, 2);
   for (int i = 1 + c->n; i < sz; i++) out[i] = 0.0;
 }
 
 /* out = ca*a + cb*b + c0; b may be NULL. */
 void psu_hd_lin(const psuHD* c, double* out, double ca, const double* a, double cb,
                 const double* b, double c0) {
-  int sz = psu_hd_size(c->n, c->order);
+  int sz = psu_hd_size(c->n, c->nh, c->order);
   if (b) {
     for (int i = sz - 1; i >= 1; i--) out[i] = ca * a[i] + cb * b[i];
     out[0] = ca * a[0] + cb * b[0] + c0;
@@ -51,14 +51,14 @@ void psu_hd_lin(const psuHD* c, double* out, double ca, const double* a, double 
 /* out = f(a) given f(a), f'(a), f''(a). */
 void psu_hd_unary(const psuHD* c, double* out, const double* a, double f0, double f1,
                   double f2) {
-  int n = c->n;
+  int n = c->n, nh = c->nh;
   if (c->order >= 2) {
     const double* ga = a + 1;
     double* h = out + 1 + n;
     const double* ha = a + 1 + n;
     int p = 0;
-    for (int i = 0; i < n; i++)
-      for (int j = i; j < n; j++, p++) h[p] = f1 * ha[p] + f2 * ga[i] * ga[j];
+    for (int i = 0; i < nh; i++)
+      for (int j = i; j < nh; j++, p++) h[p] = f1 * ha[p] + f2 * ga[i] * ga[j];
   }
   if (c->order >= 1)
     for (int i = 1; i <= n; i++) out[i] = f1 * a[i];
@@ -68,7 +68,7 @@ void psu_hd_unary(const psuHD* c, double* out, const double* a, double f0, doubl
 /* out = f(a, b) given f and its first and second partial derivatives. */
 void psu_hd_binary(const psuHD* c, double* out, const double* a, const double* b, double f0,
                    double fa, double fb, double faa, double fab, double fbb) {
-  int n = c->n;
+  int n = c->n, nh = c->nh;
   if (c->order >= 2) {
     const double* ga = a + 1;
     const double* gb = b + 1;
@@ -76,8 +76,8 @@ void psu_hd_binary(const psuHD* c, double* out, const double* a, const double* b
     const double* hb = b + 1 + n;
     double* h = out + 1 + n;
     int p = 0;
-    for (int i = 0; i < n; i++)
-      for (int j = i; j < n; j++, p++)
+    for (int i = 0; i < nh; i++)
+      for (int j = i; j < nh; j++, p++)
         h[p] = fa * ha[p] + fb * hb[p] + faa * ga[i] * ga[j] +
                fab * (ga[i] * gb[j] + gb[i] * ga[j]) + fbb * gb[i] * gb[j];
   }
@@ -96,16 +96,21 @@ void psu_hd_div(const psuHD* c, double* out, const double* a, const double* b) {
                 2.0 * x / (y * y * y));
 }
 
-/* out = dg/dx_k as a number of order <= 1: value g_k, gradient row k of g's Hessian.
- * g must have been computed at order 2 when c->order >= 1. The output's Hessian is zero. */
+/* out = dg/dx_k as a number of order <= 1: value g_k, gradient row k of g's Hessian (zero
+ * outside the first nh directions, where g has no second derivatives). g must have been
+ * computed at order 2 when c->order >= 1. The output's Hessian is zero. */
 void psu_hd_gradcomp(const psuHD* c, double* out, const double* g, int k) {
-  int n = c->n;
+  int n = c->n, nh = c->nh;
   double gk = g[1 + k];
   if (c->order >= 1) {
     const double* h = g + 1 + n;
     for (int j = 0; j < n; j++) {
+      if (k >= nh || j >= nh) {
+        out[1 + j] = 0.0;
+        continue;
+      }
       int i0 = k < j ? k : j, j0 = k < j ? j : k;
-      int p = i0 * n - i0 * (i0 - 1) / 2 + (j0 - i0);
+      int p = i0 * nh - i0 * (i0 - 1) / 2 + (j0 - i0);
       out[1 + j] = h[p];
     }
   }

@@ -4,11 +4,15 @@
 
 #include "pysolver.h"
 
-/* A hyper-dual number is a double array [value, gradient (n), packed upper Hessian (n(n+1)/2)].
- * A context says how many basis directions there are and up to which order derivatives are kept:
- * order 0 = value only, 1 = value and gradient, 2 = value, gradient and Hessian. */
+/* A hyper-dual number is a double array [value, gradient (n), packed upper Hessian (nh(nh+1)/2)].
+ * A context says how many basis directions there are, how many leading ones carry second
+ * derivatives (a tape's positions and time: second derivatives are only ever needed of
+ * displacement expressions), and up to which order derivatives are kept: order 0 = value only,
+ * 1 = value and gradient, 2 = value, gradient and the Hessian block of the first nh directions.
+ */
 typedef struct psuHD {
   int n;      /* basis size */
+  int nh;     /* leading directions with second derivatives (nh <= n) */
   int order;  /* 0, 1 or 2 */
   int stride; /* doubles between consecutive numbers in an array */
 } psuHD;
@@ -29,7 +33,7 @@ typedef struct psuHD {
 #define PS_TMP_TOTAL 96
 
 /* hd.c: hyper-dual arithmetic. Every output may alias an input. */
-int psu_hd_size(int n, int order);
+int psu_hd_size(int n, int nh, int order);
 void psu_hd_const(const psuHD* c, double* out, double v);
 void psu_hd_var(const psuHD* c, double* out, double v, int pos);
 void psu_hd_copy(const psuHD* c, double* out, const double* a);

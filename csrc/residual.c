@@ -173,7 +173,7 @@ static void penalty_forces(const psModel* m, psData* d, double t, const double* 
     int tape = m->pen_tape[p];
     int order = as->deriv ? 2 : 1;
     ps_tape_run(m, d, tape, order, t, y, yp);
-    psuHD c = {m->tape_nbasis[tape], order - 1, m->hd_stride};
+    psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], order - 1, m->hd_stride};
     const double* g = ps_slot(m, d, m->pen_g[p]);
     const double* F = ps_slot(m, d, m->pen_f[p]);
     double* ci = ps_tmp(m, d, F_CI);
@@ -200,7 +200,7 @@ static void scalar_forces(const psModel* m, psData* d, double t, const double* y
     int tape = m->sf_tape[k];
     int order = as->deriv + m->tape_order[tape];
     ps_tape_run(m, d, tape, order, t, y, yp);
-    psuHD c = {m->tape_nbasis[tape], as->deriv, m->hd_stride};
+    psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], as->deriv, m->hd_stride};
     int s = c.stride;
     const double* f = ps_slot(m, d, m->sf_f[k]);
     int mi = m->sf_i[k], mj = m->sf_j[k];

@@ -1,7 +1,7 @@
 /* Expression tapes: a register machine over hyper-dual numbers.
  *
  * Instruction i of a tape writes register (slot) i; operands name earlier slots, so common
- * subexpressions are computed once. The last basis entry of every tape is time.
+ * subexpressions are computed once. Time is basis entry nh - 1, after the positions.
  */
 #include <math.h>
 #include <stddef.h>
@@ -238,7 +238,7 @@ static void gdot(const psModel* m, psData* d, const psuHD* c, int tape, const do
   double* ci = ps_tmp(m, d, T_G);
   double* sc = ps_tmp(m, d, T_G + 1);
   psu_hd_const(c, out, 0.0);
-  psu_hd_gradcomp(&c1, out, g, c->n - 1);
+  psu_hd_gradcomp(&c1, out, g, c->nh - 1);
   int adr = m->tape_body_adr[tape];
   for (int slot = 0; slot < m->tape_nbody[tape]; slot++) {
     if (m->tbody_q[adr + slot] < 0) continue;
@@ -323,7 +323,7 @@ static void binary(const psuHD* c, int op, double* out, const double* a, const d
 
 void ps_tape_run(const psModel* m, psData* d, int tape, int order, double t, const double* y,
                  const double* yp) {
-  psuHD c = {m->tape_nbasis[tape], order, m->hd_stride};
+  psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], order, m->hd_stride};
   const int* code = m->code + (long)m->tape_code_adr[tape] * PS_INSTR_WIDTH;
   int len = m->tape_len[tape];
   ps_body_cache(m, d, &c, tape, t, y, yp);
@@ -334,7 +334,7 @@ void ps_tape_run(const psModel* m, psData* d, int tape, int order, double t, con
     int op = ins[0];
     switch (op) {
       case PS_OP_CONST: psu_hd_const(&c, out, m->consts[a[0]]); break;
-      case PS_OP_TIME: psu_hd_var(&c, out, t, c.n - 1); break;
+      case PS_OP_TIME: psu_hd_var(&c, out, t, c.nh - 1); break;
       case PS_OP_ADD: case PS_OP_SUB: case PS_OP_MUL: case PS_OP_DIV: case PS_OP_POW:
       case PS_OP_ATAN2: case PS_OP_MOD: case PS_OP_MAX: case PS_OP_MIN: case PS_OP_SIGN:
       case PS_OP_DIM:

@@ -3,7 +3,8 @@
 The state holds only what the scene has: per point body q = (x, y, z), u = (vx, vy, vz); per
 rigid body q = (x, y, z, e0..e3), u = (vx, vy, vz) global and (wx, wy, wz) in the body frame.
 Every expression becomes a tape: a register program over hyper-dual numbers whose basis is
-the q, u (and u' for accelerations) entries of the bodies it touches, plus time.
+the q entries of the bodies it touches, time, then their u (and u' for accelerations) entries;
+second derivatives are kept for the q-and-time block only.
 """
 import math
 
@@ -349,6 +350,7 @@ class Compiler:
         i32 = lambda v: np.ascontiguousarray(v, dtype=np.int32)
         f64 = lambda v: np.ascontiguousarray(v, dtype=np.float64)
         code, tcode, tlen, tbadr, tnb, tbody, tnbody, tord = [], [], [], [], [], [], [], []
+        tnh = []
         bkind, bidx, tb_body, tb_q, tb_u, tb_a = [], [], [], [], [], []
         for t in self.tapes:
             tcode.append(len(code))
@@ -358,29 +360,34 @@ class Compiler:
             tbody.append(len(tb_body))
             tnbody.append(len(t.bodies))
             tord.append(int(t.has_gdot))
+            # basis: positions of every body, then time, then velocities, then u'
+            slots = [(lay.bodies[bi], bi, need_u, need_a) for bi, need_u, need_a in t.bodies]
+            sizes = [(3, 3) if b.kind == "point" else (7, 6) for b, *_ in slots]
             n = 0
-            for bi, need_u, need_a in t.bodies:
-                b = lay.bodies[bi]
-                nq, nu = (3, 3) if b.kind == "point" else (7, 6)
+            for (b, bi, _, _), (nq, _) in zip(slots, sizes):
                 tb_body.append(bi)
                 tb_q.append(n)
                 bkind += [lib.PS_BASIS_Y] * nq
                 bidx += list(range(lay.qadr[bi], lay.qadr[bi] + nq))
                 n += nq
+            bkind.append(lib.PS_BASIS_T)
+            bidx.append(0)
+            n += 1
+            tnh.append(n)
+            for (b, bi, need_u, _), (_, nu) in zip(slots, sizes):
                 tb_u.append(n if need_u else -1)
                 if need_u:
                     bkind += [lib.PS_BASIS_Y] * nu
                     bidx += list(range(lay.uadr[bi], lay.uadr[bi] + nu))
                     n += nu
+            for (b, bi, _, need_a), (_, nu) in zip(slots, sizes):
                 tb_a.append(n if need_a else -1)
                 if need_a:
                     bkind += [lib.PS_BASIS_YP] * nu
                     bidx += list(range(lay.uadr[bi], lay.uadr[bi] + nu))
                     n += nu
-            bkind.append(lib.PS_BASIS_T)
-            bidx.append(0)
-            tnb.append(n + 1)
-        nmax = max(tnb, default=1)
+            tnb.append(n)
+        stride = max((1 + n + h * (h + 1) // 2 for n, h in zip(tnb, tnh)), default=2)
         # markers in their body's frame (ground markers: global)
         mbody, mpos, mrot = [], [], []
         for mid in self.markers:
@@ -398,7 +405,7 @@ class Compiler:
         return dict(
             ny=lay.ny, nbody=len(lay.bodies), nmarker=len(self.markers), ntape=len(self.tapes),
             npen=len(self.pen), nsf=len(self.sf), nout=len(self.out),
-            hd_stride=1 + nmax + nmax * (nmax + 1) // 2,
+            hd_stride=stride,
             max_slots=max(tlen, default=1) or 1, max_bslots=max(tnbody, default=1) or 1,
             gravity=list(model.gravity), force_scale=model.force_scale,
             body_type=i32([lib.PS_BODY_POINT if b.kind == "point" else lib.PS_BODY_RIGID
@@ -409,7 +416,8 @@ class Compiler:
             marker_body=i32(mbody), marker_pos=f64(np.array(mpos).reshape(-1)),
             marker_rot=f64(np.array(mrot).reshape(-1)),
             tape_code_adr=i32(tcode), tape_len=i32(tlen), tape_basis_adr=i32(tbadr),
-            tape_nbasis=i32(tnb), tape_body_adr=i32(tbody), tape_nbody=i32(tnbody),
+            tape_nbasis=i32(tnb), tape_nh=i32(tnh), tape_body_adr=i32(tbody),
+            tape_nbody=i32(tnbody),
             tape_order=i32(tord), code=i32(np.array(code, dtype=np.int32).reshape(-1)),
             consts=f64(self.consts), basis_kind=i32(bkind), basis_idx=i32(bidx),
             tbody_body=i32(tb_body), tbody_q=i32(tb_q), tbody_u=i32(tb_u), tbody_a=i32(tb_a),

@@ -18,7 +18,8 @@ extern "C" {
 #define PS_BODY_POINT 0 /* 3 translational DOF: q = (x, y, z), u = (vx, vy, vz) */
 #define PS_BODY_RIGID 1 /* q = (x, y, z, e0, e1, e2, e3), u = (vx, vy, vz, wx, wy, wz) body frame */
 
-/* Kinds of a basis entry: what a local derivative direction of a tape stands for. */
+/* Kinds of a basis entry: what a local derivative direction of a tape stands for. A tape's
+ * basis lists the positions q of its bodies, then time, then their velocities u, then u'. */
 #define PS_BASIS_Y 0    /* a state entry y[idx] */
 #define PS_BASIS_YP 1   /* a state derivative entry yp[idx] */
 #define PS_BASIS_T 2    /* time */
@@ -79,7 +80,7 @@ typedef struct psModel {
   int nsf;                /* number of Force_Scalar_TwoBody elements            */
   int nout;               /* number of output channels (requests, flattened)    */
   int nsensor;            /* number of Sensor_Event elements                    */
-  int hd_stride;          /* doubles per hyper-dual slot (largest basis, order 2) */
+  int hd_stride;          /* doubles per hyper-dual slot (largest tape, order 2) */
   int max_slots;          /* largest tape length, in instructions              */
   int max_bslots;         /* largest number of bodies one tape touches          */
 
@@ -105,6 +106,8 @@ typedef struct psModel {
   int* tape_len;          /* (ntape x 1) number of instructions                 */
   int* tape_basis_adr;    /* (ntape x 1) first basis entry in basis_*           */
   int* tape_nbasis;       /* (ntape x 1) basis size, time included              */
+  int* tape_nh;           /* (ntape x 1) leading basis entries with second
+                             derivatives: all positions, then time (at nh-1)    */
   int* tape_body_adr;     /* (ntape x 1) first body slot in tbody_*             */
   int* tape_nbody;        /* (ntape x 1) number of bodies the tape touches      */
   int* tape_order;        /* (ntape x 1) least derivative order it must run at  */
