@@ -30,7 +30,8 @@ enum {
   F_IDA_SSTOL, F_IDA_USERDATA, F_IDA_SETLS, F_IDA_SETJAC, F_IDA_MAXSTEPS, F_IDA_MAXSTEP,
   F_IDA_MINSTEP, F_IDA_INITSTEP, F_IDA_STOPTIME, F_IDA_ROOTINIT, F_IDA_ROOTDIR,
   F_IDA_NOWARN, F_IDA_SOLVE, F_IDA_ROOTINFO, F_IDA_NSTEPS, F_IDA_NRES, F_IDA_NJAC,
-  F_IDA_NETF, F_IDA_NCFN, F_IDA_NGE, F_IDA_FREE, F_COUNT
+  F_IDA_NETF, F_IDA_NCFN, F_IDA_NGE, F_IDA_FREE, F_MAT_BAND, F_MAT_BAND_DATA, F_LS_BAND,
+  F_COUNT
 };
 static const struct { int lib; const char* name; } FNS[F_COUNT] = {
   {0, "SUNContext_Create"}, {0, "SUNContext_Free"}, {0, "SUNContext_ClearErrHandlers"},
@@ -44,16 +45,16 @@ static const struct { int lib; const char* name; } FNS[F_COUNT] = {
   {4, "IDASetNoInactiveRootWarn"}, {4, "IDASolve"}, {4, "IDAGetRootInfo"},
   {4, "IDAGetNumSteps"}, {4, "IDAGetNumResEvals"}, {4, "IDAGetNumJacEvals"},
   {4, "IDAGetNumErrTestFails"}, {4, "IDAGetNumNonlinSolvConvFails"}, {4, "IDAGetNumGEvals"},
-  {4, "IDAFree"},
+  {4, "IDAFree"}, {5, "SUNBandMatrix"}, {5, "SUNBandMatrix_Data"}, {6, "SUNLinSol_Band"},
 };
 
 #define FN(s, k, type) ((type)(s)->fn[k])
 
 int ps_ida_load(psIDA* s, const char* core, const char* nvec, const char* mat, const char* ls,
-                const char* ida) {
-  const char* paths[5] = {core, nvec, mat, ls, ida};
+                const char* ida, const char* bandmat, const char* bandls) {
+  const char* paths[7] = {core, nvec, mat, ls, ida, bandmat, bandls};
   memset(s, 0, sizeof(*s));
-  for (int i = 0; i < 5; i++) {
+  for (int i = 0; i < 7; i++) {
     s->lib[i] = dlopen(paths[i], RTLD_NOW | RTLD_LOCAL);
     if (!s->lib[i]) {
       snprintf(s->msg, sizeof(s->msg), "cannot open %s: %s", paths[i], dlerror());
@@ -64,7 +65,7 @@ int ps_ida_load(psIDA* s, const char* core, const char* nvec, const char* mat, c
     /* SUNMatDestroy and SUNLinSolFree live in the core library in SUNDIALS 7 */
     s->fn[k] = dlsym(s->lib[FNS[k].lib], FNS[k].name);
     if (!s->fn[k]) {
-      for (int i = 0; i < 5 && !s->fn[k]; i++) s->fn[k] = dlsym(s->lib[i], FNS[k].name);
+      for (int i = 0; i < 7 && !s->fn[k]; i++) s->fn[k] = dlsym(s->lib[i], FNS[k].name);
     }
     if (!s->fn[k]) {
       snprintf(s->msg, sizeof(s->msg), "SUNDIALS function %s not found", FNS[k].name);
@@ -87,6 +88,12 @@ static int jac_fn(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yp, N_Vec
   (void)rr; (void)t1; (void)t2; (void)t3;
   psIDA* s = (psIDA*)ud;
   double* (*data)(N_Vector) = FN(s, F_NV_DATA, double* (*)(N_Vector));
+  if (s->band) {
+    /* kernel triplets scattered into band storage through a precomputed map */
+    double* b = FN(s, F_MAT_BAND_DATA, double* (*)(SUNMatrix))(J);
+    return ps_jacobian_csc(s->m, s->d, t, data(yy), data(yp), cj, s->map, s->ntrip, b,
+                           (int)s->nstore) == PS_OK ? 0 : 1;
+  }
   double* a = FN(s, F_MAT_DATA, double* (*)(SUNMatrix))(J);
   int n = s->m->ny;
   /* the kernel writes row-major; the dense matrix is column-major: transpose in place */
@@ -118,7 +125,7 @@ void ps_ida_free(psIDA* s) {
 
 int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* y0,
                 const double* yp0, double rtol, double atol, double hmax, double hmin, double h0,
-                long mxsteps, const int* rootdir) {
+                long mxsteps, const int* rootdir, int mu, int ml, const int* map, int ntrip) {
   int n = m->ny;
   ps_ida_free(s);
   s->m = m;
@@ -137,8 +144,19 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
     goto fail;
   FN(s, F_IDA_USERDATA, int (*)(void*, void*))(s->mem, s);
   FN(s, F_IDA_SSTOL, int (*)(void*, double, double))(s->mem, rtol, atol);
-  s->A = FN(s, F_MAT_DENSE, void* (*)(sunindextype, sunindextype, void*))(n, n, s->ctx);
-  s->LS = FN(s, F_LS_DENSE, void* (*)(void*, void*, void*))(s->y, s->A, s->ctx);
+  s->band = mu >= 0 && ml >= 0;
+  if (s->band) {
+    int smu = mu + ml < n - 1 ? mu + ml : n - 1;
+    s->map = map;
+    s->ntrip = ntrip;
+    s->nstore = (long)(smu + ml + 1) * n;
+    s->A = FN(s, F_MAT_BAND, void* (*)(sunindextype, sunindextype, sunindextype, void*))(
+        n, mu, ml, s->ctx);
+    s->LS = FN(s, F_LS_BAND, void* (*)(void*, void*, void*))(s->y, s->A, s->ctx);
+  } else {
+    s->A = FN(s, F_MAT_DENSE, void* (*)(sunindextype, sunindextype, void*))(n, n, s->ctx);
+    s->LS = FN(s, F_LS_DENSE, void* (*)(void*, void*, void*))(s->y, s->A, s->ctx);
+  }
   if (!s->A || !s->LS) goto fail;
   if (FN(s, F_IDA_SETLS, int (*)(void*, void*, void*))(s->mem, s->LS, s->A) < 0) goto fail;
   FN(s, F_IDA_SETJAC, int (*)(void*, JacFn))(s->mem, jac_fn);

@@ -14,7 +14,8 @@ import numpy as np
 from ._bindings import ffi, lib
 
 _LIBS = ("sundials_core", "sundials_nvecserial", "sundials_sunmatrixdense",
-         "sundials_sunlinsoldense", "sundials_ida")
+         "sundials_sunlinsoldense", "sundials_ida", "sundials_sunmatrixband",
+         "sundials_sunlinsolband")
 _PATHS = None
 _MESSAGES = {0: "Successful function return.", 1: "Reached specified tstop.",
              2: "Found a root.", -1: "Could not reach endpoint after 'max_num_steps'.",
@@ -77,10 +78,12 @@ class CIDA:
         0 for IDA's defaults.
     max_num_steps : int
         IDA's limit per call.
+    band : tuple (mu, ml) or None
+        Use a band solver with these bandwidths instead of the dense one.
     """
 
     def __init__(self, kernel, rtol, atol, max_step=0.0, min_step=0.0, first_step=0.0,
-                 max_num_steps=500):
+                 max_num_steps=500, band=None):
         self.k = kernel
         self.s = ffi.new("psIDA *")
         paths = _library_paths()
@@ -95,6 +98,14 @@ class CIDA:
         self.tret = ffi.new("double *")
         self.counts = ffi.new("long[6]")
         self.started = False
+        if band is None:
+            self.band = (-1, -1)
+            self.map = np.zeros(1, dtype=np.int32)
+            self.ntrip = 0
+        else:
+            self.band = band
+            self.map = kernel.band_map(*band)
+            self.ntrip = len(self.map)
 
     def init_step(self, t0, y0, yp0):
         """Start (or cold-restart) at (t0, y0, yp0)."""
@@ -105,7 +116,8 @@ class CIDA:
             rtol, atol, hmax, hmin, h0, mx = self.opts
             rc = lib.ps_ida_init(self.s, self.k.m, self.k.d, t0, fb("double[]", y0),
                                  fb("double[]", yp0), rtol, atol, hmax, hmin, h0, mx,
-                                 ffi.cast("int *", fb(self.rootdir)))
+                                 ffi.cast("int *", fb(self.rootdir)), self.band[0], self.band[1],
+                                 ffi.cast("int *", fb(self.map)), self.ntrip)
             if rc != 0:
                 raise RuntimeError(ffi.string(self.s.msg).decode())
             self.started = True

@@ -131,6 +131,7 @@ class Kernel:
             lib.ps_jacobian_pattern(self.m, self.d, ffi.cast("int *", ffi.from_buffer(rows)),
                                     ffi.cast("int *", ffi.from_buffer(cols)))
             rows, cols = rows[:n], cols[:n]
+            self._triplets = (rows, cols)
             pattern = sp.csc_matrix((np.ones(n), (rows, cols)), shape=(self.ny, self.ny))
             pattern.sum_duplicates()
             pattern.sort_indices()
@@ -161,6 +162,24 @@ class Kernel:
         self.residual = residual
         self.jacobian = jacobian
         self.jacobian_ida = jacobian_ida      # scikit-sundae's jacfn signature, no extra frame
+
+    def bandwidths(self):
+        """(mu, ml): upper and lower bandwidths of the iteration matrix's structure."""
+        self.sparsity()
+        rows, cols = self._triplets
+        if len(rows) == 0:
+            return 0, 0
+        return int(max(0, (cols - rows).max())), int(max(0, (rows - cols).max()))
+
+    def band_map(self, mu, ml):
+        """Index in SUNDIALS band storage (column-major, leading dimension smu + ml + 1 with
+        smu = min(n - 1, mu + ml)) of each Jacobian triplet."""
+        self.sparsity()
+        rows, cols = self._triplets
+        n = self.ny
+        smu = min(n - 1, mu + ml)
+        ldim = smu + ml + 1
+        return np.ascontiguousarray(cols * ldim + (rows - cols + smu), dtype=np.int32)
 
     def jacobian_csc_fn(self):
         """Return a scikit-sundae ``jacfn`` filling the CSC data array of :meth:`sparsity`."""

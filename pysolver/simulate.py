@@ -122,10 +122,18 @@ class _Driver:
         self.onestep = any(s.zero_crossing for s in self.sensors)
         self.sparse = opts["linsolver"] == "sparse" or (opts["linsolver"] == "auto"
                                                         and kernel.ny >= SPARSE_THRESHOLD)
-        # IDA called from C where it can be (dense, exact Jacobian); scikit-sundae otherwise
-        want_c = opts["backend"] in ("auto", "c") and not self.sparse and \
-            opts["jacobian"] == "exact"
+        # IDA called from C where it can be (dense or band, exact Jacobian); scikit-sundae
+        # otherwise. A large scene whose Jacobian is a narrow band gets IDA's band solver.
+        self.band = None
+        if self.sparse and opts["linsolver"] == "auto":
+            mu, ml = kernel.bandwidths()
+            if 4 * (mu + ml + 1) <= kernel.ny:
+                self.band = (mu, ml)
+        want_c = opts["backend"] in ("auto", "c") and opts["jacobian"] == "exact" and \
+            (not self.sparse or self.band is not None)
         self.use_c = want_c and cida.available()
+        if self.use_c and self.band is not None:
+            self.sparse = False
         if opts["backend"] == "c" and not self.use_c:
             raise ValueError("backend='c' needs the dense exact-Jacobian path and SUNDIALS "
                              "libraries from the scikit-sundae wheel")
@@ -166,7 +174,7 @@ class _Driver:
         tol = self.opts["integr_tol"]
         mxsteps = min(self.opts["max_num_steps"] + 1, 2 ** 31 - 1)
         if self.use_c:
-            return cida.CIDA(self.kernel, tol, tol, *bounds, mxsteps)
+            return cida.CIDA(self.kernel, tol, tol, *bounds, mxsteps, band=self.band)
         options = dict(rtol=tol, atol=tol, max_step=bounds[0], min_step=bounds[1],
                        first_step=bounds[2], max_num_steps=mxsteps, **self._linear())
         if self.sensors:
@@ -598,7 +606,8 @@ def run_model(model, progress=None, **overrides):
              "ncfn": drv.ida_fail[1] if drv.use_c else None}
     setup = (t_setup0 - t_start) + drv.setup_time
     timing = {"setup": setup, "integrate": (t_end - t_start) - setup, "total": t_end - t_start}
-    opts["linsolver"] = "sparse" if drv.sparse else "dense"
+    opts["linsolver"] = ("band" if drv.use_c and drv.band else
+                         "sparse" if drv.sparse else "dense")
     opts["backend"] = "c" if drv.use_c else "sksundae"
     meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
             "options": opts, "ny": kernel.ny, "stepping": "onestep" if drv.onestep else "normal",

@@ -37,9 +37,13 @@ def test_sparse_and_dense_runs_agree():
     assert abs(a.stats["steps"] - b.stats["steps"]) <= 2
 
 
-def test_auto_picks_sparse_for_large_scenes():
+def test_auto_picks_a_structured_solver_for_large_scenes():
+    """From 300 states: IDA's band solver from C when the Jacobian is a narrow band (a chain),
+    otherwise SuperLU_MT through scikit-sundae."""
     from pysolver.simulate import SPARSE_THRESHOLD
-    res = pysolver.loads(chain_deck(SPARSE_THRESHOLD // 6 + 1, end_time=0.02)).run()
+    model = pysolver.loads(chain_deck(SPARSE_THRESHOLD // 6 + 1, end_time=0.02))
+    assert model.run(backend="c").meta["options"]["linsolver"] == "band"
+    res = model.run(backend="sksundae")
     assert res.success and res.meta["options"]["linsolver"] == "sparse"
     assert pysolver.loads(chain_deck(3, end_time=0.02)).run().meta["options"]["linsolver"] == "dense"
 

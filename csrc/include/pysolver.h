@@ -174,32 +174,39 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
 /* SUNDIALS IDA opened at run time from shared libraries, and one integration with it
  * (csrc/ida.c). The caller allocates it zeroed; ps_ida_load fills the function table. */
 typedef struct psIDA {
-  void* lib[5];           /* dlopen handles: core, nvecserial, sunmatrixdense,
-                             sunlinsoldense, ida                                */
+  void* lib[7];           /* dlopen handles: core, nvecserial, sunmatrixdense,
+                             sunlinsoldense, ida, sunmatrixband, sunlinsolband  */
   void* fn[40];           /* SUNDIALS functions, in csrc/ida.c order            */
   int loaded;             /* 1 after a successful ps_ida_load                   */
   void* ctx;              /* SUNContext of the current integration              */
   void* mem;              /* IDA memory                                         */
   void* y;                /* N_Vector state                                     */
   void* yp;               /* N_Vector state derivative                          */
-  void* A;                /* dense matrix                                       */
-  void* LS;               /* dense linear solver                                */
+  void* A;                /* dense or band matrix                               */
+  void* LS;               /* linear solver                                      */
+  int band;               /* 1: band matrix filled through map                  */
+  const int* map;         /* (ntrip x 1) band storage index of each triplet     */
+  int ntrip;              /* number of Jacobian triplets                        */
+  long nstore;            /* doubles of band storage                            */
   const psModel* m;       /* model being integrated                             */
   psData* d;              /* its workspace                                      */
   char msg[256];          /* message of the last error                          */
 } psIDA;
 
-/* Open the five SUNDIALS 7 shared libraries (paths) and look up the functions used.
+/* Open the seven SUNDIALS 7 shared libraries (paths) and look up the functions used.
  * Returns PS_OK, or -1 with a message in s->msg. */
 int ps_ida_load(psIDA* s, const char* core, const char* nvec, const char* mat, const char* ls,
-                const char* ida);
+                const char* ida, const char* bandmat, const char* bandls);
 
-/* Start an integration of (m, d) at (t0, y0, yp0) with a dense linear solver, the kernel's
- * Jacobian and, if the model has sensors, its root functions with directions rootdir (length
- * m->nsensor). hmax, hmin, h0 <= 0 mean IDA's defaults. Returns PS_OK or -1. */
+/* Start an integration of (m, d) at (t0, y0, yp0) with the kernel's Jacobian and, if the model
+ * has sensors, its root functions with directions rootdir (length m->nsensor). hmax, hmin,
+ * h0 <= 0 mean IDA's defaults. mu, ml >= 0 select a band solver with those bandwidths, whose
+ * matrix is filled from the kernel's triplets (ps_jacobian_pattern order) at the band storage
+ * indices map (ntrip entries; map must outlive the integration); otherwise dense.
+ * Returns PS_OK or -1. */
 int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* y0,
                 const double* yp0, double rtol, double atol, double hmax, double hmin, double h0,
-                long mxsteps, const int* rootdir);
+                long mxsteps, const int* rootdir, int mu, int ml, const int* map, int ntrip);
 
 /* Cold-restart the current integration at (t0, y0, yp0). Returns IDA's flag. */
 int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0);
