@@ -374,18 +374,15 @@ class Compiler:
             bidx.append(0)
             n += 1
             tnh.append(n)
-            for (b, bi, need_u, _), (_, nu) in zip(slots, sizes):
-                tb_u.append(n if need_u else -1)
-                if need_u:
-                    bkind += [lib.PS_BASIS_Y] * nu
-                    bidx += list(range(lay.uadr[bi], lay.uadr[bi] + nu))
-                    n += nu
-            for (b, bi, _, need_a), (_, nu) in zip(slots, sizes):
-                tb_a.append(n if need_a else -1)
-                if need_a:
-                    bkind += [lib.PS_BASIS_YP] * nu
-                    bidx += list(range(lay.uadr[bi], lay.uadr[bi] + nu))
-                    n += nu
+            # velocities u (entries of y), then accelerations u' (entries of yp)
+            for flag, kind, where in ((2, lib.PS_BASIS_Y, tb_u), (3, lib.PS_BASIS_YP, tb_a)):
+                for slot, (_, nu) in zip(slots, sizes):
+                    bi, needed = slot[1], slot[flag]
+                    where.append(n if needed else -1)
+                    if needed:
+                        bkind += [kind] * nu
+                        bidx += list(range(lay.uadr[bi], lay.uadr[bi] + nu))
+                        n += nu
             tnb.append(n)
         stride = max((1 + n + h * (h + 1) // 2 for n, h in zip(tnb, tnh)), default=2)
         # markers in their body's frame (ground markers: global)
