@@ -100,7 +100,7 @@ void ps_body_cache(const psModel* m, psData* d, const psuHD* c, int tape, double
     rotation_from_e(m, d, c, A, e);
     for (int i = 0; i < 3; i++) psu_hd_var(c, wb + i * s, y[ua + 3 + i], up >= 0 ? up + 3 + i : -1);
     /* global angular velocity and acceleration only for tapes that measure them */
-    if (up >= 0) mat_vec(c, w, A, wb, ps_tmp(m, d, TMP_X));
+    if (m->tbody_w[adr + slot]) mat_vec(c, w, A, wb, ps_tmp(m, d, TMP_X));
     if (ap >= 0) {
       double* wdot = ps_tmp(m, d, TMP_C1);
       for (int i = 0; i < 3; i++)

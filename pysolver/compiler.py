@@ -76,10 +76,11 @@ class _Tape:
     def body_slot(self, bidx, need_u=False, need_a=False):
         if bidx not in self.slot_of:
             self.slot_of[bidx] = len(self.bodies)
-            self.bodies.append([bidx, False, False])
+            self.bodies.append([bidx, False, False, False])
         s = self.slot_of[bidx]
         self.bodies[s][1] |= need_u or need_a
         self.bodies[s][2] |= need_a
+        self.bodies[s][3] |= need_u or need_a     # global angular velocity (measures only)
         for t in self.touch:
             t.add(s)
         return s
@@ -351,7 +352,7 @@ class Compiler:
         f64 = lambda v: np.ascontiguousarray(v, dtype=np.float64)
         code, tcode, tlen, tbadr, tnb, tbody, tnbody, tord = [], [], [], [], [], [], [], []
         tnh = []
-        bkind, bidx, tb_body, tb_q, tb_u, tb_a = [], [], [], [], [], []
+        bkind, bidx, tb_body, tb_q, tb_u, tb_a, tb_w = [], [], [], [], [], [], []
         for t in self.tapes:
             tcode.append(len(code))
             tlen.append(len(t.code))
@@ -361,7 +362,8 @@ class Compiler:
             tnbody.append(len(t.bodies))
             tord.append(int(t.has_gdot))
             # basis: positions of every body, then time, then velocities, then u'
-            slots = [(lay.bodies[bi], bi, need_u, need_a) for bi, need_u, need_a in t.bodies]
+            slots = [(lay.bodies[bi], bi, need_u, need_a) for bi, need_u, need_a, _ in t.bodies]
+            tb_w.extend(int(need_w) for *_, need_w in t.bodies)
             sizes = [(3, 3) if b.kind == "point" else (7, 6) for b, *_ in slots]
             n = 0
             for (b, bi, _, _), (nq, _) in zip(slots, sizes):
@@ -418,6 +420,7 @@ class Compiler:
             tape_order=i32(tord), code=i32(np.array(code, dtype=np.int32).reshape(-1)),
             consts=f64(self.consts), basis_kind=i32(bkind), basis_idx=i32(bidx),
             tbody_body=i32(tb_body), tbody_q=i32(tb_q), tbody_u=i32(tb_u), tbody_a=i32(tb_a),
+            tbody_w=i32(tb_w),
             pen_tape=i32([p[0] for p in self.pen]), pen_g=i32([p[1] for p in self.pen]),
             pen_f=i32([p[2] for p in self.pen]),
             sf_tape=i32([s[0] for s in self.sf]), sf_f=i32([s[1] for s in self.sf]),

@@ -119,6 +119,8 @@ typedef struct psModel {
   int* tbody_q;           /* (ntbody x 1) basis position of first q, -1 if none */
   int* tbody_u;           /* (ntbody x 1) basis position of first u, -1 if none */
   int* tbody_a;           /* (ntbody x 1) basis position of first u' (yp), -1   */
+  int* tbody_w;           /* (ntbody x 1) 1 when a measure needs the global
+                             angular velocity                                   */
 
   /* Force_Penalty: tape outputs g (slot) and F (slot) */
   int* pen_tape;          /* (npen x 1)                                         */
