@@ -31,7 +31,7 @@ enum {
   F_IDA_MINSTEP, F_IDA_INITSTEP, F_IDA_STOPTIME, F_IDA_ROOTINIT, F_IDA_ROOTDIR,
   F_IDA_NOWARN, F_IDA_SOLVE, F_IDA_ROOTINFO, F_IDA_NSTEPS, F_IDA_NRES, F_IDA_NJAC,
   F_IDA_NETF, F_IDA_NCFN, F_IDA_NGE, F_IDA_FREE, F_MAT_BAND, F_MAT_BAND_DATA, F_LS_BAND,
-  F_COUNT
+  F_IDA_ETAMAX, F_IDA_ETAFIXED, F_COUNT
 };
 static const struct { int lib; const char* name; } FNS[F_COUNT] = {
   {0, "SUNContext_Create"}, {0, "SUNContext_Free"}, {0, "SUNContext_ClearErrHandlers"},
@@ -46,6 +46,7 @@ static const struct { int lib; const char* name; } FNS[F_COUNT] = {
   {4, "IDAGetNumSteps"}, {4, "IDAGetNumResEvals"}, {4, "IDAGetNumJacEvals"},
   {4, "IDAGetNumErrTestFails"}, {4, "IDAGetNumNonlinSolvConvFails"}, {4, "IDAGetNumGEvals"},
   {4, "IDAFree"}, {5, "SUNBandMatrix"}, {5, "SUNBandMatrix_Data"}, {6, "SUNLinSol_Band"},
+  {4, "IDASetEtaMax"}, {4, "IDASetEtaFixedStepBounds"},
 };
 
 #define FN(s, k, type) ((type)(s)->fn[k])
@@ -174,6 +175,14 @@ fail:
   snprintf(s->msg, sizeof(s->msg), "could not set up IDA");
   ps_ida_free(s);
   return -1;
+}
+
+int ps_ida_step_growth(psIDA* s, double eta_max, double fixed_lb, double fixed_ub) {
+  int rc = 0;
+  if (eta_max > 0) rc |= FN(s, F_IDA_ETAMAX, int (*)(void*, double))(s->mem, eta_max);
+  if (fixed_lb > 0 && fixed_ub > 0)
+    rc |= FN(s, F_IDA_ETAFIXED, int (*)(void*, double, double))(s->mem, fixed_lb, fixed_ub);
+  return rc;
 }
 
 int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0) {

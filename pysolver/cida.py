@@ -80,10 +80,12 @@ class CIDA:
         IDA's limit per call.
     band : tuple (mu, ml) or None
         Use a band solver with these bandwidths instead of the dense one.
+    step_growth : tuple (eta_max, fixed_lb, fixed_ub) or None
+        IDA's step-growth limit and keep-the-step ratio band (None: IDA's defaults).
     """
 
     def __init__(self, kernel, rtol, atol, max_step=0.0, min_step=0.0, first_step=0.0,
-                 max_num_steps=500, band=None):
+                 max_num_steps=500, band=None, step_growth=None):
         self.k = kernel
         self.s = ffi.new("psIDA *")
         paths = _library_paths()
@@ -98,6 +100,7 @@ class CIDA:
         self.tret = ffi.new("double *")
         self.counts = ffi.new("long[6]")
         self.started = False
+        self.step_growth = step_growth
         if band is None:
             self.band = (-1, -1)
             self.map = np.zeros(1, dtype=np.int32)
@@ -120,6 +123,8 @@ class CIDA:
                                  ffi.cast("int *", fb(self.map)), self.ntrip)
             if rc != 0:
                 raise RuntimeError(ffi.string(self.s.msg).decode())
+            if self.step_growth:
+                lib.ps_ida_step_growth(self.s, *self.step_growth)
             self.started = True
         else:
             lib.ps_ida_reinit(self.s, t0, fb("double[]", y0), fb("double[]", yp0))

@@ -66,7 +66,8 @@ SCHEMA = {
                         "integr_tol": ("pos", OPT, 1e-3), "h_max": ("pos", OPT, None),
                         "h_min": ("nonneg", OPT, 0.0), "h0_max": ("pos", OPT, None),
                         "dae_constr_tol": ("pos", OPT, None),
-                        "max_num_steps": ("id", OPT, 1000000), "label": ("str", OPT, "")},
+                        "max_num_steps": ("id", OPT, 1000000),
+                        "max_step_growth": ("pos", OPT, None), "label": ("str", OPT, "")},
     "Post_Request": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
                      "type": (("EXPRESSION",), OPT, "EXPRESSION"), "comment": ("str", OPT, ""),
                      **{f"expr{k}": ("expr?", OPT, None) for k in range(1, 9)},
@@ -218,6 +219,7 @@ class Transient:
     h_min: float = 0.0
     h0_max: float = None
     max_num_steps: int = 1000000
+    max_step_growth: float = None
 
 
 @dataclasses.dataclass
@@ -467,7 +469,9 @@ class Model:
             ``h0_max``, ``max_num_steps`` (same meaning and units as in the deck). Also
             ``linsolver``: ``"auto"`` (default: dense below 300 states, sparse CSC from 300),
             ``"dense"`` or ``"sparse"``; ``jacobian``: ``"exact"`` (default, the kernel's) or
-            ``"dq"`` (IDA's difference quotients, for comparison only).
+            ``"dq"`` (IDA's difference quotients, for comparison only); ``backend``:
+            ``"auto"``, ``"c"`` or ``"sksundae"``; ``max_step_growth``: largest factor by which
+            IDA may grow its step (C driver; default IDA's 2), e.g. 1.1 for very stiff penalties.
 
         Returns
         -------
@@ -588,8 +592,11 @@ def build_model(elements, source):
         elif canon == "Param_Static":
             model.static = Static(**{k: a[k] for k in SCHEMA["Param_Static"] if k != "label"})
         elif canon == "Param_Transient":
+            if a["max_step_growth"] is not None and a["max_step_growth"] <= 1:
+                raise ctx.error(f"got {a['max_step_growth']:g}; expected a value > 1",
+                                "max_step_growth")
             model.transient = Transient(a["integr_tol"], a["h_max"], a["h_min"], a["h0_max"],
-                                        a["max_num_steps"])
+                                        a["max_num_steps"], a["max_step_growth"])
         elif canon == "Simulate":
             sim_t = _simulate(ctx, a, model, sim_t)
         elif canon == "Stop":

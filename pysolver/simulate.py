@@ -28,7 +28,7 @@ from .results import Result
 __version__ = "0.1.0"
 
 _OPTION_NAMES = ("integr_tol", "h_max", "h_min", "h0_max", "max_num_steps", "linsolver",
-                 "jacobian", "backend")
+                 "jacobian", "backend", "max_step_growth")
 
 #: With linsolver="auto", scenes with at least this many states use the sparse solver.
 SPARSE_THRESHOLD = 300
@@ -174,7 +174,9 @@ class _Driver:
         tol = self.opts["integr_tol"]
         mxsteps = min(self.opts["max_num_steps"] + 1, 2 ** 31 - 1)
         if self.use_c:
-            return cida.CIDA(self.kernel, tol, tol, *bounds, mxsteps, band=self.band)
+            growth = self.opts["max_step_growth"]
+            return cida.CIDA(self.kernel, tol, tol, *bounds, mxsteps, band=self.band,
+                             step_growth=(growth, 0.8, 1.5) if growth else None)
         options = dict(rtol=tol, atol=tol, max_step=bounds[0], min_step=bounds[1],
                        first_step=bounds[2], max_num_steps=mxsteps, **self._linear())
         if self.sensors:
@@ -583,6 +585,8 @@ def run_model(model, progress=None, **overrides):
     opts["jacobian"] = "exact"
     opts["backend"] = os.environ.get("PYSOLVER_BACKEND", "auto")
     opts.update(overrides)
+    if opts["max_step_growth"] is not None and not opts["max_step_growth"] > 1:
+        raise ValueError("max_step_growth must be > 1")
     if opts["backend"] not in ("auto", "c", "sksundae"):
         raise ValueError(f"backend must be 'auto', 'c' or 'sksundae', not {opts['backend']!r}")
     if not opts["integr_tol"] > 0:

@@ -210,6 +210,11 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
                 const double* yp0, double rtol, double atol, double hmax, double hmin, double h0,
                 long mxsteps, const int* rootdir, int mu, int ml, const int* map, int ntrip);
 
+/* Limit how fast IDA may grow its step (eta_max, IDA's default 2) and the step-size ratios it
+ * treats as "keep the step" ([fixed_lb, fixed_ub], default [1, 1.5]); values <= 0 keep IDA's
+ * defaults. Returns 0 or IDA's error flag. */
+int ps_ida_step_growth(psIDA* s, double eta_max, double fixed_lb, double fixed_ub);
+
 /* Cold-restart the current integration at (t0, y0, yp0). Returns IDA's flag. */
 int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0);
 
