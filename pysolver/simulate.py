@@ -134,6 +134,9 @@ class _Driver:
         self.use_c = want_c and cida.available()
         if self.use_c and self.band is not None:
             self.sparse = False
+        if opts["max_step_growth"] and not self.use_c:
+            raise ValueError("max_step_growth needs IDA driven from C (dense or band scenes, "
+                             "exact Jacobian, the scikit-sundae wheel's SUNDIALS libraries)")
         if opts["backend"] == "c" and not self.use_c:
             raise ValueError("backend='c' needs the dense exact-Jacobian path and SUNDIALS "
                              "libraries from the scikit-sundae wheel")
@@ -516,7 +519,7 @@ class _Driver:
         params = self.model.static
         times = _print_times(self.t, cmd.end_time, cmd.print_interval)
         if params.method == "FIM_D":
-            out, results, _ = statics.quasi_static(self.model, self.t, self.y, times, params,
+            out, results = statics.quasi_static(self.model, self.t, self.y, times, params,
                                                    self.model.transient)
             self.statics.extend(results)
             for tp, y in out:

@@ -330,13 +330,13 @@ def quasi_static(model, t0, y0, times, params, transient):
     """FIM_D: follow F(q, t) = 0 from (t0, y0) through `times` with IDA; FIM_S polishes the
     first and last points and restarts the integration wherever it fails.
 
-    Returns (list of (t, y) at `times`, list of StaticResult, steps)."""
+    Returns (list of (t, y) at t0 and `times`, list of StaticResult)."""
     kernel = model._kernel()
     prob = StaticProblem(kernel)
     y, first = fim_s(prob, t0, y0, params)
     results = [_finish(prob, t0, y, params, first)]
     if not first.success:
-        return [], results, 0
+        return [], results
     lay = kernel.layout
     rigid = [qa + 3 for b, qa in zip(lay.bodies, lay.qadr) if b.kind == "rigid"]
     nq = len(prob.qcols)
@@ -378,9 +378,9 @@ def quasi_static(model, t0, y0, times, params, transient):
         warnings.simplefilter("ignore", UserWarning)
         solver = IDA(residual, jacfn=jacobian, rtol=tol, atol=tol,
                      algebraic_idx=list(range(nq)), max_num_steps=100000)
-    t, q = t0, y[prob.qcols].copy()
-    solver.init_step(t, q, rate(t, q))
-    out, steps = [(t0, y)], 0
+    q = y[prob.qcols].copy()
+    solver.init_step(t0, q, rate(t0, q))
+    out = [(t0, y)]
     for i, tp in enumerate(times):
         sol = solver.step(tp)
         if not sol.success:
@@ -388,7 +388,7 @@ def quasi_static(model, t0, y0, times, params, transient):
             yy, r = fim_s(prob, tp, embed(q), params)
             results.append(_finish(prob, tp, yy, params, r))
             if not r.success:
-                return out, results, steps
+                return out, results
             q = yy[prob.qcols].copy()
             solver.init_step(tp, q, rate(tp, q))
         else:
@@ -398,6 +398,4 @@ def quasi_static(model, t0, y0, times, params, transient):
             results.append(_finish(prob, tp, yy, params, r))
             q = yy[prob.qcols].copy()
         out.append((tp, embed(q)))
-        t = tp
-    steps = kernel.counters["nres"]
-    return out, results, steps
+    return out, results

@@ -2,6 +2,8 @@
 against the published reference falls as O(1/penalty)."""
 import sys
 
+import pytest
+
 import pysolver
 from conftest import ROOT
 
@@ -34,6 +36,9 @@ def test_error_against_the_test_set_reference_falls_as_one_over_penalty():
 def test_stiffer_joints_with_the_step_growth_limit():
     """At penalty 1e9 IDA fails its error test nearly every step (226,354 steps measured);
     limiting its step growth keeps the run short and the O(1/penalty) trend (8.5e-5)."""
-    res = pysolver.loads(andrews.deck(1e9)).run(max_step_growth=1.1)
+    model = pysolver.loads(andrews.deck(1e9))
+    res = model.run(max_step_growth=1.1, backend="c")
     assert res.success and res.stats["steps"] < 9000
     assert 6e-5 < andrews.error(res) < 1.2e-4
+    with pytest.raises(ValueError, match="max_step_growth needs IDA driven from C"):
+        model.run(max_step_growth=1.1, backend="sksundae")
