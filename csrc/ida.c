@@ -31,7 +31,7 @@ enum {
   F_IDA_MINSTEP, F_IDA_INITSTEP, F_IDA_STOPTIME, F_IDA_ROOTINIT, F_IDA_ROOTDIR,
   F_IDA_NOWARN, F_IDA_SOLVE, F_IDA_ROOTINFO, F_IDA_NSTEPS, F_IDA_NRES, F_IDA_NJAC,
   F_IDA_NETF, F_IDA_NCFN, F_IDA_NGE, F_IDA_FREE, F_MAT_BAND, F_MAT_BAND_DATA, F_LS_BAND,
-  F_IDA_ETAMAX, F_IDA_ETAFIXED, F_COUNT
+  F_IDA_ETAMAX, F_IDA_NLCONV, F_COUNT
 };
 static const struct { int lib; const char* name; } FNS[F_COUNT] = {
   {0, "SUNContext_Create"}, {0, "SUNContext_Free"}, {0, "SUNContext_ClearErrHandlers"},
@@ -46,10 +46,11 @@ static const struct { int lib; const char* name; } FNS[F_COUNT] = {
   {4, "IDAGetNumSteps"}, {4, "IDAGetNumResEvals"}, {4, "IDAGetNumJacEvals"},
   {4, "IDAGetNumErrTestFails"}, {4, "IDAGetNumNonlinSolvConvFails"}, {4, "IDAGetNumGEvals"},
   {4, "IDAFree"}, {5, "SUNBandMatrix"}, {5, "SUNBandMatrix_Data"}, {6, "SUNLinSol_Band"},
-  {4, "IDASetEtaMax"}, {4, "IDASetEtaFixedStepBounds"},
+  {4, "IDASetEtaMax"}, {4, "IDASetNonlinConvCoef"},
 };
 
 #define FN(s, k, type) ((type)(s)->fn[k])
+_Static_assert(F_COUNT <= (int)(sizeof(((psIDA*)0)->fn) / sizeof(void*)), "psIDA.fn too small");
 
 int ps_ida_load(psIDA* s, const char* core, const char* nvec, const char* mat, const char* ls,
                 const char* ida, const char* bandmat, const char* bandls) {
@@ -84,10 +85,28 @@ static int res_fn(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* ud
   return ps_residual(s->m, s->d, t, data(yy), data(yp), data(rr)) == PS_OK ? 0 : 1;
 }
 
+/* Called with each Jacobian evaluation (about one per step when the error test keeps failing):
+ * over windows of 50 steps, switch the step-growth limit on if most steps failed the error
+ * test once, the cycle "grow the step 2x, fail, halve it" of a stiff penalty mode. */
+static void watch_error_test(psIDA* s) {
+  long nst, netf;
+  FN(s, F_IDA_NSTEPS, int (*)(void*, long*))(s->mem, &nst);
+  FN(s, F_IDA_NETF, int (*)(void*, long*))(s->mem, &netf);
+  if (nst < s->win_nst || netf < s->win_netf) s->win_nst = s->win_netf = 0; /* re-initialized */
+  if (nst - s->win_nst < 50) return;
+  if (2 * (netf - s->win_netf) > nst - s->win_nst) {
+    FN(s, F_IDA_ETAMAX, int (*)(void*, double))(s->mem, s->auto_eta);
+    s->limited_at = nst > 0 ? nst : 1;
+  }
+  s->win_nst = nst;
+  s->win_netf = netf;
+}
+
 static int jac_fn(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yp, N_Vector rr,
                   SUNMatrix J, void* ud, N_Vector t1, N_Vector t2, N_Vector t3) {
   (void)rr; (void)t1; (void)t2; (void)t3;
   psIDA* s = (psIDA*)ud;
+  if (s->auto_eta > 0 && !s->limited_at) watch_error_test(s);
   double* (*data)(N_Vector) = FN(s, F_NV_DATA, double* (*)(N_Vector));
   if (s->band) {
     /* kernel triplets scattered into band storage through a precomputed map */
@@ -177,11 +196,12 @@ fail:
   return -1;
 }
 
-int ps_ida_step_growth(psIDA* s, double eta_max, double fixed_lb, double fixed_ub) {
+int ps_ida_tune(psIDA* s, double eta_max, double nlconv, double auto_eta) {
   int rc = 0;
   if (eta_max > 0) rc |= FN(s, F_IDA_ETAMAX, int (*)(void*, double))(s->mem, eta_max);
-  if (fixed_lb > 0 && fixed_ub > 0)
-    rc |= FN(s, F_IDA_ETAFIXED, int (*)(void*, double, double))(s->mem, fixed_lb, fixed_ub);
+  if (nlconv > 0) rc |= FN(s, F_IDA_NLCONV, int (*)(void*, double))(s->mem, nlconv);
+  s->auto_eta = eta_max > 0 ? 0.0 : auto_eta;
+  s->win_nst = s->win_netf = s->limited_at = 0;
   return rc;
 }
 
@@ -228,4 +248,5 @@ void ps_ida_stats(psIDA* s, long* out) {
   FN(s, F_IDA_NETF, int (*)(void*, long*))(s->mem, out + 3);
   FN(s, F_IDA_NCFN, int (*)(void*, long*))(s->mem, out + 4);
   FN(s, F_IDA_NGE, int (*)(void*, long*))(s->mem, out + 5);
+  out[6] = s->limited_at;
 }

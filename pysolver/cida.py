@@ -80,12 +80,13 @@ class CIDA:
         IDA's limit per call.
     band : tuple (mu, ml) or None
         Use a band solver with these bandwidths instead of the dense one.
-    step_growth : tuple (eta_max, fixed_lb, fixed_ub) or None
-        IDA's step-growth limit and keep-the-step ratio band (None: IDA's defaults).
+    tune : tuple (eta_max, nlconv, auto_eta) or None
+        See ``ps_ida_tune``: a fixed step-growth limit, the Newton convergence coefficient and
+        the limit switched on when the error test fails most steps (0: IDA's defaults).
     """
 
     def __init__(self, kernel, rtol, atol, max_step=0.0, min_step=0.0, first_step=0.0,
-                 max_num_steps=500, band=None, step_growth=None):
+                 max_num_steps=500, band=None, tune=None):
         self.k = kernel
         self.s = ffi.new("psIDA *")
         paths = _library_paths()
@@ -98,9 +99,9 @@ class CIDA:
         n = kernel.ny
         self.y, self.yp = np.zeros(n), np.zeros(n)
         self.tret = ffi.new("double *")
-        self.counts = ffi.new("long[6]")
+        self.counts = ffi.new("long[7]")
         self.started = False
-        self.step_growth = step_growth
+        self.tune = tune
         if band is None:
             self.band = (-1, -1)
             self.map = np.zeros(1, dtype=np.int32)
@@ -123,8 +124,8 @@ class CIDA:
                                  ffi.cast("int *", fb(self.map)), self.ntrip)
             if rc != 0:
                 raise RuntimeError(ffi.string(self.s.msg).decode())
-            if self.step_growth:
-                lib.ps_ida_step_growth(self.s, *self.step_growth)
+            if self.tune:
+                lib.ps_ida_tune(self.s, *self.tune)
             self.started = True
         else:
             lib.ps_ida_reinit(self.s, t0, fb("double[]", y0), fb("double[]", yp0))
@@ -160,9 +161,10 @@ class CIDA:
         return sol, Y[:k], YP[:k], REQ[:k, :self.k.arrays["nout"]], k
 
     def stats(self):
-        """IDA's counters: steps, nres, njac, netf, ncfn, ngevals."""
+        """IDA's counters: steps, nres, njac, netf, ncfn, ngevals, and the step at which the
+        automatic step-growth limit switched on (0: it did not)."""
         lib.ps_ida_stats(self.s, self.counts)
-        return [int(self.counts[i]) for i in range(6)]
+        return [int(self.counts[i]) for i in range(7)]
 
     def __del__(self):
         try:

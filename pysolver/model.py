@@ -67,7 +67,8 @@ SCHEMA = {
                         "h_min": ("nonneg", OPT, 0.0), "h0_max": ("pos", OPT, None),
                         "dae_constr_tol": ("pos", OPT, None),
                         "max_num_steps": ("id", OPT, 1000000),
-                        "max_step_growth": ("pos", OPT, None), "label": ("str", OPT, "")},
+                        "max_step_growth": ("pos", OPT, None),
+                        "nonlin_conv_coef": ("pos", OPT, None), "label": ("str", OPT, "")},
     "Post_Request": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
                      "type": (("EXPRESSION",), OPT, "EXPRESSION"), "comment": ("str", OPT, ""),
                      **{f"expr{k}": ("expr?", OPT, None) for k in range(1, 9)},
@@ -220,6 +221,7 @@ class Transient:
     h0_max: float = None
     max_num_steps: int = 1000000
     max_step_growth: float = None
+    nonlin_conv_coef: float = None
 
 
 @dataclasses.dataclass
@@ -471,7 +473,10 @@ class Model:
             ``"dense"`` or ``"sparse"``; ``jacobian``: ``"exact"`` (default, the kernel's) or
             ``"dq"`` (IDA's difference quotients, for comparison only); ``backend``:
             ``"auto"``, ``"c"`` or ``"sksundae"``; ``max_step_growth``: largest factor by which
-            IDA may grow its step (C driver; default IDA's 2), e.g. 1.1 for very stiff penalties.
+            IDA may grow its step (C driver; default: IDA's 2 until its error test fails in
+            most of 50 steps, the mark of a stiff penalty mode, then 1.1; give 2 for IDA's
+            plain behaviour); ``nonlin_conv_coef``: IDA's Newton convergence coefficient (C
+            driver; default 0.033, IDA's own 0.33 on scikit-sundae).
 
         Returns
         -------
@@ -595,8 +600,12 @@ def build_model(elements, source):
             if a["max_step_growth"] is not None and a["max_step_growth"] <= 1:
                 raise ctx.error(f"got {a['max_step_growth']:g}; expected a value > 1",
                                 "max_step_growth")
+            if a["nonlin_conv_coef"] is not None and a["nonlin_conv_coef"] >= 1:
+                raise ctx.error(f"got {a['nonlin_conv_coef']:g}; expected a value in (0, 1)",
+                                "nonlin_conv_coef")
             model.transient = Transient(a["integr_tol"], a["h_max"], a["h_min"], a["h0_max"],
-                                        a["max_num_steps"], a["max_step_growth"])
+                                        a["max_num_steps"], a["max_step_growth"],
+                                        a["nonlin_conv_coef"])
         elif canon == "Simulate":
             sim_t = _simulate(ctx, a, model, sim_t)
         elif canon == "Stop":

@@ -28,7 +28,14 @@ from .results import Result
 __version__ = "0.1.0"
 
 _OPTION_NAMES = ("integr_tol", "h_max", "h_min", "h0_max", "max_num_steps", "linsolver",
-                 "jacobian", "backend", "max_step_growth")
+                 "jacobian", "backend", "max_step_growth", "nonlin_conv_coef")
+
+#: The C driver's step-growth limit once IDA's error test fails in most steps (a stiff
+#: penalty mode; README "Stiff penalties"), and its Newton convergence coefficient
+#: (IDA's default 0.33: ten times tighter costs nothing on the seed decks and halves the
+#: steps of stiff penalties).
+AUTO_STEP_GROWTH = 1.1
+NONLIN_CONV_COEF = 0.033
 
 #: With linsolver="auto", scenes with at least this many states use the sparse solver.
 SPARSE_THRESHOLD = 300
@@ -134,9 +141,12 @@ class _Driver:
         self.use_c = want_c and cida.available()
         if self.use_c and self.band is not None:
             self.sparse = False
-        if opts["max_step_growth"] and not self.use_c:
-            raise ValueError("max_step_growth needs IDA driven from C (dense or band scenes, "
-                             "exact Jacobian, the scikit-sundae wheel's SUNDIALS libraries)")
+        # scikit-sundae runs IDA's own step control: only its default values can be asked for
+        for key, ida_default in (("max_step_growth", 2.0), ("nonlin_conv_coef", 0.33)):
+            if opts[key] not in (None, ida_default) and not self.use_c:
+                raise ValueError(f"{key} other than IDA's {ida_default:g} needs IDA driven from "
+                                 "C (dense or band scenes, exact Jacobian, the scikit-sundae "
+                                 "wheel's SUNDIALS libraries)")
         if opts["backend"] == "c" and not self.use_c:
             raise ValueError("backend='c' needs the dense exact-Jacobian path and SUNDIALS "
                              "libraries from the scikit-sundae wheel")
@@ -159,6 +169,8 @@ class _Driver:
         self.ida_done = [0, 0]             # nfev, njev of IDA objects already replaced
         self.ida_last = (0, 0)             # of the current one, from its last result
         self.ida_fail = [0, 0]             # error-test and convergence failures (C driver)
+        self.ida_steps_done = 0            # IDA steps of replaced C-driver objects
+        self.growth_limited_at = None      # step at which the automatic growth limit came on
 
     # integrator ------------------------------------------------------------------------
     def _linear(self):
@@ -177,9 +189,9 @@ class _Driver:
         tol = self.opts["integr_tol"]
         mxsteps = min(self.opts["max_num_steps"] + 1, 2 ** 31 - 1)
         if self.use_c:
-            growth = self.opts["max_step_growth"]
-            return cida.CIDA(self.kernel, tol, tol, *bounds, mxsteps, band=self.band,
-                             step_growth=(growth, 0.8, 1.5) if growth else None)
+            tune = (self.opts["max_step_growth"] or 0.0,
+                    self.opts["nonlin_conv_coef"] or NONLIN_CONV_COEF, AUTO_STEP_GROWTH)
+            return cida.CIDA(self.kernel, tol, tol, *bounds, mxsteps, band=self.band, tune=tune)
         options = dict(rtol=tol, atol=tol, max_step=bounds[0], min_step=bounds[1],
                        first_step=bounds[2], max_num_steps=mxsteps, **self._linear())
         if self.sensors:
@@ -231,6 +243,9 @@ class _Driver:
             self.ida_done[1] += st[2]
             self.ida_fail[0] += st[3]
             self.ida_fail[1] += st[4]
+            if st[6] and self.growth_limited_at is None:
+                self.growth_limited_at = self.ida_steps_done + st[6]
+            self.ida_steps_done += st[0]
         else:
             self.ida_done[0] += self.ida_last[0]
             self.ida_done[1] += self.ida_last[1]
@@ -590,6 +605,8 @@ def run_model(model, progress=None, **overrides):
     opts.update(overrides)
     if opts["max_step_growth"] is not None and not opts["max_step_growth"] > 1:
         raise ValueError("max_step_growth must be > 1")
+    if opts["nonlin_conv_coef"] is not None and not 0 < opts["nonlin_conv_coef"] < 1:
+        raise ValueError("nonlin_conv_coef must be in (0, 1)")
     if opts["backend"] not in ("auto", "c", "sksundae"):
         raise ValueError(f"backend must be 'auto', 'c' or 'sksundae', not {opts['backend']!r}")
     if not opts["integr_tol"] > 0:
@@ -610,7 +627,8 @@ def run_model(model, progress=None, **overrides):
              "nrestarts": max(drv.nstarts - 1, 0),
              "ida_nfev": drv.ida_done[0], "ida_njev": drv.ida_done[1],
              "netf": drv.ida_fail[0] if drv.use_c else None,
-             "ncfn": drv.ida_fail[1] if drv.use_c else None}
+             "ncfn": drv.ida_fail[1] if drv.use_c else None,
+             "growth_limited_at": drv.growth_limited_at}
     setup = (t_setup0 - t_start) + drv.setup_time
     timing = {"setup": setup, "integrate": (t_end - t_start) - setup, "total": t_end - t_start}
     opts["linsolver"] = ("band" if drv.use_c and drv.band else

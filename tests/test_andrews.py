@@ -33,12 +33,11 @@ def test_error_against_the_test_set_reference_falls_as_one_over_penalty():
     assert 8 < errors[1e7] / errors[1e8] < 15
 
 
-def test_stiffer_joints_with_the_step_growth_limit():
-    """At penalty 1e9 IDA fails its error test nearly every step (226,354 steps measured);
-    limiting its step growth keeps the run short and the O(1/penalty) trend (8.5e-5)."""
-    model = pysolver.loads(andrews.deck(1e9))
-    res = model.run(max_step_growth=1.1, backend="c")
-    assert res.success and res.stats["steps"] < 9000
+def test_stiffer_joints_switch_the_step_growth_limit_on():
+    """At penalty 1e9 IDA as shipped fails its error test nearly every step (226,354 steps,
+    144 s measured); the C driver notices and limits the step growth by itself, which keeps
+    the run short and the O(1/penalty) trend (measured 8.4e-5 in 4,899 steps)."""
+    res = pysolver.loads(andrews.deck(1e9)).run(backend="c")
+    assert res.success and res.stats["steps"] < 6000
+    assert res.stats["growth_limited_at"] is not None
     assert 6e-5 < andrews.error(res) < 1.2e-4
-    with pytest.raises(ValueError, match="max_step_growth needs IDA driven from C"):
-        model.run(max_step_growth=1.1, backend="sksundae")

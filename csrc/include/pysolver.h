@@ -178,7 +178,7 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
 typedef struct psIDA {
   void* lib[7];           /* dlopen handles: core, nvecserial, sunmatrixdense,
                              sunlinsoldense, ida, sunmatrixband, sunlinsolband  */
-  void* fn[40];           /* SUNDIALS functions, in csrc/ida.c order            */
+  void* fn[48];           /* SUNDIALS functions, in csrc/ida.c order            */
   int loaded;             /* 1 after a successful ps_ida_load                   */
   void* ctx;              /* SUNContext of the current integration              */
   void* mem;              /* IDA memory                                         */
@@ -192,6 +192,10 @@ typedef struct psIDA {
   long nstore;            /* doubles of band storage                            */
   const psModel* m;       /* model being integrated                             */
   psData* d;              /* its workspace                                      */
+  double auto_eta;        /* step-growth limit to switch on when IDA's error
+                             test fails most steps (0: never)                   */
+  long win_nst, win_netf; /* steps and error-test failures at the window start  */
+  long limited_at;        /* step at which auto_eta was switched on (0: not)    */
   char msg[256];          /* message of the last error                          */
 } psIDA;
 
@@ -210,10 +214,13 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
                 const double* yp0, double rtol, double atol, double hmax, double hmin, double h0,
                 long mxsteps, const int* rootdir, int mu, int ml, const int* map, int ntrip);
 
-/* Limit how fast IDA may grow its step (eta_max, IDA's default 2) and the step-size ratios it
- * treats as "keep the step" ([fixed_lb, fixed_ub], default [1, 1.5]); values <= 0 keep IDA's
- * defaults. Returns 0 or IDA's error flag. */
-int ps_ida_step_growth(psIDA* s, double eta_max, double fixed_lb, double fixed_ub);
+/* Tune IDA's step control for stiff penalties. eta_max > 0 limits how fast IDA may grow its
+ * step (IDA's default 2); nlconv > 0 sets the Newton convergence coefficient (IDA's default
+ * 0.33, used from the next (re)start); auto_eta > 0 (with eta_max <= 0) switches the limit
+ * auto_eta on by itself once IDA's error test has failed in more than half of 50 consecutive
+ * steps, the signature of a stiff penalty mode (see README, "Stiff penalties").
+ * Returns 0 or IDA's error flag. */
+int ps_ida_tune(psIDA* s, double eta_max, double nlconv, double auto_eta);
 
 /* Cold-restart the current integration at (t0, y0, yp0). Returns IDA's flag. */
 int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0);
@@ -230,7 +237,8 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, double*
                    double* yp_out, double* req_out, int* nreached, double* tret, int* rootsfound);
 
 /* IDA's counters: steps, residual evaluations, Jacobian evaluations, error-test failures,
- * nonlinear convergence failures, root-function evaluations (out has 6 entries). */
+ * nonlinear convergence failures, root-function evaluations, and the step at which the
+ * automatic step-growth limit was switched on, 0 if it was not (out has 7 entries). */
 void ps_ida_stats(psIDA* s, long* out);
 
 /* Free the current integration (the libraries stay open). s may be unused. */
