@@ -1,12 +1,16 @@
 """Work-precision report: error against wall time over a tolerance sweep.
 
-Problems with exact solutions (README "Accuracy and cost"):
-- oscillator: bilateral penalty on a point mass under gravity (closed form);
-- catenary: the seed bead, error against a pysolver run at integr_tol 1e-12.
-Comparators run in the same process on the same equations: IDA with its own difference-quotient
-Jacobian (``jacobian="dq"``), and SciPy's ``solve_ivp`` (Radau, BDF) on a hand-written NumPy
-right-hand side, i.e. what a user would write without pysolver. Times are the minimum of
-`repeat` runs after one warm-up (SciMLBenchmarks' convention); ratios are comparator / pysolver.
+Problems (README "Accuracy and cost"):
+- oscillator: bilateral penalty on a point mass under gravity, against its closed form;
+- seed example 3 (particle between two lines), against a pysolver run at integr_tol 1e-12;
+- stiff penalty pendulum (k = 1e8, c = 2e4, 10 s), against the rigid pendulum.
+Comparators run on the same equations: IDA with its own difference-quotient Jacobian
+(``jacobian="dq"``); SciPy's ``solve_ivp`` (Radau, BDF, LSODA) and scikit-sundae's IDA on
+hand-written NumPy functions, i.e. what a user would write without pysolver; plain C IDA with
+hand-written residual and Jacobian (benchmarks/c_ida, built on first use); Exudyn's
+generalized-alpha at fixed steps when ``exudyn`` is installed (``pip install .[bench]``).
+Times are the minimum of `repeat` runs after one warm-up (SciMLBenchmarks' convention);
+ratios are comparator / pysolver.
 
 Run: ``python benchmarks/work_precision.py [--repeat 5] [--out DIR]``; besides the tables on
 standard output it writes work_precision.csv, work_precision.md and a log-log PNG of error
@@ -26,7 +30,17 @@ import pysolver  # noqa: E402
 from test_oscillator import DECK, exact, M, K, C, G  # noqa: E402
 
 
-POINTS = []   # (problem, solver, tolerance, error, seconds) for the report files
+#: (problem, solver, tolerance or step, max error, final error, L2 error, seconds)
+POINTS = []
+
+
+def record(problem, solver, tol, dist, seconds):
+    """Keep one point of the report from the error at every output (a distance >= 0); return
+    its largest value. L2 is the root mean square over the outputs (SciMLBenchmarks)."""
+    dist = np.asarray(dist, float)
+    POINTS.append((problem, solver, tol, dist.max(), dist[-1], np.sqrt(np.mean(dist ** 2)),
+                   seconds))
+    return dist.max()
 
 
 def best_time(fn, repeat):
@@ -50,24 +64,41 @@ def scipy_run(method, tol, t_eval, rhs, y0):
                      rtol=tol, atol=tol)
 
 
+def oscillator_exudyn(repeat):
+    """Exudyn's generalized-alpha on the oscillator at fixed steps (if installed)."""
+    import exudyn_models
+    from test_oscillator import V0, Z0
+    if not exudyn_models.available():
+        print("\nExudyn not installed (pip install .[bench]): its lines are left out")
+        return []
+    print("\nDamped oscillator in Exudyn (generalized-alpha, spectral radius 0.8)")
+    print(f"{'h':>7} {'max error':>10} {'ms':>8}")
+    rows = []
+    for h in (1e-2, 3e-3, 1e-3, 3e-4, 1e-4):
+        t, pos, sec = exudyn_models.oscillator(h, M, K, C, G, Z0, V0, repeat=max(repeat, 1))
+        err = record("oscillator", "Exudyn, generalized-alpha", h,
+                     np.abs(pos[:, 1] - exact(t)[0]), sec)
+        rows.append((h, err, sec))
+        print(f"{h:7.0e} {err:10.2e} {sec * 1e3:8.3f}")
+    return rows
+
+
 def oscillator(repeat):
     model = pysolver.loads(DECK)
     rows = []
     for tol in (1e-4, 1e-6, 1e-8, 1e-10):
         tp, res = best_time(lambda: model.run(integr_tol=tol), repeat)
         z, _ = exact(res.t)
-        err = np.abs(res.request(1)[:, 0] - z).max()
+        err = record("oscillator", "pysolver", tol, np.abs(res.request(1)[:, 0] - z), tp)
         tdq, rdq = best_time(lambda: model.run(integr_tol=tol, jacobian="dq"), repeat)
-        edq = np.abs(rdq.request(1)[:, 0] - z).max()
+        edq = record("oscillator", "IDA + DQ Jacobian (scikit-sundae)", tol,
+                     np.abs(rdq.request(1)[:, 0] - z), tdq)
         row = [tol, err, tp * 1e3, res.stats["steps"], edq, tdq / tp]
-        POINTS.append(("oscillator", "pysolver", tol, err, tp))
-        POINTS.append(("oscillator", "IDA + DQ Jacobian (scikit-sundae)", tol, edq, tdq))
         for method in ("Radau", "BDF", "LSODA"):
             ts, sol = best_time(lambda: scipy_run(method, tol, res.t, oscillator_rhs,
                                                   [1.2, 0.5]), repeat)
-            e = np.abs(sol.y[0] - z).max()
+            e = record("oscillator", f"SciPy {method}", tol, np.abs(sol.y[0] - z), ts)
             row += [e, ts / tp]
-            POINTS.append(("oscillator", f"SciPy {method}", tol, e, ts))
         rows.append(row)
     print("\nDamped oscillator (t = 0..3, 301 outputs): max position error vs closed form")
     print(f"{'tol':>7} {'pysolver err':>12} {'ms':>7} {'steps':>6} | {'IDA-dq err':>10} "
@@ -107,7 +138,8 @@ def seed3_comparators(repeat):
     rows = []
     for tol in (1e-4, 1e-6, 1e-8):
         tp, res = best_time(lambda: model.run(integr_tol=tol), repeat)
-        ep = np.abs(res.request(1)[:, :2] - ref).max()
+        ep = record("seed example 3", "pysolver", tol,
+                    np.abs(res.request(1)[:, :2] - ref).max(axis=1), tp)
         y0, yp0 = initial_state()
 
         def numpy_run():
@@ -115,26 +147,31 @@ def seed3_comparators(repeat):
             return solver.solve(res.t, y0, yp0)
 
         tn, sol = best_time(numpy_run, repeat)
-        en = np.abs(sol.y[:, :2] - ref).max()
+        en = record("seed example 3", "NumPy residual + IDA (scikit-sundae)", tol,
+                    np.abs(sol.y[:, :2] - ref).max(axis=1), tn)
         rows.append((tol, ep, tp, en, tn))
-        POINTS.append(("seed example 3", "pysolver", tol, ep, tp))
-        POINTS.append(("seed example 3", "NumPy residual + IDA (scikit-sundae)", tol, en, tn))
         print(f"{tol:7.0e} {ep:12.2e} {tp * 1e3:7.2f} | {en:13.2e} {tn * 1e3:8.2f} "
               f"{tn / tp:6.1f}")
     return rows
 
 
-def plain_c_ida(tol, repeat):
-    """Run benchmarks/c_ida/seed3_ida (built on first use): (steps, nres, njac, seconds, xz)."""
+def c_program(name, *args):
+    """Run benchmarks/c_ida/NAME ARGS (built on first use): (first output line's numbers,
+    the remaining lines as an array)."""
     import subprocess
-    exe = ROOT / "benchmarks" / "c_ida" / "seed3_ida"
+    exe = ROOT / "benchmarks" / "c_ida" / name
     if not exe.exists():
         subprocess.run(["bash", str(exe.parent / "build.sh")], check=True, capture_output=True)
-    out = subprocess.run([str(exe), repr(tol), str(repeat)], check=True, capture_output=True,
+    out = subprocess.run([str(exe), *map(str, args)], check=True, capture_output=True,
                          text=True).stdout.split("\n")
-    steps, nres, njac, sec = out[0].split()
-    xz = np.array([[float(v) for v in line.split()] for line in out[1:] if line.strip()])
-    return int(steps), int(nres), int(njac), float(sec), xz
+    rows = np.array([[float(v) for v in line.split()] for line in out[1:] if line.strip()])
+    return [float(v) for v in out[0].split()], rows
+
+
+def plain_c_ida(tol, repeat):
+    """Seed example 3 in plain C: (steps, nres, njac, seconds, xz)."""
+    (steps, nres, njac, sec), xz = c_program("seed3_ida", repr(tol), repeat)
+    return int(steps), int(nres), int(njac), sec, xz
 
 
 def seed3_plain_c(repeat):
@@ -150,41 +187,101 @@ def seed3_plain_c(repeat):
         tp, res = best_time(lambda: model.run(integr_tol=tol), repeat)
         steps, nres, njac, tc, xz = plain_c_ida(tol, max(repeat, 3))
         ep = np.abs(res.request(1)[:, :2] - ref).max()
-        ec = np.abs(xz - ref).max()
+        ec = record("seed example 3", "plain C IDA, hand-written", tol,
+                    np.abs(xz - ref).max(axis=1), tc)
         rows.append((tol, ep, tp, ec, tc))
-        POINTS.append(("seed example 3", "plain C IDA, hand-written", tol, ec, tc))
         print(f"{tol:7.0e} {ep:12.2e} {res.stats['steps']:6d} {tp * 1e3:7.2f} | {ec:10.2e} "
               f"{steps:6d} {tc * 1e3:7.3f} | {tp / tc:12.1f}")
     return rows
 
 
+PENDULUM = """<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+<Reference_Marker id="1" body_id="1"/><Reference_Marker id="10" body_id="2" pos_x="1"/>
+<Body_Point id="2" cg_id="10" mass="1"/><Force_Gravity grav_y="-9.81"/>
+<Force_Penalty id="1" expr="DM(10,1) - 1" penalty="1e8" penalty1="2e4"/>
+<Post_Request id="1" expr1="DX(10)" expr2="DY(10)"/></Model>
+<Simulate analysis_type="Transient" end_time="10" print_interval="0.01"/></MotionSolve>"""
+
+
+def pendulum_error(t, xy):
+    """Largest distance from the rigid pendulum released horizontally (the penalty model itself
+    differs from it by about 6e-6 at k = 1e8)."""
+    from scipy.integrate import solve_ivp
+    sol = solve_ivp(lambda _, s: [s[1], -9.81 * np.cos(s[0])], (0, t[-1]), [0, 0], t_eval=t,
+                    rtol=1e-13, atol=1e-13, method="DOP853")
+    return np.hypot(xy[:, 0] - np.cos(sol.y[0]), xy[:, 1] - np.sin(sol.y[0]))
+
+
+def stiff_pendulum(repeat):
+    """Issue 5's stiff penalty pendulum: pysolver (its C driver limits the step growth once
+    IDA's error test keeps failing) and IDA as shipped, plain C IDA with and without the same
+    step control, and Exudyn at fixed steps."""
+    import exudyn_models
+    model = pysolver.loads(PENDULUM)
+    shipped = dict(max_step_growth=2, nonlin_conv_coef=0.33)
+    print("\nStiff penalty pendulum (k = 1e8, c = 2e4, 10 s): max distance from the rigid one")
+    print(f"{'solver':>34} {'tol / h':>8} {'error':>9} {'steps':>7} {'njac':>7} {'ms':>8}")
+
+    def line(name, tol, dist, steps, njac, sec):
+        err = record("stiff penalty pendulum", name, tol, dist, sec)
+        print(f"{name:>34} {tol:8.1e} {err:9.2e} {steps:7d} {njac:7d} {sec * 1e3:8.2f}")
+
+    for tol in (1e-6, 1e-7, 1e-8, 1e-9, 1e-10):
+        sec, res = best_time(lambda: model.run(integr_tol=tol), repeat)
+        line("pysolver", tol, pendulum_error(res.t, res.request(1)), res.stats["steps"],
+             res.stats["njac"], sec)
+    for tol in (1e-6, 1e-7, 1e-8):
+        sec, res = best_time(lambda: model.run(integr_tol=tol, **shipped), 1)
+        line("pysolver, IDA's step control", tol, pendulum_error(res.t, res.request(1)),
+             res.stats["steps"], res.stats["njac"], sec)
+    for label, eta, nlconv, tols in (("plain C IDA, as shipped", 0, 0, (1e-6, 1e-7, 1e-8)),
+                                     ("plain C IDA, pysolver's control", 1.1, 0.033,
+                                      (1e-6, 1e-7, 1e-8, 1e-9, 1e-10))):
+        for tol in tols:
+            (steps, _, njac, _, _, sec), xy = c_program("pendulum_ida", repr(tol), 1e8, 2e4,
+                                                        eta, nlconv, max(repeat, 3))
+            line(label, tol, pendulum_error(np.linspace(0, 10, 1001), xy), int(steps),
+                 int(njac), sec)
+    if not exudyn_models.available():
+        print("Exudyn not installed (pip install .[bench]): its lines are left out")
+        return
+    for h in (2e-3, 1e-3, 5e-4, 2.5e-4):
+        t, xy, sec = exudyn_models.pendulum(1e8, 2e4, h, repeat=max(repeat, 1))
+        line("Exudyn, generalized-alpha", h, pendulum_error(t, xy), int(round(10 / h)), 0, sec)
+
+
 def write_report(outdir):
-    """Write work_precision.csv, work_precision.md and work_precision.png into outdir."""
+    """Write work_precision.csv, work_precision.md and work_precision.png into outdir. The
+    tolerance column is integr_tol, or the fixed step for Exudyn."""
     import csv
     outdir = pathlib.Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     with open(outdir / "work_precision.csv", "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(["problem", "solver", "tolerance", "max_error", "seconds"])
+        w.writerow(["problem", "solver", "tolerance", "max_error", "final_error", "l2_error",
+                    "seconds"])
         w.writerows(POINTS)
     with open(outdir / "work_precision.md", "w") as fh:
-        fh.write("| problem | solver | tolerance | max error | ms |\n|---|---|---|---|---|\n")
-        for p, name, tol, err, sec in POINTS:
-            fh.write(f"| {p} | {name} | {tol:.0e} | {err:.2e} | {sec * 1e3:.3f} |\n")
+        fh.write("| problem | solver | tolerance / step | max error | final error | L2 error "
+                 "| ms |\n|---|---|---|---|---|---|---|\n")
+        for p, name, tol, emax, efin, el2, sec in POINTS:
+            fh.write(f"| {p} | {name} | {tol:.1e} | {emax:.2e} | {efin:.2e} | {el2:.2e} "
+                     f"| {sec * 1e3:.3f} |\n")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    problems = sorted({p[0] for p in POINTS})
-    fig, axes = plt.subplots(1, len(problems), figsize=(6 * len(problems), 4.5), squeeze=False)
+    problems = list(dict.fromkeys(p[0] for p in POINTS))
+    fig, axes = plt.subplots(1, len(problems), figsize=(5.5 * len(problems), 4.5),
+                             squeeze=False)
     for ax, prob in zip(axes[0], problems):
-        for name in sorted({p[1] for p in POINTS if p[0] == prob}):
-            pts = sorted((p[3], p[4]) for p in POINTS if p[0] == prob and p[1] == name)
+        for name in dict.fromkeys(p[1] for p in POINTS if p[0] == prob):
+            pts = sorted((p[3], p[6]) for p in POINTS if p[0] == prob and p[1] == name)
             ax.loglog([e for e, _ in pts], [t * 1e3 for _, t in pts], "o-", label=name)
         ax.set_xlabel("max error")
         ax.set_ylabel("wall time, ms (best of runs)")
         ax.set_title(prob)
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(outdir / "work_precision.png", dpi=110)
     print(f"\nwrote {outdir / 'work_precision.csv'}, .md and .png")
@@ -197,9 +294,11 @@ def main():
                         help="folder for work_precision.csv/.md/.png")
     args = parser.parse_args()
     oscillator(args.repeat)
+    oscillator_exudyn(args.repeat)
     seed_decks(args.repeat)
     seed3_comparators(args.repeat)
     seed3_plain_c(args.repeat)
+    stiff_pendulum(args.repeat)
     write_report(args.out)
 
 

@@ -33,7 +33,8 @@ def test_work_precision_report_runs(tmp_path):
     assert "Damped oscillator" in out and "1e-10" in out
     _output(mod.write_report, tmp_path)
     rows = (tmp_path / "work_precision.csv").read_text().splitlines()
-    assert rows[0] == "problem,solver,tolerance,max_error,seconds" and len(rows) == 1 + 4 * 5
+    assert rows[0] == "problem,solver,tolerance,max_error,final_error,l2_error,seconds"
+    assert len(rows) == 1 + 4 * 5
     assert (tmp_path / "work_precision.png").read_bytes()[:4] == b"\x89PNG"
 
 
