@@ -36,7 +36,7 @@ def make_builder():
         '#include "pysolver.h"',
         sources=[str(ROOT / "csrc" / s) for s in SOURCES],
         include_dirs=[str(ROOT / "csrc" / "include"), str(ROOT / "csrc")],
-        extra_compile_args=["-std=c99", "-O2", "-D_DEFAULT_SOURCE"],
+        extra_compile_args=["-std=c99", "-O3", "-D_DEFAULT_SOURCE"],
         libraries=["m", "dl"],
     )
     return ffibuilder

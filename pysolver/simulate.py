@@ -119,6 +119,48 @@ class _Stop(Exception):
         self.success, self.status, self.message = success, status, message
 
 
+class _Rows:
+    """Output rows kept as a list of row-arrays and whole (k x n) blocks from the C driver, so
+    a batch of outputs is stored without splitting it into rows; supports the list operations
+    the driver uses (append, extend, pop, [-1], len)."""
+
+    def __init__(self):
+        self.parts = []
+        self.n = 0
+
+    def append(self, row):
+        self.parts.append(np.asarray(row)[None, :])
+        self.n += 1
+
+    def extend(self, block):
+        if len(block):
+            self.parts.append(block)
+            self.n += len(block)
+
+    def pop(self):
+        last = self.parts[-1]
+        if len(last) > 1:
+            self.parts[-1] = last[:-1]
+        else:
+            self.parts.pop()
+        self.n -= 1
+        return last[-1]
+
+    def __getitem__(self, i):
+        if i != -1:
+            raise IndexError("only the last row is kept addressable")
+        return self.parts[-1][-1]
+
+    def __len__(self):
+        return self.n
+
+    def array(self, width):
+        """All rows as one (n x width) array."""
+        if not self.parts:
+            return np.zeros((0, width))
+        return np.concatenate(self.parts, axis=0)
+
+
 class _Driver:
     """One run of a model: the IDA object, the state, outputs, events and counters."""
 
@@ -157,7 +199,8 @@ class _Driver:
         self.verbose_active = set()
         self.steps_seen = collections.deque(maxlen=3)   # last converged steps (onestep mode)
         self.dt = None
-        self.ts, self.ys, self.yps, self.outs = [], [], [], []
+        self.ts = []
+        self.ys, self.yps, self.outs = _Rows(), _Rows(), _Rows()
         self.events, self.log = [], []
         self.statics = []
         self.nrearms = 0
@@ -638,7 +681,8 @@ def run_model(model, progress=None, **overrides):
             "options": opts, "ny": kernel.ny, "stepping": "onestep" if drv.onestep else "normal",
             "static": dataclasses.asdict(model.static)}
     labels = {(r.id, k): n for r in model.requests.values() for k, n in enumerate(r.names) if n}
-    res = Result(drv.ts, drv.ys, drv.yps, drv.outs, kernel.channels, kernel.layout.names,
+    res = Result(drv.ts, drv.ys.array(kernel.ny), drv.yps.array(kernel.ny),
+                 drv.outs.array(len(kernel.channels)), kernel.channels, kernel.layout.names,
                  success, status, message, stats, timing, meta, labels)
     res.events = drv.events
     res.log = drv.log
