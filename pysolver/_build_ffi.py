@@ -36,7 +36,8 @@ def make_builder():
         '#include "pysolver.h"',
         sources=[str(ROOT / "csrc" / s) for s in SOURCES],
         include_dirs=[str(ROOT / "csrc" / "include"), str(ROOT / "csrc")],
-        extra_compile_args=["-std=c99", "-O3", "-D_DEFAULT_SOURCE"],
+        extra_compile_args=["-std=c99", "-O3", "-fvisibility=hidden", "-flto", "-D_DEFAULT_SOURCE"],
+        extra_link_args=["-O3", "-flto"],
         libraries=["m", "dl"],
     )
     return ffibuilder
