@@ -1,8 +1,11 @@
-"""pytest-benchmark timings of whole runs, each next to a comparator in the same process.
+"""pytest-benchmark timings: load + compile, and whole runs next to a comparator in the same
+process.
 
 Run: ``pytest benchmarks --benchmark-enable --benchmark-group-by=func``.
 Groups compare pysolver's exact Jacobian with IDA's difference-quotient Jacobian on the same
-residual; ``work_precision.py`` adds error-against-time sweeps and SciPy comparators.
+residual, dense with sparse solvers on chains, and pysolver's step control with IDA's own on
+stiff penalties; ``work_precision.py`` adds error-against-time sweeps and the SciPy, NumPy,
+plain C and Exudyn comparators.
 """
 import pathlib
 import sys
@@ -13,10 +16,24 @@ import pysolver
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from scenes import chain_deck  # noqa: E402
+import andrews  # noqa: E402
+from scenes import PENDULUM, chain_deck  # noqa: E402
 
 DECKS = ["catenary_bead", "particle_above_line", "particle_between_lines", "torque_free_spin",
          "spinning_top"]
+
+#: IDA as SUNDIALS ships it, for the step-control comparisons
+IDA_AS_SHIPPED = {"max_step_growth": 2, "nonlin_conv_coef": 0.33}
+
+
+@pytest.mark.parametrize("deck", DECKS)
+def test_load_and_compile(benchmark, deck):
+    """Parse, validate and compile a deck into its C kernel (no integration)."""
+    def load():
+        model = pysolver.load(ROOT / "decks" / f"{deck}.xml")
+        return model._kernel()
+    kernel = benchmark(load)
+    benchmark.extra_info["states"] = kernel.ny
 
 
 @pytest.mark.parametrize("jacobian", ["exact", "dq"])
@@ -33,5 +50,28 @@ def test_seed_deck(benchmark, deck, jacobian):
 def test_chain(benchmark, n, linsolver):
     model = pysolver.loads(chain_deck(n, end_time=0.3))
     res = benchmark(model.run, linsolver=linsolver)
+    assert res.success
+    benchmark.extra_info.update(res.stats)
+
+
+# at 1e9 IDA's own step control fails its error test almost every step (minutes per run)
+@pytest.mark.parametrize("penalty,control", [(1e8, "pysolver"), (1e8, "IDA as shipped"),
+                                             (1e9, "pysolver"), (1e10, "pysolver")])
+def test_andrews(benchmark, penalty, control):
+    """Andrews' mechanism with its revolute joints as penalties."""
+    model = pysolver.loads(andrews.deck(penalty))
+    opts = {} if control == "pysolver" else IDA_AS_SHIPPED
+    res = benchmark.pedantic(model.run, kwargs=opts, rounds=3, iterations=1)
+    assert res.success
+    benchmark.extra_info.update(res.stats, error=andrews.error(res))
+
+
+@pytest.mark.parametrize("control", ["pysolver", "IDA as shipped"])
+def test_stiff_pendulum(benchmark, control):
+    """Penalty pendulum k = 1e8, c = 2e4 over 10 s at integr_tol 1e-8."""
+    model = pysolver.loads(PENDULUM)
+    opts = {} if control == "pysolver" else IDA_AS_SHIPPED
+    res = benchmark.pedantic(model.run, kwargs=dict(opts, integr_tol=1e-8), rounds=3,
+                             iterations=1)
     assert res.success
     benchmark.extra_info.update(res.stats)

@@ -27,6 +27,7 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 import pysolver  # noqa: E402
+from scenes import PENDULUM  # noqa: E402
 from test_oscillator import DECK, exact, M, K, C, G  # noqa: E402
 
 
@@ -193,14 +194,6 @@ def seed3_plain_c(repeat):
         print(f"{tol:7.0e} {ep:12.2e} {res.stats['steps']:6d} {tp * 1e3:7.2f} | {ec:10.2e} "
               f"{steps:6d} {tc * 1e3:7.3f} | {tp / tc:12.1f}")
     return rows
-
-
-PENDULUM = """<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
-<Reference_Marker id="1" body_id="1"/><Reference_Marker id="10" body_id="2" pos_x="1"/>
-<Body_Point id="2" cg_id="10" mass="1"/><Force_Gravity grav_y="-9.81"/>
-<Force_Penalty id="1" expr="DM(10,1) - 1" penalty="1e8" penalty1="2e4"/>
-<Post_Request id="1" expr1="DX(10)" expr2="DY(10)"/></Model>
-<Simulate analysis_type="Transient" end_time="10" print_interval="0.01"/></MotionSolve>"""
 
 
 def pendulum_error(t, xy):

@@ -64,9 +64,12 @@ void psu_hd_cross(const psuHD* c, double* out, const double* a, const double* b,
 void psu_hd_dot(const psuHD* c, double* out, const double* a, const double* b, double* scratch);
 double* ps_tmp(const psModel* m, psData* d, int k);
 
-/* tape.c: run a tape at the given order; results stay in d->slots. */
-void ps_tape_run(const psModel* m, psData* d, int tape, int order, double t, const double* y,
-                 const double* yp);
+/* tape.c: run a tape at the given order; results stay in d->slots. With values_only the caller
+ * reads only values and derivatives along the positions and time (the leading nh basis
+ * directions: GDOT and the penalties' rate coefficients), so the other directions (velocities,
+ * accelerations) are not carried. */
+void ps_tape_run(const psModel* m, psData* d, int tape, int order, int values_only, double t,
+                 const double* y, const double* yp);
 double* ps_slot(const psModel* m, psData* d, int slot);
 void ps_rate_coeff(const psModel* m, psData* d, const psuHD* c, const double* g, int tape,
                    int slot, int i, double* out, double* sc);

@@ -172,7 +172,7 @@ static void penalty_forces(const psModel* m, psData* d, double t, const double* 
   for (int p = 0; p < m->npen; p++) {
     int tape = m->pen_tape[p];
     int order = as->deriv ? 2 : 1;
-    ps_tape_run(m, d, tape, order, t, y, yp);
+    ps_tape_run(m, d, tape, order, !as->deriv, t, y, yp);
     psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], order - 1, m->hd_stride};
     const double* g = ps_slot(m, d, m->pen_g[p]);
     const double* F = ps_slot(m, d, m->pen_f[p]);
@@ -199,7 +199,7 @@ static void scalar_forces(const psModel* m, psData* d, double t, const double* y
   for (int k = 0; k < m->nsf; k++) {
     int tape = m->sf_tape[k];
     int order = as->deriv + m->tape_order[tape];
-    ps_tape_run(m, d, tape, order, t, y, yp);
+    ps_tape_run(m, d, tape, order, !as->deriv, t, y, yp);
     psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], as->deriv, m->hd_stride};
     int s = c.stride;
     const double* f = ps_slot(m, d, m->sf_f[k]);
@@ -312,7 +312,7 @@ int ps_roots(const psModel* m, psData* d, double t, const double* y, const doubl
   d->nroots++;
   for (int k = 0; k < m->nsensor; k++) {
     int tape = m->sensor_tape[k];
-    if (tape != last) ps_tape_run(m, d, tape, m->tape_order[tape], t, y, yp);
+    if (tape != last) ps_tape_run(m, d, tape, m->tape_order[tape], 1, t, y, yp);
     last = tape;
     double f = ps_slot(m, d, m->sensor_slot[k])[0];
     double v = m->sensor_value[k], tol = m->sensor_tol[k];
@@ -353,7 +353,7 @@ int ps_outputs(const psModel* m, psData* d, double t, const double* y, const dou
       out[k] = NAN;
       continue;
     }
-    if (tape != last) ps_tape_run(m, d, tape, m->tape_order[tape], t, y, yp);
+    if (tape != last) ps_tape_run(m, d, tape, m->tape_order[tape], 1, t, y, yp);
     last = tape;
     out[k] = ps_slot(m, d, m->out_slot[k])[0];
   }
@@ -362,6 +362,6 @@ int ps_outputs(const psModel* m, psData* d, double t, const double* y, const dou
 
 double ps_eval_tape(const psModel* m, psData* d, int tape, int slot, double t, const double* y,
                     const double* yp) {
-  ps_tape_run(m, d, tape, m->tape_order[tape], t, y, yp);
+  ps_tape_run(m, d, tape, m->tape_order[tape], 1, t, y, yp);
   return ps_slot(m, d, slot)[0];
 }

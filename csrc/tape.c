@@ -321,9 +321,10 @@ static void binary(const psuHD* c, int op, double* out, const double* a, const d
   }
 }
 
-void ps_tape_run(const psModel* m, psData* d, int tape, int order, double t, const double* y,
-                 const double* yp) {
-  psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], order, m->hd_stride};
+void ps_tape_run(const psModel* m, psData* d, int tape, int order, int values_only, double t,
+                 const double* y, const double* yp) {
+  int nh = m->tape_nh[tape];
+  psuHD c = {values_only ? nh : m->tape_nbasis[tape], nh, order, m->hd_stride};
   const int* code = m->code + (long)m->tape_code_adr[tape] * PS_INSTR_WIDTH;
   int len = m->tape_len[tape];
   ps_body_cache(m, d, &c, tape, t, y, yp);

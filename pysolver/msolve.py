@@ -188,11 +188,14 @@ def REQUEST(id, FUNCTION=None, **kw):
 
 
 def INTEGRATOR(**kw):
-    """Integrator settings: ERROR (integr_tol), HMAX, HMIN, HINIT (h0_max), MAXIT."""
+    """Integrator settings: ERROR (integr_tol), HMAX, HMIN, HINIT (h0_max), MAX_NUM_STEPS,
+    TYPE, and pysolver's MAX_STEP_GROWTH and NONLIN_CONV_COEF."""
     _emit("INTEGRATOR", "Param_Transient", {"ERROR": "integr_tol", "HMAX": "h_max",
                                             "HMIN": "h_min", "HINIT": "h0_max",
                                             "MAX_NUM_STEPS": "max_num_steps",
-                                            "TYPE": "integrator_type"}, **kw)
+                                            "TYPE": "integrator_type",
+                                            "MAX_STEP_GROWTH": "max_step_growth",
+                                            "NONLIN_CONV_COEF": "nonlin_conv_coef"}, **kw)
 
 
 def EQUILIBRIUM(**kw):

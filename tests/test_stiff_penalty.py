@@ -72,3 +72,18 @@ def test_bad_step_control_options():
         model.run(nonlin_conv_coef=0)
     with pytest.raises(ValueError, match="nonlin_conv_coef other than IDA's 0.33 needs"):
         model.run(backend="sksundae", nonlin_conv_coef=0.1)
+
+
+def test_python_deck_sets_the_step_control():
+    text = """from pysolver.msolve import *
+PART(1, GROUND=True)
+MARKER(1, PART=1)
+MARKER(10, PART=2, QP=[1, 0, 0])
+POINT_MASS(2, MASS=1.0, CM=10)
+PFORCE(1, FUNCTION="DM(10,1) - 1", PENALTY=1e8, PENALTY1=2e4)
+INTEGRATOR(ERROR=1e-7, MAX_STEP_GROWTH=1.2, NONLIN_CONV_COEF=0.1)
+"""
+    model = pysolver.loads(text, fmt="py")
+    assert model.transient.max_step_growth == 1.2
+    assert model.transient.nonlin_conv_coef == 0.1
+    assert model.transient.integr_tol == 1e-7
