@@ -50,6 +50,9 @@ static const struct { int lib; const char* name; } FNS[F_COUNT] = {
 };
 
 #define FN(s, k, type) ((type)(s)->fn[k])
+
+/* Steps per window over which watch() counts IDA's error-test failures. */
+#define PS_IDA_WINDOW 50
 _Static_assert(F_COUNT <= (int)(sizeof(((psIDA*)0)->fn) / sizeof(void*)), "psIDA.fn too small");
 
 int ps_ida_load(psIDA* s, const char* core, const char* nvec, const char* mat, const char* ls,
@@ -85,28 +88,30 @@ static int res_fn(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* ud
   return ps_residual(s->m, s->d, t, data(yy), data(yp), data(rr)) == PS_OK ? 0 : 1;
 }
 
-/* Called with each Jacobian evaluation (about one per step when the error test keeps failing):
- * over windows of 50 steps, switch the step-growth limit on if most steps failed the error
- * test once, the cycle "grow the step 2x, fail, halve it" of a stiff penalty mode. */
-static void watch_error_test(psIDA* s) {
+/* Called with each Jacobian evaluation (IDA forms one after every error-test failure, so about
+ * once per step when the error test keeps failing): over windows of PS_IDA_WINDOW steps, switch
+ * the step-growth limit auto_eta on if more than half of the steps failed the error test, the
+ * cycle "grow the step 2x, fail, shrink it" of a stiff penalty mode. */
+static void watch(psIDA* s) {
   long nst, netf;
   FN(s, F_IDA_NSTEPS, int (*)(void*, long*))(s->mem, &nst);
   FN(s, F_IDA_NETF, int (*)(void*, long*))(s->mem, &netf);
-  if (nst < s->win_nst || netf < s->win_netf) s->win_nst = s->win_netf = 0; /* re-initialized */
-  if (nst - s->win_nst < 50) return;
-  if (2 * (netf - s->win_netf) > nst - s->win_nst) {
+  if (nst < s->win[0]) s->win[0] = s->win[1] = 0; /* restarted */
+  long dn = nst - s->win[0];
+  if (dn < PS_IDA_WINDOW) return;
+  if (2 * (netf - s->win[1]) > dn) {
     FN(s, F_IDA_ETAMAX, int (*)(void*, double))(s->mem, s->auto_eta);
-    s->limited_at = nst > 0 ? nst : 1;
+    s->limited_at = s->acc[0] + nst;
   }
-  s->win_nst = nst;
-  s->win_netf = netf;
+  s->win[0] = nst;
+  s->win[1] = netf;
 }
 
 static int jac_fn(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yp, N_Vector rr,
                   SUNMatrix J, void* ud, N_Vector t1, N_Vector t2, N_Vector t3) {
   (void)rr; (void)t1; (void)t2; (void)t3;
   psIDA* s = (psIDA*)ud;
-  if (s->auto_eta > 0 && !s->limited_at) watch_error_test(s);
+  if (s->auto_eta > 0 && !s->limited_at) watch(s);
   double* (*data)(N_Vector) = FN(s, F_NV_DATA, double* (*)(N_Vector));
   if (s->band) {
     /* kernel triplets scattered into band storage through a precomputed map */
@@ -181,6 +186,10 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   if (FN(s, F_IDA_SETLS, int (*)(void*, void*, void*))(s->mem, s->LS, s->A) < 0) goto fail;
   FN(s, F_IDA_SETJAC, int (*)(void*, JacFn))(s->mem, jac_fn);
   FN(s, F_IDA_MAXSTEPS, int (*)(void*, long))(s->mem, mxsteps);
+  memset(s->acc, 0, sizeof(s->acc));
+  memset(s->win, 0, sizeof(s->win));
+  s->auto_eta = 0.0;
+  s->limited_at = 0;
   if (hmax > 0) FN(s, F_IDA_MAXSTEP, int (*)(void*, double))(s->mem, hmax);
   if (hmin > 0) FN(s, F_IDA_MINSTEP, int (*)(void*, double))(s->mem, hmin);
   if (h0 > 0) FN(s, F_IDA_INITSTEP, int (*)(void*, double))(s->mem, h0);
@@ -201,15 +210,35 @@ int ps_ida_tune(psIDA* s, double eta_max, double nlconv, double auto_eta) {
   if (eta_max > 0) rc |= FN(s, F_IDA_ETAMAX, int (*)(void*, double))(s->mem, eta_max);
   if (nlconv > 0) rc |= FN(s, F_IDA_NLCONV, int (*)(void*, double))(s->mem, nlconv);
   s->auto_eta = eta_max > 0 ? 0.0 : auto_eta;
-  s->win_nst = s->win_netf = s->limited_at = 0;
+  s->limited_at = 0;
+  memset(s->win, 0, sizeof(s->win));
   return rc;
+}
+
+/* IDA's counters since the last (re)start: steps, nres, njac, netf, ncfn, ngevals. */
+static void ida_counters(psIDA* s, long* c) {
+  FN(s, F_IDA_NSTEPS, int (*)(void*, long*))(s->mem, c + 0);
+  FN(s, F_IDA_NRES, int (*)(void*, long*))(s->mem, c + 1);
+  FN(s, F_IDA_NJAC, int (*)(void*, long*))(s->mem, c + 2);
+  FN(s, F_IDA_NETF, int (*)(void*, long*))(s->mem, c + 3);
+  FN(s, F_IDA_NCFN, int (*)(void*, long*))(s->mem, c + 4);
+  FN(s, F_IDA_NGE, int (*)(void*, long*))(s->mem, c + 5);
+}
+
+/* IDAReInit at (t0, s->y, s->yp), keeping the counters of the run so far. */
+static int restart(psIDA* s, double t0) {
+  long c[6];
+  ida_counters(s, c);
+  for (int i = 0; i < 6; i++) s->acc[i] += c[i];
+  memset(s->win, 0, sizeof(s->win));
+  return FN(s, F_IDA_REINIT, int (*)(void*, double, void*, void*))(s->mem, t0, s->y, s->yp);
 }
 
 int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0) {
   int n = s->m->ny;
   memcpy(FN(s, F_NV_DATA, double* (*)(void*))(s->y), y0, sizeof(double) * (size_t)n);
   memcpy(FN(s, F_NV_DATA, double* (*)(void*))(s->yp), yp0, sizeof(double) * (size_t)n);
-  return FN(s, F_IDA_REINIT, int (*)(void*, double, void*, void*))(s->mem, t0, s->y, s->yp);
+  return restart(s, t0);
 }
 
 int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret, double* y,
@@ -242,11 +271,7 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, double*
 }
 
 void ps_ida_stats(psIDA* s, long* out) {
-  FN(s, F_IDA_NSTEPS, int (*)(void*, long*))(s->mem, out + 0);
-  FN(s, F_IDA_NRES, int (*)(void*, long*))(s->mem, out + 1);
-  FN(s, F_IDA_NJAC, int (*)(void*, long*))(s->mem, out + 2);
-  FN(s, F_IDA_NETF, int (*)(void*, long*))(s->mem, out + 3);
-  FN(s, F_IDA_NCFN, int (*)(void*, long*))(s->mem, out + 4);
-  FN(s, F_IDA_NGE, int (*)(void*, long*))(s->mem, out + 5);
+  ida_counters(s, out);
+  for (int i = 0; i < 6; i++) out[i] += s->acc[i];
   out[6] = s->limited_at;
 }

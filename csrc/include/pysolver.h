@@ -194,7 +194,8 @@ typedef struct psIDA {
   psData* d;              /* its workspace                                      */
   double auto_eta;        /* step-growth limit to switch on when IDA's error
                              test fails most steps (0: never)                   */
-  long win_nst, win_netf; /* steps and error-test failures at the window start  */
+  long win[2];            /* steps and netf at the start of the window          */
+  long acc[6];            /* IDA's counters of the run before the last restart  */
   long limited_at;        /* step at which auto_eta was switched on (0: not)    */
   char msg[256];          /* message of the last error                          */
 } psIDA;
@@ -216,13 +217,14 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
 
 /* Tune IDA's step control for stiff penalties. eta_max > 0 limits how fast IDA may grow its
  * step (IDA's default 2); nlconv > 0 sets the Newton convergence coefficient (IDA's default
- * 0.33, used from the next (re)start); auto_eta > 0 (with eta_max <= 0) switches the limit
- * auto_eta on by itself once IDA's error test has failed in more than half of 50 consecutive
- * steps, the signature of a stiff penalty mode (see README, "Stiff penalties").
+ * 0.33); auto_eta > 0 (with eta_max <= 0) switches the limit auto_eta on by itself once IDA's
+ * error test has failed in more than half of 50 consecutive steps, the signature of
+ * a stiff penalty mode (see README, "Stiff penalties"). Call right after ps_ida_init.
  * Returns 0 or IDA's error flag. */
 int ps_ida_tune(psIDA* s, double eta_max, double nlconv, double auto_eta);
 
-/* Cold-restart the current integration at (t0, y0, yp0). Returns IDA's flag. */
+/* Cold-restart the current integration at (t0, y0, yp0); the counters of ps_ida_stats keep
+ * counting. Returns IDA's flag. */
 int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0);
 
 /* One IDASolve call toward tout (one internal step if onestep) never passing tstop; copies the
@@ -236,9 +238,10 @@ int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret,
 int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, double* y_out,
                    double* yp_out, double* req_out, int* nreached, double* tret, int* rootsfound);
 
-/* IDA's counters: steps, residual evaluations, Jacobian evaluations, error-test failures,
- * nonlinear convergence failures, root-function evaluations, and the step at which the
- * automatic step-growth limit was switched on, 0 if it was not (out has 7 entries). */
+/* IDA's counters over the whole run, restarts included: steps, residual evaluations, Jacobian
+ * evaluations, error-test failures, nonlinear convergence failures, root-function evaluations,
+ * and the step at which the automatic step-growth limit came on, 0 if it did not (out has 7
+ * entries). */
 void ps_ida_stats(psIDA* s, long* out);
 
 /* Free the current integration (the libraries stay open). s may be unused. */
