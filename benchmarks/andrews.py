@@ -2,7 +2,8 @@
 bodies in the plane, the revolute joints as stiff bilateral Force_Penalty pairs (DX, DY of
 coincident markers), the driving torque and the spring as Force_Scalar_TwoBody.
 
-Run: ``python benchmarks/andrews.py [--growth=1.1] [penalty ...]``: the angles at t = 0.03 against
+Run: ``python benchmarks/andrews.py [--growth=G] [--newton=C] [penalty ...]`` (run options
+max_step_growth, nonlin_conv_coef): the angles at t = 0.03 against
 the Test Set reference (PSIDE, rtol = atol = 1e-14; see shared/reference/numerics.md), for each penalty.
 Geometry (Hairer & Wanner, Solving ODEs II, sec. VII.7): crank 1 about O; rod 2 from P on the
 crank to D; body 3 about B, body 5 and body 7 about A; rod 4 from E on body 5 to D; rod 6 from F
@@ -116,7 +117,8 @@ def error(res):
     return max(abs(got[k] - REFERENCE[k]) / max(1.0, abs(REFERENCE[k])) for k in REFERENCE)
 
 
-def main(penalties, growth=None):
+def main(penalties, **options):
+    """Print error, steps, Jacobians and seconds for each penalty; options go to run()."""
     import time
 
     import pysolver
@@ -124,7 +126,7 @@ def main(penalties, growth=None):
     for k in penalties:
         model = pysolver.loads(deck(k))
         t0 = time.perf_counter()
-        res = model.run(max_step_growth=growth)
+        res = model.run(**options)
         dt = time.perf_counter() - t0
         print(f"{k:9.0e} {error(res):9.2e} {res.stats['steps']:7d} {res.stats['njac']:6d} "
               f"{dt:7.2f}  {res.message if not res.success else ''}", flush=True)
@@ -132,7 +134,9 @@ def main(penalties, growth=None):
 
 if __name__ == "__main__":
     args = sys.argv[1:]
-    growth = None
-    if args and args[0].startswith("--growth="):
-        growth = float(args.pop(0).split("=")[1])
-    main([float(a) for a in args] or [1e6, 1e7, 1e8], growth)
+    opts = {}
+    flags = {"--growth": "max_step_growth", "--newton": "nonlin_conv_coef"}
+    while args and args[0].split("=")[0] in flags:
+        key, value = args.pop(0).split("=")
+        opts[flags[key]] = float(value)
+    main([float(a) for a in args] or [1e6, 1e7, 1e8], **opts)

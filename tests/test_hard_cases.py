@@ -6,6 +6,11 @@ import numpy as np
 import pytest
 
 import pysolver
+from pysolver import cida
+
+#: the budgets below are those of the default path, IDA driven from C with its step control
+needs_c = pytest.mark.skipif(not cida.available(),
+                             reason="the scikit-sundae wheel ships no SUNDIALS libraries")
 
 
 def rest_penetration(k, mg, s):
@@ -72,3 +77,94 @@ def test_resting_on_a_sharp_contact_does_not_chatter():
     res = pysolver.loads(deck).run(integr_tol=1e-6)
     assert res.success and res.stats["steps"] < 400
     np.testing.assert_allclose(res.request(1)[-10:, 1], -9.81, rtol=1e-6)
+
+
+@needs_c
+@pytest.mark.parametrize("s", [1e-4, 1e-6])
+def test_seed3_at_penalty_1e10(decks, s):
+    """Penalty 1e10 N/mm with the seed's damping 1e2: nearly elastic contact, the particle keeps
+    bouncing in the V. The run completes within a step budget, never gains energy, and the
+    penetration stays below the elastic bound sqrt(2 E0 / (1000 k)) = 4.8e-4 mm."""
+    text = (decks / "particle_between_lines.xml").read_text().replace(
+        'penalty="1E4"', 'penalty="1e10"').replace('smoothing_factor="1.0"',
+                                                   f'smoothing_factor="{s:g}"')
+    res = pysolver.loads(text).run(backend="c")
+    assert res.success, res.message
+    assert res.stats["steps"] < 13000           # measured 8,511 and 9,854
+    x, z = res.request(1)[:, 0], res.request(1)[:, 1]
+    vx, vz = res.y[:, 3], res.y[:, 5]
+    energy = 0.5 * (vx ** 2 + vz ** 2) + 9810 * z   # kinetic + gravity, <= total (potential >= 0)
+    assert energy.max() <= energy[0] * (1 + 1e-6)
+    assert max((1 + x - z).max(), (1 - x - z).max()) < 4.8e-4
+
+
+# penalty (N/m) of the pendulum rod: step budget at integr_tol 1e-8 over 2 s (measured + 30 %)
+PENDULUM_BUDGET = {1e2: 420, 1e4: 560, 1e6: 1150, 1e8: 3500, 1e10: 9900}
+
+
+def pendulum_deck(k, end=2.0, c=None, dt=0.01):
+    c = 2 * np.sqrt(k) if c is None else c          # critical damping of the 1 kg mass
+    return f"""<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+<Reference_Marker id="1" body_id="1"/><Reference_Marker id="10" body_id="2" pos_x="1"/>
+<Body_Point id="2" cg_id="10" mass="1"/><Force_Gravity grav_y="-9.81"/>
+<Force_Penalty id="1" expr="DM(10,1) - 1" penalty="{k:g}" penalty1="{c:g}"/>
+<Post_Request id="1" expr1="DX(10)" expr2="DY(10)"/></Model>
+<Simulate analysis_type="Transient" end_time="{end}" print_interval="{dt}"/></MotionSolve>"""
+
+
+def rigid_pendulum_distance(res):
+    from scipy.integrate import solve_ivp
+    sol = solve_ivp(lambda t, s: [s[1], -9.81 * np.cos(s[0])], (0, res.t[-1]), [0, 0],
+                    t_eval=res.t, rtol=1e-12, atol=1e-12, method="DOP853")
+    xy = res.request(1)
+    return np.hypot(xy[:, 0] - np.cos(sol.y[0]), xy[:, 1] - np.sin(sol.y[0])).max()
+
+
+@needs_c
+def test_penalty_pendulum_over_eight_decades():
+    """A point-mass pendulum on a critically damped penalty rod, k = 1e2 ... 1e10: every run
+    completes in its step budget, and the distance from the rigid pendulum falls as 1/k until
+    the tolerance takes over (measured 0.60, 1.4e-2, 1.4e-4, 1.9e-5, 1.1e-5)."""
+    err = {}
+    for k, budget in PENDULUM_BUDGET.items():
+        # the C driver: its step-growth limit is what keeps k >= 1e6 short
+        res = pysolver.loads(pendulum_deck(k)).run(integr_tol=1e-8, backend="c")
+        assert res.success, (k, res.message)
+        assert res.stats["steps"] <= budget, (k, res.stats["steps"])
+        err[k] = rigid_pendulum_distance(res)
+    assert 60 < err[1e4] / err[1e6] < 150           # O(1/k) in the model-limited range
+    assert err[1e8] < 4e-5 and err[1e10] < 4e-5
+
+
+def _resident_bytes():
+    import os
+    with open(f"/proc/{os.getpid()}/statm") as fh:
+        return int(fh.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+
+
+@needs_c
+def test_long_run_has_constant_work_per_step_and_no_memory_growth():
+    """200,000 steps (undamped k = 1e8 rod, integr_tol 1e-8): twice the simulated time costs
+    twice the steps with the same residuals and Jacobians per step, and neither Python nor the
+    process grows with the number of steps (the kernel allocates nothing while integrating)."""
+    import tracemalloc
+    short = pysolver.loads(pendulum_deck(1e8, end=5.0, c=0.0, dt=0.05))
+    long = pysolver.loads(pendulum_deck(1e8, end=10.0, c=0.0, dt=0.1))   # same 101 outputs
+    short.run(integr_tol=1e-8, backend="c")          # warm-up: libraries, caches
+    rss0 = _resident_bytes()
+    tracemalloc.start()
+    a = short.run(integr_tol=1e-8, backend="c")
+    peak_short = tracemalloc.get_traced_memory()[1]
+    tracemalloc.reset_peak()
+    b = long.run(integr_tol=1e-8, backend="c")
+    peak_long = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    rss1 = _resident_bytes()
+    assert a.success and b.success and b.stats["steps"] >= 100000
+    assert 1.6 < b.stats["steps"] / a.stats["steps"] < 2.4
+    per_a, per_b = a.stats["nres"] / a.stats["steps"], b.stats["nres"] / b.stats["steps"]
+    assert abs(per_b - per_a) < 0.15 * per_a
+    # Jacobians stay rare (measured 1 per 200-300 steps) in both
+    assert a.stats["njac"] < 0.01 * a.stats["steps"] and b.stats["njac"] < 0.01 * b.stats["steps"]
+    assert peak_long < 1.2 * peak_short + 65536
+    assert rss1 - rss0 < 2 ** 20
