@@ -14,9 +14,8 @@ def _step(g):
     return d * d * (3 - 2 * d)
 
 
-def residual(t, y, yp, res):
-    """IDA residual of the particle between two lines: y = (x, z, vx, vz)."""
-    x, z, vx, vz = y
+def forces(x, z, vx, vz):
+    """Generalized force (fx, fz) of the two smoothed unilateral penalties, in N."""
     fx = 0.0
     fz = 0.0
     for sx in (1.0, -1.0):                 # g = 1 + sx x - z, grad = (sx, -1)
@@ -27,10 +26,24 @@ def residual(t, y, yp, res):
             f = -K * s * g - C * s * gd
             fx += f * sx
             fz -= f
+    return fx, fz
+
+
+def residual(t, y, yp, res):
+    """IDA residual of the particle between two lines: y = (x, z, vx, vz)."""
+    x, z, vx, vz = y
+    fx, fz = forces(x, z, vx, vz)
     res[0] = yp[0] - vx
     res[1] = yp[1] - vz
     res[2] = M * yp[2] - CF * fx
     res[3] = M * (yp[3] + GRAV) - CF * fz
+
+
+def rhs(t, y):
+    """The same equations as an explicit ODE y' = f(t, y), for SciPy's solve_ivp."""
+    x, z, vx, vz = y
+    fx, fz = forces(x, z, vx, vz)
+    return [vx, vz, CF * fx / M, CF * fz / M - GRAV]
 
 
 def initial_state():

@@ -3,6 +3,7 @@
 Problems (README "Accuracy and cost"):
 - oscillator: bilateral penalty on a point mass under gravity, against its closed form;
 - seed example 3 (particle between two lines), against a pysolver run at integr_tol 1e-12;
+- a rigid body (torque-free precession), against its closed form;
 - stiff penalty pendulum (k = 1e8, c = 2e4, 10 s), against the rigid pendulum.
 Comparators run on the same equations: IDA with its own difference-quotient Jacobian
 (``jacobian="dq"``); SciPy's ``solve_ivp`` (Radau, BDF, LSODA) and scikit-sundae's IDA on
@@ -130,12 +131,12 @@ def seed3_comparators(repeat):
     the same scikit-sundae IDA (IDA's difference-quotient Jacobian), error in (x, z) at the
     outputs against a pysolver run at integr_tol 1e-12."""
     from sksundae.ida import IDA
-    from comparators import initial_state, residual
+    from comparators import initial_state, residual, rhs
     model = pysolver.load(ROOT / "decks" / "particle_between_lines.xml")
     ref = model.run(integr_tol=1e-12).request(1)[:, :2]
     print("\nSeed example 3 (x, z over 3 s, 601 outputs): pysolver vs a NumPy residual on IDA")
     print(f"{'tol':>7} {'pysolver err':>12} {'ms':>7} | {'NumPy+IDA err':>13} {'ms':>8} "
-          f"{'time x':>6}")
+          f"{'time x':>6} | SciPy on the same NumPy equations (error, time ratio)")
     rows = []
     for tol in (1e-4, 1e-6, 1e-8):
         tp, res = best_time(lambda: model.run(integr_tol=tol), repeat)
@@ -151,8 +152,14 @@ def seed3_comparators(repeat):
         en = record("seed example 3", "NumPy residual + IDA (scikit-sundae)", tol,
                     np.abs(sol.y[:, :2] - ref).max(axis=1), tn)
         rows.append((tol, ep, tp, en, tn))
+        scipy_cols = []
+        for method in ("Radau", "BDF", "LSODA"):
+            ts, sp = best_time(lambda: scipy_run(method, tol, res.t, rhs, y0), repeat)
+            es = record("seed example 3", f"SciPy {method}", tol,
+                        np.abs(sp.y[:2].T - ref).max(axis=1), ts)
+            scipy_cols.append(f"{method} {es:.2e} {ts / tp:5.1f}x")
         print(f"{tol:7.0e} {ep:12.2e} {tp * 1e3:7.2f} | {en:13.2e} {tn * 1e3:8.2f} "
-              f"{tn / tp:6.1f}")
+              f"{tn / tp:6.1f} | " + " | ".join(scipy_cols))
     return rows
 
 
@@ -194,6 +201,43 @@ def seed3_plain_c(repeat):
         print(f"{tol:7.0e} {ep:12.2e} {res.stats['steps']:6d} {tp * 1e3:7.2f} | {ec:10.2e} "
               f"{steps:6d} {tc * 1e3:7.3f} | {tp / tc:12.1f}")
     return rows
+
+
+def rigid_body(repeat):
+    """Torque-free precession of an axisymmetric rigid body (decks/torque_free_spin.xml): body
+    angular velocity against the closed form; IDA with difference quotients on the same
+    residual, and SciPy on Euler's equations with Euler-parameter kinematics in NumPy."""
+    i1, i3, w3, w1 = 0.1, 0.18, 20.0, 1.0
+    om = (i3 - i1) / i1 * w3
+    model = pysolver.load(ROOT / "decks" / "torque_free_spin.xml")
+
+    def exact_err(t, w):
+        return np.hypot(w[:, 0] - w1 * np.cos(om * t), w[:, 1] - w1 * np.sin(om * t))
+
+    def euler_rhs(t, s):
+        wx, wy, wz, e0, e1, e2, e3 = s
+        return [(i1 - i3) / i1 * wy * wz, (i3 - i1) / i1 * wx * wz, 0.0,
+                0.5 * (-e1 * wx - e2 * wy - e3 * wz), 0.5 * (e0 * wx - e3 * wy + e2 * wz),
+                0.5 * (e3 * wx + e0 * wy - e1 * wz), 0.5 * (-e2 * wx + e1 * wy + e0 * wz)]
+
+    y0 = model.run(integr_tol=1e-4).y[0]
+    s0 = [w1, 0.0, w3, *y0[3:7]]
+    print("\nTorque-free rigid body (2 s, 201 outputs): body angular velocity vs closed form")
+    print(f"{'tol':>7} {'pysolver err':>12} {'ms':>7} | {'IDA-dq err':>10} {'time x':>6} | "
+          "SciPy Radau, BDF, LSODA (error, time ratio)")
+    for tol in (1e-4, 1e-6, 1e-8, 1e-10):
+        tp, res = best_time(lambda: model.run(integr_tol=tol), repeat)
+        ep = record("rigid body", "pysolver", tol, exact_err(res.t, res.request(1)), tp)
+        tdq, rdq = best_time(lambda: model.run(integr_tol=tol, jacobian="dq"), repeat)
+        edq = record("rigid body", "IDA + DQ Jacobian (scikit-sundae)", tol,
+                     exact_err(rdq.t, rdq.request(1)), tdq)
+        cols = []
+        for method in ("Radau", "BDF", "LSODA"):
+            ts, sp = best_time(lambda: scipy_run(method, tol, res.t, euler_rhs, s0), repeat)
+            es = record("rigid body", f"SciPy {method}", tol, exact_err(sp.t, sp.y[:2].T), ts)
+            cols.append(f"{es:.2e} {ts / tp:5.1f}x")
+        print(f"{tol:7.0e} {ep:12.2e} {tp * 1e3:7.2f} | {edq:10.2e} {tdq / tp:6.2f} | "
+              + " | ".join(cols))
 
 
 def pendulum_error(t, xy):
@@ -291,6 +335,7 @@ def main():
     seed_decks(args.repeat)
     seed3_comparators(args.repeat)
     seed3_plain_c(args.repeat)
+    rigid_body(args.repeat)
     stiff_pendulum(args.repeat)
     write_report(args.out)
 
