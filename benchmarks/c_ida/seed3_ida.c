@@ -11,37 +11,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-typedef double sunrealtype;
-typedef int64_t sunindextype;
-typedef struct _generic_N_Vector* N_Vector;
-typedef struct _generic_SUNMatrix* SUNMatrix;
-typedef struct _generic_SUNLinearSolver* SUNLinearSolver;
-typedef struct SUNContext_* SUNContext;
-typedef int (*IDAResFn)(sunrealtype, N_Vector, N_Vector, N_Vector, void*);
-typedef int (*IDALsJacFn)(sunrealtype, sunrealtype, N_Vector, N_Vector, N_Vector, SUNMatrix, void*,
-                          N_Vector, N_Vector, N_Vector);
-int SUNContext_Create(int comm, SUNContext* ctx);
-int SUNContext_Free(SUNContext* ctx);
-N_Vector N_VNew_Serial(sunindextype n, SUNContext ctx);
-sunrealtype* N_VGetArrayPointer(N_Vector v);
-void N_VDestroy(N_Vector v);
-void* IDACreate(SUNContext ctx);
-int IDAInit(void* mem, IDAResFn res, sunrealtype t0, N_Vector y0, N_Vector yp0);
-int IDASStolerances(void* mem, sunrealtype rtol, sunrealtype atol);
-int IDASetMaxNumSteps(void* mem, long mxsteps);
-int IDASetStopTime(void* mem, sunrealtype tstop);
-SUNMatrix SUNDenseMatrix(sunindextype m, sunindextype n, SUNContext ctx);
-sunrealtype* SUNDenseMatrix_Data(SUNMatrix a);
-SUNLinearSolver SUNLinSol_Dense(N_Vector y, SUNMatrix a, SUNContext ctx);
-int IDASetLinearSolver(void* mem, SUNLinearSolver ls, SUNMatrix a);
-int IDASetJacFn(void* mem, IDALsJacFn jac);
-int IDASolve(void* mem, sunrealtype tout, sunrealtype* tret, N_Vector y, N_Vector yp, int itask);
-int IDAGetNumSteps(void* mem, long* n);
-int IDAGetNumResEvals(void* mem, long* n);
-int IDAGetNumJacEvals(void* mem, long* n);
-void IDAFree(void** mem);
-int SUNLinSolFree(SUNLinearSolver ls);
-void SUNMatDestroy(SUNMatrix a);
+#include "sundials_decls.h"
 
 #define K 1e4
 #define C 1e2
@@ -138,12 +108,7 @@ int main(int argc, char** argv) {
     IDAGetNumSteps(mem, &nst);
     IDAGetNumResEvals(mem, &nre);
     IDAGetNumJacEvals(mem, &nje);
-    IDAFree(&mem);
-    SUNLinSolFree(LS);
-    SUNMatDestroy(J);
-    N_VDestroy(y);
-    N_VDestroy(yp);
-    SUNContext_Free(&ctx);
+    bench_free(mem, LS, J, y, yp, ctx);
   }
   printf("%ld %ld %ld %.9f\n", nst, nre, nje, best);
   for (int k = 0; k <= 600; k++) printf("%.17g %.17g\n", out[k][0], out[k][1]);
