@@ -33,7 +33,8 @@ _OPTION_NAMES = ("integr_tol", "h_max", "h_min", "h0_max", "max_num_steps", "lin
 #: The C driver's step-growth limit once IDA's error test fails in most steps (a stiff
 #: penalty mode; README "Stiff penalties"), and its Newton convergence coefficient
 #: (IDA's default 0.33: ten times tighter costs nothing on the seed decks and halves the
-#: steps of stiff penalties).
+#: steps of stiff penalties; near the limit of double precision, penalty/mass ~ 1e14,
+#: rounding keeps Newton from reaching it and 0.33 must be asked for).
 AUTO_STEP_GROWTH = 1.1
 NONLIN_CONV_COEF = 0.033
 
