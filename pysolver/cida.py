@@ -17,6 +17,7 @@ _LIBS = ("sundials_core", "sundials_nvecserial", "sundials_sunmatrixdense",
          "sundials_sunlinsoldense", "sundials_ida", "sundials_sunmatrixband",
          "sundials_sunlinsolband")
 _PATHS = None
+_LOADED = None
 _MESSAGES = {0: "Successful function return.", 1: "Reached specified tstop.",
              2: "Found a root.", -1: "Could not reach endpoint after 'max_num_steps'.",
              -2: "The requested accuracy could not be achieved.",
@@ -46,13 +47,23 @@ def _library_paths():
     return _PATHS or None
 
 
+def _loaded():
+    """A psIDA whose libraries are open and function table filled (once per process; the
+    libraries stay open), or None when SUNDIALS cannot be loaded."""
+    global _LOADED
+    if _LOADED is None:
+        _LOADED = False
+        paths = _library_paths()
+        if paths:
+            s = ffi.new("psIDA *")
+            if lib.ps_ida_load(s, *[p.encode() for p in paths]) == 0:
+                _LOADED = s
+    return _LOADED or None
+
+
 def available():
     """True when SUNDIALS can be loaded for the C driver."""
-    paths = _library_paths()
-    if not paths:
-        return False
-    s = ffi.new("psIDA *")
-    return lib.ps_ida_load(s, *[p.encode() for p in paths]) == 0
+    return _loaded() is not None
 
 
 class _Sol:
@@ -88,10 +99,12 @@ class CIDA:
     def __init__(self, kernel, rtol, atol, max_step=0.0, min_step=0.0, first_step=0.0,
                  max_num_steps=500, band=None, tune=None):
         self.k = kernel
-        self.s = ffi.new("psIDA *")
-        paths = _library_paths()
-        if not paths or lib.ps_ida_load(self.s, *[p.encode() for p in paths]) != 0:
+        template = _loaded()
+        if template is None:
             raise RuntimeError("SUNDIALS libraries not available for the C driver")
+        # a copy of the loaded template: library handles and function table, nothing running
+        self.s = ffi.new("psIDA *")
+        ffi.memmove(self.s, template, ffi.sizeof("psIDA"))
         self.opts = (float(rtol), float(atol), float(max_step), float(min_step),
                      float(first_step), int(max_num_steps))
         self.rootdir = np.ones(max(kernel.nsensor, 1), dtype=np.int32)

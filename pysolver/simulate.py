@@ -13,6 +13,7 @@ seed 003 Comment 3). Scenes without one pay nothing for it.
 """
 import collections
 import dataclasses
+import itertools
 import math
 import os
 import sys
@@ -506,7 +507,8 @@ class _Driver:
             elif self.use_c and not self.verbose_active:
                 # the C driver runs through all pending outputs until an event or the end
                 sol, Y, YP, REQ, n = self.solver.outputs(list(pending), cmd.end_time)
-                times = [pending.popleft() for _ in range(n)]
+                times = list(itertools.islice(pending, n))
+                pending = collections.deque(itertools.islice(pending, n, None))
                 if n:
                     self.ts.extend(times)
                     self.ys.extend(Y)
