@@ -24,7 +24,10 @@ class Result:
     stats : dict
         ``steps``, ``nres`` (residual evaluations), ``njac`` (Jacobian evaluations),
         ``nfail`` (failed step attempts: error-test and convergence failures together),
-        ``nfev``/``njev`` as counted by IDA, ``outputs``.
+        ``ida_nfev``/``ida_njev`` as counted by IDA, ``outputs``; with IDA driven from C also
+        ``netf``/``ncfn`` (IDA's error-test and convergence failures) and
+        ``growth_limited_at`` (the step at which the automatic step-growth limit for stiff
+        penalties came on; None if it did not), None through scikit-sundae.
     timing : dict
         Wall time in seconds: ``setup`` (compile, initial conditions), ``integrate``, ``total``.
     meta : dict
@@ -205,6 +208,9 @@ class Result:
                  f"{s['njac']}  failed step attempts: {s['nfail']}",
                  f"wall time: setup {self.timing['setup']:.4f} s, integration "
                  f"{self.timing['integrate']:.4f} s"]
+        if s.get("growth_limited_at"):
+            lines.insert(3, f"stiff penalty mode: IDA's step growth limited from step "
+                            f"{s['growth_limited_at']}")
         if "nevents" in s and (s["nevents"] or s["nroots"]):
             lines.insert(3, f"sensor events: {s['nevents']}  re-armed: {s['nrearms']}  "
                             f"restarts: {s['nrestarts']}  root evaluations: {s['nroots']}")

@@ -87,3 +87,9 @@ INTEGRATOR(ERROR=1e-7, MAX_STEP_GROWTH=1.2, NONLIN_CONV_COEF=0.1)
     assert model.transient.max_step_growth == 1.2
     assert model.transient.nonlin_conv_coef == 0.1
     assert model.transient.integr_tol == 1e-7
+
+
+def test_summary_reports_the_stiff_penalty_mode():
+    res = run()
+    assert f"step growth limited from step {res.stats['growth_limited_at']}" in res.summary()
+    assert "stiff penalty" not in run('max_step_growth="2"').summary()
