@@ -31,7 +31,7 @@ enum {
   F_IDA_MINSTEP, F_IDA_INITSTEP, F_IDA_STOPTIME, F_IDA_ROOTINIT, F_IDA_ROOTDIR,
   F_IDA_NOWARN, F_IDA_SOLVE, F_IDA_ROOTINFO, F_IDA_NSTEPS, F_IDA_NRES, F_IDA_NJAC,
   F_IDA_NETF, F_IDA_NCFN, F_IDA_NGE, F_IDA_FREE, F_MAT_BAND, F_MAT_BAND_DATA, F_LS_BAND,
-  F_IDA_ETAMAX, F_IDA_NLCONV, F_COUNT
+  F_IDA_ETAMAX, F_IDA_NLCONV, F_IDA_LASTSTEP, F_COUNT
 };
 static const struct { int lib; const char* name; } FNS[F_COUNT] = {
   {0, "SUNContext_Create"}, {0, "SUNContext_Free"}, {0, "SUNContext_ClearErrHandlers"},
@@ -46,7 +46,7 @@ static const struct { int lib; const char* name; } FNS[F_COUNT] = {
   {4, "IDAGetNumSteps"}, {4, "IDAGetNumResEvals"}, {4, "IDAGetNumJacEvals"},
   {4, "IDAGetNumErrTestFails"}, {4, "IDAGetNumNonlinSolvConvFails"}, {4, "IDAGetNumGEvals"},
   {4, "IDAFree"}, {5, "SUNBandMatrix"}, {5, "SUNBandMatrix_Data"}, {6, "SUNLinSol_Band"},
-  {4, "IDASetEtaMax"}, {4, "IDASetNonlinConvCoef"},
+  {4, "IDASetEtaMax"}, {4, "IDASetNonlinConvCoef"}, {4, "IDAGetLastStep"},
 };
 
 #define FN(s, k, type) ((type)(s)->fn[k])
@@ -90,21 +90,28 @@ static int res_fn(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* ud
 
 /* Called with each Jacobian evaluation (IDA forms one after every error-test failure, so about
  * once per step when the error test keeps failing): over windows of PS_IDA_WINDOW steps, switch
- * the step-growth limit auto_eta on if more than half of the steps failed the error test, the
- * cycle "grow the step 2x, fail, shrink it" of a stiff penalty mode. */
+ * the step-growth limit auto_eta on if more than half of the steps failed the error test while
+ * the step size stayed within a factor 4: the steady cycle "grow the step 2x, fail, shrink it"
+ * of a stiff penalty mode, not the burst of failures of an impact, where the step collapses. */
 static void watch(psIDA* s) {
   long nst, netf;
+  double h;
   FN(s, F_IDA_NSTEPS, int (*)(void*, long*))(s->mem, &nst);
   FN(s, F_IDA_NETF, int (*)(void*, long*))(s->mem, &netf);
+  FN(s, F_IDA_LASTSTEP, int (*)(void*, double*))(s->mem, &h);
   if (nst < s->win[0]) s->win[0] = s->win[1] = 0; /* restarted */
+  h = fabs(h);
+  if (h > 0 && (s->win_h[0] == 0 || h < s->win_h[0])) s->win_h[0] = h;
+  if (h > s->win_h[1]) s->win_h[1] = h;
   long dn = nst - s->win[0];
   if (dn < PS_IDA_WINDOW) return;
-  if (2 * (netf - s->win[1]) > dn) {
+  if (2 * (netf - s->win[1]) > dn && s->win_h[1] < 4 * s->win_h[0]) {
     FN(s, F_IDA_ETAMAX, int (*)(void*, double))(s->mem, s->auto_eta);
     s->limited_at = s->acc[0] + nst;
   }
   s->win[0] = nst;
   s->win[1] = netf;
+  s->win_h[0] = s->win_h[1] = 0.0;
 }
 
 static int jac_fn(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yp, N_Vector rr,
@@ -212,6 +219,7 @@ int ps_ida_tune(psIDA* s, double eta_max, double nlconv, double auto_eta) {
   s->auto_eta = eta_max > 0 ? 0.0 : auto_eta;
   s->limited_at = 0;
   memset(s->win, 0, sizeof(s->win));
+  s->win_h[0] = s->win_h[1] = 0.0;
   return rc;
 }
 

@@ -255,6 +255,34 @@ static void gdot(const psModel* m, psData* d, const psuHD* c, int tape, const do
 
 static double sgn(double x) { return x >= 0.0 ? 1.0 : -1.0; }
 
+/* STEP, STEP5 or HAVSIN of x between constant points (x0, h0) and (x1, h1) in one instruction:
+ * h0 + (h1 - h0) S(D) with D = (x - x0) / (x1 - x0) clamped to [0, 1], as the elementary
+ * operations would give it (flat, with zero derivatives, outside the open interval). */
+static void step_const(const psuHD* c, double* out, const double* xv, const double* consts,
+                       const int* a) {
+  double x0 = consts[a[1]], h0 = consts[a[2]], x1 = consts[a[3]], h1 = consts[a[4]];
+  double w = x1 - x0, dh = h1 - h0, D = (xv[0] - x0) / w;
+  if (D <= 0.0 || D >= 1.0) {
+    psu_hd_unary(c, out, xv, D <= 0.0 ? h0 : h1, 0.0, 0.0);
+    return;
+  }
+  double s, s1, s2;
+  switch (a[5]) {
+    case 0: s = D * D * (3 - 2 * D); s1 = 6 * D * (1 - D); s2 = 6 * (1 - 2 * D); break;
+    case 1:
+      s = D * D * D * (10 - 15 * D + 6 * D * D);
+      s1 = 30 * D * D * (1 - D) * (1 - D);
+      s2 = 60 * D * (1 - D) * (1 - 2 * D);
+      break;
+    default:
+      s = 0.5 * (1 - cos(M_PI * D));
+      s1 = 0.5 * M_PI * sin(M_PI * D);
+      s2 = 0.5 * M_PI * M_PI * cos(M_PI * D);
+      break;
+  }
+  psu_hd_unary(c, out, xv, h0 + dh * s, dh * s1 / w, dh * s2 / (w * w));
+}
+
 /* Elementary functions of one argument: value and first two derivatives. */
 static void unary(const psuHD* c, int op, double* out, const double* a) {
   double x = a[0], f = 0, f1 = 0, f2 = 0;
@@ -349,6 +377,7 @@ void ps_tape_run(const psModel* m, psData* d, int tape, int order, int values_on
       case PS_OP_MEASURE: measure(m, d, &c, out, a); break;
       case PS_OP_GDOT: gdot(m, d, &c, tape, ps_slot(m, d, a[0]), out); break;
       case PS_OP_SENVAL: psu_hd_const(&c, out, d->senval[a[0]]); break;
+      case PS_OP_STEPC: step_const(&c, out, ps_slot(m, d, a[0]), m->consts + 0, a); break;
       case PS_OP_AXDOT: {
         double* X1 = ps_tmp(m, d, T_X);
         double* X2 = ps_tmp(m, d, T_XJ);

@@ -48,6 +48,8 @@ enum psOp {
   PS_OP_AXDOT,       /* dot of axis a1 of marker a0 with axis a3 of marker a2 (-1 = global);
                         a4, a5 their body slots */
   PS_OP_SENVAL,      /* stored value d->senval[a0] of a Sensor_Evaluate (constant between events) */
+  PS_OP_STEPC,       /* STEP-family function of slot a0 with constant bounds consts[a1..a4] =
+                        x0, h0, x1, h1; a5 the shape: 0 STEP, 1 STEP5, 2 HAVSIN */
   PS_OP_COUNT
 };
 
@@ -195,6 +197,7 @@ typedef struct psIDA {
   double auto_eta;        /* step-growth limit to switch on when IDA's error
                              test fails most steps (0: never)                   */
   long win[2];            /* steps and netf at the start of the window          */
+  double win_h[2];        /* smallest and largest step seen in the window       */
   long acc[6];            /* IDA's counters of the run before the last restart  */
   long limited_at;        /* step at which auto_eta was switched on (0: not)    */
   char msg[256];          /* message of the last error                          */
@@ -218,9 +221,9 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
 /* Tune IDA's step control for stiff penalties. eta_max > 0 limits how fast IDA may grow its
  * step (IDA's default 2); nlconv > 0 sets the Newton convergence coefficient (IDA's default
  * 0.33); auto_eta > 0 (with eta_max <= 0) switches the limit auto_eta on by itself once IDA's
- * error test has failed in more than half of 50 consecutive steps, the signature of
- * a stiff penalty mode (see README, "Stiff penalties"). Call right after ps_ida_init.
- * Returns 0 or IDA's error flag. */
+ * error test has failed in more than half of 50 consecutive steps while the step size stayed
+ * within a factor 4, the signature of a stiff penalty mode (see README, "Stiff penalties").
+ * Call right after ps_ida_init. Returns 0 or IDA's error flag. */
 int ps_ida_tune(psIDA* s, double eta_max, double nlconv, double auto_eta);
 
 /* Cold-restart the current integration at (t0, y0, yp0); the counters of ps_ida_stats keep
