@@ -114,12 +114,17 @@ class _Tape:
         d = self.op(lib.PS_OP_DIV, self.op(lib.PS_OP_SUB, x, x0), self.op(lib.PS_OP_SUB, x1, x0))
         return self.emit(lib.PS_OP_CLAMP01, d)
 
+    def step_const(self, x, x0, h0, x1, h1, kind="STEP"):
+        """STEP-family function of slot x between constant points: one instruction."""
+        return self.emit(lib.PS_OP_STEPC, x, *[self.c.const_index(float(v))
+                                               for v in (x0, h0, x1, h1)],
+                         ("STEP", "STEP5", "HAVSIN").index(kind))
+
     def step(self, x, x0, h0, x1, h1, kind="STEP"):
         bounds = [self.value(s) for s in (x0, h0, x1, h1)]
         if all(v is not None for v in bounds) and bounds[0] != bounds[2]:
             # the common case (literal bounds): one instruction instead of about ten
-            return self.emit(lib.PS_OP_STEPC, x, *[self.c.const_index(v) for v in bounds],
-                             ("STEP", "STEP5", "HAVSIN").index(kind))
+            return self.step_const(x, *bounds, kind=kind)
         D = self.ramp(x, x0, x1)
         dh = self.op(lib.PS_OP_SUB, h1, h0)
         mul, add, sub = lib.PS_OP_MUL, lib.PS_OP_ADD, lib.PS_OP_SUB
@@ -270,7 +275,7 @@ class Compiler:
             gd = tape.emit(lib.PS_OP_GDOT, g)
             tape.has_gdot = True
         if p.unilateral:
-            S = tape.step(g, tape.const(0), tape.const(0), tape.const(p.smoothing), tape.const(1))
+            S = tape.step_const(g, 0.0, 0.0, p.smoothing, 1.0)
             k = tape.op(mul, tape.const(p.penalty), S)
             c = tape.op(mul, tape.const(p.penalty1), S) if gd is not None else None
         else:
