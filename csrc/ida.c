@@ -195,6 +195,7 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   FN(s, F_IDA_MAXSTEPS, int (*)(void*, long))(s->mem, mxsteps);
   memset(s->acc, 0, sizeof(s->acc));
   memset(s->win, 0, sizeof(s->win));
+  s->win_h[0] = s->win_h[1] = 0.0;
   s->auto_eta = 0.0;
   s->limited_at = 0;
   if (hmax > 0) FN(s, F_IDA_MAXSTEP, int (*)(void*, double))(s->mem, hmax);
@@ -239,6 +240,7 @@ static int restart(psIDA* s, double t0) {
   ida_counters(s, c);
   for (int i = 0; i < 6; i++) s->acc[i] += c[i];
   memset(s->win, 0, sizeof(s->win));
+  s->win_h[0] = s->win_h[1] = 0.0;
   return FN(s, F_IDA_REINIT, int (*)(void*, double, void*, void*))(s->mem, t0, s->y, s->yp);
 }
 
