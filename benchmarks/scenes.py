@@ -1,4 +1,5 @@
 """Scene generators shared by tests and benchmarks."""
+import pathlib
 
 
 def chain_deck(n, penalty=1e4, penalty1=20.0, end_time=1.0, tol=1e-6):
@@ -22,11 +23,7 @@ def chain_deck(n, penalty=1e4, penalty1=20.0, end_time=1.0, tol=1e-6):
             "</MotionSolve>\n")
 
 
-#: The stiff penalty pendulum of issue 5: 1 kg on a bilateral penalty rod (k = 1e8, c = 2e4,
-#: critical), released horizontally, 10 s, outputs every 0.01 s.
-PENDULUM = """<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
-<Reference_Marker id="1" body_id="1"/><Reference_Marker id="10" body_id="2" pos_x="1"/>
-<Body_Point id="2" cg_id="10" mass="1"/><Force_Gravity grav_y="-9.81"/>
-<Force_Penalty id="1" expr="DM(10,1) - 1" penalty="1e8" penalty1="2e4"/>
-<Post_Request id="1" expr1="DX(10)" expr2="DY(10)"/></Model>
-<Simulate analysis_type="Transient" end_time="10" print_interval="0.01"/></MotionSolve>"""
+#: The stiff penalty pendulum of issue 5 (decks/stiff_penalty_pendulum.xml): 1 kg on a bilateral
+#: penalty rod (k = 1e8, c = 2e4, critical), released horizontally, 10 s, outputs every 0.01 s.
+PENDULUM = (pathlib.Path(__file__).resolve().parent.parent / "decks"
+            / "stiff_penalty_pendulum.xml").read_text()
