@@ -54,6 +54,26 @@ def test_chain(benchmark, n, linsolver):
     benchmark.extra_info.update(res.stats)
 
 
+@pytest.mark.parametrize("n", [10, 100, 1000, 5000])
+def test_chain_scaling(benchmark, n):
+    """The scaling scene (benchmarks/scaling.py): load + compile timed, then 0.2 s of
+    integration with the solver chosen from the structure (dense at N = 10, band from C
+    above), its time per step in extra_info."""
+    text = chain_deck(n, end_time=0.2)
+
+    def load():
+        model = pysolver.loads(text)
+        model._kernel()
+        return model
+    model = benchmark.pedantic(load, rounds=3, iterations=1)   # timed: load + compile
+    res = model.run()
+    assert res.success
+    benchmark.extra_info.update(res.stats, states=model._kernel().ny,
+                                integrate_s=res.timing["integrate"],
+                                ms_per_step=1e3 * res.timing["integrate"] / res.stats["steps"],
+                                linsolver=res.meta["options"]["linsolver"])
+
+
 # at 1e9 IDA's own step control fails its error test almost every step (minutes per run)
 @pytest.mark.parametrize("penalty,control", [(1e8, "pysolver"), (1e8, "IDA as shipped"),
                                              (1e9, "pysolver"), (1e10, "pysolver")])
