@@ -90,7 +90,9 @@ def test_seed3_at_penalty_1e10(decks, s):
                                                    f'smoothing_factor="{s:g}"')
     res = pysolver.loads(text).run(backend="c")
     assert res.success, res.message
-    assert res.stats["steps"] < 22000           # measured 8,473 and 16,468
+    # the bouncing is chaotic: rounding changes the step count (measured 8,473 and 16,468);
+    # the bound catches a step-growth limit switched on by the impacts (measured 54,438)
+    assert res.stats["steps"] < 30000
     x, z = res.request(1)[:, 0], res.request(1)[:, 1]
     vx, vz = res.y[:, 3], res.y[:, 5]
     energy = 0.5 * (vx ** 2 + vz ** 2) + 9810 * z   # kinetic + gravity, <= total (potential >= 0)
