@@ -99,7 +99,6 @@ static void watch(psIDA* s) {
   FN(s, F_IDA_NSTEPS, int (*)(void*, long*))(s->mem, &nst);
   FN(s, F_IDA_NETF, int (*)(void*, long*))(s->mem, &netf);
   FN(s, F_IDA_LASTSTEP, int (*)(void*, double*))(s->mem, &h);
-  if (nst < s->win[0]) s->win[0] = s->win[1] = 0; /* restarted */
   h = fabs(h);
   if (h > 0 && (s->win_h[0] == 0 || h < s->win_h[0])) s->win_h[0] = h;
   if (h > s->win_h[1]) s->win_h[1] = h;
@@ -218,9 +217,6 @@ int ps_ida_tune(psIDA* s, double eta_max, double nlconv, double auto_eta) {
   if (eta_max > 0) rc |= FN(s, F_IDA_ETAMAX, int (*)(void*, double))(s->mem, eta_max);
   if (nlconv > 0) rc |= FN(s, F_IDA_NLCONV, int (*)(void*, double))(s->mem, nlconv);
   s->auto_eta = eta_max > 0 ? 0.0 : auto_eta;
-  s->limited_at = 0;
-  memset(s->win, 0, sizeof(s->win));
-  s->win_h[0] = s->win_h[1] = 0.0;
   return rc;
 }
 
@@ -234,21 +230,17 @@ static void ida_counters(psIDA* s, long* c) {
   FN(s, F_IDA_NGE, int (*)(void*, long*))(s->mem, c + 5);
 }
 
-/* IDAReInit at (t0, s->y, s->yp), keeping the counters of the run so far. */
-static int restart(psIDA* s, double t0) {
+int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0) {
+  int n = s->m->ny;
+  memcpy(FN(s, F_NV_DATA, double* (*)(void*))(s->y), y0, sizeof(double) * (size_t)n);
+  memcpy(FN(s, F_NV_DATA, double* (*)(void*))(s->yp), yp0, sizeof(double) * (size_t)n);
+  /* IDA's counters restart from zero: keep those of the run so far */
   long c[6];
   ida_counters(s, c);
   for (int i = 0; i < 6; i++) s->acc[i] += c[i];
   memset(s->win, 0, sizeof(s->win));
   s->win_h[0] = s->win_h[1] = 0.0;
   return FN(s, F_IDA_REINIT, int (*)(void*, double, void*, void*))(s->mem, t0, s->y, s->yp);
-}
-
-int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0) {
-  int n = s->m->ny;
-  memcpy(FN(s, F_NV_DATA, double* (*)(void*))(s->y), y0, sizeof(double) * (size_t)n);
-  memcpy(FN(s, F_NV_DATA, double* (*)(void*))(s->yp), yp0, sizeof(double) * (size_t)n);
-  return restart(s, t0);
 }
 
 int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret, double* y,

@@ -603,9 +603,8 @@ def build_model(elements, source):
             if a["nonlin_conv_coef"] is not None and a["nonlin_conv_coef"] >= 1:
                 raise ctx.error(f"got {a['nonlin_conv_coef']:g}; expected a value in (0, 1)",
                                 "nonlin_conv_coef")
-            model.transient = Transient(a["integr_tol"], a["h_max"], a["h_min"], a["h0_max"],
-                                        a["max_num_steps"], a["max_step_growth"],
-                                        a["nonlin_conv_coef"])
+            model.transient = Transient(**{f.name: a[f.name]
+                                           for f in dataclasses.fields(Transient)})
         elif canon == "Simulate":
             sim_t = _simulate(ctx, a, model, sim_t)
         elif canon == "Stop":
