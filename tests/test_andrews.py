@@ -2,7 +2,6 @@
 against the published reference falls as O(1/penalty)."""
 import sys
 
-
 import pysolver
 from conftest import ROOT
 
