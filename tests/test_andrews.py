@@ -31,11 +31,13 @@ def test_error_against_the_test_set_reference_falls_as_one_over_penalty():
     assert 8 < errors[1e7] / errors[1e8] < 15
 
 
-def test_stiffer_joints_switch_the_step_growth_limit_on():
+def test_stiffer_joints_keep_the_run_short_and_the_trend():
     """At penalty 1e9 IDA as shipped fails its error test nearly every step (226,354 steps,
-    144 s measured); the C driver notices and limits the step growth by itself, which keeps
-    the run short and the O(1/penalty) trend (measured 8.4e-5 in 4,899 steps)."""
+    144 s measured). Whether the C driver's automatic step-growth limit comes on here depends
+    on rounding (measured: on at step ~600 on one machine, 4,899 steps; never on another, 4,265
+    steps, error 8.4e-5 both), so the test asserts the outcome: a short run on the O(1/penalty)
+    trend. tests/test_stiff_penalty.py builds a case where the limit is certain to come on."""
     res = pysolver.loads(andrews.deck(1e9)).run(backend="c")
     assert res.success and res.stats["steps"] < 6000
-    assert res.stats["growth_limited_at"] is not None
+    assert res.stats["netf"] < 0.5 * res.stats["steps"]
     assert 6e-5 < andrews.error(res) < 1.2e-4
