@@ -306,18 +306,25 @@ int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, cons
   return check_finite(d, data, nnz, "Jacobian");
 }
 
-int ps_roots(const psModel* m, psData* d, double t, const double* y, const double* yp,
-             double* g) {
+/* Evaluate every sensor's expression into d->sensor_f (derivative order 0). */
+static void sensor_values(const psModel* m, psData* d, double t, const double* y,
+                          const double* yp) {
   int last = -1;
-  d->nroots++;
   for (int k = 0; k < m->nsensor; k++) {
     int tape = m->sensor_tape[k];
     if (tape != last) ps_tape_run(m, d, tape, m->tape_order[tape], 1, t, y, yp);
     last = tape;
-    double f = ps_slot(m, d, m->sensor_slot[k])[0];
-    double v = m->sensor_value[k], tol = m->sensor_tol[k];
+    d->sensor_f[k] = ps_slot(m, d, m->sensor_slot[k])[0];
+  }
+}
+
+int ps_roots(const psModel* m, psData* d, double t, const double* y, const double* yp,
+             double* g) {
+  d->nroots++;
+  sensor_values(m, d, t, y, yp);
+  for (int k = 0; k < m->nsensor; k++) {
+    double f = d->sensor_f[k], v = m->sensor_value[k], tol = m->sensor_tol[k];
     int armed = d->sensor_armed[k];
-    d->sensor_f[k] = f;
     switch (m->sensor_compare[k]) {
       case PS_CMP_GE: g[k] = armed ? f - v : (v - tol) - f; break;
       case PS_CMP_LT: g[k] = armed ? v - f : f - (v + tol); break;
@@ -326,6 +333,20 @@ int ps_roots(const psModel* m, psData* d, double t, const double* y, const doubl
         g[k] = armed ? side * (v + side * tol - f) : fabs(f - v) - 2.0 * tol;
         break;
       }
+    }
+  }
+  return PS_OK;
+}
+
+int ps_sensor_status(const psModel* m, psData* d, double t, const double* y, const double* yp,
+                     int* holds, int* rearms) {
+  sensor_values(m, d, t, y, yp);
+  for (int k = 0; k < m->nsensor; k++) {
+    double f = d->sensor_f[k], v = m->sensor_value[k], tol = m->sensor_tol[k];
+    switch (m->sensor_compare[k]) {
+      case PS_CMP_GE: holds[k] = f >= v; rearms[k] = f < v - tol; break;
+      case PS_CMP_LT: holds[k] = f < v; rearms[k] = f > v + tol; break;
+      default: holds[k] = fabs(f - v) <= tol; rearms[k] = fabs(f - v) > 2.0 * tol; break;
     }
   }
   return PS_OK;

@@ -5,10 +5,10 @@
 >>> res = model.run()                                  # doctest: +SKIP
 >>> res.request(1)[:, 0]                               # doctest: +SKIP
 """
+from ._version import __version__
+from .deck.loader import load, loads
 from .errors import DeckError
-from .loader import load, loads
 from .model import Model
 from .results import Result
-from .simulate import __version__
 
 __all__ = ["load", "loads", "DeckError", "Model", "Result", "__version__"]

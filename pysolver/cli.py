@@ -6,7 +6,7 @@ import os
 import sys
 
 from .errors import DeckError
-from .loader import load
+from .deck.loader import load
 
 
 def _run(args):

@@ -14,8 +14,8 @@ class Result:
         False when the integration failed; ``message`` says why. Output rows up to the failure
         are kept.
     status : int
-        0 success; negative: an integrator failure code (SUNDIALS IDA's) or -100 for too many
-        steps.
+        0 success, 1 halted by a sensor; negative: an integrator failure code (SUNDIALS
+        IDA's), -100 too many steps, -200 sensor events chatter, -300 a static analysis failed.
     message : str
     t : ndarray, shape (n,)
         Output times (print times of every Simulate command, the initial time first).
@@ -32,19 +32,19 @@ class Result:
         Wall time in seconds: ``setup`` (compile, initial conditions), ``integrate``, ``total``.
     meta : dict
         pysolver version, deck path and SHA-256, integrator options.
-    events : list of pysolver.simulate.Event
+    events : list of pysolver.solve.sensors.Event
         One record per sensor firing: ``time``, ``sensor`` (id), ``label``, ``value`` (the
         sensor's expression then) and ``actions`` taken.
     log : list of str
         The event log: firings, zero-crossing searches, and (verbose sensors) each output row
         while a sensor is active.
-    statics : list of pysolver.statics.StaticResult
+    statics : list of pysolver.solve.statics.StaticResult
         One record per static solve (each output of a quasi-static analysis): method,
         iterations, imbalance, error, success, message, compliance.
     """
 
-    def __init__(self, t, y, yp, outputs, channels, state_names, success, status, message,
-                 stats, timing, meta, labels=None):
+    def __init__(self, *, t, y, yp, outputs, channels, state_names, success, status, message,
+                 stats, timing, meta, labels=None, events=(), log=(), statics=()):
         self.t = np.asarray(t)
         self.y = np.asarray(y)
         self.yp = np.asarray(yp)
@@ -56,9 +56,9 @@ class Result:
         self.meta = meta
         self.state_names = list(state_names)
         self._labels = labels or {}
-        self.events = []
-        self.log = []
-        self.statics = []
+        self.events = list(events)
+        self.log = list(log)
+        self.statics = list(statics)
         outputs = np.asarray(outputs).reshape(len(self.t), -1)
         self._requests = {}
         for col, (rid, k) in enumerate(channels):

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import pysolver
-from pysolver import cida
+from pysolver.solve import cida
 
 pytestmark = pytest.mark.skipif(not cida.available(),
                                 reason="the scikit-sundae wheel ships no SUNDIALS libraries")

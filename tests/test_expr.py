@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import pysolver
-from pysolver import expr as ex
+from pysolver.deck import expr as ex
 from pysolver.errors import ExpressionError
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import pysolver
-from pysolver import cida
+from pysolver.solve import cida
 
 #: the budgets below are those of the default path, IDA driven from C with its step control
 needs_c = pytest.mark.skipif(not cida.available(),

@@ -2,7 +2,7 @@
 import numpy as np
 
 import pysolver
-from pysolver.model import _rot_from_e
+from pysolver.rotations import rot_from_e as _rot_from_e
 
 I1, I3, W3, W1 = 0.1, 0.18, 20.0, 1.0
 
@@ -50,7 +50,7 @@ def test_orientation_forms_agree():
     Rz = lambda a: np.array([[c(a), -s(a), 0], [s(a), c(a), 0], [0, 0, 1]])
     Rx = lambda a: np.array([[1, 0, 0], [0, c(a), -s(a)], [0, s(a), c(a)]])
     A = Rz(psi) @ Rx(theta) @ Rz(phi)
-    e = [float(v) for v in pysolver.model.e_from_rot(A)]
+    e = [float(v) for v in pysolver.rotations.e_from_rot(A)]
     cols = " ".join(f'a{r}{k}="{float(A[r, k])!r}"' for k in range(3) for r in range(3))
     deck = f"""<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
       <Reference_Marker id="1" body_id="1" psi="{psi}" theta="{theta}" phi="{phi}"/>

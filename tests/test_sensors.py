@@ -152,7 +152,7 @@ def test_chatter_is_bounded_with_a_message():
               'error_tol="0" evaluate_id="1"/>')
     res = pysolver.loads(ball(sensor, extra=extra)).run()
     assert not res.success and res.status == -200 and "chatter" in res.message
-    limit = pysolver.simulate.CHATTER_LIMIT
+    limit = pysolver.solve.sensors.CHATTER_LIMIT
     assert limit // 2 <= len(res.events) <= limit
     assert all(abs(e.time - 0.3) < 1e-9 for e in res.events)
     assert res.t[-1] <= 0.3 + 1e-9     # rows up to the failure are kept

@@ -41,7 +41,7 @@ def test_sparse_and_dense_runs_agree():
 def test_auto_picks_a_structured_solver_for_large_scenes():
     """From 300 states: IDA's band solver from C when the Jacobian is a narrow band (a chain),
     otherwise SuperLU_MT through scikit-sundae."""
-    from pysolver.simulate import SPARSE_THRESHOLD
+    from pysolver.options import SPARSE_THRESHOLD
     model = pysolver.loads(chain_deck(SPARSE_THRESHOLD // 6 + 1, end_time=0.02))
     assert model.run(backend="c").meta["options"]["linsolver"] == "band"
     res = model.run(backend="sksundae")

@@ -6,7 +6,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import pysolver
-from pysolver import cida
+from pysolver.solve import cida
 
 pytestmark = pytest.mark.skipif(not cida.available(),
                                 reason="the scikit-sundae wheel ships no SUNDIALS libraries")

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import pysolver
-from pysolver.units import force_scale
+from pysolver.deck.units import force_scale
 
 
 @pytest.mark.parametrize("units,scale", [

@@ -5,7 +5,7 @@ cd "$(dirname "$0")"
 LIBS=$(python3 -c "import sksundae, os; print(os.path.join(os.path.dirname(os.path.dirname(sksundae.__file__)), 'scikit_sundae.libs'))")
 lib() { basename "$(ls "$LIBS"/lib"$1"-*.so.* | head -n 1)"; }
 for prog in seed3_ida pendulum_ida; do
-  gcc -O2 -std=c99 -D_POSIX_C_SOURCE=199309L -o "$prog" "$prog".c -L"$LIBS" \
+  gcc -O2 -std=c99 -D_POSIX_C_SOURCE=199309L -I../../csrc -o "$prog" "$prog".c -L"$LIBS" \
       -l:"$(lib sundials_ida)" -l:"$(lib sundials_nvecserial)" -l:"$(lib sundials_sunmatrixdense)" \
       -l:"$(lib sundials_sunlinsoldense)" -l:"$(lib sundials_core)" -lm -Wl,-rpath,"$LIBS"
   echo "built $(pwd)/$prog"

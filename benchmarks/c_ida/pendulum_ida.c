@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "sundials_decls.h"
+#include "bench.h"
 
 static double K, CD;
 static const double G = 9.81;

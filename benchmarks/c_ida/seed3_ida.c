@@ -2,8 +2,8 @@
  * hand-written residual and Jacobian: the lower bound for pysolver's design (issue 5).
  *
  * Built against the SUNDIALS 7.9 shared libraries that the scikit-sundae wheel ships (see
- * build.sh); the few API declarations needed are written out below because the wheel ships no
- * headers. Usage: seed3_ida RTOL REPEAT -> prints "steps nres njac seconds" and the outputs.
+ * build.sh); the wheel ships no headers, so the API declarations are in csrc/sundials_decls.h.
+ * Usage: seed3_ida RTOL REPEAT -> prints "steps nres njac seconds" and the outputs.
  */
 #include <math.h>
 #include <stdint.h>
@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "sundials_decls.h"
+#include "bench.h"
 
 #define K 1e4
 #define C 1e2

@@ -2,10 +2,11 @@
  *
  * A compiled scene (psModel) is immutable after compilation; the workspace (psData) holds every
  * scratch array the kernel needs, so nothing is allocated during integration. Both are filled by
- * the Python compiler (pysolver/compiler.py); the arrays they point to are owned by the caller.
+ * the Python compiler (pysolver/build/compiler.py); the arrays they point to are owned by the caller.
  *
- * Naming: ps_  functions take (model, data); psu_ pure math helpers; psd_ derivatives.
- * The same declarations, without preprocessor lines, are in pysolver/_cdef.h for cffi.
+ * Naming: ps_ functions take (model, data) or an IDA object; psu_ are pure math helpers
+ * (csrc/internal.h). cffi's cdef is derived from this header by pysolver/_build_ffi.py
+ * (comments and preprocessor lines stripped), so this file is the one interface definition.
  */
 #ifndef PYSOLVER_H
 #define PYSOLVER_H
@@ -27,7 +28,7 @@ extern "C" {
 /* Width of one tape instruction in ints: op followed by 9 operands a0..a8. */
 #define PS_INSTR_WIDTH 10
 
-/* Tape opcodes. Operands a0..a7 follow the op; "slot" means an earlier instruction's result. */
+/* Tape opcodes. Operands a0..a8 follow the op; "slot" means an earlier instruction's result. */
 enum psOp {
   PS_OP_CONST = 0,   /* a0: index into consts */
   PS_OP_TIME,        /* simulation time */
@@ -150,7 +151,7 @@ typedef struct psModel {
 
 typedef struct psData {
   double* slots;          /* (max_slots x hd_stride) tape registers             */
-  double* bcache;         /* (max_bslots x 24 x hd_stride) body kinematics      */
+  double* bcache;         /* (max_bslots x 32 x hd_stride) body kinematics      */
   double* tmp;            /* (96 x hd_stride) scratch numbers                   */
   double* res;            /* (2 ny x 1) residual scratch for the Jacobian        */
   double* trip;           /* (ntrip x 1) Jacobian triplet values (sparse mode)  */
@@ -176,44 +177,32 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
                 double* res);
 
 /* SUNDIALS IDA opened at run time from shared libraries, and one integration with it
- * (csrc/ida.c). The caller allocates it zeroed; ps_ida_load fills the function table. */
-typedef struct psIDA {
-  void* lib[7];           /* dlopen handles: core, nvecserial, sunmatrixdense,
-                             sunlinsoldense, ida, sunmatrixband, sunlinsolband  */
-  void* fn[48];           /* SUNDIALS functions, in csrc/ida.c order            */
-  int loaded;             /* 1 after a successful ps_ida_load                   */
-  void* ctx;              /* SUNContext of the current integration              */
-  void* mem;              /* IDA memory                                         */
-  void* y;                /* N_Vector state                                     */
-  void* yp;               /* N_Vector state derivative                          */
-  void* A;                /* dense or band matrix                               */
-  void* LS;               /* linear solver                                      */
-  int band;               /* 1: band matrix filled through map                  */
-  const int* map;         /* (ntrip x 1) band storage index of each triplet     */
-  int ntrip;              /* number of Jacobian triplets                        */
-  long nstore;            /* doubles of band storage                            */
-  const psModel* m;       /* model being integrated                             */
-  psData* d;              /* its workspace                                      */
-  double auto_eta;        /* step-growth limit to switch on when IDA's error
-                             test fails most steps (0: never)                   */
-  long win[2];            /* steps and netf at the start of the window          */
-  double win_h[2];        /* smallest and largest step seen in the window       */
-  long acc[6];            /* IDA's counters of the run before the last restart  */
-  long limited_at;        /* step at which auto_eta was switched on (0: not)    */
-  char msg[256];          /* message of the last error                          */
-} psIDA;
+ * (csrc/ida.c). Opaque: made by ps_ida_load (the libraries, once per process) and ps_ida_new
+ * (one integration object sharing them), freed by ps_ida_delete. */
+typedef struct psIDA psIDA;
 
-/* Open the seven SUNDIALS 7 shared libraries (paths) and look up the functions used.
- * Returns PS_OK, or -1 with a message in s->msg. */
-int ps_ida_load(psIDA* s, const char* core, const char* nvec, const char* mat, const char* ls,
-                const char* ida, const char* bandmat, const char* bandls);
+/* Open the seven SUNDIALS 7 shared libraries whose paths are given in this order: core,
+ * nvecserial, sunmatrixdense, sunlinsoldense, ida, sunmatrixband, sunlinsolband, and look up
+ * the functions used. Returns the loaded table (its libraries stay open for the process's
+ * life), or NULL with a message in msg (msglen bytes). */
+psIDA* ps_ida_load(const char* const* paths, char* msg, int msglen);
+
+/* Return a new integration object using the functions of a table from ps_ida_load (not
+ * started; see ps_ida_init), or NULL when out of memory. Free it with ps_ida_delete. */
+psIDA* ps_ida_new(const psIDA* loaded);
+
+/* Free an integration object and its current integration. NULL is allowed. */
+void ps_ida_delete(psIDA* s);
+
+/* Return the message of the last failed ps_ida_init or ps_ida_tune ("" if none). */
+const char* ps_ida_message(const psIDA* s);
 
 /* Start an integration of (m, d) at (t0, y0, yp0) with the kernel's Jacobian and, if the model
  * has sensors, its root functions with directions rootdir (length m->nsensor). hmax, hmin,
  * h0 <= 0 mean IDA's defaults. mu, ml >= 0 select a band solver with those bandwidths, whose
  * matrix is filled from the kernel's triplets (ps_jacobian_pattern order) at the band storage
  * indices map (ntrip entries; map must outlive the integration); otherwise dense.
- * Returns PS_OK or -1. */
+ * Returns PS_OK, or -1 with a message (ps_ida_message); a failed set-up frees what it built. */
 int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* y0,
                 const double* yp0, double rtol, double atol, double hmax, double hmin, double h0,
                 long mxsteps, const int* rootdir, int mu, int ml, const int* map, int ntrip);
@@ -222,8 +211,8 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
  * step (IDA's default 2); nlconv > 0 sets the Newton convergence coefficient (IDA's default
  * 0.33); auto_eta > 0 (with eta_max <= 0) switches the limit auto_eta on by itself once IDA's
  * error test has failed in more than half of 50 consecutive steps while the step size stayed
- * within a factor 4, the signature of a stiff penalty mode (see README, "Stiff penalties").
- * Call right after ps_ida_init. Returns 0 or IDA's error flag. */
+ * within a factor 4, the signature of a stiff penalty mode (docs/stiff-penalties.md).
+ * Call right after ps_ida_init. Returns PS_OK, or -1 with a message (ps_ida_message). */
 int ps_ida_tune(psIDA* s, double eta_max, double nlconv, double auto_eta);
 
 /* Cold-restart the current integration at (t0, y0, yp0); the counters of ps_ida_stats keep
@@ -247,8 +236,6 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, double*
  * entries). */
 void ps_ida_stats(psIDA* s, long* out);
 
-/* Free the current integration (the libraries stay open). s may be unused. */
-void ps_ida_free(psIDA* s);
 
 /* Fill the dense iteration matrix J = dF/dy + cj * dF/dyp, row-major (ny x ny), exactly.
  * Returns PS_OK or an error code with a message in d->msg. */
@@ -273,6 +260,15 @@ int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, cons
  * d->sensor_f. Returns PS_OK. */
 int ps_roots(const psModel* m, psData* d, double t, const double* y, const double* yp,
              double* g);
+
+/* The sensors' rules at one point, for the driver's event iteration: evaluate every sensor
+ * expression into d->sensor_f and set holds[k] = 1 where sensor k's condition holds (GE:
+ * f >= value; LT: f < value; EQ: |f - value| <= tol) and rearms[k] = 1 where a fired sensor
+ * may re-arm (GE: f < value - tol; LT: f > value + tol; EQ: |f - value| > 2 tol). These are
+ * the same rules whose crossings ps_roots reports; this call is not counted in d->nroots.
+ * holds and rearms have m->nsensor entries. Returns PS_OK. */
+int ps_sensor_status(const psModel* m, psData* d, double t, const double* y, const double* yp,
+                     int* holds, int* rearms);
 
 /* Return the rate of change of the kinetic energy, sum of m v.v' + w.(I w') over bodies, in
  * model units (the root function of MKEAM's kinetic-energy peaks). */

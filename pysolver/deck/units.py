@@ -14,7 +14,6 @@ FORCE = {"NEWTON": 1.0, "KILONEWTON": 1e3, "MILLINEWTON": 1e-3, "DYNE": 1e-5,
          "POUND_FORCE": 4.4482216152605, "KPOUND_FORCE": 4448.2216152605,
          "KILOGRAM_FORCE": 9.80665, "OUNCE_FORCE": 0.27801385095378125}
 TABLES = {"mass": MASS, "length": LENGTH, "time": TIME, "force": FORCE}
-DEFAULTS = {"mass": "KILOGRAM", "length": "METER", "time": "SECOND", "force": "NEWTON"}
 
 
 def force_scale(mass, length, time, force):

@@ -3,10 +3,11 @@ import os
 import sys
 import traceback
 
+from ..errors import DeckError
+from ..model import Source
 from . import msolve
-from .errors import DeckError
-from .model import Source, build_model
-from .xmldeck import read_elements
+from .validate import build_model
+from .xml_reader import read_elements
 
 
 def load(path):

@@ -10,9 +10,10 @@ import math
 
 import numpy as np
 
-from ._bindings import lib
-from .errors import DeckError
-from .model import e_from_rot
+from ..deck.expr import CONSTANTS
+from ..errors import DeckError
+from ..rotations import e_from_rot
+from .bindings import lib
 
 W = lib.PS_INSTR_WIDTH
 _MEASURE = {name: getattr(lib, f"PS_M_{name}") for name in
@@ -181,7 +182,6 @@ class Compiler:
         if tag == "name":
             if node[1] == "TIME":
                 return tape.emit(lib.PS_OP_TIME)
-            from .expr import CONSTANTS
             return tape.const(CONSTANTS[node[1]])
         if tag == "neg":
             return tape.op(lib.PS_OP_NEG, self.lower(tape, node[1]))

@@ -2,62 +2,53 @@
 residual, Jacobian and root functions called from C instead of through Python.
 
 The SUNDIALS shared libraries are those of the scikit-sundae wheel (``scikit_sundae.libs``),
-opened at run time. :func:`available` says whether they could be loaded; the driver falls back
-to scikit-sundae otherwise. The interface mirrors the parts of ``sksundae.ida.IDA`` the driver
-uses (``init_step``, ``step``), plus :meth:`CIDA.outputs` for a batch of output times.
+opened at run time, once per process. :func:`available` says whether they could be loaded; the
+driver falls back to scikit-sundae otherwise. :class:`CIDA` implements the integrator interface
+of :mod:`.integrator`.
 """
 import glob
 import os
 
 import numpy as np
 
-from ._bindings import ffi, lib
+from ..build.bindings import ffi, lib
+from .step import ROOT_RETURN, Step
 
+#: The seven SUNDIALS libraries, in the order ps_ida_load takes their paths.
 _LIBS = ("sundials_core", "sundials_nvecserial", "sundials_sunmatrixdense",
          "sundials_sunlinsoldense", "sundials_ida", "sundials_sunmatrixband",
          "sundials_sunlinsolband")
-_PATHS = None
 _LOADED = None
-_MESSAGES = {0: "Successful function return.", 1: "Reached specified tstop.",
-             2: "Found a root.", -1: "Could not reach endpoint after 'max_num_steps'.",
-             -2: "The requested accuracy could not be achieved.",
-             -3: "Error test failures occurred too many times.",
-             -4: "Convergence test failures occurred too many times.",
-             -8: "The residual function failed unrecoverably.",
-             -12: "The residual function failed recoverably too many times."}
 
 
 def _library_paths():
-    """Paths of the five SUNDIALS libraries, or None when they cannot be found."""
-    global _PATHS
-    if _PATHS is None:
-        _PATHS = False
-        try:
-            import sksundae
-        except ImportError:
+    """Paths of the SUNDIALS libraries in the scikit-sundae wheel, or None."""
+    try:
+        import sksundae
+    except ImportError:
+        return None
+    here = os.path.dirname(os.path.dirname(os.path.abspath(sksundae.__file__)))
+    paths = []
+    for name in _LIBS:
+        found = sorted(glob.glob(os.path.join(here, "scikit_sundae.libs", f"lib{name}*.so*")))
+        if not found:
             return None
-        here = os.path.dirname(os.path.dirname(os.path.abspath(sksundae.__file__)))
-        paths = []
-        for name in _LIBS:
-            found = sorted(glob.glob(os.path.join(here, "scikit_sundae.libs", f"lib{name}*.so*")))
-            if not found:
-                return None
-            paths.append(found[0])
-        _PATHS = paths
-    return _PATHS or None
+        paths.append(found[0])
+    return paths
 
 
 def _loaded():
-    """A psIDA whose libraries are open and function table filled (once per process; the
-    libraries stay open), or None when SUNDIALS cannot be loaded."""
+    """The loaded function table (once per process; the libraries stay open), or None."""
     global _LOADED
     if _LOADED is None:
         _LOADED = False
         paths = _library_paths()
         if paths:
-            s = ffi.new("psIDA *")
-            if lib.ps_ida_load(s, *[p.encode() for p in paths]) == 0:
-                _LOADED = s
+            cpaths = [ffi.new("char[]", p.encode()) for p in paths]
+            msg = ffi.new("char[256]")
+            table = lib.ps_ida_load(ffi.new("const char *[]", cpaths), msg, 256)
+            if table != ffi.NULL:
+                _LOADED = table
     return _LOADED or None
 
 
@@ -66,24 +57,12 @@ def available():
     return _loaded() is not None
 
 
-class _Sol:
-    """The fields of an IDA step result the driver reads."""
-    __slots__ = ("t", "y", "yp", "status", "success", "message", "nfev", "njev", "roots")
-
-    def __init__(self, t, y, yp, status, counts, roots):
-        self.t, self.y, self.yp, self.status = t, y, yp, status
-        self.success = status >= 0
-        self.message = _MESSAGES.get(status, f"IDA flag {status}")
-        self.nfev, self.njev = int(counts[1]), int(counts[2])
-        self.roots = roots
-
-
 class CIDA:
     """One IDA integration of a compiled kernel, driven from C.
 
     Parameters
     ----------
-    kernel : pysolver.kernel.Kernel
+    kernel : pysolver.build.Kernel
     rtol, atol : float
     max_step, min_step, first_step : float
         0 for IDA's defaults.
@@ -99,12 +78,12 @@ class CIDA:
     def __init__(self, kernel, rtol, atol, max_step=0.0, min_step=0.0, first_step=0.0,
                  max_num_steps=500, band=None, tune=None):
         self.k = kernel
-        template = _loaded()
-        if template is None:
+        table = _loaded()
+        if table is None:
             raise RuntimeError("SUNDIALS libraries not available for the C driver")
-        # a copy of the loaded template: library handles and function table, nothing running
-        self.s = ffi.new("psIDA *")
-        ffi.memmove(self.s, template, ffi.sizeof("psIDA"))
+        self.s = ffi.gc(lib.ps_ida_new(table), lib.ps_ida_delete)
+        if self.s == ffi.NULL:
+            raise MemoryError("could not allocate an IDA object")
         self.opts = (float(rtol), float(atol), float(max_step), float(min_step),
                      float(first_step), int(max_num_steps))
         self.rootdir = np.ones(max(kernel.nsensor, 1), dtype=np.int32)
@@ -124,6 +103,9 @@ class CIDA:
             self.map = kernel.band_map(*band)
             self.ntrip = len(self.map)
 
+    def _error(self):
+        return RuntimeError(ffi.string(lib.ps_ida_message(self.s)).decode())
+
     def init_step(self, t0, y0, yp0):
         """Start (or cold-restart) at (t0, y0, yp0)."""
         fb = ffi.from_buffer
@@ -135,27 +117,23 @@ class CIDA:
                                  fb("double[]", yp0), rtol, atol, hmax, hmin, h0, mx,
                                  ffi.cast("int *", fb(self.rootdir)), self.band[0], self.band[1],
                                  ffi.cast("int *", fb(self.map)), self.ntrip)
-            if rc != 0:
-                raise RuntimeError(ffi.string(self.s.msg).decode())
-            if self.tune:
-                lib.ps_ida_tune(self.s, *self.tune)
+            if rc != 0 or (self.tune and lib.ps_ida_tune(self.s, *self.tune) != 0):
+                raise self._error()
             self.started = True
         else:
             lib.ps_ida_reinit(self.s, t0, fb("double[]", y0), fb("double[]", yp0))
 
-    def step(self, t, method="normal", tstop=None):
-        """One IDASolve call toward t; see ``sksundae.ida.IDA.step``."""
+    def step(self, tout, tstop, onestep=False):
+        """One IDASolve call toward tout, never past tstop."""
         fb = ffi.from_buffer
-        flag = lib.ps_ida_solve(self.s, t, t if tstop is None else tstop,
-                                1 if method == "onestep" else 0, self.tret,
+        flag = lib.ps_ida_solve(self.s, tout, tstop, 1 if onestep else 0, self.tret,
                                 fb("double[]", self.y), fb("double[]", self.yp),
                                 ffi.cast("int *", fb(self.roots)))
-        lib.ps_ida_stats(self.s, self.counts)
-        return _Sol(self.tret[0], self.y.copy(), self.yp.copy(), flag, self.counts,
-                    self.roots.copy() if flag == 2 else None)
+        return Step(self.tret[0], self.y.copy(), self.yp.copy(), flag,
+                    self.roots.copy() if flag == ROOT_RETURN else None)
 
     def outputs(self, times, tstop):
-        """Advance through output times in C; returns (sol of the last call, Y, YP, REQ, n)
+        """Advance through output times in C; returns (Step of the last call, Y, YP, REQ, n)
         with the n output rows reached before a root or a failure."""
         fb = ffi.from_buffer
         times = np.ascontiguousarray(times, float)
@@ -165,22 +143,16 @@ class CIDA:
         flag = lib.ps_ida_outputs(self.s, fb("double[]", times), nt, tstop, fb("double[]", Y),
                                   fb("double[]", YP), fb("double[]", REQ), reached, self.tret,
                                   ffi.cast("int *", fb(self.roots)))
-        lib.ps_ida_stats(self.s, self.counts)
         k = reached[0]
         # row k holds the state IDA stopped at (a root, or its last point) when k < nt
         j = k if k < nt else nt - 1
-        sol = _Sol(self.tret[0], Y[j].copy(), YP[j].copy(), flag, self.counts,
-                   self.roots.copy() if flag == 2 else None)
-        return sol, Y[:k], YP[:k], REQ[:k, :self.k.arrays["nout"]], k
+        step = Step(self.tret[0], Y[j].copy(), YP[j].copy(), flag,
+                    self.roots.copy() if flag == ROOT_RETURN else None)
+        return step, Y[:k], YP[:k], REQ[:k, :self.k.arrays["nout"]], k
 
-    def stats(self):
-        """IDA's counters: steps, nres, njac, netf, ncfn, ngevals, and the step at which the
-        automatic step-growth limit switched on (0: it did not)."""
+    def counters(self):
+        """IDA's counters over this object's life, restarts included."""
         lib.ps_ida_stats(self.s, self.counts)
-        return [int(self.counts[i]) for i in range(7)]
-
-    def __del__(self):
-        try:
-            lib.ps_ida_free(self.s)
-        except Exception:  # noqa: BLE001 - interpreter shutdown
-            pass
+        c = [int(self.counts[i]) for i in range(7)]
+        return {"steps": c[0], "nfev": c[1], "njev": c[2], "netf": c[3], "ncfn": c[4],
+                "growth_limited_at": c[6] or None}

@@ -19,10 +19,11 @@ those coordinates is K = dF/dq N(q), from the kernel's exact Jacobian.
 """
 import dataclasses
 import math
-import warnings
 
 import numpy as np
-from sksundae.ida import IDA
+
+from .outputs import print_times
+from .pyida import PyIDA
 
 
 @dataclasses.dataclass
@@ -256,22 +257,18 @@ def mkeam(prob_c, t, y, params, tol):
     """Maximum kinetic energy attrition on the undamped kernel; returns (y, StaticResult)."""
     k = prob_c.k
     y = prob_c.state(y)
-    ev = lambda tau, yy, yyp, g: g.__setitem__(0, -k.power(yy, yyp))  # noqa: E731
-    ev.direction = [1]
-    ev.terminal = [True]
+    root = lambda tau, yy, yyp, g: g.__setitem__(0, -k.power(yy, yyp))  # noqa: E731
     res = lambda tau, yy, yyp, r: k.residual(t, yy, yyp, r)  # noqa: E731  (time frozen)
     jac = lambda tau, yy, yyp, r, cj, J: k.jacobian(t, yy, yyp, cj, J)  # noqa: E731
-    solver = IDA(res, jacfn=jac, eventsfn=ev, num_events=1, rtol=tol, atol=tol,
-                 max_num_steps=100000)
+    solver = PyIDA(res, rootfn=root, nroots=1, rtol=tol, atol=tol, max_num_steps=100000,
+                   linsolver="dense", jacfn=jac)
     q_prev = y.copy()
     ke = dq = math.inf
     horizon = 1e6
     for it in range(1, params.max_num_iter + 1):
         yp = k.consistent_yp(t, y)
         solver.init_step(0.0, y, yp)
-        for lst in (ev._i, ev._t, ev._y, ev._yp):
-            lst.clear()
-        sol = solver.step(horizon, tstop=horizon)
+        sol = solver.step(horizon, horizon)
         if sol.status != 2:
             # no kinetic-energy peak: at rest already, or the motion never turns
             return y, StaticResult(t, "MKEAM", it > 1 and sol.success,
@@ -326,7 +323,7 @@ def _finish(prob, t, y, params, res):
     return res
 
 
-def quasi_static(model, t0, y0, times, params, transient):
+def quasi_static(model, t0, y0, times, params, tol):
     """FIM_D: follow F(q, t) = 0 from (t0, y0) through `times` with IDA; FIM_S polishes the
     first and last points and restarts the integration wherever it fails.
 
@@ -373,11 +370,8 @@ def quasi_static(model, t0, y0, times, params, transient):
         jacobian(t, q, None, None, 0.0, JJ)
         return -np.linalg.solve(JJ, (rp - rm) / (2 * h))
 
-    tol = transient.integr_tol
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", UserWarning)
-        solver = IDA(residual, jacfn=jacobian, rtol=tol, atol=tol,
-                     algebraic_idx=list(range(nq)), max_num_steps=100000)
+    solver = PyIDA(residual, rtol=tol, atol=tol, max_num_steps=100000, linsolver="dense",
+                   jacfn=jacobian, algebraic_idx=list(range(nq)))
     q = y[prob.qcols].copy()
     solver.init_step(t0, q, rate(t0, q))
     out = [(t0, y)]
@@ -399,3 +393,41 @@ def quasi_static(model, t0, y0, times, params, transient):
             q = yy[prob.qcols].copy()
         out.append((tp, embed(q)))
     return out, results
+
+
+class StaticFailure(Exception):
+    """A static or quasi-static command did not find its equilibrium."""
+
+
+def run_static(run, cmd):
+    """A Static command of a run: one equilibrium at cmd.end_time, then an output row."""
+    y, res = solve_static(run.model, cmd.end_time, run.y, run.model.static,
+                          run.options.integr_tol)
+    run.statics.append(res)
+    if not res.success:
+        raise StaticFailure(f"static analysis at t = {cmd.end_time:g}: {res.message}")
+    run.after_static(cmd.end_time, y)
+
+
+def run_quasi_static(run, cmd):
+    """A Quasi-Static command of a run: equilibria at the print times (FIM_D follows them with
+    IDA; FIM_S solves each one)."""
+    params = run.model.static
+    times = print_times(run.t, cmd.end_time, cmd.print_interval)
+    if params.method == "FIM_D":
+        out, results = quasi_static(run.model, run.t, run.y, times, params,
+                                    run.options.integr_tol)
+        run.statics.extend(results)
+        for tp, y in out:
+            run.after_static(tp, y)
+        if not results[-1].success or len(out) < len(times) + 1:
+            raise StaticFailure(f"quasi-static analysis: {results[-1].message}")
+        return
+    prob = StaticProblem(run.kernel)
+    y = run.y
+    for tp in [run.t] + list(times):
+        y, res = fim_s(prob, tp, y, params)
+        run.statics.append(_finish(prob, tp, y, params, res))
+        if not res.success:
+            raise StaticFailure(f"quasi-static analysis at t = {tp:g}: {res.message}")
+        run.after_static(tp, y)

@@ -1,7 +1,8 @@
 """A compiled scene bound to the C kernel: psModel + psData and fast call wrappers."""
 import numpy as np
 
-from ._bindings import ffi, lib
+from ..options import SPARSE_THRESHOLD
+from .bindings import ffi, lib
 from .compiler import Compiler
 
 _INT_FIELDS = ("ny", "nbody", "nmarker", "ntape", "npen", "nsf", "nout", "hd_stride",
@@ -70,6 +71,8 @@ class Kernel:
             "sensor_side": np.ones(max(self.nsensor, 1)),
         }
         self.armed = np.ones(max(self.nsensor, 1), dtype=np.int32)
+        self._flags = (np.zeros(max(self.nsensor, 1), dtype=np.int32),
+                       np.zeros(max(self.nsensor, 1), dtype=np.int32))
         d = ffi.new("psData *")
         self.d = d
         self._set_work()
@@ -103,12 +106,16 @@ class Kernel:
         return lib.ps_roots(self.m, self.d, t, fb("double[]", y), fb("double[]", yp),
                             fb("double[]", g))
 
-    def sensor_values(self, t, y, yp):
-        """Return a copy of every sensor expression at (t, y, yp)."""
-        g = np.zeros(max(self.nsensor, 1))
-        self.roots(t, np.ascontiguousarray(y, float), np.ascontiguousarray(yp, float), g)
-        self.d.nroots -= 1          # a driver query, not one of IDA's root evaluations
-        return self.sensor_f[:self.nsensor].copy()
+    def sensor_status(self, t, y, yp):
+        """Every sensor at (t, y, yp) by the kernel's rules (ps_sensor_status): its expression,
+        whether its condition holds, whether a fired sensor may re-arm (copies)."""
+        fb = ffi.from_buffer
+        holds, rearms = self._flags
+        lib.ps_sensor_status(self.m, self.d, t, fb("double[]", np.ascontiguousarray(y, float)),
+                             fb("double[]", np.ascontiguousarray(yp, float)),
+                             ffi.cast("int *", fb(holds)), ffi.cast("int *", fb(rearms)))
+        n = self.nsensor
+        return self.sensor_f[:n].copy(), holds[:n].astype(bool), rearms[:n].astype(bool)
 
     def evaluate(self, k, t, y, yp):
         """Evaluate Sensor_Evaluate number k (in id order) at (t, y, yp)."""
@@ -253,7 +260,7 @@ class Kernel:
         """Return yp with F(t, y, yp) = 0 by Newton's method on yp (F is linear in yp unless
         expressions use accelerations). dF/dyp is the difference of the iteration matrix at
         cj = 1 and cj = 0; large scenes use the sparse path."""
-        sparse = self.ny >= 300
+        sparse = self.ny >= SPARSE_THRESHOLD
         if sparse:
             from scipy.sparse.linalg import spsolve
         yp = np.zeros(self.ny)

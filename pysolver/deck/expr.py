@@ -16,7 +16,7 @@ done here too, so that a deck fails at load time and not during a run.
 """
 import re
 
-from .errors import ExpressionError
+from ..errors import ExpressionError
 
 #: Named constants.
 CONSTANTS = {"PI": 3.141592653589793, "DTOR": 3.141592653589793 / 180.0,

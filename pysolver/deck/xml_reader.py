@@ -5,7 +5,7 @@ fetches nothing from the network.
 """
 from lxml import etree
 
-from .errors import DeckError
+from ..errors import DeckError
 
 _PARSER = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
                           remove_comments=True, remove_pis=True, huge_tree=False)

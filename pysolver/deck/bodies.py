@@ -1,0 +1,114 @@
+"""Markers and bodies of a deck: global frames of markers, mass properties of bodies."""
+import numpy as np
+
+from ..model import Body, Marker
+from ..rotations import rot_313, rot_from_e
+
+
+def add_bodies(model, bodies_raw, markers_raw):
+    """Resolve marker frames (through rm_id chains) and add the bodies and markers to model."""
+    ground_ids = set()
+    for ctx, a in bodies_raw:
+        ctx.id = a["id"]
+        if ctx.tag == "Body_Rigid" and a["isground"]:
+            ground_ids.add(a["id"])
+            model.bodies[a["id"]] = Body(a["id"], "ground", label=a["label"])
+    # markers: global frames, resolving rm_id chains
+    frames = {}
+
+    def frame(mid, stack=()):
+        if mid in frames:
+            return frames[mid]
+        ctx, a = markers_raw[mid]
+        ctx.id = mid
+        R = _orientation(ctx, a)
+        p = np.array([a["pos_x"], a["pos_y"], a["pos_z"]])
+        if a["rm_id"] is not None:
+            if a["rm_id"] not in markers_raw:
+                raise ctx.error(f"rm_id {a['rm_id']} is not a Reference_Marker", "rm_id")
+            if a["rm_id"] in stack:
+                raise ctx.error("rm_id chain refers back to this marker", "rm_id")
+            p0, R0 = frame(a["rm_id"], stack + (mid,))
+            p, R = p0 + R0 @ p, R0 @ R
+        frames[mid] = (p, R)
+        return frames[mid]
+
+    for mid, (_, a) in markers_raw.items():
+        p, R = frame(mid)
+        model.markers[mid] = Marker(mid, a["body_id"], p, R, a["label"])
+
+    def marker_of(ctx, a, key):
+        mid = a[key]
+        if mid is None:
+            return None
+        if mid not in model.markers:
+            raise ctx.error(f"marker {mid} does not exist", key)
+        if model.markers[mid].body != a["id"]:
+            raise ctx.error(f"marker {mid} belongs to body {model.markers[mid].body}, not to "
+                            f"this body", key)
+        return model.markers[mid]
+
+    for ctx, a in bodies_raw:
+        ctx.id = a["id"]
+        if ctx.tag == "Body_Rigid" and a["isground"]:
+            continue
+        if a["cg_id"] is None:
+            raise ctx.error("missing required attribute (the centre-of-mass marker)", "cg_id")
+        if a["mass"] is None:
+            raise ctx.error("missing required attribute", "mass")
+        cg = marker_of(ctx, a, "cg_id")
+        vel = np.array([a["v_ic_x"], a["v_ic_y"], a["v_ic_z"]])
+        if ctx.tag == "Body_Point":
+            model.bodies[a["id"]] = Body(a["id"], "point", a["mass"], None, cg.pos.copy(),
+                                         np.eye(3), vel, np.zeros(3), a["label"])
+            continue
+        im = marker_of(ctx, a, "im_id") or cg
+        marker_of(ctx, a, "lprf_id")
+        Iim = np.array([[a["inertia_xx"], a["inertia_xy"], a["inertia_xz"]],
+                        [a["inertia_xy"], a["inertia_yy"], a["inertia_yz"]],
+                        [a["inertia_xz"], a["inertia_yz"], a["inertia_zz"]]])
+        ev = np.linalg.eigvalsh(Iim)
+        if ev.min() <= 0 or ev[2] > ev[0] + ev[1] + 1e-12 * ev[2]:
+            raise ctx.error("inertia tensor must be positive definite and satisfy the "
+                            "triangle inequality", "inertia_xx")
+        Rb = cg.rot.T @ im.rot      # im axes in the body (cg) frame
+        model.bodies[a["id"]] = Body(a["id"], "rigid", a["mass"], Rb @ Iim @ Rb.T,
+                                     cg.pos.copy(), cg.rot.copy(), vel,
+                                     np.array([a["w_ic_x"], a["w_ic_y"], a["w_ic_z"]]),
+                                     a["label"])
+    for mid, (ctx, a) in markers_raw.items():
+        ctx.id = mid
+        if a["body_id"] not in model.bodies:
+            raise ctx.error(f"body {a['body_id']} does not exist (declare it with Body_Rigid, "
+                            "Body_Point or a ground Body_Rigid isground=\"TRUE\")", "body_id")
+
+
+
+def _orientation(ctx, a):
+    """Marker axes (relative to its rm frame) from one of the orientation forms."""
+    forms = {"matrix": ["a00", "a10", "a20", "a01", "a11", "a21", "a02", "a12", "a22"],
+             "313": ["psi", "theta", "phi"], "euler": ["e0", "e1", "e2", "e3"]}
+    given = [f for f, keys in forms.items() if any(a[k] is not None for k in keys)]
+    if len(given) > 1:
+        raise ctx.error("give one orientation form only: a00..a22, psi/theta/phi or e0..e3",
+                        forms[given[1]][0])
+    if not given:
+        return np.eye(3)
+    form = given[0]
+    missing = [k for k in forms[form] if a[k] is None and form != "313"]
+    if missing:
+        raise ctx.error(f"orientation form {', '.join(forms[form])} is incomplete", missing[0])
+    if form == "313":
+        return rot_313(*(a[k] or 0.0 for k in forms["313"]))
+    if form == "euler":
+        e = np.array([a[k] for k in forms["euler"]])
+        n = np.linalg.norm(e)
+        if n == 0:
+            raise ctx.error("Euler parameters are all zero", "e0")
+        return rot_from_e(e / n)
+    A = np.array([a[k] for k in forms["matrix"]]).reshape(3, 3).T
+    if not np.allclose(A.T @ A, np.eye(3), atol=1e-6) or np.linalg.det(A) < 0:
+        raise ctx.error("a00..a22 is not a proper rotation (orthonormal, right-handed)", "a00")
+    u, _, vt = np.linalg.svd(A)
+    return u @ vt
+

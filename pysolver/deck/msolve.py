@@ -1,0 +1,220 @@
+"""Statement functions for Python-format decks, in the style of Adams/MotionSolve.
+
+A Python deck is a script that calls these functions::
+
+    from pysolver.msolve import *
+    UNITS(MASS="KILOGRAM", LENGTH="MILLIMETER", TIME="SECOND", FORCE="NEWTON")
+    PART(1, GROUND=True)
+    MARKER(9, PART=2, QP=[0, 1, 0])
+    POINT_MASS(2, MASS=1, CM=9)
+    PFORCE(1, LABEL="bead", FUNCTION="DY(9)-COSH(DX(9))", PENALTY=1e4, PENALTY1=1e2)
+    REQUEST(1, F1="DX(9)", F2="DY(9)")
+    INTEGRATOR(ERROR=1e-6)
+    SIMULATE(TYPE="TRANSIENT", END=2.0, DTOUT=0.01)
+
+Each call records one element with the same attributes as its XML counterpart, so both
+formats build identical models. The import line is optional: ``pysolver.load`` provides the
+statements. Keyword names are case-insensitive.
+"""
+import inspect
+import os
+import threading
+
+_STATE = threading.local()
+
+__all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "VARIABLE",
+           "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM"]
+
+
+class _Recorder:
+    def __init__(self, file):
+        self.file = file
+        self.elements = []
+
+
+def _recorder():
+    rec = getattr(_STATE, "rec", None)
+    if rec is None:
+        raise RuntimeError("pysolver.msolve statements only record inside pysolver.load()")
+    return rec
+
+
+def _line(rec):
+    for frame in inspect.stack()[2:]:
+        if os.path.abspath(frame.filename) == os.path.abspath(rec.file):
+            return frame.lineno
+    return None
+
+
+def _emit(stmt, tag, mapping, id=None, **kw):
+    """Record element `tag`; mapping: statement keyword -> XML attribute (or a function)."""
+    from ..errors import DeckError
+    rec = _recorder()
+    line = _line(rec)
+    attrs, names = {}, {}
+    if id is not None:
+        attrs["id"], names["id"] = id, "ID"
+    for key, val in kw.items():
+        up = key.upper()
+        if up not in mapping:
+            raise DeckError(f"unknown argument; {stmt} accepts {', '.join(sorted(mapping))}",
+                            file=rec.file, line=line, element=stmt, id=id, attribute=up)
+        if val is None:
+            continue
+        target = mapping[up]
+        if callable(target):
+            try:
+                pairs = target(val)
+            except (TypeError, ValueError):
+                raise DeckError(f"got {val!r}; expected a list of numbers", file=rec.file,
+                                line=line, element=stmt, id=id, attribute=up) from None
+            for k, v in pairs.items():
+                attrs[k], names[k] = v, up
+        else:
+            attrs[target], names[target] = val, up
+    rec.elements.append((tag, attrs, line, names))
+
+
+def _vec(keys):
+    def split(val):
+        vals = list(val)
+        if len(vals) != len(keys):
+            raise ValueError
+        return dict(zip(keys, vals))
+    return split
+
+
+def UNITS(**kw):
+    """Units: MASS, LENGTH, TIME, FORCE (names as in the XML Units element)."""
+    _emit("UNITS", "Units", {"MASS": "mass", "LENGTH": "length", "TIME": "time",
+                             "FORCE": "force", "LABEL": "label"}, **kw)
+
+
+def ACCGRAV(**kw):
+    """Gravity: IGRAV, JGRAV, KGRAV (global x, y, z components)."""
+    _emit("ACCGRAV", "Force_Gravity", {"IGRAV": "grav_x", "JGRAV": "grav_y", "KGRAV": "grav_z"},
+          **kw)
+
+
+def PART(id, **kw):
+    """Rigid body (or ground with GROUND=True): MASS, CM, IM, LPRF, IP=[ixx, iyy, izz
+    (, ixy, iyz, ixz)], VX VY VZ (global), WX WY WZ (in the CM marker's axes), LABEL."""
+    def ip(val):
+        vals = [float(v) for v in val]
+        if len(vals) not in (3, 6):
+            raise ValueError
+        keys = ["inertia_xx", "inertia_yy", "inertia_zz", "inertia_xy", "inertia_yz",
+                "inertia_xz"]
+        return dict(zip(keys, vals))
+    _emit("PART", "Body_Rigid", {"GROUND": "isground", "MASS": "mass", "CM": "cg_id",
+                                 "IM": "im_id", "LPRF": "lprf_id", "IP": ip, "VX": "v_ic_x",
+                                 "VY": "v_ic_y", "VZ": "v_ic_z", "WX": "w_ic_x",
+                                 "WY": "w_ic_y", "WZ": "w_ic_z", "LABEL": "label"}, id, **kw)
+
+
+def POINT_MASS(id, **kw):
+    """Point body with 3 translational DOF: MASS, CM, VX VY VZ, LABEL."""
+    _emit("POINT_MASS", "Body_Point", {"MASS": "mass", "CM": "cg_id", "VX": "v_ic_x",
+                                       "VY": "v_ic_y", "VZ": "v_ic_z", "LABEL": "label"}, id, **kw)
+
+
+def MARKER(id, **kw):
+    """Marker: PART, QP=[x, y, z], one of REULER=[psi, theta, phi] (3-1-3),
+    EP=[e0, e1, e2, e3] or AXES=[a00, a10, a20, a01, a11, a21, a02, a12, a22]; RM, LABEL."""
+    _emit("MARKER", "Reference_Marker",
+          {"PART": "body_id", "QP": _vec(["pos_x", "pos_y", "pos_z"]),
+           "REULER": _vec(["psi", "theta", "phi"]), "EP": _vec(["e0", "e1", "e2", "e3"]),
+           "AXES": _vec(["a00", "a10", "a20", "a01", "a11", "a21", "a02", "a12", "a22"]),
+           "RM": "rm_id", "LABEL": "label"}, id, **kw)
+
+
+def PFORCE(id, **kw):
+    """Penalty force: FUNCTION, PENALTY, PENALTY1, UNILATERAL, SMOOTHING_FACTOR, LABEL;
+    ROUTINE, INTERPRETER, SCRIPT for user subroutines."""
+    usersub = any(k.upper() in ("ROUTINE", "SCRIPT", "INTERPRETER") for k in kw)
+    if usersub:
+        kw.setdefault("TYPE", "USERSUB")
+    _emit("PFORCE", "Force_Penalty",
+          {"FUNCTION": "expr", "PENALTY": "penalty", "PENALTY1": "penalty1",
+           "UNILATERAL": "unilateral", "SMOOTHING_FACTOR": "smoothing_factor",
+           "LABEL": "label", "ROUTINE": "usrsub_fnc_name", "INTERPRETER": "interpreter",
+           "SCRIPT": "script_name", "TYPE": "type"}, id, **kw)
+
+
+def SFORCE(id, I=None, J=None, TRANSLATION=False, ROTATION=False, **kw):
+    """Scalar two-body force: I, J markers, TRANSLATION=True (force along J->I) or
+    ROTATION=True (torque about z of J), FUNCTION, LABEL."""
+    if bool(TRANSLATION) == bool(ROTATION):
+        kw["TYPE"] = "missing: TRANSLATION=True or ROTATION=True"
+    else:
+        kw["TYPE"] = "TORQUE" if ROTATION else "FORCE"
+    _emit("SFORCE", "Force_Scalar_TwoBody",
+          {"I": "i_marker_id", "J": "j_marker_id", "FUNCTION": "expr", "TYPE": "type",
+           "LABEL": "label"}, id, I=I, J=J, **kw)
+
+
+def SENSOR(id, EVALUATE=None, **kw):
+    """Event sensor: FUNCTION, VALUE, ERROR, OPERATOR (GE, LT, EQ; LE reads as LT),
+    ZERO_CROSSING, DT, HMAX, STEPSIZE, HALT, PRINT, RESTART, RETURN, VERBOSE, LABEL. EVALUATE is
+    an expression stored when the sensor fires and read with SENVAL(id) (a Sensor_Evaluate with
+    the sensor's id); ROUTINE, SCRIPT for user subroutines."""
+    if EVALUATE not in (None, ""):
+        _emit("SENSOR", "Sensor_Evaluate", {"FUNCTION": "expr"}, id, FUNCTION=EVALUATE)
+        kw["EVALUATE_ID"] = id
+    if any(k.upper() in ("ROUTINE", "SCRIPT") for k in kw):
+        kw.setdefault("TYPE", "USERSUB")
+    _emit("SENSOR", "Sensor_Event",
+          {"FUNCTION": "expr", "VALUE": "value", "ERROR": "error_tol", "OPERATOR": "compare",
+           "ZERO_CROSSING": "zero_crossing", "DT": "dt", "HMAX": "hmax", "STEPSIZE": "stepsize",
+           "HALT": "halt", "PRINT": "print", "RESTART": "restart", "RETURN": "return",
+           "VERBOSE": "verbose", "LABEL": "label", "EVALUATE_ID": "evaluate_id",
+           "ROUTINE": "usrsub_fnc_name", "SCRIPT": "script_name", "TYPE": "type"}, id, **kw)
+
+
+def VARIABLE(id, **kw):
+    """Variable read with VARVAL(id): FUNCTION, LABEL."""
+    _emit("VARIABLE", "Reference_Variable", {"FUNCTION": "expr", "LABEL": "label"}, id, **kw)
+
+
+def REQUEST(id, FUNCTION=None, **kw):
+    """Output request: F1..F8 (or FUNCTION=[up to 8 expressions]), LABEL, COMMENT."""
+    if FUNCTION is not None:
+        for k, f in enumerate(FUNCTION, 1):
+            kw.setdefault(f"F{k}", f)
+    mapping = {f"F{k}": f"expr{k}" for k in range(1, 9)}
+    mapping.update({f"NAME{k}": f"name{k}" for k in range(1, 9)})
+    mapping.update({"LABEL": "label", "COMMENT": "comment"})
+    _emit("REQUEST", "Post_Request", mapping, id, **kw)
+
+
+def INTEGRATOR(**kw):
+    """Integrator settings: ERROR (integr_tol), HMAX, HMIN, HINIT (h0_max), MAX_NUM_STEPS,
+    TYPE, and pysolver's MAX_STEP_GROWTH and NONLIN_CONV_COEF."""
+    _emit("INTEGRATOR", "Param_Transient", {"ERROR": "integr_tol", "HMAX": "h_max",
+                                            "HMIN": "h_min", "HINIT": "h0_max",
+                                            "MAX_NUM_STEPS": "max_num_steps",
+                                            "TYPE": "integrator_type",
+                                            "MAX_STEP_GROWTH": "max_step_growth",
+                                            "NONLIN_CONV_COEF": "nonlin_conv_coef"}, **kw)
+
+
+def EQUILIBRIUM(**kw):
+    """Static settings (Param_Static): METHOD (FIM_D, FIM_S, MKEAM), MAX_KE_TOL, MAX_DQ_TOL,
+    MAXIT (max_num_iter), IMBALANCE (max_imbalance), ERROR (max_error), STABILITY,
+    COMPLIANCE_DELTA."""
+    _emit("EQUILIBRIUM", "Param_Static",
+          {"METHOD": "method", "MAX_KE_TOL": "max_ke_tol", "MAX_DQ_TOL": "max_dq_tol",
+           "MAXIT": "max_num_iter", "IMBALANCE": "max_imbalance", "ERROR": "max_error",
+           "STABILITY": "stability", "COMPLIANCE_DELTA": "compliance_delta"}, **kw)
+
+
+def SIMULATE(**kw):
+    """Run: TYPE (TRANSIENT, STATIC, QUASI-STATIC), END or DURATION, DTOUT or STEPS."""
+    _emit("SIMULATE", "Simulate", {"TYPE": "analysis_type", "END": "end_time",
+                                   "DURATION": "duration", "DTOUT": "print_interval",
+                                   "STEPS": "num_step", "START": "start_time"}, **kw)
+
+
+def STOP():
+    """End of the command list."""
+    _emit("STOP", "Stop", {})

@@ -1,0 +1,86 @@
+"""Checks of the references between elements: every id an expression names exists, no
+VARVAL cycles, and penalty constraints g(q, t) use displacement measures only."""
+from . import expr as ex
+
+
+def check_references(model):
+    """Every id an expression names must exist; penalty g must depend on displacements only."""
+    tables = {"marker": model.markers, "variable": model.variables,
+              "penalty": model.penalties, "sforce": model.sforces,
+              "evaluate": model.evaluates}
+    where = model._where
+    items = []
+    for p in model.penalties.values():
+        items.append((("penalty", p.id), "expr", p.expr))
+    for s in model.sforces.values():
+        items.append((("sforce", s.id), "expr", s.expr))
+    for v in model.variables.values():
+        items.append((("variable", v.id), "expr", v.expr))
+    for r in model.requests.values():
+        for k, e in enumerate(r.exprs):
+            if e is not None:
+                items.append((("request", r.id), f"expr{k + 1}", e))
+    for se in model.sensors.values():
+        items.append((("sensor", se.id), "expr", se.expr))
+        if se.evaluate_id is not None and se.evaluate_id not in model.evaluates:
+            ctx = where[("sensor", se.id)]
+            ctx.id = se.id
+            raise ctx.error(f"Sensor_Evaluate {se.evaluate_id} does not exist", "evaluate_id")
+    for ev in model.evaluates.values():
+        items.append((("evaluate", ev.id), "expr", ev.expr))
+    for key, attr, tree in items:
+        ctx = where[key]
+        ctx.id = key[1]
+        for kind, ids in ex.references(tree).items():
+            for i in sorted(ids):
+                if i not in tables[kind]:
+                    raise ctx.error(f"the expression refers to {kind} id {i}, which does not "
+                                    "exist", attr)
+    # variable cycles and penalty dependence on velocities
+    for key, attr, tree in items:
+        ctx = where[key]
+        ctx.id = key[1]
+        try:
+            dyn = _dynamic(model, tree, ())
+        except _Cycle as cyc:
+            raise ctx.error(f"VARVAL cycle through variables {cyc.args[0]}", attr) from None
+        if key[0] == "penalty" and dyn:
+            raise ctx.error("a penalty constraint g(q, t) may use displacement measures only "
+                            f"(found {dyn}); velocities enter through penalty1", attr)
+
+
+class _Cycle(Exception):
+    pass
+
+
+_DYNAMIC = {"VX", "VY", "VZ", "VM", "VR", "ACCX", "ACCY", "ACCZ", "WX", "WY", "WZ", "PFORCE",
+            "SFORCE"}
+
+
+def _dynamic(model, node, stack):
+    """Return the name of a velocity-dependent function used by the tree, or None."""
+    tag = node[0]
+    if tag == "neg":
+        return _dynamic(model, node[1], stack)
+    if tag == "bin":
+        return _dynamic(model, node[2], stack) or _dynamic(model, node[3], stack)
+    if tag == "call":
+        name, args = node[1], node[2]
+        if name == "VARVAL":
+            vid = int(args[0][1])
+            if vid in stack:
+                raise _Cycle(" -> ".join(map(str, stack + (vid,))))
+            return _dynamic(model, model.variables[vid].expr, stack + (vid,))
+        if name in _DYNAMIC:
+            found = name
+            if name in ("PFORCE", "SFORCE"):
+                table = model.penalties if name == "PFORCE" else model.sforces
+                _dynamic(model, table[int(args[0][1])].expr, stack)
+            return found
+        if name not in ex.ID_ARGS:
+            for a in args:
+                r = _dynamic(model, a, stack)
+                if r:
+                    return r
+    return None
+

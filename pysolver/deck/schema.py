@@ -1,0 +1,210 @@
+"""The deck language's elements: every attribute, its kind, whether required, its default; and
+the conversion of raw attribute values (XML strings or Python values) to those kinds.
+
+Both deck readers produce raw elements; :func:`attributes` checks one against :data:`SCHEMA`
+and raises a :class:`~pysolver.DeckError` that names file, line, element, id and attribute.
+"""
+import math
+
+from ..errors import DeckError, ExpressionError
+from ..options import DECK_NAMES, rule_problem
+from . import expr as ex
+from . import units as un
+
+# Attribute kinds: a converter name, whether required, default.
+REQ = True
+OPT = False
+_ORIENT = {k: ("float", OPT, None) for k in
+           ("a00", "a10", "a20", "a01", "a11", "a21", "a02", "a12", "a22",
+            "psi", "theta", "phi", "e0", "e1", "e2", "e3")}
+_USERSUB = {"usrsub_dll_name": ("str", OPT, None), "usrsub_fnc_name": ("str", OPT, None),
+            "usrsub_param_string": ("str", OPT, None), "script_name": ("str", OPT, None),
+            "interpreter": (("PYTHON", "MATLAB"), OPT, None)}
+
+#: Every element, its attributes, their kinds, whether required, and defaults.
+SCHEMA = {
+    "Units": {"mass": ("unit:mass", OPT, "KILOGRAM"), "length": ("unit:length", OPT, "METER"),
+              "time": ("unit:time", OPT, "SECOND"), "force": ("unit:force", OPT, "NEWTON"),
+              "angle": (("RADIAN",), OPT, "RADIAN"), "label": ("str", OPT, "")},
+    "Force_Gravity": {"id": ("id", OPT, None), "grav_x": ("float", OPT, 0.0),
+                      "grav_y": ("float", OPT, 0.0), "grav_z": ("float", OPT, 0.0),
+                      "label": ("str", OPT, "")},
+    "Reference_Marker": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                         "body_id": ("id", REQ, None),
+                         "body_type": (("RIGIDBODY", "POINTBODY", "RIGID", "POINT"), OPT, None),
+                         "pos_x": ("float", OPT, 0.0), "pos_y": ("float", OPT, 0.0),
+                         "pos_z": ("float", OPT, 0.0), "rm_id": ("id", OPT, None), **_ORIENT},
+    "Body_Rigid": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                   "isground": ("bool", OPT, False), "cg_id": ("id", OPT, None),
+                   "im_id": ("id", OPT, None), "lprf_id": ("id", OPT, None),
+                   "mass": ("pos", OPT, None),
+                   **{f"inertia_{k}": ("float", OPT, 0.0)
+                      for k in ("xx", "yy", "zz", "xy", "yz", "xz")},
+                   **{f"{v}_ic_{c}": ("float", OPT, 0.0) for v in "vw" for c in "xyz"}},
+    "Body_Point": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                   "cg_id": ("id", REQ, None), "mass": ("pos", REQ, None),
+                   **{f"v_ic_{c}": ("float", OPT, 0.0) for c in "xyz"}},
+    "Force_Penalty": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                      "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
+                      "expr": ("expr", OPT, None), "penalty": ("pos", REQ, None),
+                      "penalty1": ("nonneg", OPT, 0.0), "unilateral": ("bool", OPT, False),
+                      "smoothing_factor": ("pos", OPT, 1.0), **_USERSUB},
+    "Force_Scalar_TwoBody": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                             "type": (("FORCE", "TORQUE"), REQ, None),
+                             "i_marker_id": ("id", REQ, None), "j_marker_id": ("id", REQ, None),
+                             "expr": ("expr", OPT, None), "val_expression": ("expr", OPT, None),
+                             "val": ("float", OPT, None), **_USERSUB},
+    "Reference_Variable": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                           "type": (("EXPRESSION",), OPT, "EXPRESSION"),
+                           "expr": ("expr", REQ, None), "initial_value": ("float", OPT, 0.0)},
+    "Param_Transient": {"integrator_type": (("IDA", "DSTIFF", "VSTIFF", "MSTIFF", "GSTIFF",
+                                             "WSTIFF", "ABAM", "I3", "SI2"), OPT, "IDA"),
+                        # defaults of the integrator options: pysolver.options.Options
+                        "integr_tol": ("pos", OPT, None), "h_max": ("pos", OPT, None),
+                        "h_min": ("nonneg", OPT, None), "h0_max": ("pos", OPT, None),
+                        "dae_constr_tol": ("pos", OPT, None),
+                        "max_num_steps": ("id", OPT, None),
+                        "max_step_growth": ("pos", OPT, None),
+                        "nonlin_conv_coef": ("pos", OPT, None), "label": ("str", OPT, "")},
+    "Post_Request": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                     "type": (("EXPRESSION",), OPT, "EXPRESSION"), "comment": ("str", OPT, ""),
+                     **{f"expr{k}": ("expr?", OPT, None) for k in range(1, 9)},
+                     **{f"name{k}": ("str", OPT, None) for k in range(1, 9)}},
+    "Param_Static": {"method": (("FIM_D", "FIM_S", "MKEAM"), OPT, "FIM_D"),
+                     "max_ke_tol": ("pos", OPT, 1e-5), "max_dq_tol": ("pos", OPT, 1e-3),
+                     "max_num_iter": ("id", OPT, 100), "max_imbalance": ("pos", OPT, 1e-4),
+                     "max_error": ("pos", OPT, 1e-4), "stability": ("nonneg", OPT, 1e-10),
+                     "compliance_delta": ("pos", OPT, 1e-3), "tlimit": ("pos", OPT, 20.0),
+                     "alimit": ("pos", OPT, 0.17453292519943295), "label": ("str", OPT, "")},
+    "Simulate": {"analysis_type": (("TRANSIENT", "STATIC", "QUASI-STATIC"), REQ, None),
+                 "start_time": ("float", OPT, None), "end_time": ("float", OPT, None),
+                 "duration": ("pos", OPT, None), "print_interval": ("pos", OPT, None),
+                 "num_step": ("id", OPT, None), "print_increment": ("id", OPT, None)},
+    "Sensor_Event": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                     "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
+                     "expr": ("expr", OPT, None), "value": ("float", OPT, 0.0),
+                     "compare": (("GE", "LT", "EQ", "LE"), OPT, "GE"),
+                     "error_tol": ("nonneg", OPT, 1e-3), "evaluate_id": ("id", OPT, None),
+                     "dt": ("pos", OPT, None), "stepsize": ("pos", OPT, None),
+                     "zero_crossing": ("float", OPT, None), "hmax": ("pos", OPT, None),
+                     "halt": ("bool", OPT, False), "print": ("bool", OPT, False),
+                     "restart": ("bool", OPT, False), "verbose": ("bool", OPT, False),
+                     "return": ("bool", OPT, False), **_USERSUB},
+    "Sensor_Evaluate": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                        "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
+                        "expr": ("expr", OPT, None), **_USERSUB},
+    "Stop": {},
+}
+COMMANDS = ("Simulate", "Stop")
+CANONICAL = {name.lower(): name for name in SCHEMA}
+_ID_KIND = {"Reference_Marker": "marker", "Body_Rigid": "body", "Body_Point": "body",
+            "Force_Penalty": "penalty", "Force_Scalar_TwoBody": "sforce",
+            "Reference_Variable": "variable", "Post_Request": "request",
+            "Sensor_Event": "sensor", "Sensor_Evaluate": "evaluate"}
+
+
+
+class Ctx:
+    """Location of the element being built, for DeckError."""
+
+    def __init__(self, file, tag, attrs, line, names):
+        self.file, self.tag, self.attrs, self.line, self.names = file, tag, attrs, line, names
+        self.id = None
+
+    def error(self, msg, attribute=None):
+        shown = self.names.get(attribute, attribute) if attribute else None
+        return DeckError(msg, file=self.file, line=self.line, element=self.tag, id=self.id,
+                         attribute=shown)
+
+    def where(self):
+        return dict(file=self.file, line=self.line, element=self.tag, id=self.id)
+
+
+def convert(ctx, name, kind, raw):
+    """Convert one attribute value to its kind or raise DeckError."""
+    if isinstance(kind, tuple):
+        val = str(raw).strip().upper()
+        if val not in kind:
+            raise ctx.error(f"got {raw!r}; expected one of {', '.join(kind)}", name)
+        return val
+    if kind.startswith("unit:"):
+        return _unit(ctx, name, kind[5:], raw)
+    if kind == "str":
+        return str(raw)
+    if kind == "bool":
+        if isinstance(raw, bool):
+            return raw
+        val = str(raw).strip().upper()
+        if val in ("TRUE", "YES", "1", "ON"):
+            return True
+        if val in ("FALSE", "NO", "0", "OFF"):
+            return False
+        raise ctx.error(f"got {raw!r}; expected TRUE or FALSE", name)
+    if kind == "id":
+        try:
+            val = int(str(raw).strip()) if not isinstance(raw, (int, float)) else raw
+            if isinstance(val, float) and val != int(val):
+                raise ValueError
+            val = int(val)
+        except (TypeError, ValueError):
+            raise ctx.error(f"got {raw!r}; expected a positive integer", name) from None
+        if val <= 0:
+            raise ctx.error(f"got {val}; expected a positive integer", name)
+        return val
+    if kind in ("float", "pos", "nonneg"):
+        try:
+            val = float(str(raw).strip().replace("d", "e").replace("D", "e")) \
+                if not isinstance(raw, (int, float)) or isinstance(raw, bool) else float(raw)
+            if isinstance(raw, bool):
+                raise ValueError
+        except (TypeError, ValueError):
+            raise ctx.error(f"got {raw!r}; expected a real number", name) from None
+        if not math.isfinite(val):
+            raise ctx.error(f"got {raw!r}; expected a finite real number", name)
+        if kind == "pos" and val <= 0:
+            raise ctx.error(f"got {val:g}; expected a value > 0", name)
+        if kind == "nonneg" and val < 0:
+            raise ctx.error(f"got {val:g}; expected a value >= 0", name)
+        return val
+    if kind in ("expr", "expr?"):
+        text = str(raw)
+        if kind == "expr?" and text.strip().upper() in ("NULL", ""):
+            return None
+        try:
+            return (ex.parse(text), text)
+        except ExpressionError as err:
+            raise ctx.error(f"bad expression {text!r}: {err}", name) from None
+    raise AssertionError(kind)
+
+
+def _unit(ctx, name, kind, raw):
+    val = str(raw).strip().upper()
+    if val not in un.TABLES[kind]:
+        raise ctx.error(f"unknown {kind} unit {raw!r}; expected one of "
+                        f"{', '.join(sorted(un.TABLES[kind]))}", name)
+    return val
+
+
+def attributes(ctx):
+    """Check names, presence and kinds of the element's attributes; return converted values."""
+    schema = SCHEMA[ctx.tag]
+    if "id" in schema and "id" in ctx.attrs:
+        ctx.id = convert(ctx, "id", "id", ctx.attrs["id"])
+    for key in ctx.attrs:
+        if key not in schema:
+            raise ctx.error(f"unknown attribute; {ctx.tag} accepts "
+                            f"{', '.join(sorted(schema)) or 'no attributes'}", key)
+    out = {}
+    for key, (kind, required, default) in schema.items():
+        if key in ctx.attrs:
+            out[key] = convert(ctx, key, kind, ctx.attrs[key])
+            if ctx.tag == "Param_Transient" and key in DECK_NAMES:
+                problem = rule_problem(key, out[key])
+                if problem:
+                    raise ctx.error(f"got {out[key]:g}; expected a value {problem}", key)
+        elif required:
+            raise ctx.error("missing required attribute", key)
+        else:
+            out[key] = default
+    return out
+

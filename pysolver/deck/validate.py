@@ -1,0 +1,187 @@
+"""Raw deck elements -> a validated :class:`~pysolver.model.Model`.
+
+:func:`build_model` checks every element against the schema, resolves ids, marker frames and
+bodies (:mod:`.bodies`), the force-like elements and commands (here), and every reference an
+expression makes (:mod:`.references`). Both deck formats end here, so they build identical
+models.
+"""
+import numpy as np
+
+from ..errors import DeckError
+from ..model import (Evaluate, Model, Penalty, Request, ScalarForce, Sensor, Simulate, Static,
+                     Variable)
+from ..options import DECK_NAMES, Options
+from . import units as un
+from .bodies import add_bodies
+from .references import check_references
+from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
+
+
+def build_model(elements, source):
+    """Validate raw elements and return a :class:`Model`.
+
+    Parameters
+    ----------
+    elements : list of (tag, attrs, line, names)
+        ``tag`` any capitalisation of an element name; ``attrs`` maps lower-case attribute
+        names to raw values; ``names`` maps attribute names to how the deck spelled them.
+    source : Source
+    """
+    model = Model(source)
+    seen = {}
+    markers_raw = {}
+    bodies_raw = []
+    later = []
+    sim_t = 0.0
+    for tag, attrs, line, names in elements:
+        canon = CANONICAL.get(tag.lower())
+        if canon is None:
+            raise DeckError(f"unknown element <{tag}>; known elements: "
+                            f"{', '.join(sorted(SCHEMA))}", file=source.file, line=line,
+                            element=tag)
+        ctx = Ctx(source.file, canon, attrs, line, names)
+        a = attributes(ctx)
+        kind = _ID_KIND.get(canon)
+        if kind:
+            key = (kind, a["id"])
+            if key in seen:
+                raise ctx.error(f"duplicate {kind} id {a['id']} (first defined on line "
+                                f"{seen[key]})", "id")
+            seen[key] = line
+        if canon == "Units":
+            model.units = {k: a[k] for k in ("mass", "length", "time", "force")}
+            model.force_scale = un.force_scale(**model.units)
+            model.has_units = True
+        elif canon == "Force_Gravity":
+            model.gravity = np.array([a["grav_x"], a["grav_y"], a["grav_z"]])
+        elif canon == "Reference_Marker":
+            markers_raw[a["id"]] = (ctx, a)
+        elif canon in ("Body_Rigid", "Body_Point"):
+            bodies_raw.append((ctx, a))
+        elif canon == "Param_Static":
+            model.static = Static(**{k: a[k] for k in SCHEMA["Param_Static"] if k != "label"})
+        elif canon == "Param_Transient":
+            model.transient = Options(**{k: a[k] for k in DECK_NAMES if a[k] is not None})
+        elif canon == "Simulate":
+            sim_t = _simulate(ctx, a, model, sim_t)
+        elif canon == "Stop":
+            break
+        else:
+            later.append((ctx, a))
+    add_bodies(model, bodies_raw, markers_raw)
+    for cmd in model.commands:
+        if cmd.analysis == "QUASI-STATIC" and model.static.method == "MKEAM":
+            raise DeckError("MKEAM does not do quasi-static analyses (seed 004); use FIM_D or "
+                            "FIM_S in Param_Static", file=source.file, line=cmd.line,
+                            element="Simulate", attribute="analysis_type")
+    for ctx, a in later:
+        _force_like(model, ctx, a)
+    check_references(model)
+    if not model.commands:
+        model.commands.append(Simulate("TRANSIENT", 1.0, 0.01))
+        model.default_command = True
+    return model
+
+
+def _simulate(ctx, a, model, t_prev):
+    if a["analysis_type"] == "STATIC":
+        # an equilibrium at the current time, or at end_time when given
+        given = [k for k in ("duration", "print_interval", "num_step", "print_increment")
+                 if a[k] is not None]
+        if given:
+            raise ctx.error("a Static analysis takes no duration or output interval", given[0])
+        end = t_prev if a["end_time"] is None else a["end_time"]
+        if end < t_prev:
+            raise ctx.error(f"end_time {end:g} is before the current time {t_prev:g}",
+                            "end_time")
+        model.commands.append(Simulate("STATIC", end, 0.0, ctx.line))
+        return end
+    if a["start_time"] is not None and abs(a["start_time"] - t_prev) > 1e-12:
+        raise ctx.error(f"start_time must equal the time the previous command ended "
+                        f"({t_prev:g})", "start_time")
+    if (a["end_time"] is None) == (a["duration"] is None):
+        raise ctx.error("give exactly one of end_time and duration", "end_time")
+    end = a["end_time"] if a["end_time"] is not None else t_prev + a["duration"]
+    if end <= t_prev:
+        raise ctx.error(f"end_time {end:g} must be after the start time {t_prev:g}", "end_time")
+    given = [k for k in ("print_interval", "num_step", "print_increment") if a[k] is not None]
+    if len(given) > 1:
+        raise ctx.error("give one of print_interval and num_step", given[1])
+    if a["print_interval"] is not None:
+        dt = a["print_interval"]
+    elif a["num_step"] is not None:
+        dt = (end - t_prev) / a["num_step"]
+    else:
+        dt = (end - t_prev) / 100.0
+    model.commands.append(Simulate(a["analysis_type"], end, dt, ctx.line))
+    return end
+
+
+
+def _parsed(val):
+    return val if val is None else val[0]
+
+
+def _reject_usersub(ctx, a):
+    if a.get("type") == "USERSUB":
+        if a.get("interpreter") == "MATLAB":
+            raise ctx.error("MATLAB user subroutines are not supported; use a C shared "
+                            "library or a Python script", "interpreter")
+        raise ctx.error("type USERSUB is not supported yet; use type EXPRESSION", "type")
+
+
+def _force_like(model, ctx, a):
+    ctx.id = a.get("id")
+    tag = ctx.tag
+    if tag == "Force_Penalty":
+        _reject_usersub(ctx, a)
+        if a["expr"] is None:
+            raise ctx.error("missing required attribute for type EXPRESSION", "expr")
+        model.penalties[a["id"]] = Penalty(a["id"], a["expr"][0], a["expr"][1], a["penalty"],
+                                           a["penalty1"], a["unilateral"],
+                                           a["smoothing_factor"], a["label"])
+        model._where[("penalty", a["id"])] = ctx
+    elif tag == "Force_Scalar_TwoBody":
+        if a["usrsub_dll_name"] or a["script_name"]:
+            _reject_usersub(ctx, {"type": "USERSUB", "interpreter": a["interpreter"]})
+        given = [k for k in ("expr", "val_expression", "val") if a[k] is not None]
+        if len(given) != 1:
+            raise ctx.error("give exactly one of expr, val_expression and val", "expr")
+        val = a[given[0]]
+        if given[0] == "val":
+            val = (("num", val), repr(val))
+        for key in ("i_marker_id", "j_marker_id"):
+            if a[key] not in model.markers:
+                raise ctx.error(f"marker {a[key]} does not exist", key)
+        model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
+                                             a["j_marker_id"], val[0], val[1], a["label"])
+        model._where[("sforce", a["id"])] = ctx
+    elif tag == "Reference_Variable":
+        model.variables[a["id"]] = Variable(a["id"], a["expr"][0], a["expr"][1], a["label"])
+        model._where[("variable", a["id"])] = ctx
+    elif tag == "Sensor_Event":
+        _reject_usersub(ctx, a)
+        if a["expr"] is None:
+            raise ctx.error("missing required attribute for type EXPRESSION", "expr")
+        zc = a["zero_crossing"]
+        if zc is not None and not 0 < zc < 1:
+            raise ctx.error(f"got {zc:g}; expected 0 < zero_crossing < 1", "zero_crossing")
+        compare = "LT" if a["compare"] == "LE" else a["compare"]
+        model.sensors[a["id"]] = Sensor(a["id"], a["expr"][0], a["expr"][1], a["value"], compare,
+                                        a["error_tol"], a["evaluate_id"], a["dt"],
+                                        a["stepsize"], zc, a["hmax"], a["halt"], a["print"],
+                                        a["restart"], a["verbose"], a["return"], a["label"])
+        model._where[("sensor", a["id"])] = ctx
+    elif tag == "Sensor_Evaluate":
+        _reject_usersub(ctx, a)
+        if a["expr"] is None:
+            raise ctx.error("missing required attribute for type EXPRESSION", "expr")
+        model.evaluates[a["id"]] = Evaluate(a["id"], a["expr"][0], a["expr"][1], a["label"])
+        model._where[("evaluate", a["id"])] = ctx
+    elif tag == "Post_Request":
+        exprs = [a[f"expr{k}"] for k in range(1, 9)]
+        model.requests[a["id"]] = Request(a["id"], [_parsed(e) for e in exprs],
+                                          [e[1] if e else None for e in exprs],
+                                          [a[f"name{k}"] for k in range(1, 9)], a["label"])
+        model._where[("request", a["id"])] = ctx
+

@@ -1,0 +1,130 @@
+"""Integrator options: the settings of ``Param_Transient`` and the run-time choices, defined once.
+
+One :class:`Options` object carries every option from the deck (``Param_Transient``, Python
+``INTEGRATOR``) through :meth:`pysolver.Model.run` overrides to the IDA driver and the static
+solvers. Names, defaults, rules and documentation live here and nowhere else; ``None`` means
+"not set" (the consumer's documented default applies).
+"""
+from __future__ import annotations
+
+import dataclasses
+import os
+from typing import Optional
+
+#: With ``linsolver="auto"``, scenes with at least this many states use a sparse or band solver.
+SPARSE_THRESHOLD = 300
+
+#: The C driver's step-growth limit once IDA's error test fails in most steps (a stiff penalty
+#: mode, docs/stiff-penalties.md), and its default Newton convergence coefficient. IDA's own is
+#: 0.33; ten times tighter costs nothing on the seed decks and halves the steps of stiff
+#: penalties. Near the limit of double precision (penalty/mass ~ 1e14) rounding keeps Newton
+#: from reaching it and 0.33 must be asked for.
+AUTO_STEP_GROWTH = 1.1
+NONLIN_CONV_COEF = 0.033
+
+#: Rules beyond the type: (test, text) per option; the text completes "must be ..." and
+#: "expected a value ...".
+_RULES = {
+    "integr_tol": (lambda v: v > 0, "> 0"),
+    "h_max": (lambda v: v > 0, "> 0"),
+    "h_min": (lambda v: v >= 0, ">= 0"),
+    "h0_max": (lambda v: v > 0, "> 0"),
+    "max_num_steps": (lambda v: v > 0, "> 0"),
+    "max_step_growth": (lambda v: v > 1, "> 1"),
+    "nonlin_conv_coef": (lambda v: 0 < v < 1, "in (0, 1)"),
+}
+_CHOICES = {"linsolver": ("auto", "dense", "sparse"), "jacobian": ("exact", "dq"),
+            "backend": ("auto", "c", "sksundae")}
+
+
+@dataclasses.dataclass(frozen=True)
+class Options:
+    """How a model is integrated.
+
+    The first seven fields are ``Param_Transient``'s attributes (same names, units of the
+    deck); the last three are run-time choices. Change them per run with
+    ``model.run(name=value, ...)``.
+
+    Attributes
+    ----------
+    integr_tol : float, default 1e-3
+        IDA's relative and absolute tolerance.
+    h_max : float or None
+        Largest step; None: unbounded.
+    h_min : float, default 0
+        Smallest step.
+    h0_max : float or None
+        Largest first step; None: IDA's choice.
+    max_num_steps : int, default 1000000
+        Most steps in one Simulate command.
+    max_step_growth : float or None
+        Largest factor by which IDA may grow its step (> 1). None: IDA's 2 until its error
+        test fails in most of 50 steps (a stiff penalty mode), then 1.1. C driver only.
+    nonlin_conv_coef : float or None
+        IDA's Newton convergence coefficient in (0, 1). None: 0.033 on the C driver, IDA's
+        0.33 on scikit-sundae.
+    linsolver : {"auto", "dense", "sparse"}
+        "auto": dense below 300 states, band (narrow-band Jacobians) or sparse CSC above.
+    jacobian : {"exact", "dq"}
+        The kernel's exact iteration matrix, or IDA's difference quotients (comparison only).
+    backend : {"auto", "c", "sksundae"} or None
+        IDA driven from C, or through scikit-sundae's Python callbacks. None: the
+        ``PYSOLVER_BACKEND`` environment variable, else "auto" (C where the scene allows).
+    """
+    integr_tol: float = 1e-3
+    h_max: Optional[float] = None
+    h_min: float = 0.0
+    h0_max: Optional[float] = None
+    max_num_steps: int = 1000000
+    max_step_growth: Optional[float] = None
+    nonlin_conv_coef: Optional[float] = None
+    linsolver: str = "auto"
+    jacobian: str = "exact"
+    backend: Optional[str] = None
+
+    def __post_init__(self):
+        for name in _RULES:
+            problem = rule_problem(name, getattr(self, name))
+            if problem:
+                raise ValueError(f"{name} must be {problem}")
+        for name, allowed in _CHOICES.items():
+            value = getattr(self, name)
+            if value is not None and value not in allowed:
+                raise ValueError(f"{name} must be {', '.join(map(repr, allowed))}, "
+                                 f"not {value!r}")
+
+    def replace(self, **changes) -> "Options":
+        """Return a copy with some options changed (checked like the constructor).
+
+        Raises
+        ------
+        TypeError
+            An unknown option name.
+        ValueError
+            A value that breaks its option's rule.
+        """
+        unknown = sorted(set(changes) - set(NAMES))
+        if unknown:
+            raise TypeError(f"unknown run option {unknown[0]!r}; expected one of "
+                            f"{', '.join(NAMES)}")
+        return dataclasses.replace(self, **changes)
+
+    def resolved_backend(self) -> str:
+        """The backend asked for: the option, else ``PYSOLVER_BACKEND``, else "auto"."""
+        backend = self.backend or os.environ.get("PYSOLVER_BACKEND", "auto")
+        if backend not in _CHOICES["backend"]:
+            raise ValueError(f"backend must be 'auto', 'c' or 'sksundae', not {backend!r}")
+        return backend
+
+
+NAMES = tuple(f.name for f in dataclasses.fields(Options))
+#: The options a deck's Param_Transient sets.
+DECK_NAMES = NAMES[:7]
+
+
+def rule_problem(name, value):
+    """Text of the rule `value` breaks for option `name` (e.g. "> 1"), or None if it is fine."""
+    if value is None or name not in _RULES:
+        return None
+    test, text = _RULES[name]
+    return None if test(value) else text

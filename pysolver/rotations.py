@@ -1,0 +1,47 @@
+"""Rotation math shared by the deck reader and the compiler: 3-1-3 angles, Euler parameters."""
+import math
+
+import numpy as np
+
+
+def rot_313(psi, theta, phi):
+    """Body 3-1-3 rotation: A = Rz(psi) Rx(theta) Rz(phi)."""
+    def rz(a):
+        c, s = math.cos(a), math.sin(a)
+        return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
+
+    c, s = math.cos(theta), math.sin(theta)
+    rx = np.array([[1.0, 0, 0], [0, c, -s], [0, s, c]])
+    return rz(psi) @ rx @ rz(phi)
+
+
+def rot_from_e(e):
+    """Rotation matrix of unit Euler parameters (e0, e1, e2, e3)."""
+    e0, e1, e2, e3 = e
+    return np.array([
+        [e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3, 2 * (e1 * e2 - e0 * e3), 2 * (e1 * e3 + e0 * e2)],
+        [2 * (e1 * e2 + e0 * e3), e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3, 2 * (e2 * e3 - e0 * e1)],
+        [2 * (e1 * e3 - e0 * e2), 2 * (e2 * e3 + e0 * e1), e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3]])
+
+
+def e_from_rot(A):
+    """Euler parameters (e0 >= 0) of a rotation matrix."""
+    tr = np.trace(A)
+    cands = [tr, A[0, 0], A[1, 1], A[2, 2]]
+    k = int(np.argmax(cands))
+    if k == 0:
+        e0 = 0.5 * math.sqrt(max(1 + tr, 0))
+        e = [e0, (A[2, 1] - A[1, 2]) / (4 * e0), (A[0, 2] - A[2, 0]) / (4 * e0),
+             (A[1, 0] - A[0, 1]) / (4 * e0)]
+    else:
+        i = k - 1
+        j, l = (i + 1) % 3, (i + 2) % 3
+        ei = 0.5 * math.sqrt(max(1 + 2 * A[i, i] - tr, 0))
+        e = [0.0] * 4
+        e[1 + i] = ei
+        e[0] = (A[l, j] - A[j, l]) / (4 * ei)
+        e[1 + j] = (A[j, i] + A[i, j]) / (4 * ei)
+        e[1 + l] = (A[l, i] + A[i, l]) / (4 * ei)
+    e = np.array(e)
+    return e if e[0] >= 0 else -e
+

@@ -1,0 +1,243 @@
+"""The transient driver: integrate, stop at instants, ask the actors.
+
+One :class:`Run` is one run of a model. It owns the state (t, y, yp), the step bounds, the
+integrator (:mod:`.integrator`: C or scikit-sundae behind one interface) and the actors
+(:mod:`.actors`): the sensors, which act at roots of their expressions, and the printer, which
+acts at print times. Between instants the C driver runs a whole batch of print times without
+returning to Python; Python runs once per event and per batch, not per step.
+
+Scenes with a ``zero_crossing`` sensor are stepped one internal step at a time instead, and
+every converged step is kept with each actor's snapshot, so that the run can go back to the
+last one before an event (restore-and-shrink). Scenes without one pay nothing for it.
+"""
+import collections
+import time
+
+import numpy as np
+
+from . import integrator, statics
+from .actors import Flow
+from .outputs import Printer, Progress
+from .sensors import Chatter, Sensors
+from .step import ROOT_RETURN, TOO_MUCH_WORK
+
+
+class Stop(Exception):
+    """Ends the run: success flag, status and message."""
+
+    def __init__(self, success, status, message):
+        super().__init__(message)
+        self.success, self.status, self.message = success, status, message
+
+
+class Run:
+    """One run of a model: state, step bounds, integrator, actors, and what they recorded."""
+
+    def __init__(self, model, kernel, options, progress):
+        self.model, self.kernel, self.options = model, kernel, options
+        self.plan = integrator.plan(kernel, options)
+        self.hmax = options.h_max          # None: unbounded
+        self.hmin = options.h_min or 0.0
+        self.events, self.log, self.statics = [], [], []
+        self.bar = Progress(0.0, model.commands[-1].end_time, progress)
+        self.printer = Printer(kernel, self.bar)
+        self.sensors = Sensors(model, kernel, self.log)
+        self.printer.watchers = [self.sensors]
+        self.actors = [self.sensors, self.printer]
+        # each actor's slice of IDA's root flags, in the kernel's root order
+        self.root_slices, off = [], 0
+        for a in self.actors:
+            if a.nroots:
+                self.root_slices.append((a, slice(off, off + a.nroots)))
+                off += a.nroots
+        self.onestep = any(a.needs_restore for a in self.actors)
+        self.steps_seen = collections.deque(maxlen=3)   # (t, y, yp, snapshot) of converged steps
+        self.solver = None
+        self.bounds = None
+        self.nstarts = 0
+        self.retired = {"nfev": 0, "njev": 0, "netf": 0, "ncfn": 0, "steps": 0}
+        self.growth_limited_at = None
+        self.need_start = True
+        self.first_step = None
+        self.fresh = False
+        self.t_setup = None             # when the initial events were done (perf_counter)
+
+    # the integrator --------------------------------------------------------------------
+    def start(self, first_step=None):
+        """(Re)start IDA at the current state: a cold restart (order 1, history dropped). A new
+        IDA object is built only when the step bounds change."""
+        bounds = (self.hmax or 0.0, self.hmin, first_step or self.options.h0_max or 0.0)
+        self.kernel.d.last_t = self.t      # restarts are not step attempts (see ps_residual)
+        if self.solver is None or bounds != self.bounds:
+            self.retire_solver()
+            self.solver = integrator.make(self.kernel, self.options, self.plan, bounds)
+            self.bounds = bounds
+        self.nstarts += 1
+        self.fresh = True
+        self.need_start = False
+        self.solver.init_step(self.t, self.y, self.yp)
+        self.steps_seen.clear()
+        self.remember_step()
+
+    def retire_solver(self):
+        """Keep the counters of an IDA object that is being replaced (or at the end)."""
+        if self.solver is None:
+            return
+        c = self.solver.counters()
+        if c["growth_limited_at"] and self.growth_limited_at is None:
+            self.growth_limited_at = self.retired["steps"] + c["growth_limited_at"]
+        for key in self.retired:
+            self.retired[key] += c[key] or 0
+        self.solver = None
+
+    def steps(self):
+        """Converged steps so far, counted by the kernel from the times of residual calls."""
+        c = self.kernel.counters
+        return c["attempts"] - c["nfail"]
+
+    # restore-and-shrink ------------------------------------------------------------------
+    def remember_step(self):
+        """Keep a converged step, with everything an action may change (onestep mode only)."""
+        if not self.onestep:
+            if not self.steps_seen:
+                self.steps_seen.append((self.t, None, None, None))
+            return
+        snap = (len(self.events), len(self.log), self.hmax, [a.save() for a in self.actors])
+        self.steps_seen.append((self.t, self.y.copy(), self.yp.copy(), snap))
+
+    def last_converged_time(self):
+        return self.steps_seen[-1][0]
+
+    def restore_last_step(self):
+        """Go back to the last converged step, undoing every action taken since; returns the
+        size of the last step completed before it (or h_max when bounded)."""
+        t_prev, y_prev, yp_prev, (nev, nlog, hmax, snaps) = self.steps_seen[-1]
+        del self.events[nev:]
+        del self.log[nlog:]
+        self.hmax = hmax
+        for actor, snap in zip(self.actors, snaps):
+            actor.restore(snap, t_prev)
+        if self.hmax:
+            current = self.hmax
+        elif len(self.steps_seen) >= 2:
+            current = t_prev - self.steps_seen[-2][0]
+        else:
+            current = self.t - t_prev
+        self.t, self.y, self.yp = t_prev, y_prev.copy(), yp_prev.copy()
+        return current
+
+    # instants --------------------------------------------------------------------------
+    def apply(self, flow):
+        """Carry out what the actors asked for at the current instant; returns True when the
+        current command ends here."""
+        if flow.restored:
+            self.start()
+            return False
+        if flow.restart or flow.first_step is not None:
+            if self.solver is not None:
+                self.start(flow.first_step)
+            else:                           # at t0 the integrator starts later
+                self.first_step = flow.first_step
+        if flow.emit or flow.halt or flow.ret:
+            self.printer.emit(self.t, self.y, self.yp)
+        if flow.halt:
+            raise Stop(True, 1, f"halted by {flow.halt} at t = {self.t:.9g}")
+        return flow.ret is not None
+
+    def on_roots(self, step):
+        flow = Flow()
+        for actor, sl in self.root_slices:
+            flow.update(actor.on_roots(self, step.roots[sl]))
+        return self.apply(flow)
+
+    def interpolate(self, tp, tstop):
+        """(y, yp) at tp within the last step (IDA's interpolant)."""
+        s = self.solver.step(tp, tstop)
+        return s.y, s.yp
+
+    # a transient command -------------------------------------------------------------
+    def run_transient(self, cmd):
+        if self.need_start:
+            self.start(self.first_step)
+            self.first_step = None
+        printer = self.printer
+        printer.begin_command(self.t, cmd.end_time, cmd.print_interval)
+        start_steps = self.steps()
+        tstop = cmd.end_time
+        while printer.pending:
+            # after a (re)start IDA sizes its first step from the distance to the requested
+            # time; asking for the command's end keeps that choice independent of print times
+            if self.onestep or self.fresh:
+                step = self.solver.step(tstop, tstop, onestep=True)
+                self.fresh = False
+            elif self.plan.use_c and not any(a.watching for a in self.actors):
+                # the C driver runs through all pending outputs until an event or the end
+                times = printer.times_before(tstop)
+                step, Y, YP, REQ, n = self.solver.outputs(times, tstop)
+                printer.take(times[:n], Y, YP, REQ)
+            else:
+                step = self.solver.step(printer.pending[0], tstop)
+            if step.status == TOO_MUCH_WORK or \
+                    self.steps() - start_steps > self.options.max_num_steps:
+                raise Stop(False, -100, f"more than max_num_steps = "
+                           f"{self.options.max_num_steps} steps in one Simulate command "
+                           f"(stopped at t = {step.t:.6g})")
+            if not step.success:
+                raise Stop(False, step.status, f"IDA failed at t = {step.t:.6g}: {step.message}")
+            # outputs up to the point reached: the point itself, or IDA's interpolant
+            t = step.t
+            printer.emit_due(t, lambda tp: (step.y, step.yp) if tp == t
+                             else self.interpolate(tp, tstop))
+            self.t, self.y, self.yp = t, step.y, step.yp
+            if step.status == ROOT_RETURN:
+                if self.on_roots(step):
+                    return
+                continue
+            if self.onestep and t > self.steps_seen[-1][0]:
+                self.remember_step()
+
+    # statics -------------------------------------------------------------------------
+    def after_static(self, t, y):
+        """Continue from an equilibrium: velocities zero and, since the forces balance there,
+        yp = 0 is consistent; IDA is restarted when a transient follows."""
+        self.t, self.y = t, y
+        self.yp = np.zeros_like(y)
+        self.kernel.d.last_t = t
+        self.need_start = True
+        self.printer.emit(self.t, self.y, self.yp)
+
+    # the whole run -------------------------------------------------------------------
+    def run(self):
+        """Run every command; returns (success, status, message)."""
+        k = self.kernel
+        self.t = 0.0
+        self.y = k.layout.initial_state()
+        k.d.last_t = self.t
+        self.yp = k.consistent_yp(self.t, self.y)
+        commands = {"TRANSIENT": self.run_transient, "STATIC": lambda c: statics.run_static(self, c),
+                    "QUASI-STATIC": lambda c: statics.run_quasi_static(self, c)}
+        try:
+            try:
+                flow = Flow()
+                for actor in self.actors:
+                    flow.update(actor.start(self))
+                self.printer.emit(self.t, self.y, self.yp)
+                self.apply(flow)
+                self.t_setup = time.perf_counter()
+                for cmd in self.model.commands:
+                    commands[cmd.analysis](cmd)
+            except Chatter as err:
+                raise Stop(False, -200, str(err)) from None
+            except statics.StaticFailure as err:
+                raise Stop(False, -300, str(err)) from None
+        except Stop as stop:
+            return stop.success, stop.status, stop.message
+        finally:
+            self.bar.close(self.t)
+        return True, 0, "The simulation finished."
+
+    def counters(self):
+        """IDA's counters of the whole run (C driver: all; scikit-sundae: nfev, njev)."""
+        self.retire_solver()
+        return dict(self.retired), self.growth_limited_at
+

@@ -1,0 +1,86 @@
+"""One interface for IDA, whichever way it is driven.
+
+:class:`~.cida.CIDA` drives SUNDIALS IDA from C (the kernel's residual, Jacobian and roots
+called without Python); :class:`~.pyida.PyIDA` adapts scikit-sundae's ``IDA`` (Python
+callbacks), for scenes the C driver does not take and for the static solvers' own DAEs. Both
+return :class:`Step` records and count the same things, so the transient driver has one path.
+
+The interface (duck-typed):
+
+``init_step(t0, y0, yp0)``
+    Start, or cold-restart, at a consistent point.
+``step(tout, tstop, onestep=False) -> Step``
+    One IDASolve call toward ``tout`` (one internal step if ``onestep``), never past ``tstop``.
+``outputs(times, tstop) -> (Step, Y, YP, REQ, n)``
+    Run through output times, returning the first ``n`` rows of states, derivatives and
+    request channels; stops early at a root or a failure (the Step says which).
+``counters() -> dict``
+    IDA's counters over the object's life: steps, nfev, njev, netf, ncfn (None where IDA's
+    wrapper does not report them) and growth_limited_at.
+"""
+import dataclasses
+
+from ..options import AUTO_STEP_GROWTH, NONLIN_CONV_COEF, SPARSE_THRESHOLD
+from . import cida
+from .pyida import PyIDA
+from .step import ROOT_RETURN, TOO_MUCH_WORK, Step  # noqa: F401  (re-exported)
+
+@dataclasses.dataclass(frozen=True)
+class Plan:
+    """How a scene is integrated: backend and linear solver, chosen once per run."""
+    use_c: bool
+    sparse: bool
+    band: tuple = None        # (mu, ml) for IDA's band solver
+
+    @property
+    def linsolver(self):
+        return "band" if self.band else "sparse" if self.sparse else "dense"
+
+
+def plan(kernel, options):
+    """Choose backend and linear solver for `kernel` under `options` (see Options)."""
+    backend = options.resolved_backend()
+    sparse = options.linsolver == "sparse" or (options.linsolver == "auto"
+                                               and kernel.ny >= SPARSE_THRESHOLD)
+    # a large scene whose Jacobian is a narrow band gets IDA's band solver, from C
+    band = None
+    if sparse and options.linsolver == "auto":
+        mu, ml = kernel.bandwidths()
+        if 4 * (mu + ml + 1) <= kernel.ny:
+            band = (mu, ml)
+    want_c = backend in ("auto", "c") and options.jacobian == "exact" and \
+        (not sparse or band is not None)
+    use_c = want_c and cida.available()
+    if backend == "c" and not use_c:
+        raise ValueError("backend='c' needs the dense exact-Jacobian path and SUNDIALS "
+                         "libraries from the scikit-sundae wheel")
+    # scikit-sundae runs IDA's own step control: only its default values can be asked for
+    for key, ida_default in (("max_step_growth", 2.0), ("nonlin_conv_coef", 0.33)):
+        if getattr(options, key) not in (None, ida_default) and not use_c:
+            raise ValueError(f"{key} other than IDA's {ida_default:g} needs IDA driven from "
+                             "C (dense or band scenes, exact Jacobian, the scikit-sundae "
+                             "wheel's SUNDIALS libraries)")
+    if use_c:
+        return Plan(True, False, band)
+    return Plan(False, sparse, None)
+
+
+def make(kernel, options, the_plan, bounds):
+    """A new integrator for `kernel` with step bounds (max, min, first; 0 = IDA's default)."""
+    tol = options.integr_tol
+    mxsteps = min(options.max_num_steps + 1, 2 ** 31 - 1)
+    if the_plan.use_c:
+        tune = (options.max_step_growth or 0.0, options.nonlin_conv_coef or NONLIN_CONV_COEF,
+                AUTO_STEP_GROWTH)
+        return cida.CIDA(kernel, tol, tol, *bounds, mxsteps, band=the_plan.band, tune=tune)
+    if the_plan.sparse:
+        lin = dict(linsolver="sparse", sparsity=kernel.sparsity(), jacfn=kernel.jacobian_csc_fn())
+    else:
+        lin = dict(linsolver="dense", jacfn=kernel.jacobian_ida)
+    if options.jacobian == "dq":      # IDA's own difference quotients, for comparison
+        lin.pop("jacfn")
+    rootfn = kernel.roots if kernel.nsensor else None
+    return PyIDA(kernel.residual, rootfn=rootfn, nroots=kernel.nsensor, rtol=tol, atol=tol,
+                 max_step=bounds[0], min_step=bounds[1], first_step=bounds[2],
+                 max_num_steps=mxsteps, outputs=kernel.outputs, nout=len(kernel.channels),
+                 **lin)

@@ -1,0 +1,174 @@
+"""Output printing: the actor that acts at print times, the rows it keeps, the progress bar.
+
+The :class:`Printer` writes a row (time, state, its derivative, every request channel) at
+each print time of the current Simulate command. Its instants change nothing, so the driver
+may hand a whole run of them to the integrator in one call (:meth:`Printer.times_before`,
+:meth:`Printer.take`), which the C driver runs without returning to Python.
+"""
+import collections
+import math
+import sys
+import time
+
+import numpy as np
+
+from .actors import Actor
+
+
+def print_times(t0, end, dt):
+    """Output times after t0 every dt, ending with end itself."""
+    n = max(int(math.floor((end - t0) / dt + 1e-9)), 0)
+    times = t0 + dt * np.arange(1, n + 1)
+    times = times[times < end - 1e-12 * max(1.0, abs(end))]
+    return np.append(times, end)
+
+
+class Rows:
+    """Output rows kept as whole (k x n) blocks, as the C driver returns them, plus single rows;
+    joined once at the end. Only the last row is addressable."""
+
+    def __init__(self):
+        self.parts = []
+        self.n = 0
+
+    def append(self, row):
+        self.parts.append(np.asarray(row)[None, :])
+        self.n += 1
+
+    def extend(self, block):
+        if len(block):
+            self.parts.append(block)
+            self.n += len(block)
+
+    def pop(self):
+        last = self.parts[-1]
+        if len(last) > 1:
+            self.parts[-1] = last[:-1]
+        else:
+            self.parts.pop()
+        self.n -= 1
+        return last[-1]
+
+    def __len__(self):
+        return self.n
+
+    def array(self, width):
+        """All rows as one (n x width) array."""
+        if not self.parts:
+            return np.zeros((0, width))
+        return np.concatenate(self.parts, axis=0)
+
+
+class Progress:
+    """A one-line progress bar on standard error, shown only on a terminal for long runs."""
+
+    def __init__(self, t0, t1, enabled):
+        self.t0, self.t1 = t0, t1
+        self.enabled = sys.stderr.isatty() if enabled is None else enabled
+        self.auto = enabled is None
+        self.start = time.perf_counter()
+        self.last = self.start
+        self.shown = False
+
+    def update(self, t, force=False):
+        if not self.enabled:
+            return
+        now = time.perf_counter()
+        if not force and (now - self.last < 0.25 or (self.auto and now - self.start < 1.0)):
+            return
+        self.last = now
+        frac = min(max((t - self.t0) / max(self.t1 - self.t0, 1e-300), 0.0), 1.0)
+        bar = "#" * int(30 * frac)
+        sys.stderr.write(f"\r  [{bar:<30}] {100 * frac:5.1f}%  t = {t:.6g}")
+        sys.stderr.flush()
+        self.shown = True
+
+    def close(self, t):
+        """Show the final state (always when asked for explicitly) and end the line."""
+        if self.shown or (self.enabled and not self.auto):
+            self.update(t, force=True)
+            sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
+class Printer(Actor):
+    """Writes output rows at print times; the rows of the whole run end up in the Result."""
+
+    def __init__(self, kernel, bar):
+        self.kernel, self.bar = kernel, bar
+        self.ts = []
+        self.ys, self.yps, self.outs = Rows(), Rows(), Rows()
+        self.dt = None
+        self.end = None
+        self.pending = collections.deque()
+        self.watchers = []        # actors with on_output, told of every row written
+
+    # the schedule --------------------------------------------------------------------
+    def begin_command(self, t, end, dt):
+        """Print every dt from t to end (a new Simulate command)."""
+        self.end, self.dt = end, dt
+        self.pending = collections.deque(print_times(t, end, dt))
+
+    def set_interval(self, t, dt):
+        """A new print interval from t on (a sensor's dt action)."""
+        self.dt = dt
+        self.pending = collections.deque(print_times(t, self.end, dt))
+
+    def next_time(self, t):
+        return self.pending[0] if self.pending else math.inf
+
+    def times_before(self, t_limit):
+        """The pending print times up to t_limit, for one batch call of the integrator."""
+        return [tp for tp in self.pending if tp <= t_limit]
+
+    def take(self, times, Y, YP, REQ):
+        """Keep the rows of a batch the integrator ran through, and drop those times."""
+        n = len(times)
+        for _ in range(n):
+            self.pending.popleft()
+        if n:
+            self.ts.extend(times)
+            self.ys.extend(Y)
+            self.yps.extend(YP)
+            self.outs.extend(REQ)
+            self.bar.update(times[-1])
+
+    # rows ----------------------------------------------------------------------------
+    def emit(self, t, y, yp, out=None):
+        """Write a row at t; a later row at the same time replaces the earlier one."""
+        if self.ts and t < self.ts[-1]:
+            return
+        if self.ts and t == self.ts[-1]:
+            self._drop_last()
+        self.ts.append(t)
+        self.ys.append(np.array(y))
+        self.yps.append(np.array(yp))
+        self.outs.append(self.kernel.outputs(t, self.ys.parts[-1][0], self.yps.parts[-1][0])
+                         if out is None else out)
+        for actor in self.watchers:
+            actor.on_output(t, y, yp)
+        self.bar.update(t)
+
+    def emit_due(self, t, value_at):
+        """Write the rows of every pending print time up to t; value_at(tp) gives (y, yp)."""
+        while self.pending and self.pending[0] <= t:
+            tp = self.pending.popleft()
+            y, yp = value_at(tp)
+            self.emit(tp, y, yp)
+
+    def _drop_last(self):
+        self.ts.pop()
+        for rows in (self.ys, self.yps, self.outs):
+            rows.pop()
+
+    # restore-and-shrink ---------------------------------------------------------------
+    def save(self):
+        return self.dt
+
+    def restore(self, dt, t):
+        """Back at time t: rows past t are redone on the schedule of that time."""
+        self.dt = dt
+        while self.ts and self.ts[-1] > t:
+            self._drop_last()
+        last = self.ts[-1] if self.ts else t
+        self.pending = collections.deque(print_times(last, self.end, self.dt))

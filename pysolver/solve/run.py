@@ -1,0 +1,43 @@
+"""``Model.run``: options, one :class:`~.driver.Run`, and the :class:`~pysolver.Result`."""
+import dataclasses
+import time
+
+from .._version import __version__
+from ..results import Result
+from .driver import Run
+
+
+def run_model(model, progress=None, **overrides):
+    """Run every command of `model`; see :meth:`pysolver.Model.run`."""
+    t_start = time.perf_counter()
+    options = model.transient.replace(**overrides)
+    kernel = model._kernel()
+    kernel.reset_counters()
+    run = Run(model, kernel, options, progress)
+    t_run = time.perf_counter()
+    success, status, message = run.run()
+    t_end = time.perf_counter()
+    ida, growth_limited_at = run.counters()
+    c = kernel.counters
+    stats = {"steps": run.steps(), "nres": c["nres"], "njac": c["njac"], "nfail": c["nfail"],
+             "outputs": len(run.printer.ts), "nroots": c["nroots"],
+             "nevents": len(run.events), "nrearms": run.sensors.nrearms,
+             "nrestarts": max(run.nstarts - 1, 0),
+             "ida_nfev": ida["nfev"], "ida_njev": ida["njev"],
+             "netf": ida["netf"] if run.plan.use_c else None,
+             "ncfn": ida["ncfn"] if run.plan.use_c else None,
+             "growth_limited_at": growth_limited_at}
+    setup = (t_run - t_start) + ((run.t_setup or t_end) - t_run)
+    timing = {"setup": setup, "integrate": (t_end - t_start) - setup, "total": t_end - t_start}
+    used = dataclasses.asdict(options)
+    used.update(linsolver=run.plan.linsolver, backend="c" if run.plan.use_c else "sksundae")
+    meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
+            "options": used, "ny": kernel.ny, "stepping": "onestep" if run.onestep else "normal",
+            "static": dataclasses.asdict(model.static)}
+    labels = {(r.id, k): n for r in model.requests.values() for k, n in enumerate(r.names) if n}
+    pr = run.printer
+    return Result(t=pr.ts, y=pr.ys.array(kernel.ny), yp=pr.yps.array(kernel.ny),
+                  outputs=pr.outs.array(len(kernel.channels)), channels=kernel.channels,
+                  state_names=kernel.layout.names, success=success, status=status,
+                  message=message, stats=stats, timing=timing, meta=meta, labels=labels,
+                  events=run.events, log=run.log, statics=run.statics)
