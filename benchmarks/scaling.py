@@ -5,15 +5,14 @@ states, the linear solver chosen, steps, time per step and per residual, the Jac
 nonzeros, the compile time, and the process's peak resident memory after the run, and the
 exponent of a power-law fit of time per step against N.
 """
-import pathlib
 import resource
 import sys
 import time
 
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import pysolver  # noqa: E402
+
 from scenes import chain_deck  # noqa: E402
 
 

@@ -1,5 +1,15 @@
-"""Scene generators shared by tests and benchmarks."""
+"""Scenes shared by the tests and the benchmarks: deck generators, exact solutions and the
+reference values they are checked against. (pytest puts this folder on the path: pyproject's
+``pythonpath``; the benchmark scripts find it beside themselves.)"""
+import math
 import pathlib
+
+import numpy as np
+
+DECKS = pathlib.Path(__file__).resolve().parent.parent / "decks"
+
+#: Bilateral penalty on a point mass under gravity, an exact damped linear oscillator: mass,
+#: penalty, penalty1, gravity, initial height and velocity.
 
 
 def chain_deck(n, penalty=1e4, penalty1=20.0, end_time=1.0, tol=1e-6):
@@ -25,5 +35,70 @@ def chain_deck(n, penalty=1e4, penalty1=20.0, end_time=1.0, tol=1e-6):
 
 #: The stiff penalty pendulum of issue 5 (decks/stiff_penalty_pendulum.xml): 1 kg on a bilateral
 #: penalty rod (k = 1e8, c = 2e4, critical), released horizontally, 10 s, outputs every 0.01 s.
-PENDULUM = (pathlib.Path(__file__).resolve().parent.parent / "decks"
-            / "stiff_penalty_pendulum.xml").read_text()
+PENDULUM = (DECKS / "stiff_penalty_pendulum.xml").read_text()
+
+
+M, K, C, G, Z0, V0 = 2.0, 100.0, 4.0, 9.81, 1.2, 0.5
+
+OSCILLATOR = f"""<MotionSolve><Model>
+  <Body_Rigid id="1" isground="TRUE"/>
+  <Reference_Marker id="10" body_id="2" pos_z="{Z0}"/>
+  <Body_Point id="2" cg_id="10" mass="{M}" v_ic_z="{V0}"/>
+  <Force_Gravity grav_z="-{G}"/>
+  <Force_Penalty id="1" expr="DZ(10) - 1" penalty="{K}" penalty1="{C}"/>
+  <Post_Request id="1" expr1="DZ(10)" expr2="VZ(10)" expr3="PFORCE(1)"/>
+</Model>
+<Simulate analysis_type="Transient" end_time="3.0" print_interval="0.01"/>
+</MotionSolve>"""
+
+
+def oscillator_exact(t):
+    """Position and velocity of OSCILLATOR at times t, in closed form."""
+    w0 = np.sqrt(K / M)
+    zeta = C / (2 * np.sqrt(K * M))
+    wd = w0 * np.sqrt(1 - zeta ** 2)
+    zeq = 1 - M * G / K
+    x0 = Z0 - zeq
+    a, b = x0, (V0 + zeta * w0 * x0) / wd
+    decay = np.exp(-zeta * w0 * t)
+    z = zeq + decay * (a * np.cos(wd * t) + b * np.sin(wd * t))
+    v = decay * ((-zeta * w0 * a + wd * b) * np.cos(wd * t) + (-zeta * w0 * b - wd * a) * np.sin(wd * t))
+    return z, v
+
+
+def rest_penetration(k, mg, s):
+    """Root of 2 k g STEP(g, 0, 0, s, 1) = m grav by bisection."""
+    lo, hi = 0.0, s
+    for _ in range(200):
+        g = 0.5 * (lo + hi)
+        d = g / s
+        if 2 * k * g * d * d * (3 - 2 * d) > mg:
+            hi = g
+        else:
+            lo = g
+    return 0.5 * (lo + hi)
+
+
+def ball(sensors, z0=10.0, end=2.0, dt=0.1, extra="", tol=1e-10, more=""):
+    """A point mass falling from z0 under gravity, with the given sensor elements."""
+    return f"""<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+      <Reference_Marker id="10" body_id="2" pos_z="{z0}"/>
+      <Body_Point id="2" cg_id="10" mass="1"/><Force_Gravity grav_z="-{G}"/>{extra}
+      {sensors}
+      <Post_Request id="1" expr1="DZ(10)" expr2="VZ(10)" expr3="TIME"/>
+      <Param_Transient integr_tol="{tol}"/></Model>
+      <Simulate analysis_type="Transient" end_time="{end}" print_interval="{dt}"/>{more}
+      </MotionSolve>"""
+
+
+def contact(zero_crossing, z0=1.0, **options):
+    """decks/contact_onset_zero_crossing.xml dropped from z0 (zero_crossing None: without it):
+    the first contact event's time, its output row, and the Result."""
+    import pysolver
+    text = (DECKS / "contact_onset_zero_crossing.xml").read_text()
+    text = text.replace('zero_crossing="0.01"', f'zero_crossing="{zero_crossing}"'
+                        if zero_crossing else "").replace('pos_z="1"', f'pos_z="{z0}"')
+    text = text.replace('end_time="0.6"', f'end_time="{math.sqrt(2 * z0 / G) + 0.05}"')
+    res = pysolver.loads(text).run(**options)
+    (ev,) = [e for e in res.events if e.sensor == 1][:1]
+    return ev.time, res.request(1)[list(res.t).index(ev.time)], res

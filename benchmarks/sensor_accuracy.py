@@ -9,12 +9,12 @@ Run: ``python benchmarks/sensor_accuracy.py``. Prints
 """
 import math
 import pathlib
-import sys
+
+import pysolver
+
+from scenes import G, ball, contact
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "tests"))
-import pysolver  # noqa: E402
-from test_sensors import G, _contact, ball  # noqa: E402
 
 
 def event_times():
@@ -42,7 +42,6 @@ def event_times():
 
 
 def zero_crossing():
-    decks = ROOT / "decks"
     for tol in (1e-3, 1e-5):
         print(f"\nFirst contact with and without zero_crossing = 0.01, integr_tol {tol:g} "
               "(errors against integr_tol 1e-11)")
@@ -51,9 +50,9 @@ def zero_crossing():
               f"{'steps':>5} {'zc':>5}")
         sums = [0.0, 0.0]
         for z0 in (0.5, 0.8, 1.0, 1.5, 2.0, 3.0):
-            t_ref, ref, r_ref = _contact(decks, None, z0, integr_tol=1e-11)
-            t_p, p, r_p = _contact(decks, None, z0, integr_tol=tol)
-            t_z, z, r_z = _contact(decks, 0.01, z0, integr_tol=tol)
+            t_ref, ref, r_ref = contact(None, z0, integr_tol=1e-11)
+            t_p, p, r_p = contact(None, z0, integr_tol=tol)
+            t_z, z, r_z = contact(0.01, z0, integr_tol=tol)
             ep, ez = abs(p[1] - ref[1]), abs(z[1] - ref[1])
             sums[0] += ep
             sums[1] += ez

@@ -3,15 +3,15 @@
 Run: ``python benchmarks/statics.py``. Times are the best of 5 runs after a warm-up.
 """
 import pathlib
-import sys
 import time
 
 import numpy as np
 
+import pysolver
+
+from scenes import rest_penetration
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "tests"))
-import pysolver  # noqa: E402
-from test_seed_decks import rest_penetration  # noqa: E402
 
 
 def best(fn, n=5):

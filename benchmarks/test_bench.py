@@ -8,14 +8,12 @@ stiff penalties; ``work_precision.py`` adds error-against-time sweeps and the Sc
 plain C and Exudyn comparators.
 """
 import pathlib
-import sys
 
 import pytest
 
 import pysolver
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import andrews  # noqa: E402
 from scenes import PENDULUM, chain_deck  # noqa: E402
 

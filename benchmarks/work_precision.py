@@ -19,17 +19,17 @@ against time (one line per solver) into benchmarks/out/.
 """
 import argparse
 import pathlib
-import sys
 import time
 
 import numpy as np
 
+import pysolver
+
+from scenes import OSCILLATOR as DECK
+from scenes import PENDULUM, C, G, K, M
+from scenes import oscillator_exact as exact
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "tests"))
-sys.path.insert(0, str(ROOT / "benchmarks"))
-import pysolver  # noqa: E402
-from scenes import PENDULUM  # noqa: E402
-from test_oscillator import DECK, exact, M, K, C, G  # noqa: E402
 
 
 #: (problem, solver, tolerance or step, max error, final error, L2 error, seconds)
@@ -68,8 +68,9 @@ def scipy_run(method, tol, t_eval, rhs, y0):
 
 def oscillator_exudyn(repeat):
     """Exudyn's generalized-alpha on the oscillator at fixed steps (if installed)."""
-    import exudyn_models
     from test_oscillator import V0, Z0
+
+    import exudyn_models
     if not exudyn_models.available():
         print("\nExudyn not installed (pip install .[bench]): its lines are left out")
         return []
@@ -132,6 +133,7 @@ def seed3_comparators(repeat):
     outputs against a pysolver run at integr_tol 1e-12. Returns rows (tol, pysolver error,
     seconds, steps, reference) for :func:`seed3_plain_c`."""
     from sksundae.ida import IDA
+
     from comparators import initial_state, residual, rhs
     model = pysolver.load(ROOT / "decks" / "particle_between_lines.xml")
     ref = model.run(integr_tol=1e-12).request(1)[:, :2]

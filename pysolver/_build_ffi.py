@@ -46,6 +46,7 @@ def make_builder():
 if __name__ == "__main__":
     builder = make_builder()
     if sys.argv[1:] == ["--inplace"]:
-        builder.compile(tmpdir=str(ROOT / "build" / "inplace"), target=str(ROOT / "pysolver" / "_kernel.*"))
+        builder.compile(tmpdir=str(ROOT / "build" / "inplace"),
+                        target=str(ROOT / "pysolver" / "_kernel.*"))
     else:
         builder.emit_c_code(sys.argv[1])

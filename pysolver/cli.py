@@ -5,8 +5,8 @@ import json
 import os
 import sys
 
-from .errors import DeckError
 from .deck.loader import load
+from .errors import DeckError
 
 
 def _run(args):

@@ -203,7 +203,7 @@ class Model:
             ``success=False`` with a message when the integration fails; never raises for
             that. Can be called repeatedly; each call starts from the deck's initial state.
         """
-        from .solve import run_model      # the facade: solving comes after the model
+        from .solve import run_model  # the facade: solving comes after the model
         return run_model(self, progress=progress, **options)
 
     def _kernel(self, conservative=False):

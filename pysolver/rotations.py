@@ -35,13 +35,13 @@ def e_from_rot(A):
              (A[1, 0] - A[0, 1]) / (4 * e0)]
     else:
         i = k - 1
-        j, l = (i + 1) % 3, (i + 2) % 3
+        j, m = (i + 1) % 3, (i + 2) % 3
         ei = 0.5 * math.sqrt(max(1 + 2 * A[i, i] - tr, 0))
         e = [0.0] * 4
         e[1 + i] = ei
-        e[0] = (A[l, j] - A[j, l]) / (4 * ei)
+        e[0] = (A[m, j] - A[j, m]) / (4 * ei)
         e[1 + j] = (A[j, i] + A[i, j]) / (4 * ei)
-        e[1 + l] = (A[l, i] + A[i, l]) / (4 * ei)
+        e[1 + m] = (A[m, i] + A[i, m]) / (4 * ei)
     e = np.array(e)
     return e if e[0] >= 0 else -e
 

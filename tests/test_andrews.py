@@ -1,12 +1,9 @@
 """Andrews' squeezing mechanism (Test Set for IVP solvers) with penalty joints: the error
 against the published reference falls as O(1/penalty)."""
-import sys
 
 import pysolver
-from conftest import ROOT
 
-sys.path.insert(0, str(ROOT / "benchmarks"))
-import andrews  # noqa: E402
+import andrews
 
 
 def test_geometry_satisfies_the_loop_constraints():

@@ -3,8 +3,8 @@ import json
 import os
 import pickle
 import subprocess
-import tempfile
 import sys
+import tempfile
 
 import numpy as np
 import pytest

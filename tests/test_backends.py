@@ -40,10 +40,6 @@ def test_backend_option_is_checked(decks):
 def test_band_solver_for_a_chain_matches_the_sparse_one():
     """A large chain has a narrow-band Jacobian: the C driver uses IDA's band solver, filled
     from the kernel's triplets; scikit-sundae's sparse solver gives the same solution."""
-    import sys
-
-    from conftest import ROOT
-    sys.path.insert(0, str(ROOT / "benchmarks"))
     from scenes import chain_deck
     model = pysolver.loads(chain_deck(60, end_time=0.1))
     k = model._kernel()

@@ -8,7 +8,8 @@ import subprocess
 import sys
 
 import pysolver
-from conftest import ROOT
+
+from helpers import ROOT
 
 BENCH = ROOT / "benchmarks"
 

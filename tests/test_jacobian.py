@@ -3,7 +3,8 @@ import numpy as np
 import pytest
 
 import pysolver
-from conftest import TEST_DECKS, fd_iteration_matrix
+
+from helpers import TEST_DECKS, fd_iteration_matrix
 
 SCENES = [TEST_DECKS / "all_functions.xml"] + [
     f"{name}.xml" for name in ("catenary_bead", "particle_above_line", "particle_between_lines",

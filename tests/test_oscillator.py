@@ -4,31 +4,9 @@ import pytest
 
 import pysolver
 
-M, K, C, G, Z0, V0 = 2.0, 100.0, 4.0, 9.81, 1.2, 0.5
-
-DECK = f"""<MotionSolve><Model>
-  <Body_Rigid id="1" isground="TRUE"/>
-  <Reference_Marker id="10" body_id="2" pos_z="{Z0}"/>
-  <Body_Point id="2" cg_id="10" mass="{M}" v_ic_z="{V0}"/>
-  <Force_Gravity grav_z="-{G}"/>
-  <Force_Penalty id="1" expr="DZ(10) - 1" penalty="{K}" penalty1="{C}"/>
-  <Post_Request id="1" expr1="DZ(10)" expr2="VZ(10)" expr3="PFORCE(1)"/>
-</Model>
-<Simulate analysis_type="Transient" end_time="3.0" print_interval="0.01"/>
-</MotionSolve>"""
-
-
-def exact(t):
-    w0 = np.sqrt(K / M)
-    zeta = C / (2 * np.sqrt(K * M))
-    wd = w0 * np.sqrt(1 - zeta ** 2)
-    zeq = 1 - M * G / K
-    x0 = Z0 - zeq
-    a, b = x0, (V0 + zeta * w0 * x0) / wd
-    decay = np.exp(-zeta * w0 * t)
-    z = zeq + decay * (a * np.cos(wd * t) + b * np.sin(wd * t))
-    v = decay * ((-zeta * w0 * a + wd * b) * np.cos(wd * t) + (-zeta * w0 * b - wd * a) * np.sin(wd * t))
-    return z, v
+from scenes import OSCILLATOR as DECK
+from scenes import V0, Z0, C, G, K, M  # noqa: F401
+from scenes import oscillator_exact as exact
 
 
 def run(tol):

@@ -64,18 +64,18 @@ def test_orientation_forms_agree():
     np.testing.assert_allclose(model.markers[4].pos, A @ [1, 2, 3], atol=1e-12)
 
 
-def heavy_top_reference(t, m=1.0, g=9.81, l=0.1, I1c=0.004, I3=0.00178, w3=200.0, th0=0.3):
+def heavy_top_reference(t, m=1.0, g=9.81, arm=0.1, I1c=0.004, I3=0.00178, w3=200.0, th0=0.3):
     """Heavy symmetric top about a fixed tip, by Lagrange's equations in Euler angles,
     integrated with SciPy at rtol 1e-11: returns (theta, phi) at times t."""
     from scipy.integrate import solve_ivp
-    I1 = I1c + m * l * l                  # about the pivot
+    I1 = I1c + m * arm * arm                  # about the pivot
     p_phi = I3 * w3 * np.cos(th0)         # released without precession
 
     def rhs(_, s):
         th, thd, _phi = s
         phid = (p_phi - I3 * w3 * np.cos(th)) / (I1 * np.sin(th) ** 2)
         thdd = (I1 * phid ** 2 * np.sin(th) * np.cos(th) - I3 * w3 * phid * np.sin(th)
-                + m * g * l * np.sin(th)) / I1
+                + m * g * arm * np.sin(th)) / I1
         return [thd, thdd, phid]
 
     sol = solve_ivp(rhs, (0, t[-1]), [th0, 0.0, 0.0], t_eval=t, rtol=1e-11, atol=1e-13,

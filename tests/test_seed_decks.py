@@ -4,20 +4,9 @@ import pytest
 
 import pysolver
 
+from scenes import rest_penetration
+
 SEEDS = ["catenary_bead", "particle_above_line", "particle_between_lines"]
-
-
-def rest_penetration(k, mg, s):
-    """Root of 2 k g STEP(g, 0, 0, s, 1) = m grav by bisection."""
-    lo, hi = 0.0, s
-    for _ in range(200):
-        g = 0.5 * (lo + hi)
-        d = g / s
-        if 2 * k * g * d * d * (3 - 2 * d) > mg:
-            hi = g
-        else:
-            lo = g
-    return 0.5 * (lo + hi)
 
 
 @pytest.mark.parametrize("deck,k,s,z_line,length_unit", [

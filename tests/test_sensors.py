@@ -6,19 +6,7 @@ import pytest
 
 import pysolver
 
-G = 9.81
-
-
-def ball(sensors, z0=10.0, end=2.0, dt=0.1, extra="", tol=1e-10, more=""):
-    """A point mass falling from z0 under gravity, with the given sensor elements."""
-    return f"""<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
-      <Reference_Marker id="10" body_id="2" pos_z="{z0}"/>
-      <Body_Point id="2" cg_id="10" mass="1"/><Force_Gravity grav_z="-{G}"/>{extra}
-      {sensors}
-      <Post_Request id="1" expr1="DZ(10)" expr2="VZ(10)" expr3="TIME"/>
-      <Param_Transient integr_tol="{tol}"/></Model>
-      <Simulate analysis_type="Transient" end_time="{end}" print_interval="{dt}"/>{more}
-      </MotionSolve>"""
+from scenes import G, ball, contact
 
 
 @pytest.mark.parametrize("compare,value,h", [("LT", 5.0, 5.0), ("LT", 9.9, 0.1),
@@ -60,16 +48,6 @@ def test_contact_onset_exact_flight_time(decks):
     assert 0 < first_force - exact < 1e-6
 
 
-def _contact(decks, zero_crossing, z0=1.0, **options):
-    text = (decks / "contact_onset_zero_crossing.xml").read_text()
-    text = text.replace('zero_crossing="0.01"', f'zero_crossing="{zero_crossing}"'
-                        if zero_crossing else "").replace('pos_z="1"', f'pos_z="{z0}"')
-    text = text.replace('end_time="0.6"', f'end_time="{math.sqrt(2 * z0 / G) + 0.05}"')
-    res = pysolver.loads(text).run(**options)
-    (ev,) = [e for e in res.events if e.sensor == 1][:1]
-    return ev.time, res.request(1)[list(res.t).index(ev.time)], res
-
-
 HEIGHTS = [0.5, 0.8, 1.0, 1.5, 2.0, 3.0]
 
 
@@ -81,9 +59,9 @@ def test_zero_crossing_improves_first_contact(decks):
     compared: zero crossing is never worse and better by over 10x overall (measured: 49x)."""
     plain_err, zc_err = [], []
     for z0 in HEIGHTS:
-        t_ref, ref, _ = _contact(decks, None, z0, integr_tol=1e-11)
-        t_plain, plain, r_plain = _contact(decks, None, z0)
-        t_zc, zc, r_zc = _contact(decks, 0.01, z0)
+        t_ref, ref, _ = contact(None, z0, integr_tol=1e-11)
+        t_plain, plain, r_plain = contact(None, z0)
+        t_zc, zc, r_zc = contact(0.01, z0)
         plain_err.append(abs(plain[1] - ref[1]))
         zc_err.append(abs(zc[1] - ref[1]))
         assert abs(t_zc - t_ref) < 1e-5 and abs(t_plain - t_ref) < 1e-3

@@ -1,13 +1,11 @@
 """The sparse (CSC) Jacobian path: same matrix and same solution as the dense path."""
-import sys
 
 import numpy as np
 import pytest
 
 import pysolver
-from conftest import ROOT, TEST_DECKS
 
-sys.path.insert(0, str(ROOT / "benchmarks"))
+from helpers import TEST_DECKS
 from scenes import chain_deck  # noqa: E402
 
 

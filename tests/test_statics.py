@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 import pysolver
-from test_seed_decks import rest_penetration
+
+from scenes import rest_penetration
 
 
 def load(decks, name, **replace):

@@ -141,7 +141,7 @@ def PFORCE(id, **kw):
            "SCRIPT": "script_name", "TYPE": "type"}, id, **kw)
 
 
-def SFORCE(id, I=None, J=None, TRANSLATION=False, ROTATION=False, **kw):
+def SFORCE(id, I=None, J=None, TRANSLATION=False, ROTATION=False, **kw):  # noqa: E741
     """Scalar two-body force: I, J markers, TRANSLATION=True (force along J->I) or
     ROTATION=True (torque about z of J), FUNCTION, LABEL."""
     if bool(TRANSLATION) == bool(ROTATION):

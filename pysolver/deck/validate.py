@@ -8,8 +8,17 @@ models.
 import numpy as np
 
 from ..errors import DeckError
-from ..model import (Evaluate, Model, Penalty, Request, ScalarForce, Sensor, Simulate, Static,
-                     Variable)
+from ..model import (
+    Evaluate,
+    Model,
+    Penalty,
+    Request,
+    ScalarForce,
+    Sensor,
+    Simulate,
+    Static,
+    Variable,
+)
 from ..options import DECK_NAMES, Options
 from . import units as un
 from .bodies import add_bodies

@@ -150,11 +150,6 @@ class Run:
             flow.update(actor.on_roots(self, step.roots[sl]))
         return self.apply(flow)
 
-    def interpolate(self, tp, tstop):
-        """(y, yp) at tp within the last step (IDA's interpolant)."""
-        s = self.solver.step(tp, tstop)
-        return s.y, s.yp
-
     # a transient command -------------------------------------------------------------
     def run_transient(self, cmd):
         if self.need_start:
@@ -186,8 +181,7 @@ class Run:
                 raise Stop(False, step.status, f"IDA failed at t = {step.t:.6g}: {step.message}")
             # outputs up to the point reached: the point itself, or IDA's interpolant
             t = step.t
-            printer.emit_due(t, lambda tp: (step.y, step.yp) if tp == t
-                             else self.interpolate(tp, tstop))
+            printer.emit_due(step, self.solver, tstop)
             self.t, self.y, self.yp = t, step.y, step.yp
             if step.status == ROOT_RETURN:
                 if self.on_roots(step):
@@ -214,7 +208,8 @@ class Run:
         self.y = k.layout.initial_state()
         k.d.last_t = self.t
         self.yp = k.consistent_yp(self.t, self.y)
-        commands = {"TRANSIENT": self.run_transient, "STATIC": lambda c: statics.run_static(self, c),
+        commands = {"TRANSIENT": self.run_transient,
+                    "STATIC": lambda c: statics.run_static(self, c),
                     "QUASI-STATIC": lambda c: statics.run_quasi_static(self, c)}
         try:
             try:

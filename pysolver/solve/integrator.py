@@ -25,6 +25,7 @@ from . import cida
 from .pyida import PyIDA
 from .step import ROOT_RETURN, TOO_MUCH_WORK, Step  # noqa: F401  (re-exported)
 
+
 @dataclasses.dataclass(frozen=True)
 class Plan:
     """How a scene is integrated: backend and linear solver, chosen once per run."""

@@ -140,21 +140,22 @@ class Printer(Actor):
             return
         if self.ts and t == self.ts[-1]:
             self._drop_last()
+        y, yp = np.array(y, dtype=float), np.array(yp, dtype=float)
         self.ts.append(t)
-        self.ys.append(np.array(y))
-        self.yps.append(np.array(yp))
-        self.outs.append(self.kernel.outputs(t, self.ys.parts[-1][0], self.yps.parts[-1][0])
-                         if out is None else out)
+        self.ys.append(y)
+        self.yps.append(yp)
+        self.outs.append(self.kernel.outputs(t, y, yp) if out is None else out)
         for actor in self.watchers:
             actor.on_output(t, y, yp)
         self.bar.update(t)
 
-    def emit_due(self, t, value_at):
-        """Write the rows of every pending print time up to t; value_at(tp) gives (y, yp)."""
-        while self.pending and self.pending[0] <= t:
+    def emit_due(self, step, solver, tstop):
+        """Write the rows of every pending print time up to the point a step reached: the
+        point itself, or the solver's interpolant within its last step."""
+        while self.pending and self.pending[0] <= step.t:
             tp = self.pending.popleft()
-            y, yp = value_at(tp)
-            self.emit(tp, y, yp)
+            at = step if tp == step.t else solver.step(tp, tstop)
+            self.emit(tp, at.y, at.yp)
 
     def _drop_last(self):
         self.ts.pop()
