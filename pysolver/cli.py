@@ -15,8 +15,14 @@ def _run(args):
     out = args.output or os.path.splitext(os.path.basename(args.deck))[0] + "_out"
     os.makedirs(out, exist_ok=True)
     csv_path = res.save(os.path.join(out, "requests.csv"))
-    png_path = os.path.join(out, "requests.png")
-    res.plot(png_path)
+    written = [csv_path]
+    if not args.no_plot:
+        png_path = os.path.join(out, "requests.png")
+        try:
+            res.plot(png_path)
+            written.append(png_path)
+        except ImportError as err:
+            print(f"pysolver: no plot ({err})", file=sys.stderr)
     stats_path = os.path.join(out, "stats.json")
     with open(stats_path, "w") as fh:
         json.dump({"success": res.success, "status": res.status, "message": res.message,
@@ -28,7 +34,8 @@ def _run(args):
     for line in res.log:
         print(line)
     print(res.summary())
-    print(f"wrote {csv_path}, {png_path}, {stats_path}")
+    written.append(stats_path)
+    print(f"wrote {', '.join(written)}")
     return 0 if res.success else 1
 
 
@@ -47,6 +54,7 @@ def main(argv=None):
     run.add_argument("deck", help="deck file (.xml or .py)")
     run.add_argument("-o", "--output", help="output directory (default: DECKNAME_out)")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    run.add_argument("--no-plot", action="store_true", help="do not write requests.png")
     run.set_defaults(func=_run)
     check = sub.add_parser("check", help="validate a deck and list what it contains")
     check.add_argument("deck")

@@ -5,12 +5,18 @@ lays it out for the C kernel; the solvers (:mod:`pysolver.solve`) run it. Record
 data: no parsing, checking or numerics happen here. :meth:`Model.run` is the one facade onto
 the later stages and imports them when called, so this module imports no later stage.
 """
+from __future__ import annotations
+
 import dataclasses
 import hashlib
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .options import Options
+
+if TYPE_CHECKING:               # for annotations only: results come later in the flow
+    from .results import Result
 
 #: Units of a deck without a ``Units`` element.
 UNIT_DEFAULTS = {"mass": "KILOGRAM", "length": "METER", "time": "SECOND", "force": "NEWTON"}
@@ -184,7 +190,7 @@ class Model:
         self._where = {}          # (kind, id) -> location of the element, for errors
 
     # public API -------------------------------------------------------------------------
-    def run(self, progress=None, **options):
+    def run(self, progress: bool | None = None, **options) -> Result:
         """Run the deck's commands in order and return a :class:`pysolver.Result`.
 
         Parameters
@@ -216,7 +222,7 @@ class Model:
             self._compiled[conservative] = Kernel(self, conservative)
         return self._compiled[conservative]
 
-    def summary(self):
+    def summary(self) -> str:
         """Return a short human-readable listing of what the deck contains."""
         lines = [f"deck: {self.source.file} ({self.source.fmt})"]
         if self.has_units:
@@ -259,7 +265,7 @@ class Model:
         lines.append(f"states: {self.num_states()}")
         return "\n".join(lines)
 
-    def num_states(self):
+    def num_states(self) -> int:
         """Number of IDA states: 6 per point body, 13 per rigid body."""
         return sum({"point": 6, "rigid": 13}.get(b.kind, 0) for b in self.bodies.values())
 

@@ -1,4 +1,6 @@
 """Results of a run: time-major arrays, request channels, statistics and writers."""
+from __future__ import annotations
+
 import csv
 import os
 
@@ -96,7 +98,7 @@ class Result:
         """Ids of the Post_Request elements, sorted."""
         return sorted(self._requests)
 
-    def request(self, id):
+    def request(self, id: int) -> np.ndarray:
         """Return Post_Request `id` as an (n, 8) array: channels expr1..expr8, NaN for NULL.
 
         Raises
@@ -108,7 +110,7 @@ class Result:
             raise KeyError(f"no Post_Request with id {id}; requests: {self.request_ids}")
         return self._requests[id]
 
-    def columns(self):
+    def columns(self) -> tuple[list, np.ndarray]:
         """Return (names, 2-D array) of time and every non-NULL request channel."""
         names, cols = ["time"], [self.t]
         for rid in self.request_ids:
@@ -135,7 +137,7 @@ class Result:
         return pd.DataFrame(data[:, 1:], index=pd.Index(data[:, 0], name="time"),
                             columns=names[1:])
 
-    def save(self, path):
+    def save(self, path: str | os.PathLike) -> str:
         """Write the results: ``.csv`` (time and request channels) or ``.npz`` (everything).
 
         Returns
@@ -160,7 +162,7 @@ class Result:
             raise ValueError(f"unknown result format for {path!r}: use .csv or .npz")
         return path
 
-    def plot(self, path=None):
+    def plot(self, path: str | os.PathLike | None = None):
         """Plot every request channel against time, one panel per request.
 
         Parameters
@@ -171,8 +173,17 @@ class Result:
         Returns
         -------
         matplotlib.figure.Figure
+
+        Raises
+        ------
+        ImportError
+            matplotlib is not installed (``pip install "pysolver[plot]"``).
         """
-        import matplotlib
+        try:
+            import matplotlib
+        except ImportError:
+            raise ImportError("plotting needs matplotlib: pip install \"pysolver[plot]\"") \
+                from None
         if path is not None:
             matplotlib.use("Agg", force=False)
         import matplotlib.pyplot as plt
@@ -199,7 +210,7 @@ class Result:
             plt.close(fig)
         return fig
 
-    def summary(self):
+    def summary(self) -> str:
         """Return the run's outcome and statistics as text."""
         s = self.stats
         lines = [f"success: {self.success} ({self.message})",

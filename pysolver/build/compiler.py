@@ -5,6 +5,10 @@ rigid body q = (x, y, z, e0..e3), u = (vx, vy, vz) global and (wx, wy, wz) in th
 Every expression becomes a tape: a register program over hyper-dual numbers whose basis is
 the q entries of the bodies it touches, time, then their u (and u' for accelerations) entries;
 second derivatives are kept for the q-and-time block only.
+
+Longer than 400 lines because it is one lowering pass (expression trees to tape instructions,
+with the layout and the per-element outputs it fills); split, the instruction set it emits
+would be spread over several files.
 """
 import math
 

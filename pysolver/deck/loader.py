@@ -1,16 +1,18 @@
 """Entry points that turn a deck file or text into a validated Model."""
+from __future__ import annotations
+
 import os
 import sys
 import traceback
 
 from ..errors import DeckError
-from ..model import Source
+from ..model import Model, Source
 from . import msolve
 from .validate import build_model
 from .xml_reader import read_elements
 
 
-def load(path):
+def load(path: str | os.PathLike) -> Model:
     """Load and validate a deck.
 
     Parameters
@@ -38,7 +40,7 @@ def load(path):
     return loads(text, fmt=fmt, file=path)
 
 
-def loads(text, fmt="xml", file="<string>"):
+def loads(text: str, fmt: str = "xml", file: str = "<string>") -> Model:
     """Load a deck from text; ``fmt`` is ``"xml"`` or ``"py"``. See :func:`load`."""
     if fmt == "xml":
         elements = read_elements(text, file)

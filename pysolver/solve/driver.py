@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from . import integrator, statics
+from . import integrator, quasistatic
 from .actors import Flow
 from .outputs import Printer, Progress
 from .sensors import Chatter, Sensors
@@ -209,8 +209,8 @@ class Run:
         k.d.last_t = self.t
         self.yp = k.consistent_yp(self.t, self.y)
         commands = {"TRANSIENT": self.run_transient,
-                    "STATIC": lambda c: statics.run_static(self, c),
-                    "QUASI-STATIC": lambda c: statics.run_quasi_static(self, c)}
+                    "STATIC": lambda c: quasistatic.run_static(self, c),
+                    "QUASI-STATIC": lambda c: quasistatic.run_quasi_static(self, c)}
         try:
             try:
                 flow = Flow()
@@ -223,7 +223,7 @@ class Run:
                     commands[cmd.analysis](cmd)
             except Chatter as err:
                 raise Stop(False, -200, str(err)) from None
-            except statics.StaticFailure as err:
+            except quasistatic.StaticFailure as err:
                 raise Stop(False, -300, str(err)) from None
         except Stop as stop:
             return stop.success, stop.status, stop.message
