@@ -165,8 +165,9 @@ class Run:
             if self.onestep or self.fresh:
                 step = self.solver.step(tstop, tstop, onestep=True)
                 self.fresh = False
-            elif self.plan.use_c and not any(a.watching for a in self.actors):
-                # the C driver runs through all pending outputs until an event or the end
+            elif not any(a.watching for a in self.actors):
+                # all pending outputs until an event or the end in one call (from C: without
+                # returning to Python)
                 times = printer.times_before(tstop)
                 step, Y, YP, REQ, n = self.solver.outputs(times, tstop)
                 printer.take(times[:n], Y, YP, REQ)
