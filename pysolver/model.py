@@ -210,7 +210,7 @@ class Model:
             that. Can be called repeatedly; each call starts from the deck's initial state.
         """
         from .solve import run_model  # the facade: solving comes after the model
-        return run_model(self, progress=progress, **options)
+        return run_model(self, progress=progress, overrides=options)
 
     def _kernel(self, conservative=False):
         """The compiled kernel of this model, built on first use and reused by every run

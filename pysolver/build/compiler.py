@@ -250,7 +250,8 @@ class Compiler:
         low = t.op(sub, t.op(mul, k, t.op(lib.PS_OP_POW, t.op(sub, x1, x), e)),
                    t.op(mul, t.step(x, t.op(sub, x1, d), cmax, x1, zero), xd))
         low = t.emit(lib.PS_OP_MAX, low, zero)
-        high = t.op(sub, t.op(lib.PS_OP_NEG, t.op(mul, k, t.op(lib.PS_OP_POW, t.op(sub, x, x2), e))),
+        spring = t.op(mul, k, t.op(lib.PS_OP_POW, t.op(sub, x, x2), e))
+        high = t.op(sub, t.op(lib.PS_OP_NEG, spring),
                     t.op(mul, t.step(x, x2, zero, t.op(add, x2, d), cmax), xd))
         high = t.emit(lib.PS_OP_MIN, high, zero)
         upper = t.emit(lib.PS_OP_IF, t.op(sub, x, x2), zero, zero, high)
@@ -380,7 +381,7 @@ class Compiler:
             tb_w.extend(int(need_w) for *_, need_w in t.bodies)
             sizes = [(3, 3) if b.kind == "point" else (7, 6) for b, *_ in slots]
             n = 0
-            for (b, bi, _, _), (nq, _) in zip(slots, sizes):
+            for (_, bi, _, _), (nq, _) in zip(slots, sizes):
                 tb_body.append(bi)
                 tb_q.append(n)
                 bkind += [lib.PS_BASIS_Y] * nq

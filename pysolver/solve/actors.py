@@ -80,11 +80,13 @@ class Actor:
         return Flow()
 
     def next_time(self, t):
-        """The next time after t at which the actor acts (math.inf: none)."""
+        """The time of the actor's next action, at or after the current time t (math.inf:
+        none). The driver makes IDA stop exactly there and calls on_time."""
         return math.inf
 
     def on_time(self, run):
-        """Act at the time named by next_time; returns a Flow."""
+        """Act at the time next_time named (run.t), moving the schedule on; returns a Flow.
+        A change to the state (run.y, run.yp) takes effect with Flow(restart=True)."""
         return Flow()
 
     def on_roots(self, run, found):

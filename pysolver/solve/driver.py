@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 from . import integrator, quasistatic
-from .actors import Flow
+from .actors import Actor, Flow
 from .outputs import Printer, Progress
 from .sensors import Chatter, Sensors
 from .step import ROOT_RETURN, TOO_MUCH_WORK
@@ -144,6 +144,24 @@ class Run:
             raise Stop(True, 1, f"halted by {flow.halt} at t = {self.t:.9g}")
         return flow.ret is not None
 
+    def act_due(self, timed):
+        """Let every actor whose time has come act; returns True when the command ends here."""
+        due = [a for a in timed if a.next_time(self.t) <= self.t]
+        if not due:
+            return False
+        flow = Flow()
+        for actor in due:
+            flow.update(actor.on_time(self))
+        return self.apply(flow)
+
+    def add_actor(self, actor):
+        """Add an actor that acts at its own times or when rows are written (before run())."""
+        assert not actor.nroots, "root functions are the kernel's: a root actor is compiled in"
+        self.actors.append(actor)
+        self.onestep |= actor.needs_restore
+        if type(actor).on_output is not Actor.on_output:
+            self.printer.watchers.append(actor)
+
     def on_roots(self, step):
         flow = Flow()
         for actor, sl in self.root_slices:
@@ -158,21 +176,28 @@ class Run:
         printer = self.printer
         printer.begin_command(self.t, cmd.end_time, cmd.print_interval)
         start_steps = self.steps()
-        tstop = cmd.end_time
+        timed = [a for a in self.actors if a is not printer]
         while printer.pending:
+            if self.act_due(timed):
+                return
+            # IDA stops exactly at the next instant an actor named (tstop), or the command's end
+            tstop = min([cmd.end_time] + [a.next_time(self.t) for a in timed])
             # after a (re)start IDA sizes its first step from the distance to the requested
-            # time; asking for the command's end keeps that choice independent of print times
+            # time; asking for the stop keeps that choice independent of print times
             if self.onestep or self.fresh:
                 step = self.solver.step(tstop, tstop, onestep=True)
                 self.fresh = False
             elif not any(a.watching for a in self.actors):
-                # all pending outputs until an event or the end in one call (from C: without
-                # returning to Python)
+                # all pending outputs up to the stop, an event or a failure in one call (from C:
+                # without returning to Python)
                 times = printer.times_before(tstop)
-                step, Y, YP, REQ, n = self.solver.outputs(times, tstop)
-                printer.take(times[:n], Y, YP, REQ)
+                if times:
+                    step, Y, YP, REQ, n = self.solver.outputs(times, tstop)
+                    printer.take(times[:n], Y, YP, REQ)
+                else:
+                    step = self.solver.step(tstop, tstop)
             else:
-                step = self.solver.step(printer.pending[0], tstop)
+                step = self.solver.step(min(printer.pending[0], tstop), tstop)
             if step.status == TOO_MUCH_WORK or \
                     self.steps() - start_steps > self.options.max_num_steps:
                 raise Stop(False, -100, f"more than max_num_steps = "
@@ -190,6 +215,7 @@ class Run:
                 continue
             if self.onestep and t > self.steps_seen[-1][0]:
                 self.remember_step()
+        self.act_due(timed)
 
     # statics -------------------------------------------------------------------------
     def after_static(self, t, y):

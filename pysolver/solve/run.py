@@ -7,13 +7,20 @@ from ..results import Result
 from .driver import Run
 
 
-def run_model(model, progress=None, **overrides):
-    """Run every command of `model`; see :meth:`pysolver.Model.run`."""
+def run_model(model, progress=None, overrides=None, actors=()):
+    """Run every command of `model`; see :meth:`pysolver.Model.run`.
+
+    `overrides` maps option names to values for this run (see Options). `actors` are further
+    :class:`~.actors.Actor` objects that act at their own times (tools and tests; the deck's own
+    actors, such as its sensors, are always there).
+    """
     t_start = time.perf_counter()
-    options = model.transient.replace(**overrides)
+    options = model.transient.replace(**(overrides or {}))
     kernel = model._kernel()
     kernel.reset_counters()
     run = Run(model, kernel, options, progress)
+    for actor in actors:
+        run.add_actor(actor)
     t_run = time.perf_counter()
     success, status, message = run.run()
     t_end = time.perf_counter()
