@@ -45,6 +45,28 @@ class Body:
 
 
 @dataclasses.dataclass
+class UserSub:
+    """A user subroutine standing in for an element's expression (``type="USERSUB"``).
+
+    Until it is resolved into an expression tree (pysolver.deck.usersub, when the model is first
+    compiled) the element's ``expr`` is None.
+    """
+    name: str              # the conventional name: PFOSUB, SENSUB, SEVSUB, VARSUB, SFOSUB, REQSUB
+    routine: object        # function name in the script or library, or a Python callable
+    par: tuple             # the numbers of USER(p1, ..., pn)
+    script: str = None     # path of a Python script defining the routine
+    library: str = None    # path of a C shared library defining it
+    attribute: str = "usrsub_fnc_name"   # the deck attribute to name in errors
+
+    def describe(self):
+        """A short text for summaries and logs."""
+        where = self.script or self.library or "a Python callable"
+        name = self.routine if isinstance(self.routine, str) else \
+            getattr(self.routine, "__name__", "routine")
+        return f"USER({', '.join(f'{p:g}' for p in self.par)}) -> {name} ({where})"
+
+
+@dataclasses.dataclass
 class Penalty:
     id: int
     expr: tuple
@@ -54,6 +76,7 @@ class Penalty:
     unilateral: bool
     smoothing: float
     label: str = ""
+    usersub: UserSub = None
 
 
 @dataclasses.dataclass
@@ -65,6 +88,7 @@ class ScalarForce:
     expr: tuple
     text: str
     label: str = ""
+    usersub: UserSub = None
 
 
 @dataclasses.dataclass
@@ -73,6 +97,7 @@ class Variable:
     expr: tuple
     text: str
     label: str = ""
+    usersub: UserSub = None
 
 
 @dataclasses.dataclass
@@ -82,6 +107,7 @@ class Request:
     texts: list
     names: list
     label: str = ""
+    usersub: UserSub = None
 
 
 @dataclasses.dataclass
@@ -104,6 +130,7 @@ class Sensor:
     verbose: bool = False
     ret: bool = False
     label: str = ""
+    usersub: UserSub = None
 
     def actions(self):
         """Names of the actions this sensor takes when it fires, in the order they run."""
@@ -126,6 +153,7 @@ class Evaluate:
     expr: tuple
     text: str
     label: str = ""
+    usersub: UserSub = None
 
 
 @dataclasses.dataclass
@@ -187,6 +215,7 @@ class Model:
         self.commands = []
         self.has_units = False
         self._compiled = None
+        self.usersub_paths = {}   # element -> how its user subroutine runs (filled when compiled)
         self._where = {}          # (kind, id) -> location of the element, for errors
 
     # public API -------------------------------------------------------------------------

@@ -33,7 +33,9 @@ class Result:
     timing : dict
         Wall time in seconds: ``setup`` (compile, initial conditions), ``integrate``, ``total``.
     meta : dict
-        pysolver version, deck path and SHA-256, integrator options.
+        pysolver version, deck path and SHA-256, integrator options, and ``usersubs``: for each
+        element defined by a user subroutine, how it runs (traced into the kernel, with the
+        expression it became).
     events : list of pysolver.solve.sensors.Event
         One record per sensor firing: ``time``, ``sensor`` (id), ``label``, ``value`` (the
         sensor's expression then) and ``actions`` taken.

@@ -1,6 +1,7 @@
 """A compiled scene bound to the C kernel: psModel + psData and fast call wrappers."""
 import numpy as np
 
+from ..deck import usersubs
 from ..options import SPARSE_THRESHOLD
 from .bindings import ffi, lib
 from .compiler import Compiler
@@ -31,6 +32,7 @@ class Kernel:
     """
 
     def __init__(self, model, conservative=False):
+        usersubs.resolve(model)         # Python user subroutines traced into expressions
         comp = Compiler(model, conservative)
         arrays = comp.compile()
         self.layout = comp.layout

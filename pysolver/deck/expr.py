@@ -210,6 +210,24 @@ def _check(node):
                 _check(a)
 
 
+def unparse(node):
+    """The text of an expression tree (fully parenthesised binary operations)."""
+    tag = node[0]
+    if tag == "num":
+        v = node[1]
+        return repr(int(v)) if v == int(v) and abs(v) < 1e15 else repr(v)
+    if tag == "name":
+        return node[1]
+    if tag == "neg":
+        return f"-({unparse(node[1])})"
+    if tag == "bin":
+        return f"({unparse(node[2])} {node[1]} {unparse(node[3])})"
+    name, args = node[1], node[2]
+    if name == "IF":
+        return f"IF({unparse(args[0])}: {', '.join(unparse(a) for a in args[1:])})"
+    return f"{name}({', '.join(unparse(a) for a in args)})"
+
+
 def references(node, out=None):
     """Return {kind: set(ids)} of the elements an expression tree refers to by id."""
     out = out if out is not None else {}

@@ -23,7 +23,13 @@ import threading
 _STATE = threading.local()
 
 __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "VARIABLE",
-           "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM"]
+           "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM",
+           "py_sysfnc", "py_sysary", "py_errmes"]
+
+#: User subroutines: ROUTINE= a Python function (or its name in SCRIPT=), SCRIPT=, INTERPRETER=;
+#: FUNCTION="USER(p1, ..., pn)" gives its parameters.
+_USERSUB = {"ROUTINE": "usrsub_fnc_name", "SCRIPT": "script_name",
+            "INTERPRETER": "interpreter", "TYPE": "type"}
 
 
 class _Recorder:
@@ -128,17 +134,20 @@ def MARKER(id, **kw):
            "RM": "rm_id", "LABEL": "label"}, id, **kw)
 
 
+def _usersub(kw, typed=True):
+    """A statement with ROUTINE, SCRIPT or INTERPRETER calls a user subroutine."""
+    if typed and any(k.upper() in ("ROUTINE", "SCRIPT", "INTERPRETER") for k in kw):
+        kw.setdefault("TYPE", "USERSUB")
+    return kw
+
+
 def PFORCE(id, **kw):
     """Penalty force: FUNCTION, PENALTY, PENALTY1, UNILATERAL, SMOOTHING_FACTOR, LABEL;
-    ROUTINE, INTERPRETER, SCRIPT for user subroutines."""
-    usersub = any(k.upper() in ("ROUTINE", "SCRIPT", "INTERPRETER") for k in kw)
-    if usersub:
-        kw.setdefault("TYPE", "USERSUB")
+    ROUTINE (PFOSUB), SCRIPT, INTERPRETER and FUNCTION="USER(...)" for a user subroutine."""
     _emit("PFORCE", "Force_Penalty",
           {"FUNCTION": "expr", "PENALTY": "penalty", "PENALTY1": "penalty1",
            "UNILATERAL": "unilateral", "SMOOTHING_FACTOR": "smoothing_factor",
-           "LABEL": "label", "ROUTINE": "usrsub_fnc_name", "INTERPRETER": "interpreter",
-           "SCRIPT": "script_name", "TYPE": "type"}, id, **kw)
+           "LABEL": "label", **_USERSUB}, id, **_usersub(kw))
 
 
 def SFORCE(id, I=None, J=None, TRANSLATION=False, ROTATION=False, **kw):  # noqa: E741
@@ -149,41 +158,50 @@ def SFORCE(id, I=None, J=None, TRANSLATION=False, ROTATION=False, **kw):  # noqa
     else:
         kw["TYPE"] = "TORQUE" if ROTATION else "FORCE"
     _emit("SFORCE", "Force_Scalar_TwoBody",
-          {"I": "i_marker_id", "J": "j_marker_id", "FUNCTION": "expr", "TYPE": "type",
-           "LABEL": "label"}, id, I=I, J=J, **kw)
+          {"I": "i_marker_id", "J": "j_marker_id", "FUNCTION": "expr", "LABEL": "label",
+           **_USERSUB}, id, I=I, J=J, **kw)
 
 
 def SENSOR(id, EVALUATE=None, **kw):
     """Event sensor: FUNCTION, VALUE, ERROR, OPERATOR (GE, LT, EQ; LE reads as LT),
     ZERO_CROSSING, DT, HMAX, STEPSIZE, HALT, PRINT, RESTART, RETURN, VERBOSE, LABEL. EVALUATE is
     an expression stored when the sensor fires and read with SENVAL(id) (a Sensor_Evaluate with
-    the sensor's id); ROUTINE, SCRIPT for user subroutines."""
-    if EVALUATE not in (None, ""):
-        _emit("SENSOR", "Sensor_Evaluate", {"FUNCTION": "expr"}, id, FUNCTION=EVALUATE)
+    the sensor's id; EVALUATE_ROUTINE= a Python SEVSUB with EVALUATE="USER(...)"); ROUTINE
+    (SENSUB), SCRIPT, INTERPRETER for a user subroutine."""
+    routine = kw.pop("EVALUATE_ROUTINE", None)
+    if EVALUATE not in (None, "") or routine is not None:
+        sub = {"ROUTINE": routine, "TYPE": "USERSUB"} if routine is not None else {}
+        _emit("SENSOR", "Sensor_Evaluate", {"FUNCTION": "expr", **_USERSUB}, id,
+              FUNCTION=EVALUATE, **sub)
         kw["EVALUATE_ID"] = id
-    if any(k.upper() in ("ROUTINE", "SCRIPT") for k in kw):
-        kw.setdefault("TYPE", "USERSUB")
+    _usersub(kw)
     _emit("SENSOR", "Sensor_Event",
           {"FUNCTION": "expr", "VALUE": "value", "ERROR": "error_tol", "OPERATOR": "compare",
            "ZERO_CROSSING": "zero_crossing", "DT": "dt", "HMAX": "hmax", "STEPSIZE": "stepsize",
            "HALT": "halt", "PRINT": "print", "RESTART": "restart", "RETURN": "return",
            "VERBOSE": "verbose", "LABEL": "label", "EVALUATE_ID": "evaluate_id",
-           "ROUTINE": "usrsub_fnc_name", "SCRIPT": "script_name", "TYPE": "type"}, id, **kw)
+           **_USERSUB}, id, **kw)
 
 
 def VARIABLE(id, **kw):
-    """Variable read with VARVAL(id): FUNCTION, LABEL."""
-    _emit("VARIABLE", "Reference_Variable", {"FUNCTION": "expr", "LABEL": "label"}, id, **kw)
+    """Variable read with VARVAL(id): FUNCTION, LABEL; ROUTINE (VARSUB), SCRIPT, INTERPRETER."""
+    _emit("VARIABLE", "Reference_Variable", {"FUNCTION": "expr", "LABEL": "label", **_USERSUB},
+          id, **_usersub(kw))
 
 
 def REQUEST(id, FUNCTION=None, **kw):
-    """Output request: F1..F8 (or FUNCTION=[up to 8 expressions]), LABEL, COMMENT."""
-    if FUNCTION is not None:
+    """Output request: F1..F8 (or FUNCTION=[up to 8 expressions]), LABEL, COMMENT; or
+    FUNCTION="USER(...)" with ROUTINE (REQSUB returning 8 values), SCRIPT, INTERPRETER."""
+    if isinstance(FUNCTION, str):         # FUNCTION="USER(...)" with ROUTINE (REQSUB)
+        kw["PARAMS"] = FUNCTION
+    elif FUNCTION is not None:
         for k, f in enumerate(FUNCTION, 1):
             kw.setdefault(f"F{k}", f)
     mapping = {f"F{k}": f"expr{k}" for k in range(1, 9)}
     mapping.update({f"NAME{k}": f"name{k}" for k in range(1, 9)})
-    mapping.update({"LABEL": "label", "COMMENT": "comment"})
+    mapping.update({"LABEL": "label", "COMMENT": "comment", "PARAMS": "usrsub_param_string",
+                    **_USERSUB})
+    _usersub(kw)
     _emit("REQUEST", "Post_Request", mapping, id, **kw)
 
 
@@ -218,3 +236,6 @@ def SIMULATE(**kw):
 def STOP():
     """End of the command list."""
     _emit("STOP", "Stop", {})
+
+
+from .tracer import py_errmes, py_sysary, py_sysfnc  # noqa: E402  (user subroutine data access)

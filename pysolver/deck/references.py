@@ -9,25 +9,12 @@ def check_references(model):
               "penalty": model.penalties, "sforce": model.sforces,
               "evaluate": model.evaluates}
     where = model._where
-    items = []
-    for p in model.penalties.values():
-        items.append((("penalty", p.id), "expr", p.expr))
-    for s in model.sforces.values():
-        items.append((("sforce", s.id), "expr", s.expr))
-    for v in model.variables.values():
-        items.append((("variable", v.id), "expr", v.expr))
-    for r in model.requests.values():
-        for k, e in enumerate(r.exprs):
-            if e is not None:
-                items.append((("request", r.id), f"expr{k + 1}", e))
     for se in model.sensors.values():
-        items.append((("sensor", se.id), "expr", se.expr))
         if se.evaluate_id is not None and se.evaluate_id not in model.evaluates:
             ctx = where[("sensor", se.id)]
             ctx.id = se.id
             raise ctx.error(f"Sensor_Evaluate {se.evaluate_id} does not exist", "evaluate_id")
-    for ev in model.evaluates.values():
-        items.append((("evaluate", ev.id), "expr", ev.expr))
+    items = list(_expressions(model))
     for key, attr, tree in items:
         ctx = where[key]
         ctx.id = key[1]
@@ -49,6 +36,21 @@ def check_references(model):
                             f"(found {dyn}); velocities enter through penalty1", attr)
 
 
+def _expressions(model):
+    """(key, attribute, tree) of every expression in the model; a user subroutine's traced
+    expression is named by its routine attribute, and one not traced yet is left out."""
+    for kind, table in (("penalty", model.penalties), ("sforce", model.sforces),
+                        ("variable", model.variables), ("sensor", model.sensors),
+                        ("evaluate", model.evaluates)):
+        for el in table.values():
+            if el.expr is not None:
+                yield (kind, el.id), el.usersub.attribute if el.usersub else "expr", el.expr
+    for r in model.requests.values():
+        for k, e in enumerate(r.exprs):
+            if e is not None:
+                yield ("request", r.id), r.usersub.attribute if r.usersub else f"expr{k + 1}", e
+
+
 class _Cycle(Exception):
     pass
 
@@ -58,7 +60,10 @@ _DYNAMIC = {"VX", "VY", "VZ", "VM", "VR", "ACCX", "ACCY", "ACCZ", "WX", "WY", "W
 
 
 def _dynamic(model, node, stack):
-    """Return the name of a velocity-dependent function used by the tree, or None."""
+    """Return the name of a velocity-dependent function used by the tree, or None (a user
+    subroutine not traced yet counts as nothing until it is)."""
+    if node is None:
+        return None
     tag = node[0]
     if tag == "neg":
         return _dynamic(model, node[1], stack)

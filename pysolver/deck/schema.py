@@ -5,6 +5,7 @@ Both deck readers produce raw elements; :func:`attributes` checks one against :d
 and raises a :class:`~pysolver.DeckError` that names file, line, element, id and attribute.
 """
 import math
+import re
 
 from ..errors import DeckError, ExpressionError
 from ..options import DECK_NAMES, rule_problem
@@ -17,8 +18,8 @@ OPT = False
 _ORIENT = {k: ("float", OPT, None) for k in
            ("a00", "a10", "a20", "a01", "a11", "a21", "a02", "a12", "a22",
             "psi", "theta", "phi", "e0", "e1", "e2", "e3")}
-_USERSUB = {"usrsub_dll_name": ("str", OPT, None), "usrsub_fnc_name": ("str", OPT, None),
-            "usrsub_param_string": ("str", OPT, None), "script_name": ("str", OPT, None),
+_USERSUB = {"usrsub_dll_name": ("str", OPT, None), "usrsub_fnc_name": ("routine", OPT, None),
+            "usrsub_param_string": ("user", OPT, None), "script_name": ("str", OPT, None),
             "interpreter": (("PYTHON", "MATLAB"), OPT, None)}
 
 #: Every element, its attributes, their kinds, whether required, and defaults.
@@ -55,8 +56,9 @@ SCHEMA = {
                              "expr": ("expr", OPT, None), "val_expression": ("expr", OPT, None),
                              "val": ("float", OPT, None), **_USERSUB},
     "Reference_Variable": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
-                           "type": (("EXPRESSION",), OPT, "EXPRESSION"),
-                           "expr": ("expr", REQ, None), "initial_value": ("float", OPT, 0.0)},
+                           "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
+                           "expr": ("expr", OPT, None), "initial_value": ("float", OPT, 0.0),
+                           **_USERSUB},
     "Param_Transient": {"integrator_type": (("IDA", "DSTIFF", "VSTIFF", "MSTIFF", "GSTIFF",
                                              "WSTIFF", "ABAM", "I3", "SI2"), OPT, "IDA"),
                         # defaults of the integrator options: pysolver.options.Options
@@ -67,7 +69,8 @@ SCHEMA = {
                         "max_step_growth": ("pos", OPT, None),
                         "nonlin_conv_coef": ("pos", OPT, None), "label": ("str", OPT, "")},
     "Post_Request": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
-                     "type": (("EXPRESSION",), OPT, "EXPRESSION"), "comment": ("str", OPT, ""),
+                     "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
+                     "comment": ("str", OPT, ""), **_USERSUB,
                      **{f"expr{k}": ("expr?", OPT, None) for k in range(1, 9)},
                      **{f"name{k}": ("str", OPT, None) for k in range(1, 9)}},
     "Param_Static": {"method": (("FIM_D", "FIM_S", "MKEAM"), OPT, "FIM_D"),
@@ -131,6 +134,11 @@ def convert(ctx, name, kind, raw):
         return _unit(ctx, name, kind[5:], raw)
     if kind == "str":
         return str(raw)
+    if kind == "routine":
+        # a function name, or (Python decks) the function itself
+        return raw if callable(raw) else str(raw)
+    if kind == "user":
+        return _user_params(ctx, name, raw)
     if kind == "bool":
         if isinstance(raw, bool):
             return raw
@@ -170,11 +178,36 @@ def convert(ctx, name, kind, raw):
         text = str(raw)
         if kind == "expr?" and text.strip().upper() in ("NULL", ""):
             return None
+        if text.strip().upper().startswith("USER"):
+            # the parameters of a user subroutine (Python decks: FUNCTION="USER(...)")
+            return (("user", _user_params(ctx, name, text)), text)
         try:
             return (ex.parse(text), text)
         except ExpressionError as err:
             raise ctx.error(f"bad expression {text!r}: {err}", name) from None
     raise AssertionError(kind)
+
+
+_USER = re.compile(r"^\s*USER\s*\((.*)\)\s*$", re.I | re.S)
+
+
+def _user_params(ctx, name, raw):
+    """The numbers of ``USER(p1, ..., pn)`` as a tuple of floats."""
+    m = _USER.match(str(raw))
+    if not m:
+        raise ctx.error(f"got {raw!r}; expected USER(p1, ..., pn) with numbers", name)
+    inner = m.group(1).strip()
+    out = []
+    for item in inner.split(",") if inner else []:
+        try:
+            val = float(item.strip().replace("d", "e").replace("D", "e"))
+        except ValueError:
+            raise ctx.error(f"USER(...) parameter {item.strip()!r} is not a number", name) \
+                from None
+        if not math.isfinite(val):
+            raise ctx.error(f"USER(...) parameter {item.strip()!r} is not finite", name)
+        out.append(val)
+    return tuple(out)
 
 
 def _unit(ctx, name, kind, raw):

@@ -21,6 +21,7 @@ from ..model import (
 )
 from ..options import DECK_NAMES, Options
 from . import units as un
+from . import usersubs
 from .bodies import add_bodies
 from .references import check_references
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
@@ -131,66 +132,80 @@ def _parsed(val):
     return val if val is None else val[0]
 
 
-def _reject_usersub(ctx, a):
-    if a.get("type") == "USERSUB":
-        if a.get("interpreter") == "MATLAB":
-            raise ctx.error("MATLAB user subroutines are not supported; use a C shared "
-                            "library or a Python script", "interpreter")
-        raise ctx.error("type USERSUB is not supported yet; use type EXPRESSION", "type")
+def _is_user(val):
+    """True for a converted expr attribute holding USER(...) parameters."""
+    return val is not None and val[0][0] == "user"
+
+
+def _expression(model, ctx, a, key="expr"):
+    """(tree, text, usersub) of an element that takes an expression or a user subroutine."""
+    usersub = usersubs.from_attributes(model, ctx, a)
+    if usersub is not None:
+        return None, usersub.describe(), usersub
+    if _is_user(a.get(key)):
+        raise ctx.error("USER(...) calls a user subroutine: give type=\"USERSUB\" and the "
+                        "routine (script_name, or ROUTINE= in a Python deck)", key)
+    if a.get(key) is None:
+        raise ctx.error("missing required attribute for type EXPRESSION", key)
+    return a[key][0], a[key][1], None
 
 
 def _force_like(model, ctx, a):
     ctx.id = a.get("id")
     tag = ctx.tag
     if tag == "Force_Penalty":
-        _reject_usersub(ctx, a)
-        if a["expr"] is None:
-            raise ctx.error("missing required attribute for type EXPRESSION", "expr")
-        model.penalties[a["id"]] = Penalty(a["id"], a["expr"][0], a["expr"][1], a["penalty"],
-                                           a["penalty1"], a["unilateral"],
-                                           a["smoothing_factor"], a["label"])
+        tree, text, sub = _expression(model, ctx, a)
+        model.penalties[a["id"]] = Penalty(a["id"], tree, text, a["penalty"], a["penalty1"],
+                                           a["unilateral"], a["smoothing_factor"], a["label"],
+                                           sub)
         model._where[("penalty", a["id"])] = ctx
     elif tag == "Force_Scalar_TwoBody":
-        if a["usrsub_dll_name"] or a["script_name"]:
-            _reject_usersub(ctx, {"type": "USERSUB", "interpreter": a["interpreter"]})
-        given = [k for k in ("expr", "val_expression", "val") if a[k] is not None]
-        if len(given) != 1:
-            raise ctx.error("give exactly one of expr, val_expression and val", "expr")
-        val = a[given[0]]
-        if given[0] == "val":
-            val = (("num", val), repr(val))
+        sub = usersubs.from_attributes(model, ctx, a)
+        if sub is not None:
+            tree, text = None, sub.describe()
+        else:
+            given = [k for k in ("expr", "val_expression", "val") if a[k] is not None]
+            if len(given) != 1:
+                raise ctx.error("give exactly one of expr, val_expression and val", "expr")
+            tree, text = a[given[0]] if given[0] != "val" else (("num", a["val"]), repr(a["val"]))
+            if tree[0] == "user":
+                raise ctx.error("USER(...) calls a user subroutine: give the routine "
+                                "(script_name, or ROUTINE= in a Python deck)", given[0])
         for key in ("i_marker_id", "j_marker_id"):
             if a[key] not in model.markers:
                 raise ctx.error(f"marker {a[key]} does not exist", key)
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
-                                             a["j_marker_id"], val[0], val[1], a["label"])
+                                             a["j_marker_id"], tree, text, a["label"], sub)
         model._where[("sforce", a["id"])] = ctx
     elif tag == "Reference_Variable":
-        model.variables[a["id"]] = Variable(a["id"], a["expr"][0], a["expr"][1], a["label"])
+        tree, text, sub = _expression(model, ctx, a)
+        model.variables[a["id"]] = Variable(a["id"], tree, text, a["label"], sub)
         model._where[("variable", a["id"])] = ctx
     elif tag == "Sensor_Event":
-        _reject_usersub(ctx, a)
-        if a["expr"] is None:
-            raise ctx.error("missing required attribute for type EXPRESSION", "expr")
+        tree, text, sub = _expression(model, ctx, a)
         zc = a["zero_crossing"]
         if zc is not None and not 0 < zc < 1:
             raise ctx.error(f"got {zc:g}; expected 0 < zero_crossing < 1", "zero_crossing")
         compare = "LT" if a["compare"] == "LE" else a["compare"]
-        model.sensors[a["id"]] = Sensor(a["id"], a["expr"][0], a["expr"][1], a["value"], compare,
+        model.sensors[a["id"]] = Sensor(a["id"], tree, text, a["value"], compare,
                                         a["error_tol"], a["evaluate_id"], a["dt"],
                                         a["stepsize"], zc, a["hmax"], a["halt"], a["print"],
-                                        a["restart"], a["verbose"], a["return"], a["label"])
+                                        a["restart"], a["verbose"], a["return"], a["label"], sub)
         model._where[("sensor", a["id"])] = ctx
     elif tag == "Sensor_Evaluate":
-        _reject_usersub(ctx, a)
-        if a["expr"] is None:
-            raise ctx.error("missing required attribute for type EXPRESSION", "expr")
-        model.evaluates[a["id"]] = Evaluate(a["id"], a["expr"][0], a["expr"][1], a["label"])
+        tree, text, sub = _expression(model, ctx, a)
+        model.evaluates[a["id"]] = Evaluate(a["id"], tree, text, a["label"], sub)
         model._where[("evaluate", a["id"])] = ctx
     elif tag == "Post_Request":
+        sub = usersubs.from_attributes(model, ctx, a)
         exprs = [a[f"expr{k}"] for k in range(1, 9)]
+        if sub is not None:
+            exprs = [None] * 8
+        for k, e in enumerate(exprs):
+            if _is_user(e):
+                raise ctx.error("USER(...) calls a user subroutine: give type=\"USERSUB\" and "
+                                "the routine", f"expr{k + 1}")
         model.requests[a["id"]] = Request(a["id"], [_parsed(e) for e in exprs],
                                           [e[1] if e else None for e in exprs],
-                                          [a[f"name{k}"] for k in range(1, 9)], a["label"])
+                                          [a[f"name{k}"] for k in range(1, 9)], a["label"], sub)
         model._where[("request", a["id"])] = ctx
-

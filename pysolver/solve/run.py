@@ -40,7 +40,8 @@ def run_model(model, progress=None, overrides=None, actors=()):
     used.update(linsolver=run.plan.linsolver, backend="c" if run.plan.use_c else "sksundae")
     meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
             "options": used, "ny": kernel.ny, "stepping": "onestep" if run.onestep else "normal",
-            "static": dataclasses.asdict(model.static)}
+            "static": dataclasses.asdict(model.static),
+            "usersubs": dict(model.usersub_paths)}
     labels = {(r.id, k): n for r in model.requests.values() for k, n in enumerate(r.names) if n}
     pr = run.printer
     return Result(t=pr.ts, y=pr.ys.array(kernel.ny), yp=pr.yps.array(kernel.ny),

@@ -1,0 +1,230 @@
+"""Tracing a Python user subroutine into an expression tree of the deck language.
+
+The routine is called once with symbolic stand-ins: ``time`` and every value ``py_sysfnc`` /
+``py_sysary`` return are :class:`Sym` objects, and arithmetic and the ``math`` functions on
+them build the same trees the expression parser builds (``('bin', '+', a, b)``,
+``('call', 'SIN', [x], 0)``, ...). The result is compiled like any expression: it runs in C
+with exact derivatives and no Python per evaluation. A routine whose control flow depends on
+the state (``if DZ < 0: ...``), or that calls functions the expression language does not have,
+cannot be traced: :class:`Untraceable` says where and why.
+"""
+import math
+import threading
+
+from ..errors import ExpressionError
+from . import expr as ex
+
+_ACTIVE = threading.local()
+
+
+class Untraceable(Exception):
+    """The routine did something a traced expression cannot represent."""
+
+
+class SysfncError(Exception):
+    """py_sysfnc / py_sysary was called with an unknown function or bad ids."""
+
+
+def _node(v):
+    if isinstance(v, Sym):
+        return v.node
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        raise Untraceable(f"a {type(v).__name__} entered the computation; only numbers and "
+                          "values from py_sysfnc can be traced")
+    return ("num", float(v))
+
+
+def _refuse(what):
+    def method(self, *args):
+        raise Untraceable(f"{what} of a state-dependent value: control flow or conversions "
+                          "that depend on the state cannot be traced (math.fabs, math.copysign "
+                          "and math.fmod can stand in for some)")
+    return method
+
+
+class Sym:
+    """A state-dependent value being traced: wraps an expression tree."""
+    __slots__ = ("node",)
+
+    def __init__(self, node):
+        self.node = node
+
+    def _bin(self, op, other, swap=False):
+        a, b = (_node(other), self.node) if swap else (self.node, _node(other))
+        return Sym(("bin", op, a, b))
+
+    def __add__(self, o): return self._bin("+", o)
+    def __radd__(self, o): return self._bin("+", o, True)
+    def __sub__(self, o): return self._bin("-", o)
+    def __rsub__(self, o): return self._bin("-", o, True)
+    def __mul__(self, o): return self._bin("*", o)
+    def __rmul__(self, o): return self._bin("*", o, True)
+    def __truediv__(self, o): return self._bin("/", o)
+    def __rtruediv__(self, o): return self._bin("/", o, True)
+    def __pow__(self, o): return self._bin("**", o)
+    def __rpow__(self, o): return self._bin("**", o, True)
+    def __neg__(self): return Sym(("neg", self.node))
+    def __pos__(self): return self
+    def __abs__(self): return Sym(("call", "ABS", [self.node], 0))
+
+    __bool__ = _refuse("truth value")
+    __float__ = _refuse("float()")
+    __int__ = _refuse("int()")
+    __index__ = _refuse("use as an index")
+    __lt__ = _refuse("comparison")
+    __le__ = _refuse("comparison")
+    __gt__ = _refuse("comparison")
+    __ge__ = _refuse("comparison")
+    __eq__ = _refuse("comparison")
+    __ne__ = _refuse("comparison")
+    __hash__ = None
+    __floordiv__ = __rfloordiv__ = __mod__ = __rmod__ = _refuse("// or % (use math.fmod)")
+    __round__ = _refuse("round()")
+
+
+def _math_function(real, name, arity=1):
+    """A math-module function that builds NAME(...) on traced values and is math's otherwise."""
+    def fn(*args):
+        if any(isinstance(a, Sym) for a in args):
+            if len(args) != arity:
+                raise Untraceable(f"math.{real.__name__} with {len(args)} arguments")
+            return Sym(("call", name, [_node(a) for a in args], 0))
+        return real(*args)
+    fn.__name__ = real.__name__
+    return fn
+
+
+def _log(x, base=None):
+    if base is None:
+        return _math_function(math.log, "LOG")(x)
+    return _math_function(math.log, "LOG")(x) / _math_function(math.log, "LOG")(base)
+
+
+def _hypot(*args):
+    if any(isinstance(a, Sym) for a in args):
+        total = 0.0
+        for a in args:
+            total = total + a * a
+        return Sym(("call", "SQRT", [_node(total)], 0))
+    return math.hypot(*args)
+
+
+class _MathShim:
+    """Stands in for the math module while a routine is traced."""
+
+    def __getattr__(self, attr):
+        return getattr(math, attr)      # constants and functions with no traced form
+
+
+SHIM = _MathShim()
+for _name, _expr_name, _arity in [
+        ("sin", "SIN", 1), ("cos", "COS", 1), ("tan", "TAN", 1), ("asin", "ASIN", 1),
+        ("acos", "ACOS", 1), ("atan", "ATAN", 1), ("atan2", "ATAN2", 2), ("sinh", "SINH", 1),
+        ("cosh", "COSH", 1), ("tanh", "TANH", 1), ("exp", "EXP", 1), ("log10", "LOG10", 1),
+        ("sqrt", "SQRT", 1), ("fabs", "ABS", 1), ("fmod", "MOD", 2), ("copysign", "SIGN", 2)]:
+    setattr(SHIM, _name, _math_function(getattr(math, _name), _expr_name, _arity))
+SHIM.log = _log
+SHIM.hypot = _hypot
+SHIM.pow = lambda x, y: x ** y
+_REPLACED = {getattr(math, n): getattr(SHIM, n) for n in
+             ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh", "exp",
+              "log10", "sqrt", "fabs", "fmod", "copysign", "log", "hypot", "pow")}
+
+
+def shim_globals(namespace):
+    """A copy of a namespace with the math module and its functions replaced by SHIM's."""
+    out = dict(namespace)
+    for key, val in namespace.items():
+        if val is math:
+            out[key] = SHIM
+        elif callable(val):
+            try:
+                out[key] = _REPLACED.get(val, val)
+            except TypeError:           # an unhashable callable: not a math function
+                pass
+    return out
+
+
+# ---------------------------------------------------------------------------------------------
+# py_sysfnc and py_sysary: what a routine reads
+
+#: SYSARY arrays (Adams/MotionSolve): name -> the SYSFNC functions of its entries.
+SYSARY = {"TDISP": ("DX", "DY", "DZ"), "TVEL": ("VX", "VY", "VZ"), "RVEL": ("WX", "WY", "WZ"),
+          "VEL": ("VX", "VY", "VZ", "WX", "WY", "WZ"), "TACC": ("ACCX", "ACCY", "ACCZ")}
+
+
+def _ids(fnc, ids):
+    try:
+        out = [int(i) for i in ids]
+        if any(o != i for o, i in zip(out, ids)):
+            raise ValueError
+    except (TypeError, ValueError):
+        raise SysfncError(f"{fnc}: ids must be whole numbers, got {list(ids)!r}") from None
+    return out
+
+
+def measure(fnc, ids):
+    """The traced value of one SYSFNC function (e.g. "DZ", [10, 1])."""
+    name = str(fnc).upper()
+    if name not in ex.ID_ARGS:
+        raise SysfncError(f"unknown function {fnc!r}; py_sysfnc reads "
+                          f"{', '.join(sorted(ex.ID_ARGS))}")
+    node = ("call", name, [("num", float(i)) for i in _ids(name, ids)], 0)
+    try:
+        ex._check(node)
+    except ExpressionError as err:
+        raise SysfncError(f"{name}{tuple(ids)}: {err.reason}") from None
+    return Sym(node)
+
+
+def py_sysfnc(fnc, ids):
+    """One system value for a user subroutine: ``[value, errflg]`` (MotionSolve's py_sysfnc).
+
+    Valid only while pysolver traces a subroutine.
+    """
+    _tracing("py_sysfnc")
+    return [measure(fnc, ids), 0]
+
+
+def py_sysary(fnc, ids):
+    """An array of system values: ``[values, errflg]`` for TDISP, TVEL, RVEL, VEL, TACC."""
+    _tracing("py_sysary")
+    name = str(fnc).upper()
+    if name not in SYSARY:
+        raise SysfncError(f"unknown array {fnc!r}; py_sysary reads {', '.join(SYSARY)}")
+    ids = list(ids)
+    parts = SYSARY[name]
+    # angular velocities take at most three ids (i, j, k)
+    return [[measure(f, ids[:3] if f.startswith("W") else ids) for f in parts], 0]
+
+
+def py_errmes(errflg, message, id, endflag="STOP"):
+    """Report a user subroutine's error (MotionSolve's py_errmes): raises when errflg is set."""
+    if errflg:
+        raise SysfncError(f"{message} (id {id})")
+
+
+def _tracing(what):
+    if not getattr(_ACTIVE, "on", False):
+        raise RuntimeError(f"{what} works only inside a user subroutine that pysolver calls")
+
+
+class active:
+    """Context in which py_sysfnc and friends build traced values."""
+
+    def __enter__(self):
+        self.prev = getattr(_ACTIVE, "on", False)
+        _ACTIVE.on = True
+        return self
+
+    def __exit__(self, *exc):
+        _ACTIVE.on = self.prev
+        return False
+
+
+def tree_of(value):
+    """The expression tree of a routine's return value (a number or a traced value)."""
+    tree = _node(value)
+    if tree[0] == "num" and not math.isfinite(tree[1]):
+        raise Untraceable(f"the routine returned {tree[1]}")
+    return tree

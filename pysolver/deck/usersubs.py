@@ -1,0 +1,256 @@
+"""User subroutines (``type="USERSUB"``): PFOSUB, SENSUB, SEVSUB, VARSUB, SFOSUB, REQSUB.
+
+At load (:func:`from_attributes`) the attributes are checked without running anything: the
+routine's script exists and defines the function with the conventional arguments. When the
+model is first compiled (:func:`resolve`) each Python routine is traced into an expression tree
+(:mod:`.tracer`) that replaces the element's expression, so it runs in the kernel like one.
+Loading an XML deck therefore never executes code; running it executes its scripts.
+"""
+import ast
+import os
+import traceback
+import types
+
+from ..errors import ExpressionError
+from ..model import UserSub
+from . import expr as ex
+from . import tracer
+
+#: Element -> (conventional routine name, its Python arguments, values it returns).
+CONVENTIONS = {
+    "Force_Penalty": ("PFOSUB", ("id", "time", "par", "npar", "dflag", "iflag"), 1),
+    "Sensor_Event": ("SENSUB", ("id", "time", "par", "npar", "iflag"), 1),
+    "Sensor_Evaluate": ("SEVSUB", ("id", "time", "par", "npar", "iflag"), 1),
+    "Reference_Variable": ("VARSUB", ("id", "time", "par", "npar", "dflag", "iflag"), 1),
+    "Force_Scalar_TwoBody": ("SFOSUB", ("id", "time", "par", "npar", "dflag", "iflag"), 1),
+    "Post_Request": ("REQSUB", ("id", "time", "par", "npar", "iflag"), 8),
+}
+_KIND = {"Force_Penalty": "penalty", "Sensor_Event": "sensor", "Sensor_Evaluate": "evaluate",
+         "Reference_Variable": "variable", "Force_Scalar_TwoBody": "sforce",
+         "Post_Request": "request"}
+_ATTRS = ("usrsub_dll_name", "usrsub_fnc_name", "usrsub_param_string", "script_name",
+          "interpreter")
+
+
+def from_attributes(model, ctx, a):
+    """The element's UserSub, or None when it is defined by an expression; DeckError on bad
+    attributes. Nothing is executed."""
+    given = [k for k in _ATTRS if a.get(k) is not None]
+    user_expr = a.get("expr") is not None and a["expr"][0][0] == "user"
+    if ctx.tag == "Force_Scalar_TwoBody":      # its type is FORCE/TORQUE: USERSUB is implied
+        wanted = bool(given) or user_expr
+    else:
+        wanted = a.get("type") == "USERSUB"
+        if not wanted and given:
+            raise ctx.error("is used only with type=\"USERSUB\"", given[0])
+    if not wanted:
+        return None
+    name, args, _ = CONVENTIONS[ctx.tag]
+    if a.get("interpreter") == "MATLAB":
+        raise ctx.error("MATLAB user subroutines are not supported; write the routine in "
+                        "Python (script_name, interpreter=\"PYTHON\")", "interpreter")
+    if a.get("usrsub_param_string") is not None:
+        par = a["usrsub_param_string"]
+    elif user_expr:
+        par = a["expr"][0][1]
+    elif a.get("expr") is not None:
+        raise ctx.error("with type=\"USERSUB\" the parameters go in usrsub_param_string="
+                        "\"USER(...)\", not an expression", "expr")
+    else:
+        par = ()
+    routine = a.get("usrsub_fnc_name") or name
+    if callable(routine):
+        if a.get("script_name") or a.get("usrsub_dll_name"):
+            raise ctx.error("give a Python function or a script/library, not both",
+                            "usrsub_fnc_name")
+        return UserSub(name, routine, par)
+    if a.get("usrsub_dll_name") is not None:
+        raise ctx.error("C shared-library user subroutines are not supported yet; write the "
+                        "routine in Python (script_name, interpreter=\"PYTHON\")",
+                        "usrsub_dll_name")
+    if a.get("script_name") is None:
+        raise ctx.error(f"type=\"USERSUB\" needs the routine: script_name (a Python script "
+                        f"defining {routine}) or, in a Python deck, ROUTINE= a function",
+                        "script_name")
+    path = find_script(ctx, a["script_name"], model.source.file)
+    _check_script(ctx, path, routine, args)
+    return UserSub(name, routine, par, script=path, attribute="script_name")
+
+
+def find_script(ctx, given, deck_file):
+    """The script's path: as given, relative to the deck's folder, then PYSOLVER_USERSUB_DIR."""
+    candidates = [given]
+    if not os.path.isabs(given):
+        if deck_file and not deck_file.startswith("<"):
+            candidates.append(os.path.join(os.path.dirname(os.path.abspath(deck_file)), given))
+        candidates += [os.path.join(d, given) for d in
+                       os.environ.get("PYSOLVER_USERSUB_DIR", "").split(os.pathsep) if d]
+    for path in candidates:
+        if os.path.isfile(path):
+            return os.path.abspath(path)
+    raise ctx.error(f"script {given!r} not found (looked in: {', '.join(candidates)})",
+                    "script_name")
+
+
+def _check_script(ctx, path, routine, args):
+    """The script parses and defines `routine` taking the conventional arguments (read, not
+    run)."""
+    try:
+        with open(path, encoding="utf-8") as fh:
+            tree = ast.parse(fh.read(), path)
+    except (OSError, UnicodeDecodeError, SyntaxError, ValueError) as err:
+        raise ctx.error(f"cannot read script {path}: {err}", "script_name") from None
+    defs = [n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == routine]
+    if not defs:
+        raise ctx.error(f"script {path} defines no function {routine}", "usrsub_fnc_name")
+    fn = defs[-1].args
+    npos = len(fn.posonlyargs) + len(fn.args)
+    if fn.vararg is None and npos != len(args):
+        raise ctx.error(f"{routine} in {path} (line {defs[-1].lineno}) takes {npos} arguments; "
+                        f"expected {len(args)}: {', '.join(args)}", "usrsub_fnc_name")
+
+
+# ---------------------------------------------------------------------------------------------
+# compile time: trace every Python routine into the element's expression
+
+def _elements(model):
+    tables = {"penalty": model.penalties, "sensor": model.sensors,
+              "evaluate": model.evaluates, "variable": model.variables,
+              "sforce": model.sforces, "request": model.requests}
+    for kind, table in tables.items():
+        for el in table.values():
+            if el.usersub is not None:
+                yield kind, el
+
+
+def resolve(model):
+    """Trace the model's Python user subroutines into expression trees (once; idempotent).
+
+    Raises
+    ------
+    DeckError
+        A routine cannot be loaded, raises, returns something that is not a number, calls
+        py_sysfnc with an unknown function or ids, or cannot be traced (the message says
+        where and why).
+    """
+    done = []
+    scripts = {}
+    for kind, el in _elements(model):
+        if (el.exprs[0] if kind == "request" else el.expr) is not None:
+            continue
+        ctx = model._where[(kind, el.id)]
+        ctx.id = el.id
+        trees = _trace(ctx, el.usersub, el.id, scripts)
+        if kind == "request":
+            el.exprs = trees
+            el.texts = [f"{el.usersub.name} channel {k + 1}" for k in range(8)]
+        else:
+            el.expr = trees[0]
+        done.append((kind, el))
+        model.usersub_paths[f"{ctx.tag} {el.id}"] = (
+            f"{el.usersub.describe()}: traced into the kernel: "
+            + "; ".join(ex.unparse(t) for t in trees))
+    if done:
+        from .references import check_references
+        check_references(model)
+
+
+def _routine(ctx, sub, scripts):
+    """The Python function to trace, with the math module replaced for tracing."""
+    if callable(sub.routine):
+        fn = sub.routine
+        if isinstance(fn, types.FunctionType):
+            fn = types.FunctionType(fn.__code__, tracer.shim_globals(fn.__globals__),
+                                    fn.__name__, fn.__defaults__, fn.__closure__)
+        return fn
+    if sub.script not in scripts:
+        namespace = {"__name__": "__pysolver_usersub__", "__file__": sub.script,
+                     "py_sysfnc": tracer.py_sysfnc, "py_sysary": tracer.py_sysary,
+                     "py_errmes": tracer.py_errmes, "__builtins__": _builtins()}
+        try:
+            with open(sub.script, encoding="utf-8") as fh:
+                code = compile(fh.read(), sub.script, "exec")
+            exec(code, namespace)
+        except Exception as err:  # the script's own error, at its line
+            raise ctx.error(f"script {sub.script} failed to run: {_where(err, sub.script)}",
+                            "script_name") from None
+        scripts[sub.script] = namespace
+    fn = scripts[sub.script].get(sub.routine)
+    if not callable(fn):
+        raise ctx.error(f"script {sub.script} defines no function {sub.routine}",
+                        "usrsub_fnc_name")
+    return fn
+
+
+def _builtins():
+    """Builtins whose import of math gives the tracing stand-in."""
+    import builtins
+    table = dict(vars(builtins))
+    real_import = builtins.__import__
+
+    def imp(name, globals=None, locals=None, fromlist=(), level=0):
+        if name == "math" and level == 0:
+            return tracer.SHIM
+        return real_import(name, globals, locals, fromlist, level)
+    table["__import__"] = imp
+    return table
+
+
+def _where(err, file):
+    """'Type: message (file line N)' with the deepest line of `file` in the traceback."""
+    line = None
+    for frame in traceback.extract_tb(err.__traceback__):
+        if file is None or os.path.abspath(frame.filename) == os.path.abspath(file):
+            line = frame.lineno
+    text = f"{type(err).__name__}: {err}" if not isinstance(err, (tracer.Untraceable,
+                                                                   tracer.SysfncError)) \
+        else str(err)
+    return text + (f" (line {line})" if line else "")
+
+
+def _trace(ctx, sub, id, scripts):
+    """Call the routine as MotionSolve does (iflag pass, then an evaluation) on traced values;
+    returns the trees of its values."""
+    fn = _routine(ctx, sub, scripts)
+    _, args, nvalues = CONVENTIONS[ctx.tag]
+    file = sub.script or getattr(getattr(fn, "__code__", None), "co_filename", None)
+    time = tracer.Sym(("name", "TIME", 0))
+    par = list(sub.par)
+    values = []
+    for iflag in (1, 0):
+        call = {"id": id, "time": time, "par": list(par), "npar": len(par), "dflag": 0,
+                "iflag": iflag}
+        try:
+            with tracer.active():
+                out = fn(*[call[k] for k in args])
+        except tracer.Untraceable as err:
+            raise ctx.error(f"{sub.name} cannot be traced into the kernel: "
+                            f"{_where(err, file)}; the callback path for such routines is not "
+                            "built yet", sub.attribute) from None
+        except tracer.SysfncError as err:
+            raise ctx.error(f"{sub.name}: {_where(err, file)}", sub.attribute) from None
+        except Exception as err:  # the routine's own error
+            raise ctx.error(f"{sub.name} raised {_where(err, file)}", sub.attribute) from None
+        if iflag == 0:
+            values = out
+    if nvalues == 1:
+        values = [values]
+    elif not isinstance(values, (list, tuple)) or len(values) > nvalues:
+        raise ctx.error(f"{sub.name} must return a list of up to {nvalues} values, got "
+                        f"{values!r}", sub.attribute)
+    trees = []
+    for v in list(values) + [None] * (nvalues - len(values)):
+        if v is None and nvalues > 1:
+            trees.append(None)
+            continue
+        try:
+            trees.append(tracer.tree_of(v))
+        except tracer.Untraceable as err:
+            raise ctx.error(f"{sub.name} returned {v!r}: {err}", sub.attribute) from None
+    try:
+        for t in trees:
+            if t is not None:
+                ex._check(t)
+    except ExpressionError as err:   # pragma: no cover - the tracer builds checked nodes
+        raise ctx.error(f"{sub.name}: {err}", sub.attribute) from None
+    return trees

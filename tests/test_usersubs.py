@@ -1,0 +1,276 @@
+"""User subroutines in Python (PFOSUB, SENSUB, SEVSUB, VARSUB, SFOSUB, REQSUB): traced into the
+kernel's expressions, they give the expression version's answers, steps and exact Jacobian; and
+every bad input is a DeckError that says where."""
+import math
+
+import numpy as np
+import pytest
+
+import pysolver
+
+from helpers import DECKS, fd_iteration_matrix
+
+# -- seed example 1, the catenary bead: g = DY(9) - COSH(DX(9)) -----------------------------
+
+BEAD_SCRIPT = '''import math
+
+
+def PFOSUB(id, time, par, npar, dflag, iflag):
+    marker = int(par[0])
+    [x, errflg] = py_sysfnc("DX", [marker])
+    py_errmes(errflg, "DX failed", id, "STOP")
+    [y, errflg] = py_sysfnc("DY", [marker])
+    return y - math.cosh(x)
+'''
+
+
+def bead_xml(attrs):
+    text = (DECKS / "catenary_bead.xml").read_text()
+    old = 'type="EXPRESSION"\n                   expr="dy(9) - cosh(dx(9))"'
+    assert old in text
+    return text.replace(old, attrs)
+
+
+def bead_py(pfoce):
+    text = (DECKS / "catenary_bead.py").read_text()
+    old = 'PFORCE(1, LABEL="Particle sliding on a catenary", FUNCTION="DY(9)-COSH(DX(9))",'
+    assert old in text
+    return text.replace(old, pfoce)
+
+
+@pytest.fixture
+def bead_script(tmp_path):
+    path = tmp_path / "bead_sub.py"
+    path.write_text(BEAD_SCRIPT)
+    return path
+
+
+def _agree(res, ref, steps_ratio=1.0):
+    assert res.success, res.message
+    np.testing.assert_array_equal(res.t, ref.t)
+    np.testing.assert_allclose(res.request(1)[:, :6], ref.request(1)[:, :6], rtol=0, atol=1e-9)
+    assert res.stats["steps"] <= steps_ratio * ref.stats["steps"]
+
+
+def test_bead_pfosub_in_every_python_form_agrees_with_the_expression(bead_script, tmp_path):
+    ref = pysolver.load(DECKS / "catenary_bead.xml").run(integr_tol=1e-10)
+    xml = bead_xml(f'type="USERSUB" script_name="{bead_script}" usrsub_param_string="USER(9)"')
+    # the script relative to the deck's folder, and the deck as a Python file with a callable
+    (tmp_path / "bead.xml").write_text(xml.replace(str(bead_script), "bead_sub.py"))
+    routine = BEAD_SCRIPT.replace("def PFOSUB", "def bead")
+    pydeck = bead_py(routine + '\nPFORCE(1, FUNCTION="USER(9)", ROUTINE=bead,')
+    scripted = bead_py(f'PFORCE(1, FUNCTION="USER(9)", SCRIPT={str(bead_script)!r}, '
+                       'INTERPRETER="PYTHON",')
+    for model in (pysolver.loads(xml), pysolver.load(tmp_path / "bead.xml"),
+                  pysolver.loads(pydeck, fmt="py"), pysolver.loads(scripted, fmt="py")):
+        res = model.run(integr_tol=1e-10)
+        _agree(res, ref)
+        assert res.stats["steps"] == ref.stats["steps"]
+        (path,) = res.meta["usersubs"].values()
+        assert "traced into the kernel: (DY(9) - COSH(DX(9)))" in path
+
+
+def test_loading_an_xml_deck_does_not_run_its_script(tmp_path):
+    flag = tmp_path / "ran.txt"
+    script = tmp_path / "sub.py"
+    script.write_text(f"open({str(flag)!r}, 'w').write('ran')\n" + BEAD_SCRIPT)
+    model = pysolver.loads(bead_xml(f'type="USERSUB" script_name="{script}" '
+                                    'usrsub_param_string="USER(9)"'))
+    assert not flag.exists()
+    print(model.summary())
+    assert not flag.exists()
+    assert model.run().success
+    assert flag.exists()
+
+
+def test_traced_jacobian_is_exact(bead_script):
+    """The traced routine is an expression: the kernel's iteration matrix matches central
+    differences, including the penalty's second-order term."""
+    model = pysolver.loads(bead_xml(f'type="USERSUB" script_name="{bead_script}" '
+                                    'usrsub_param_string="USER(9)"'))
+    k = model._kernel()
+    rng = np.random.default_rng(3)
+    for _ in range(5):
+        y = rng.normal(size=k.ny)
+        yp = rng.normal(size=k.ny)
+        J = k.jacobian_array(0.3, y, yp, 7.0)
+        fd = fd_iteration_matrix(k, 0.3, y, yp, 7.0)
+        assert np.abs(J - fd).max() <= 1e-6 * max(1.0, np.abs(fd).max())
+
+
+# -- seed example 3, two lines: one routine for both, the line's slope in USER(...) -----------
+
+LINES_SCRIPT = '''def PFOSUB(id, time, par, npar, dflag, iflag):
+    ipar = [int(par[0])]
+    x = py_sysfnc("DX", ipar)[0]
+    z = py_sysfnc("DZ", ipar)[0]
+    return 1 + par[1] * x - z
+'''
+
+
+def test_two_lines_with_one_routine(tmp_path):
+    script = tmp_path / "lines.py"
+    script.write_text(LINES_SCRIPT)
+    text = (DECKS / "particle_between_lines.xml").read_text()
+    for k, sign in ((1, "1"), (2, "-1")):
+        expr = "1+dx(10)-dz(10)" if k == 1 else "1-dx(10)-dz(10)"
+        old = f'type="EXPRESSION" expr="{expr}"'
+        assert old in text
+        text = text.replace(old, f'type="USERSUB" script_name="{script}" '
+                                 f'usrsub_param_string="USER(10, {sign})"')
+    ref = pysolver.load(DECKS / "particle_between_lines.xml").run(integr_tol=1e-10)
+    res = pysolver.loads(text).run(integr_tol=1e-10)
+    assert res.success
+    np.testing.assert_allclose(res.request(1)[:, :4], ref.request(1)[:, :4], atol=1e-9)
+    assert res.stats["steps"] == ref.stats["steps"]
+
+
+# -- sensors, evaluates, variables, scalar forces, requests -------------------------------------
+
+BALL = """from pysolver.msolve import *
+import math
+PART(1, GROUND=True)
+MARKER(1, PART=1, QP=[0, 0, -100])
+MARKER(10, PART=2, QP=[0, 0, 10])
+POINT_MASS(2, MASS=1, CM=10)
+ACCGRAV(KGRAV=-9.81)
+{body}
+INTEGRATOR(ERROR=1e-10)
+SIMULATE(TYPE="TRANSIENT", END=2.0, DTOUT=0.05)
+"""
+
+
+def test_sensor_evaluate_variable_sforce_and_request_routines_match_expressions():
+    """One deck written twice, with expressions and with Python routines: same events, same
+    stored value, same force and the same eight request channels."""
+    body_expr = """
+VARIABLE(5, FUNCTION="2*9.81*SENVAL(7)")
+SFORCE(1, I=10, J=1, TRANSLATION=True, FUNCTION="VARVAL(5)")
+SENSOR(7, FUNCTION="DZ(10)", OPERATOR="LT", VALUE=5, EVALUATE="1 + 0*DZ(10)")
+REQUEST(1, F1="DZ(10)", F2="VZ(10)", F3="VARVAL(5)", F4="SFORCE(1, 0, 1, 0)",
+        F5="SQRT(DZ(10)**2 + 1)", F6="ATAN2(VZ(10), 2)", F7="EXP(-TIME)", F8="SENVAL(7)")
+"""
+    body_sub = """
+def sensub(id, time, par, npar, iflag):
+    return py_sysfnc("DZ", [10])[0]
+def sevsub(id, time, par, npar, iflag):
+    return 1 + 0 * py_sysfnc("DZ", [10])[0]
+def varsub(id, time, par, npar, dflag, iflag):
+    return par[0] * 9.81 * py_sysfnc("SENVAL", [7])[0]
+def sfosub(id, time, par, npar, dflag, iflag):
+    return py_sysfnc("VARVAL", [5])[0]
+def reqsub(id, time, par, npar, iflag):
+    z, vz = py_sysfnc("DZ", [10])[0], py_sysfnc("VZ", [10])[0]
+    return [z, vz, py_sysfnc("VARVAL", [5])[0], py_sysfnc("SFORCE", [1, 0, 1, 0])[0],
+            math.sqrt(z ** 2 + 1), math.atan2(vz, 2), math.exp(-time), py_sysfnc("SENVAL", [7])[0]]
+VARIABLE(5, FUNCTION="USER(2)", ROUTINE=varsub)
+SFORCE(1, I=10, J=1, TRANSLATION=True, FUNCTION="USER()", ROUTINE=sfosub)
+SENSOR(7, FUNCTION="USER()", ROUTINE=sensub, OPERATOR="LT", VALUE=5,
+       EVALUATE="USER()", EVALUATE_ROUTINE=sevsub)
+REQUEST(1, FUNCTION="USER()", ROUTINE=reqsub)
+"""
+    ref = pysolver.loads(BALL.format(body=body_expr), fmt="py").run()
+    res = pysolver.loads(BALL.format(body=body_sub), fmt="py").run()
+    assert ref.success and res.success
+    assert [e.time for e in res.events] == [e.time for e in ref.events]
+    assert res.events[0].time == pytest.approx(math.sqrt(10 / 9.81), abs=1e-9)
+    np.testing.assert_allclose(res.request(1), ref.request(1), rtol=0, atol=1e-9)
+    assert res.stats["steps"] == ref.stats["steps"]
+    assert len(res.meta["usersubs"]) == 5
+
+
+def test_math_functions_are_traced():
+    """Every math function the tracer maps, against the same expression."""
+    routine = """
+def sub(id, time, par, npar, iflag):
+    z = py_sysfnc("DZ", [10])[0]
+    v = py_sysfnc("VZ", [10])[0]
+    return [math.sin(z) + math.cos(z) + math.tan(z / 20), math.asin(z / 20) + math.acos(z / 20),
+            math.atan(v) + math.atan2(v, z), math.sinh(z / 10) + math.cosh(z / 10) + math.tanh(v),
+            math.exp(-z) + math.log(z) + math.log10(z) + math.log(z, 2),
+            math.sqrt(z) + math.fabs(v) + abs(v) + math.pow(z, 1.5) + z ** 2,
+            math.hypot(z, v) + math.fmod(z, 3.0) + math.copysign(2.0, v),
+            -z / 2 + 3 - z * 0.5 + 1 / z + 2 ** z]
+REQUEST(1, FUNCTION="USER()", ROUTINE=sub)
+"""
+    exprs = ["SIN(DZ(10)) + COS(DZ(10)) + TAN(DZ(10)/20)", "ASIN(DZ(10)/20) + ACOS(DZ(10)/20)",
+             "ATAN(VZ(10)) + ATAN2(VZ(10), DZ(10))",
+             "SINH(DZ(10)/10) + COSH(DZ(10)/10) + TANH(VZ(10))",
+             "EXP(-DZ(10)) + LOG(DZ(10)) + LOG10(DZ(10)) + LOG(DZ(10))/LOG(2)",
+             "SQRT(DZ(10)) + 2*ABS(VZ(10)) + DZ(10)**1.5 + DZ(10)**2",
+             "SQRT(DZ(10)**2 + VZ(10)**2) + MOD(DZ(10), 3) + SIGN(2, VZ(10))",
+             "-DZ(10)/2 + 3 - DZ(10)*0.5 + 1/DZ(10) + 2**DZ(10)"]
+    expr_body = "REQUEST(1, " + ", ".join(f'F{k + 1}="{e}"' for k, e in enumerate(exprs)) + ")"
+    deck = BALL.replace("END=2.0", "END=1.2")
+    ref = pysolver.loads(deck.format(body=expr_body), fmt="py").run()
+    res = pysolver.loads(deck.format(body=routine), fmt="py").run()
+    assert ref.success and res.success
+    np.testing.assert_allclose(res.request(1), ref.request(1), rtol=1e-13, atol=1e-12)
+
+
+# -- bad input ----------------------------------------------------------------------------------
+
+def _deck_with(tmp_path, script_text, attrs=""):
+    script = tmp_path / "s.py"
+    script.write_text(script_text)
+    return bead_xml(f'type="USERSUB" script_name="{script}" usrsub_param_string="USER(9)" '
+                    + attrs)
+
+
+@pytest.mark.parametrize("script,attrs,attribute,match", [
+    (BEAD_SCRIPT, 'usrsub_fnc_name="NOPE"', "usrsub_fnc_name", "defines no function NOPE"),
+    ("def PFOSUB(id, time, par):\n    return 0\n", "", "usrsub_fnc_name",
+     "takes 3 arguments; expected 6: id, time, par, npar, dflag, iflag"),
+    ("def PFOSUB(id, time, par, npar, dflag, iflag)\n", "", "script_name", "cannot read script"),
+    (BEAD_SCRIPT, 'interpreter="MATLAB"', "interpreter", "MATLAB user subroutines"),
+])
+def test_bad_scripts_are_deck_errors_at_load(tmp_path, script, attrs, attribute, match):
+    with pytest.raises(pysolver.DeckError, match=match) as info:
+        pysolver.loads(_deck_with(tmp_path, script, attrs), file=str(tmp_path / "d.xml"))
+    err = info.value
+    assert (err.element, err.id, err.attribute) == ("Force_Penalty", 1, attribute)
+    assert err.line == 12 and err.file.endswith("d.xml")
+
+
+@pytest.mark.parametrize("attrs,attribute,match", [
+    ('type="USERSUB" script_name="missing.py"', "script_name", "script 'missing.py' not found"),
+    ('type="USERSUB" usrsub_dll_name="sub.so"', "usrsub_dll_name",
+     "C shared-library user subroutines are not supported yet"),
+    ('type="USERSUB" usrsub_param_string="USER(9)"', "script_name", "needs the routine"),
+    ('type="USERSUB" usrsub_param_string="USER(9, x)" script_name="a.py"', "usrsub_param_string",
+     "parameter 'x' is not a number"),
+    ('type="EXPRESSION" expr="USER(9)"', "expr", r"USER\(\.\.\.\) calls a user subroutine"),
+    ('expr="DZ(9)" script_name="a.py"', "script_name", "only with type=\"USERSUB\""),
+])
+def test_bad_usersub_attributes(attrs, attribute, match):
+    with pytest.raises(pysolver.DeckError, match=match) as info:
+        pysolver.loads(bead_xml(attrs))
+    assert (info.value.element, info.value.attribute) == ("Force_Penalty", attribute)
+
+
+@pytest.mark.parametrize("body,match", [
+    ("    if py_sysfnc('DX', [9])[0] > 0:\n        return 1.0\n    return 0.0\n",
+     r"cannot be traced into the kernel: comparison of a state-dependent value.*\(line 5\)"),
+    ("    return py_sysfnc('DQ', [9])[0]\n", "unknown function 'DQ'"),
+    ("    return py_sysfnc('DX', [99])[0]\n", "refers to marker id 99, which does not exist"),
+    ("    return py_sysfnc('VX', [9])[0]\n", "displacement measures only"),
+    ("    raise ValueError('bad day')\n", r"PFOSUB raised ValueError: bad day \(line 5\)"),
+    ("    return None\n", "PFOSUB returned None"),
+    ("    return float('nan')\n", "returned nan"),
+    ("    py_errmes(1, 'cannot go on', id, 'STOP')\n", r"cannot go on \(id 1\)"),
+])
+def test_bad_routines_are_deck_errors_when_traced(tmp_path, body, match):
+    """A script runs when the model is first run: its problems are DeckErrors then, naming
+    the element and the script attribute, and nothing runs."""
+    head = "import math\n\n\ndef PFOSUB(id, time, par, npar, dflag, iflag):\n"
+    model = pysolver.loads(_deck_with(tmp_path, head + body))
+    with pytest.raises(pysolver.DeckError, match=match) as info:
+        model.run()
+    assert (info.value.element, info.value.id, info.value.attribute) == \
+        ("Force_Penalty", 1, "script_name")
+
+
+def test_py_sysfnc_outside_a_routine():
+    from pysolver.msolve import py_sysfnc
+    with pytest.raises(RuntimeError, match="only inside a user subroutine"):
+        py_sysfnc("DX", [9])
