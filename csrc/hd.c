@@ -143,3 +143,30 @@ void psu_hd_dot(const psuHD* c, double* out, const double* a, const double* b,
     psu_hd_lin(c, out, 1.0, out, 1.0, scratch, 0.0);
   }
 }
+
+/* out = f(a_0, ..., a_{n-1}) given f, its first partials fi (n) and second partials fij
+ * (n x n, symmetric, used at order 2). out must not alias an input. */
+void psu_hd_nary(const psuHD* c, double* out, const double* const* a, int n, double f0,
+                 const double* fi, const double* fij) {
+  int nb = c->n, nh = c->nh;
+  if (c->order >= 2) {
+    double* h = out + 1 + nb;
+    int p = 0;
+    for (int r = 0; r < nh; r++)
+      for (int s = r; s < nh; s++, p++) {
+        double v = 0.0;
+        for (int i = 0; i < n; i++) {
+          v += fi[i] * a[i][1 + nb + p];
+          for (int j = 0; j < n; j++) v += fij[i * n + j] * a[i][1 + r] * a[j][1 + s];
+        }
+        h[p] = v;
+      }
+  }
+  if (c->order >= 1)
+    for (int r = 1; r <= nb; r++) {
+      double v = 0.0;
+      for (int i = 0; i < n; i++) v += fi[i] * a[i][r];
+      out[r] = v;
+    }
+  out[0] = f0;
+}

@@ -108,8 +108,10 @@ const char* ps_ida_message(const psIDA* s) { return s->msg; }
 static int res_fn(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* ud) {
   psIDA* s = (psIDA*)ud;
   __typeof__(&N_VGetArrayPointer) data = CALL(s, N_VGetArrayPointer);
-  /* a non-finite residual is a recoverable failure: IDA retries with a smaller step */
-  return ps_residual(s->m, s->d, t, data(yy), data(yp), data(rr)) == PS_OK ? 0 : 1;
+  /* a non-finite residual is a recoverable failure: IDA retries with a smaller step; an error
+   * a user subroutine reported is not: the run ends with its message */
+  if (ps_residual(s->m, s->d, t, data(yy), data(yp), data(rr)) == PS_OK) return 0;
+  return s->d->user_error ? -1 : 1;
 }
 
 /* Called with each Jacobian evaluation (IDA forms one after every error-test failure, so about
@@ -145,8 +147,9 @@ static int jac_fn(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yp, N_Vec
   if (s->band) {
     /* kernel triplets scattered into band storage through a precomputed map */
     double* b = CALL(s, SUNBandMatrix_Data)(J);
-    return ps_jacobian_csc(s->m, s->d, t, data(yy), data(yp), cj, s->map, s->ntrip, b,
-                           (int)s->nstore) == PS_OK ? 0 : 1;
+    if (ps_jacobian_csc(s->m, s->d, t, data(yy), data(yp), cj, s->map, s->ntrip, b,
+                        (int)s->nstore) == PS_OK) return 0;
+    return s->d->user_error ? -1 : 1;
   }
   double* a = CALL(s, SUNDenseMatrix_Data)(J);
   int n = s->m->ny;
@@ -158,7 +161,8 @@ static int jac_fn(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yp, N_Vec
       a[(long)i * n + j] = a[(long)j * n + i];
       a[(long)j * n + i] = tmp;
     }
-  return rc == PS_OK ? 0 : 1;
+  if (rc == PS_OK) return 0;
+  return s->d->user_error ? -1 : 1;
 }
 
 static int root_fn(sunrealtype t, N_Vector yy, N_Vector yp, sunrealtype* g, void* ud) {

@@ -43,6 +43,8 @@ void psu_hd_unary(const psuHD* c, double* out, const double* a, double f0, doubl
 void psu_hd_binary(const psuHD* c, double* out, const double* a, const double* b, double f0,
                    double fa, double fb, double faa, double fab, double fbb);
 void psu_hd_mul(const psuHD* c, double* out, const double* a, const double* b);
+void psu_hd_nary(const psuHD* c, double* out, const double* const* a, int n, double f0,
+                 const double* fi, const double* fij);
 void psu_hd_div(const psuHD* c, double* out, const double* a, const double* b);
 void psu_hd_gradcomp(const psuHD* c, double* out, const double* g, int k);
 void psu_hd_zero_hessian(const psuHD* c, double* out);
@@ -73,5 +75,9 @@ void ps_tape_run(const psModel* m, psData* d, int tape, int order, int values_on
 double* ps_slot(const psModel* m, psData* d, int slot);
 void ps_rate_coeff(const psModel* m, psData* d, const psuHD* c, const double* g, int tape,
                    int slot, int i, double* out, double* sc);
+
+/* usersub.c: a PS_OP_USER instruction (operands a) at time t into out. */
+void ps_user_call(const psModel* m, psData* d, const psuHD* c, double* out, const int* a,
+                  double t);
 
 #endif

@@ -242,6 +242,7 @@ static void scalar_forces(const psModel* m, psData* d, double t, const double* y
 
 static int check_finite(psData* d, const double* v, int n, const char* what) {
   for (int i = 0; i < n; i++) {
+    if (d->user_error) return PS_ERR_NONFINITE;   /* d->msg holds the subroutine's message */
     if (!isfinite(v[i])) {
       snprintf(d->msg, sizeof(d->msg), "%s entry %d is not finite (%g)", what, i, v[i]);
       return PS_ERR_NONFINITE;

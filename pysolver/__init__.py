@@ -8,7 +8,8 @@
 from ._version import __version__
 from .deck.loader import load, loads
 from .errors import DeckError
+from .headers import get_include
 from .model import Model
 from .results import Result
 
-__all__ = ["load", "loads", "DeckError", "Model", "Result", "__version__"]
+__all__ = ["load", "loads", "DeckError", "Model", "Result", "get_include", "__version__"]

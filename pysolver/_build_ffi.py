@@ -16,13 +16,14 @@ import cffi
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 HEADER = ROOT / "csrc" / "include" / "pysolver.h"
-SOURCES = ["hd.c", "kinematics.c", "tape.c", "residual.c", "ida.c"]
+USERSUB_HEADER = ROOT / "csrc" / "include" / "pysolver_usersub.h"
+SOURCES = ["hd.c", "kinematics.c", "tape.c", "residual.c", "usersub.c", "ida.c"]
 
 
-def cdef_from_header(text):
-    """Return the declarations of the public header in a form cffi's cdef accepts."""
+def cdef_from_header(text, start_at="#define PS_BODY_POINT"):
+    """Return the declarations of a public header in a form cffi's cdef accepts."""
     text = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
-    start = text.index("#define PS_BODY_POINT")
+    start = text.index(start_at)
     end = text.index("#ifdef __cplusplus", start)
     return "\n".join(line for line in text[start:end].splitlines() if line.strip())
 
@@ -30,6 +31,7 @@ def cdef_from_header(text):
 def make_builder():
     """Return an FFI builder for the kernel."""
     ffibuilder = cffi.FFI()
+    ffibuilder.cdef(cdef_from_header(USERSUB_HEADER.read_text(), "void c_sysfnc"))
     ffibuilder.cdef(cdef_from_header(HEADER.read_text()))
     ffibuilder.set_source(
         "pysolver._kernel",

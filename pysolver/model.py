@@ -57,6 +57,7 @@ class UserSub:
     script: str = None     # path of a Python script defining the routine
     library: str = None    # path of a C shared library defining it
     attribute: str = "usrsub_fnc_name"   # the deck attribute to name in errors
+    untraced: str = None   # why a Python routine could not be traced (it is called instead)
 
     def describe(self):
         """A short text for summaries and logs."""
@@ -216,6 +217,8 @@ class Model:
         self.has_units = False
         self._compiled = None
         self.usersub_paths = {}   # element -> how its user subroutine runs (filled when compiled)
+        self.user_routines = []   # routines the kernel calls (pysolver.build.usercalls)
+        self._scripts = {}        # user subroutine scripts run so far: path -> namespace
         self._where = {}          # (kind, id) -> location of the element, for errors
 
     # public API -------------------------------------------------------------------------

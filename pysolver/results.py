@@ -63,7 +63,7 @@ class Result:
         self.events = list(events)
         self.log = list(log)
         self.statics = list(statics)
-        outputs = np.asarray(outputs).reshape(len(self.t), -1)
+        outputs = np.asarray(outputs).reshape(len(self.t), len(channels))
         self._requests = {}
         for col, (rid, k) in enumerate(channels):
             arr = self._requests.setdefault(rid, np.full((len(self.t), 8), np.nan))
@@ -216,7 +216,8 @@ class Result:
         """Return the run's outcome and statistics as text."""
         s = self.stats
         lines = [f"success: {self.success} ({self.message})",
-                 f"outputs: {len(self.t)} rows, t = {self.t[0]:g} .. {self.t[-1]:g}",
+                 f"outputs: {len(self.t)} rows" + (f", t = {self.t[0]:g} .. {self.t[-1]:g}"
+                                                   if len(self.t) else ""),
                  f"steps: {s['steps']}  residual evals: {s['nres']}  Jacobian evals: "
                  f"{s['njac']}  failed step attempts: {s['nfail']}",
                  f"wall time: setup {self.timing['setup']:.4f} s, integration "

@@ -234,8 +234,9 @@ def test_bad_scripts_are_deck_errors_at_load(tmp_path, script, attrs, attribute,
 
 @pytest.mark.parametrize("attrs,attribute,match", [
     ('type="USERSUB" script_name="missing.py"', "script_name", "script 'missing.py' not found"),
-    ('type="USERSUB" usrsub_dll_name="sub.so"', "usrsub_dll_name",
-     "C shared-library user subroutines are not supported yet"),
+    ('type="USERSUB" usrsub_dll_name="sub.so"', "usrsub_dll_name", "library 'sub.so' not found"),
+    ('type="USERSUB" usrsub_dll_name="sub.so" script_name="a.py"', "usrsub_dll_name",
+     "not both"),
     ('type="USERSUB" usrsub_param_string="USER(9)"', "script_name", "needs the routine"),
     ('type="USERSUB" usrsub_param_string="USER(9, x)" script_name="a.py"', "usrsub_param_string",
      "parameter 'x' is not a number"),
@@ -249,12 +250,11 @@ def test_bad_usersub_attributes(attrs, attribute, match):
 
 
 @pytest.mark.parametrize("body,match", [
-    ("    if py_sysfnc('DX', [9])[0] > 0:\n        return 1.0\n    return 0.0\n",
-     r"cannot be traced into the kernel: comparison of a state-dependent value.*\(line 5\)"),
     ("    return py_sysfnc('DQ', [9])[0]\n", "unknown function 'DQ'"),
     ("    return py_sysfnc('DX', [99])[0]\n", "refers to marker id 99, which does not exist"),
     ("    return py_sysfnc('VX', [9])[0]\n", "displacement measures only"),
     ("    raise ValueError('bad day')\n", r"PFOSUB raised ValueError: bad day \(line 5\)"),
+    ("    return 'tall'\n", "PFOSUB returned 'tall'"),
     ("    return None\n", "PFOSUB returned None"),
     ("    return float('nan')\n", "returned nan"),
     ("    py_errmes(1, 'cannot go on', id, 'STOP')\n", r"cannot go on \(id 1\)"),
@@ -274,3 +274,171 @@ def test_py_sysfnc_outside_a_routine():
     from pysolver.msolve import py_sysfnc
     with pytest.raises(RuntimeError, match="only inside a user subroutine"):
         py_sysfnc("DX", [9])
+
+
+# -- routines the kernel calls: untraceable Python (a cffi callback) and C libraries ----------
+
+def _reference_error(text, tol=1e-10):
+    """The expression version at `tol` and at 1e-12: its result and its own global error."""
+    model = pysolver.loads(text) if text.lstrip().startswith("<") else pysolver.load(text)
+    ref, fine = model.run(integr_tol=tol), model.run(integr_tol=1e-12)
+    return ref, fine, np.abs(ref.request(1)[:, :4] - fine.request(1)[:, :4]).max()
+
+
+def _close_to_expression(res, ref, fine, err):
+    """A differenced path takes its own steps, so it is checked against the expression
+    version's own global error: within 3x of it from the converged solution, in at most 1.2x
+    the steps."""
+    assert res.success, res.message
+    np.testing.assert_allclose(res.t, ref.t, rtol=0, atol=1e-9)
+    assert np.abs(res.request(1)[:, :4] - fine.request(1)[:, :4]).max() <= 3 * err + 1e-12
+    assert res.stats["steps"] <= 1.2 * ref.stats["steps"]
+
+
+BRANCHY = '''import math
+
+
+def PFOSUB(id, time, par, npar, dflag, iflag):
+    x = py_sysfnc("DX", [9])[0]
+    y = py_sysfnc("DY", [9])[0]
+    if iflag:
+        return 0.0
+    ch = math.cosh(x)        # the same g, through a state-dependent branch
+    return y - ch if x >= 0 else y - math.cosh(-x)
+'''
+
+
+def test_untraceable_python_routine_is_called_from_the_kernel(tmp_path):
+    ref, fine, err = _reference_error(str(DECKS / "catenary_bead.xml"))
+    model = pysolver.loads(_deck_with(tmp_path, BRANCHY))
+    res = model.run(integr_tol=1e-10)
+    _close_to_expression(res, ref, fine, err)
+    (path,) = res.meta["usersubs"].values()
+    assert "Python callback (not traced: comparison of a state-dependent value" in path
+    assert "partials in DX(9), DY(9), TIME by central differences" in path
+
+
+def _jacobian_like_the_expression(model, seed):
+    """A differenced path's iteration matrix against the exact one of the expression version
+    (1e-6 relative; measured 4e-8) and against central differences of its own residual (1e-5:
+    those difference the routine's differenced partials once more)."""
+    k, exact = model._kernel(), pysolver.load(DECKS / "catenary_bead.xml")._kernel()
+    rng = np.random.default_rng(seed)
+    for _ in range(3):
+        y, yp = rng.normal(size=k.ny), rng.normal(size=k.ny)
+        J = k.jacobian_array(0.3, y, yp, 7.0)
+        Je, fd = exact.jacobian_array(0.3, y, yp, 7.0), fd_iteration_matrix(k, 0.3, y, yp, 7.0)
+        assert np.abs(J - Je).max() <= 1e-6 * np.abs(Je).max()
+        assert np.abs(J - fd).max() <= 1e-5 * np.abs(fd).max()
+
+
+def test_callback_jacobian_matches_the_exact_one(tmp_path):
+    _jacobian_like_the_expression(pysolver.loads(_deck_with(tmp_path, BRANCHY)), 5)
+
+
+def test_a_routine_failing_during_the_run_ends_it_with_its_message(tmp_path):
+    """The routine raises once the bead has slid left of x = 0.3: success=False, the message
+    names the routine and the error, and the rows up to then are kept."""
+    script = BRANCHY.replace("    ch = math.cosh(x)", "    if x < 0.3:\n        raise ValueError('off the end')\n    ch = math.cosh(x)")
+    res = pysolver.loads(_deck_with(tmp_path, script)).run()
+    assert not res.success and res.status == -400
+    assert "PFOSUB raised ValueError: off the end" in res.message
+    assert len(res.t) > 1 and np.all(res.request(1)[:, 0] >= 0.3 - 1e-3)
+
+
+C_BEAD = r"""
+#include <math.h>
+#include "pysolver_usersub.h"
+
+void PFOSUB(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+            double *value) {
+  int marker = (int)par[0], err;
+  double x, y;
+  c_sysfnc("DX", &marker, 1, &x, &err);
+  c_errmes(err, "DX failed", *id, "STOP");
+  c_sysfnc("DY", &marker, 1, &y, &err);
+  *value = y - cosh(x);
+}
+
+void LINES(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+           double *value) {
+  int m = (int)par[0], err;
+  double p[3];
+  int n;
+  c_sysary("TDISP", &m, 1, p, &n, &err);
+  *value = 1.0 + par[1] * p[0] - p[2];
+}
+
+void SENSUB(int *id, double *time, double *par, int *npar, int *iflag, double *value) {
+  int m = 10, err;
+  c_sysfnc("DZ", &m, 1, value, &err);
+}
+
+void GREEDY(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+            double *value) {
+  int m = 9, err;
+  double x, y = 0;
+  c_sysfnc("DX", &m, 1, &x, &err);
+  if (!*iflag) c_sysfnc("DY", &m, 1, &y, &err);   /* not declared on the iflag call */
+  *value = y - cosh(x);
+}
+"""
+
+
+@pytest.fixture(scope="module")
+def c_library(tmp_path_factory):
+    import shutil
+    import subprocess
+    cc = shutil.which("cc") or shutil.which("gcc")
+    if cc is None:
+        pytest.skip("no C compiler on this machine to build the test's subroutine library")
+    d = tmp_path_factory.mktemp("csub")
+    (d / "subs.c").write_text(C_BEAD)
+    subprocess.run([cc, "-shared", "-fPIC", f"-I{pysolver.get_include()}", str(d / "subs.c"),
+                    "-o", str(d / "subs.so"), "-lm"], check=True)
+    return d / "subs.so"
+
+
+def test_c_pfosub_on_the_bead(c_library):
+    ref, fine, err = _reference_error(str(DECKS / "catenary_bead.xml"))
+    model = pysolver.loads(bead_xml(f'type="USERSUB" usrsub_dll_name="{c_library}" '
+                                    'usrsub_param_string="USER(9)"'))
+    res = model.run(integr_tol=1e-10)
+    _close_to_expression(res, ref, fine, err)
+    _jacobian_like_the_expression(model, 2)
+
+
+def test_c_routines_on_the_two_lines_and_a_sensor(c_library, tmp_path):
+    """Seed example 3 with one C routine for both lines (c_sysary TDISP), and a C SENSUB
+    halting the run when the particle drops below z = 50 mm."""
+    text = (DECKS / "particle_between_lines.xml").read_text()
+    sensor = '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="50" halt="TRUE"/>'
+    with_sensor = text.replace("</Model>", sensor + "\n  </Model>")
+    ref, fine, err = _reference_error(with_sensor)
+    for k, sign in ((1, "1"), (2, "-1")):
+        expr = "1+dx(10)-dz(10)" if k == 1 else "1-dx(10)-dz(10)"
+        with_sensor = with_sensor.replace(
+            f'type="EXPRESSION" expr="{expr}"',
+            f'type="USERSUB" usrsub_dll_name="{c_library}" usrsub_fnc_name="LINES" '
+            f'usrsub_param_string="USER(10, {sign})"')
+    with_sensor = with_sensor.replace(
+        sensor, f'<Sensor_Event id="1" type="USERSUB" usrsub_dll_name="{c_library}" '
+                'compare="LT" value="50" halt="TRUE"/>')
+    res = pysolver.loads(with_sensor).run(integr_tol=1e-10)
+    assert res.success and "halted by Sensor_Event 1" in res.message
+    assert res.events[0].time == pytest.approx(ref.events[0].time, abs=1e-8)
+    _close_to_expression(res, ref, fine, err)
+
+
+def test_c_library_errors(c_library):
+    missing = pysolver.loads(bead_xml(f'type="USERSUB" usrsub_dll_name="{c_library}" '
+                                      'usrsub_fnc_name="NOPE" usrsub_param_string="USER(9)"'))
+    with pytest.raises(pysolver.DeckError, match="no function NOPE in") as info:
+        missing.run()
+    assert info.value.attribute == "usrsub_dll_name"
+    greedy = pysolver.loads(bead_xml(f'type="USERSUB" usrsub_dll_name="{c_library}" '
+                                     'usrsub_fnc_name="GREEDY" usrsub_param_string="USER(9)"'))
+    res = greedy.run()
+    assert not res.success
+    assert "read a value its iflag call did not ask for: DY(9)" in res.message
+    assert "0 rows" in res.summary()

@@ -11,6 +11,8 @@
 #ifndef PYSOLVER_H
 #define PYSOLVER_H
 
+#include "pysolver_usersub.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -51,6 +53,9 @@ enum psOp {
   PS_OP_SENVAL,      /* stored value d->senval[a0] of a Sensor_Evaluate (constant between events) */
   PS_OP_STEPC,       /* STEP-family function of slot a0 with constant bounds consts[a1..a4] =
                         x0, h0, x1, h1; a5 the shape: 0 STEP, 1 STEP5, 2 HAVSIN */
+  PS_OP_USER,        /* a user subroutine: routine a0, called with the values of the slots
+                        user_in[a1 .. a1+a2-1] as the system values it declared; result channel a3
+                        (REQSUB: 0..7, others 0) */
   PS_OP_COUNT
 };
 
@@ -68,6 +73,14 @@ enum psMeasure {
 #define PS_CMP_GE 0
 #define PS_CMP_LT 1
 #define PS_CMP_EQ 2
+
+/* Argument lists of user subroutines (Adams/MotionSolve conventions). */
+#define PS_USER_DFLAG 0  /* f(int* id, double* time, double* par, int* npar, int* dflag,
+                            int* iflag, double* value): PFOSUB, VARSUB, SFOSUB */
+#define PS_USER_PLAIN 1  /* f(int* id, double* time, double* par, int* npar, int* iflag,
+                            double* value): SENSUB, SEVSUB, REQSUB (value[8]) */
+#define PS_USER_KEY 32   /* bytes of one canonical input key */
+#define PS_USER_MAXIN 16 /* most inputs one routine may declare */
 
 /* Status codes returned by kernel functions. */
 #define PS_OK 0
@@ -147,6 +160,21 @@ typedef struct psModel {
   /* outputs (request channels): a tape and a slot, or tape -1 for NULL */
   int* out_tape;          /* (nout x 1)                                         */
   int* out_slot;          /* (nout x 1)                                         */
+
+  /* user subroutines called from tapes (PS_OP_USER) */
+  int nuser;              /* number of routines                                 */
+  void** user_fn;         /* (nuser x 1) the routine (C calling convention)     */
+  int* user_form;         /* (nuser x 1) PS_USER_*: its argument list           */
+  int* user_id;           /* (nuser x 1) element id passed as *id               */
+  int* user_par_adr;      /* (nuser x 1) first parameter in user_par            */
+  int* user_npar;         /* (nuser x 1) number of USER(...) parameters         */
+  double* user_par;       /* (npar total x 1)                                   */
+  int* user_key_adr;      /* (nuser x 1) first declared input in user_key_*     */
+  int* user_nkey;         /* (nuser x 1) number of declared inputs              */
+  int* user_key_fn;       /* (nkey total x 1) function code (ps_user_fn_code)   */
+  int* user_key_n;        /* (nkey total x 1) number of ids                     */
+  int* user_key_ids;      /* (nkey total x 4) the ids                           */
+  int* user_in;           /* (slots of PS_OP_USER inputs, in declaration order) */
 } psModel;
 
 typedef struct psData {
@@ -168,6 +196,7 @@ typedef struct psData {
   long ntimes;            /* step attempts: residual evaluations at a new time  */
   long nfail;             /* failed step attempts (a new time below the last)   */
   double last_t;          /* time of the last residual evaluation              */
+  int user_error;         /* 1 after a user subroutine reported an error        */
   char msg[256];          /* message of the last error                          */
 } psData;
 
@@ -269,6 +298,27 @@ int ps_roots(const psModel* m, psData* d, double t, const double* y, const doubl
  * holds and rearms have m->nsensor entries. Returns PS_OK. */
 int ps_sensor_status(const psModel* m, psData* d, double t, const double* y, const double* yp,
                      int* holds, int* rearms);
+
+/* Open the shared library at path and return its function name, or NULL with a message in msg
+ * (msglen bytes). The kernel's own symbols (c_sysfnc, c_sysary, c_errmes) are made global
+ * first, so that a library built without linking against pysolver finds them. */
+void* ps_user_open(const char* path, const char* name, char* msg, int msglen);
+
+/* Call user routine fn (argument list form, PS_USER_*) once with iflag = 1, as Adams does to
+ * learn its dependencies: each c_sysfnc / c_sysary call it makes is recorded as a canonical key
+ * ("DX(9,1)"; arrays as their entries) into keys (maxkeys x PS_USER_KEY) and returns 0.
+ * Returns the number of keys (maxkeys + 1 if there were more), or -1 with a message in msg
+ * when the routine reported an error (c_errmes) or called an unknown function. */
+int ps_user_declare(void* fn, int form, int id, const double* par, int npar, char* keys,
+                    int maxkeys, char* msg, int msglen);
+
+/* Return the code c_sysfnc uses for an expression-language function name (case and spaces
+ * ignored), or -1 when it is not one c_sysfnc answers. */
+int ps_user_fn_code(const char* name);
+
+/* Report an error from inside a user subroutine call (a Python routine's exception): the
+ * current evaluation yields NaN and d->msg says why. Outside a call it does nothing. */
+void ps_user_fail(const char* message);
 
 /* Return the rate of change of the kinetic energy, sum of m v.v' + w.(I w') over bodies, in
  * model units (the root function of MKEAM's kinetic-energy peaks). */

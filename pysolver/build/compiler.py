@@ -36,6 +36,12 @@ _FOLD = {lib.PS_OP_ADD: lambda a, b: a + b, lib.PS_OP_SUB: lambda a, b: a - b,
          lib.PS_OP_MUL: lambda a, b: a * b, lib.PS_OP_NEG: lambda a: -a}
 
 
+def _key_ids(key):
+    """The ids of a canonical user-subroutine input key such as "DM(9,1)"."""
+    inner = key.partition("(")[2].rstrip(")")
+    return [int(v) for v in inner.split(",") if v]
+
+
 class Layout:
     """Where each body's coordinates live in the state vector."""
 
@@ -160,6 +166,7 @@ class Compiler:
         self.tapes = []
         self.stack = []
         self.eidx = {eid: i for i, eid in enumerate(sorted(model.evaluates))}
+        self.user_in, self._user_in_adr = [], {}   # input slots of PS_OP_USER instructions
 
     def const_index(self, v):
         key = v if not math.isnan(v) else "nan"
@@ -181,6 +188,8 @@ class Compiler:
 
     def lower(self, tape, node):
         tag = node[0]
+        if tag == "user":
+            return self.user_call(tape, *node[1:])
         if tag == "num":
             return tape.const(node[1])
         if tag == "name":
@@ -217,6 +226,15 @@ class Compiler:
         if name == "BISTOP":
             return self.bistop(tape, *slots)
         raise AssertionError(name)
+
+    def user_call(self, tape, k, channel, inputs):
+        """A user subroutine on its declared inputs (csrc/usersub.c)."""
+        slots = tuple(self.lower(tape, a) for a in inputs)
+        key = (id(tape), slots)
+        if key not in self._user_in_adr:
+            self._user_in_adr[key] = len(self.user_in)
+            self.user_in.extend(slots)
+        return tape.emit(lib.PS_OP_USER, k, self._user_in_adr[key], len(slots), channel)
 
     def measure(self, tape, name, ids):
         if self.conservative and (name in _VEL or name in _ACC):
@@ -447,4 +465,25 @@ class Compiler:
             sensor_compare=i32([x[2] for x in self.sensor]),
             sensor_value=f64([x[3] for x in self.sensor]),
             sensor_tol=f64([x[4] for x in self.sensor]),
+            **self.user_arrays(i32, f64),
         )
+
+    def user_arrays(self, i32, f64):
+        """psModel fields of the user subroutines the kernel calls."""
+        routines = self.model.user_routines
+        par_adr, key_adr, par, keys = [], [], [], []
+        for r in routines:
+            par_adr.append(len(par))
+            par.extend(r.par)
+            key_adr.append(len(keys))
+            keys.extend(r.keys)
+        return dict(
+            nuser=len(routines), user_fn=[r.fn for r in routines],
+            user_form=i32([r.form for r in routines]), user_id=i32([r.id for r in routines]),
+            user_par_adr=i32(par_adr), user_npar=i32([len(r.par) for r in routines]),
+            user_par=f64(par), user_key_adr=i32(key_adr),
+            user_nkey=i32([len(r.keys) for r in routines]),
+            user_key_fn=i32([lib.ps_user_fn_code(k.split("(")[0].encode()) for k in keys]),
+            user_key_n=i32([len(_key_ids(k)) for k in keys]),
+            user_key_ids=i32([(_key_ids(k) + [0] * 4)[:4] for k in keys]).reshape(-1),
+            user_in=i32(self.user_in))

@@ -3,11 +3,16 @@ import numpy as np
 
 from ..deck import usersubs
 from ..options import SPARSE_THRESHOLD
+from . import usercalls
 from .bindings import ffi, lib
 from .compiler import Compiler
 
 _INT_FIELDS = ("ny", "nbody", "nmarker", "ntape", "npen", "nsf", "nout", "hd_stride",
-               "max_slots", "max_bslots", "nsensor")
+               "max_slots", "max_bslots", "nsensor", "nuser")
+
+
+class UserFailure(Exception):
+    """A user subroutine reported an error during a kernel call (scikit-sundae path)."""
 
 
 class Kernel:
@@ -33,6 +38,7 @@ class Kernel:
 
     def __init__(self, model, conservative=False):
         usersubs.resolve(model)         # Python user subroutines traced into expressions
+        usercalls.bind(model)           # the others called from the kernel
         comp = Compiler(model, conservative)
         arrays = comp.compile()
         self.layout = comp.layout
@@ -53,6 +59,11 @@ class Kernel:
                 m.gravity = list(val)
             elif key == "force_scale":
                 m.force_scale = float(val)
+            elif key == "user_fn":
+                fns = ffi.new("void *[]", val or [ffi.NULL])
+                self._keep.append(fns)
+                m.user_fn = fns
+
             else:
                 ctype = "int *" if val.dtype == np.int32 else "double *"
                 if val.size == 0:
@@ -160,13 +171,21 @@ class Kernel:
         res_c, jac_c = lib.ps_residual, lib.ps_jacobian
 
         def residual(t, y, yp, res):
-            return res_c(m, d, t, fb("double[]", y), fb("double[]", yp), fb("double[]", res))
+            rc = res_c(m, d, t, fb("double[]", y), fb("double[]", yp), fb("double[]", res))
+            # a non-finite residual is recoverable for IDA; a user subroutine's error is not
+            # (scikit-sundae would retry on any return code, so it is raised)
+            if rc and d.user_error:
+                raise UserFailure(self.message)
+            return rc
 
         def jacobian(t, y, yp, cj, jac):
             return jac_c(m, d, t, fb("double[]", y), fb("double[]", yp), cj, fb("double[]", jac))
 
         def jacobian_ida(t, y, yp, res, cj, jac):
-            return jac_c(m, d, t, fb("double[]", y), fb("double[]", yp), cj, fb("double[]", jac))
+            rc = jac_c(m, d, t, fb("double[]", y), fb("double[]", yp), cj, fb("double[]", jac))
+            if rc and d.user_error:
+                raise UserFailure(self.message)
+            return rc
 
         self.residual = residual
         self.jacobian = jacobian
@@ -200,8 +219,11 @@ class Kernel:
         csc_c = lib.ps_jacobian_csc
 
         def jacobian(t, y, yp, res, cj, data):
-            return csc_c(m, d, t, fb("double[]", y), fb("double[]", yp), cj, cmap, ntrip,
-                         fb("double[]", data), nnz)
+            rc = csc_c(m, d, t, fb("double[]", y), fb("double[]", yp), cj, cmap, ntrip,
+                       fb("double[]", data), nnz)
+            if rc and d.user_error:
+                raise UserFailure(self.message)
+            return rc
 
         jacobian.keep_alive = tmap   # cmap points into it
         return jacobian
@@ -220,6 +242,7 @@ class Kernel:
         self.d.ntimes = 0
         self.d.nfail = 0
         self.d.nroots = 0
+        self.d.user_error = 0
 
     @property
     def message(self):

@@ -175,6 +175,10 @@ def parse(text):
 
 def _check(node):
     tag = node[0]
+    if tag == "user":                   # a user subroutine the kernel calls, on its inputs
+        for a in node[3]:
+            _check(a)
+        return
     if tag == "name":
         if node[1] != "TIME" and node[1] not in CONSTANTS:
             raise ExpressionError(f"unknown name {node[1]!r} (known: TIME, PI, DTOR, RTOD)",
@@ -218,6 +222,8 @@ def unparse(node):
         return repr(int(v)) if v == int(v) and abs(v) < 1e15 else repr(v)
     if tag == "name":
         return node[1]
+    if tag == "user":
+        return f"USER#{node[1]}[{node[2]}]({', '.join(unparse(a) for a in node[3])})"
     if tag == "neg":
         return f"-({unparse(node[1])})"
     if tag == "bin":
@@ -232,7 +238,10 @@ def references(node, out=None):
     """Return {kind: set(ids)} of the elements an expression tree refers to by id."""
     out = out if out is not None else {}
     tag = node[0]
-    if tag == "neg":
+    if tag == "user":
+        for a in node[3]:
+            references(a, out)
+    elif tag == "neg":
         references(node[1], out)
     elif tag == "bin":
         references(node[2], out)

@@ -65,6 +65,12 @@ def _dynamic(model, node, stack):
     if node is None:
         return None
     tag = node[0]
+    if tag == "user":
+        for a in node[3]:
+            r = _dynamic(model, a, stack)
+            if r:
+                return r
+        return None
     if tag == "neg":
         return _dynamic(model, node[1], stack)
     if tag == "bin":

@@ -180,22 +180,27 @@ def measure(fnc, ids):
 def py_sysfnc(fnc, ids):
     """One system value for a user subroutine: ``[value, errflg]`` (MotionSolve's py_sysfnc).
 
-    Valid only while pysolver traces a subroutine.
+    Valid only inside a user subroutine that pysolver calls (to trace it, or from the kernel).
     """
-    _tracing("py_sysfnc")
+    live_fn = _mode("py_sysfnc")
+    if live_fn is not None:
+        return live_fn(fnc, ids)
     return [measure(fnc, ids), 0]
 
 
 def py_sysary(fnc, ids):
     """An array of system values: ``[values, errflg]`` for TDISP, TVEL, RVEL, VEL, TACC."""
-    _tracing("py_sysary")
+    live_fn = _mode("py_sysary")
     name = str(fnc).upper()
     if name not in SYSARY:
         raise SysfncError(f"unknown array {fnc!r}; py_sysary reads {', '.join(SYSARY)}")
     ids = list(ids)
-    parts = SYSARY[name]
     # angular velocities take at most three ids (i, j, k)
-    return [[measure(f, ids[:3] if f.startswith("W") else ids) for f in parts], 0]
+    parts = [(f, ids[:3] if f.startswith("W") else ids) for f in SYSARY[name]]
+    if live_fn is not None:
+        values = [live_fn(f, i) for f, i in parts]
+        return [[v for v, _ in values], max(e for _, e in values)]
+    return [[measure(f, i) for f, i in parts], 0]
 
 
 def py_errmes(errflg, message, id, endflag="STOP"):
@@ -204,9 +209,14 @@ def py_errmes(errflg, message, id, endflag="STOP"):
         raise SysfncError(f"{message} (id {id})")
 
 
-def _tracing(what):
-    if not getattr(_ACTIVE, "on", False):
+def _mode(what):
+    """None while tracing; the live reader inside a kernel call; else an error."""
+    if getattr(_ACTIVE, "on", False):
+        return None
+    live_fn = getattr(_ACTIVE, "live", None)
+    if live_fn is None:
         raise RuntimeError(f"{what} works only inside a user subroutine that pysolver calls")
+    return live_fn
 
 
 class active:
@@ -219,6 +229,23 @@ class active:
 
     def __exit__(self, *exc):
         _ACTIVE.on = self.prev
+        return False
+
+
+class live:
+    """Context in which py_sysfnc reads real values through `reader(fnc, ids)` (a routine
+    called from the kernel)."""
+
+    def __init__(self, reader):
+        self.reader = reader
+
+    def __enter__(self):
+        self.prev = (getattr(_ACTIVE, "on", False), getattr(_ACTIVE, "live", None))
+        _ACTIVE.on, _ACTIVE.live = False, self.reader
+        return self
+
+    def __exit__(self, *exc):
+        _ACTIVE.on, _ACTIVE.live = self.prev
         return False
 
 

@@ -1,10 +1,12 @@
 """User subroutines (``type="USERSUB"``): PFOSUB, SENSUB, SEVSUB, VARSUB, SFOSUB, REQSUB.
 
 At load (:func:`from_attributes`) the attributes are checked without running anything: the
-routine's script exists and defines the function with the conventional arguments. When the
-model is first compiled (:func:`resolve`) each Python routine is traced into an expression tree
-(:mod:`.tracer`) that replaces the element's expression, so it runs in the kernel like one.
-Loading an XML deck therefore never executes code; running it executes its scripts.
+routine's script or library exists, a script defines the function with the conventional
+arguments. When the model is first compiled (:func:`resolve`) each Python routine is traced
+into an expression tree (:mod:`.tracer`) that replaces the element's expression, so it runs in
+the kernel like one; a routine that cannot be traced, and a C library's, are called from the
+kernel instead (:mod:`pysolver.build.usercalls`). Loading an XML deck therefore never executes
+code; running it executes its scripts and loads its libraries.
 """
 import ast
 import os
@@ -65,20 +67,23 @@ def from_attributes(model, ctx, a):
                             "usrsub_fnc_name")
         return UserSub(name, routine, par)
     if a.get("usrsub_dll_name") is not None:
-        raise ctx.error("C shared-library user subroutines are not supported yet; write the "
-                        "routine in Python (script_name, interpreter=\"PYTHON\")",
-                        "usrsub_dll_name")
+        if a.get("script_name") is not None or a.get("interpreter") is not None:
+            raise ctx.error("give a C library (usrsub_dll_name) or a Python script "
+                            "(script_name, interpreter), not both", "usrsub_dll_name")
+        path = find_file(ctx, a["usrsub_dll_name"], model.source.file, "usrsub_dll_name")
+        return UserSub(name, routine, par, library=path, attribute="usrsub_dll_name")
     if a.get("script_name") is None:
         raise ctx.error(f"type=\"USERSUB\" needs the routine: script_name (a Python script "
                         f"defining {routine}) or, in a Python deck, ROUTINE= a function",
                         "script_name")
-    path = find_script(ctx, a["script_name"], model.source.file)
+    path = find_file(ctx, a["script_name"], model.source.file, "script_name")
     _check_script(ctx, path, routine, args)
     return UserSub(name, routine, par, script=path, attribute="script_name")
 
 
-def find_script(ctx, given, deck_file):
-    """The script's path: as given, relative to the deck's folder, then PYSOLVER_USERSUB_DIR."""
+def find_file(ctx, given, deck_file, attribute):
+    """A script's or library's path: as given, relative to the deck's folder, then in the
+    folders of PYSOLVER_USERSUB_DIR."""
     candidates = [given]
     if not os.path.isabs(given):
         if deck_file and not deck_file.startswith("<"):
@@ -88,8 +93,9 @@ def find_script(ctx, given, deck_file):
     for path in candidates:
         if os.path.isfile(path):
             return os.path.abspath(path)
-    raise ctx.error(f"script {given!r} not found (looked in: {', '.join(candidates)})",
-                    "script_name")
+    what = "script" if attribute == "script_name" else "library"
+    raise ctx.error(f"{what} {given!r} not found (looked in: {', '.join(candidates)})",
+                    attribute)
 
 
 def _check_script(ctx, path, routine, args):
@@ -113,7 +119,8 @@ def _check_script(ctx, path, routine, args):
 # ---------------------------------------------------------------------------------------------
 # compile time: trace every Python routine into the element's expression
 
-def _elements(model):
+def elements(model):
+    """(kind, element) of every element defined by a user subroutine."""
     tables = {"penalty": model.penalties, "sensor": model.sensors,
               "evaluate": model.evaluates, "variable": model.variables,
               "sforce": model.sforces, "request": model.requests}
@@ -134,13 +141,15 @@ def resolve(model):
         where and why).
     """
     done = []
-    scripts = {}
-    for kind, el in _elements(model):
-        if (el.exprs[0] if kind == "request" else el.expr) is not None:
+    for kind, el in elements(model):
+        if (el.exprs[0] if kind == "request" else el.expr) is not None or el.usersub.library \
+                or el.usersub.untraced:
             continue
         ctx = model._where[(kind, el.id)]
         ctx.id = el.id
-        trees = _trace(ctx, el.usersub, el.id, scripts)
+        trees = _trace(ctx, el.usersub, el.id, model)
+        if trees is None:
+            continue                    # called from the kernel instead (build.usercalls)
         if kind == "request":
             el.exprs = trees
             el.texts = [f"{el.usersub.name} channel {k + 1}" for k in range(8)]
@@ -155,14 +164,16 @@ def resolve(model):
         check_references(model)
 
 
-def _routine(ctx, sub, scripts):
-    """The Python function to trace, with the math module replaced for tracing."""
+def python_routine(ctx, sub, model, traced=False):
+    """The routine's Python function; for tracing (traced=True) with the math module replaced.
+    A script is run once per model, when the model is first compiled."""
     if callable(sub.routine):
         fn = sub.routine
-        if isinstance(fn, types.FunctionType):
+        if traced and isinstance(fn, types.FunctionType):
             fn = types.FunctionType(fn.__code__, tracer.shim_globals(fn.__globals__),
                                     fn.__name__, fn.__defaults__, fn.__closure__)
         return fn
+    scripts = model._scripts
     if sub.script not in scripts:
         namespace = {"__name__": "__pysolver_usersub__", "__file__": sub.script,
                      "py_sysfnc": tracer.py_sysfnc, "py_sysary": tracer.py_sysary,
@@ -208,10 +219,11 @@ def _where(err, file):
     return text + (f" (line {line})" if line else "")
 
 
-def _trace(ctx, sub, id, scripts):
+def _trace(ctx, sub, id, model):
     """Call the routine as MotionSolve does (iflag pass, then an evaluation) on traced values;
-    returns the trees of its values."""
-    fn = _routine(ctx, sub, scripts)
+    returns the trees of its values, or None when it cannot be traced (sub.untraced says why:
+    it will be called from the kernel)."""
+    fn = python_routine(ctx, sub, model, traced=True)
     _, args, nvalues = CONVENTIONS[ctx.tag]
     file = sub.script or getattr(getattr(fn, "__code__", None), "co_filename", None)
     time = tracer.Sym(("name", "TIME", 0))
@@ -224,9 +236,8 @@ def _trace(ctx, sub, id, scripts):
             with tracer.active():
                 out = fn(*[call[k] for k in args])
         except tracer.Untraceable as err:
-            raise ctx.error(f"{sub.name} cannot be traced into the kernel: "
-                            f"{_where(err, file)}; the callback path for such routines is not "
-                            "built yet", sub.attribute) from None
+            sub.untraced = f"not traced: {_where(err, file)}"
+            return None
         except tracer.SysfncError as err:
             raise ctx.error(f"{sub.name}: {_where(err, file)}", sub.attribute) from None
         except Exception as err:  # the routine's own error

@@ -15,6 +15,7 @@ import time
 
 import numpy as np
 
+from ..build.kernel import UserFailure
 from . import integrator, quasistatic
 from .actors import Actor, Flow
 from .outputs import Printer, Progress
@@ -198,6 +199,8 @@ class Run:
                     step = self.solver.step(tstop, tstop)
             else:
                 step = self.solver.step(min(printer.pending[0], tstop), tstop)
+            if self.kernel.d.user_error:      # a user subroutine reported an error
+                raise Stop(False, -400, f"{self.kernel.message} (t = {step.t:.6g})")
             if step.status == TOO_MUCH_WORK or \
                     self.steps() - start_steps > self.options.max_num_steps:
                 raise Stop(False, -100, f"more than max_num_steps = "
@@ -234,12 +237,13 @@ class Run:
         self.t = 0.0
         self.y = k.layout.initial_state()
         k.d.last_t = self.t
-        self.yp = k.consistent_yp(self.t, self.y)
+        self.yp = np.zeros_like(self.y)
         commands = {"TRANSIENT": self.run_transient,
                     "STATIC": lambda c: quasistatic.run_static(self, c),
                     "QUASI-STATIC": lambda c: quasistatic.run_quasi_static(self, c)}
         try:
             try:
+                self.yp = k.consistent_yp(self.t, self.y)
                 flow = Flow()
                 for actor in self.actors:
                     flow.update(actor.start(self))
@@ -250,6 +254,8 @@ class Run:
                     commands[cmd.analysis](cmd)
             except Chatter as err:
                 raise Stop(False, -200, str(err)) from None
+            except UserFailure as err:      # a user subroutine failed outside IDA's calls
+                raise Stop(False, -400, f"{err} (t = {self.t:.6g})") from None
             except quasistatic.StaticFailure as err:
                 raise Stop(False, -300, str(err)) from None
         except Stop as stop:

@@ -10,7 +10,11 @@ import warnings
 import numpy as np
 from sksundae.ida import IDA
 
+from ..build.kernel import UserFailure
 from .step import ROOT_RETURN, Step
+
+#: IDA's flag for a residual that failed unrecoverably.
+UNRECOVERABLE = -8
 
 
 class PyIDA:
@@ -47,6 +51,7 @@ class PyIDA:
             options.update(eventsfn=ev, num_events=nroots)
             self._events = ev
         self._outputs, self._nout = outputs, nout
+        self._ny = None
         self._done = [0, 0]          # nfev, njev of earlier starts (scikit-sundae resets them)
         self._last = (0, 0)
         with warnings.catch_warnings():
@@ -60,6 +65,7 @@ class PyIDA:
         self._done[1] += self._last[1]
         self._last = (0, 0)
         self._forget_events()
+        self._ny = len(y0)
         self._ida.init_step(t0, y0, yp0)
 
     def _forget_events(self):
@@ -73,7 +79,11 @@ class PyIDA:
 
     def step(self, tout, tstop=None, onestep=False):
         """One IDASolve call toward tout, never past tstop (None: no limit)."""
-        sol = self._ida.step(tout, method="onestep" if onestep else "normal", tstop=tstop)
+        try:
+            sol = self._ida.step(tout, method="onestep" if onestep else "normal", tstop=tstop)
+        except UserFailure:             # the kernel holds the subroutine's message
+            return Step(float(tout), np.full(self._ny, np.nan), np.full(self._ny, np.nan),
+                        UNRECOVERABLE)
         self._last = (int(sol.nfev), int(sol.njev))
         roots = None
         if sol.status == ROOT_RETURN:

@@ -1,0 +1,46 @@
+/* pysolver user subroutines: the data access functions a routine may call.
+ *
+ * Build a routine library without linking against pysolver:
+ *   cc -shared -fPIC -I$(python -c "import pysolver; print(pysolver.get_include())") sub.c -o sub.so
+ * pysolver resolves these functions when it loads the library.
+ *
+ * Calling conventions (Adams/MotionSolve): the routine writes its result into value.
+ *   void PFOSUB(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+ *               double *value);                    constraint value g of a Force_Penalty
+ *   void VARSUB(...same as PFOSUB...);              value of a Reference_Variable
+ *   void SFOSUB(...same as PFOSUB...);              magnitude of a Force_Scalar_TwoBody
+ *   void SENSUB(int *id, double *time, double *par, int *npar, int *iflag, double *value);
+ *   void SEVSUB(...same as SENSUB...);              value stored by a Sensor_Evaluate
+ *   void REQSUB(...same as SENSUB..., double *result);   result[8]: a Post_Request's channels
+ * par holds the numbers of USER(p1, ..., pn); npar their count. iflag is 1 on the first call,
+ * which pysolver makes once to learn which system values the routine reads (c_sysfnc then
+ * returns 0): a routine must ask for every value it may use on that call. dflag is 1 while
+ * pysolver differences the routine for its partial derivatives.
+ */
+#ifndef PYSOLVER_USERSUB_H
+#define PYSOLVER_USERSUB_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* One system value: fnc is a function of the expression language that takes ids (DX, DY, DZ,
+ * DM, VX, VY, VZ, VM, VR, ACCX, ACCY, ACCZ, WX, WY, WZ, AX, AY, AZ, VARVAL, PFORCE, SFORCE,
+ * SENVAL), ipar its nsize integer arguments. Writes the value into *state and 0 into *errflg,
+ * or 0 and 1 on an error (unknown function, or a value not asked for on the iflag call). */
+void c_sysfnc(const char *fnc, const int *ipar, int nsize, double *state, int *errflg);
+
+/* An array of system values: TDISP (DX, DY, DZ), TVEL (VX, VY, VZ), RVEL (WX, WY, WZ),
+ * VEL (VX, VY, VZ, WX, WY, WZ) or TACC (ACCX, ACCY, ACCZ) of the ids in ipar; writes *nstates
+ * values into states. */
+void c_sysary(const char *fnc, const int *ipar, int nsize, double *states, int *nstates,
+              int *errflg);
+
+/* Report an error when errflg is nonzero: the evaluation fails and the run ends with
+ * success=False and this message. */
+void c_errmes(int errflg, const char *message, int id, const char *endflag);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

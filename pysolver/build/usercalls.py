@@ -1,0 +1,142 @@
+"""User subroutines the kernel calls: C shared libraries, and Python routines that could not be
+traced into expressions (a cffi callback with the same C calling convention).
+
+Each routine is asked once, Adams-style, with iflag = 1 which system values it reads
+(``ps_user_declare``); those become measure inputs of a ``PS_OP_USER`` tape instruction, so the
+chain rule runs through the kernel's exact measure derivatives and only the routine's own
+partials are differenced (csrc/usersub.c). The element's expression becomes the tree
+``('user', routine, channel, [input trees])``.
+"""
+import dataclasses
+import math
+
+from ..deck import expr as ex
+from ..deck import tracer
+from ..deck.usersubs import CONVENTIONS, elements
+from ..errors import ExpressionError
+from .bindings import ffi, lib
+
+_SIGNATURE = {lib.PS_USER_DFLAG: "void(int *, double *, double *, int *, int *, int *, double *)",
+              lib.PS_USER_PLAIN: "void(int *, double *, double *, int *, int *, double *)"}
+
+
+@dataclasses.dataclass
+class Routine:
+    """One routine the kernel calls."""
+    fn: object            # cdata void *: the C function, or a cffi callback
+    form: int             # PS_USER_*
+    id: int
+    par: tuple
+    keys: list            # canonical inputs, e.g. ["DX(9)", "DY(9)"]
+    keep: object = None   # what must stay alive while the kernel may call fn
+
+
+def bind(model):
+    """Give every element whose user subroutine is not an expression yet a kernel call."""
+    for kind, el in elements(model):
+        if (el.exprs[0] if kind == "request" else el.expr) is not None:
+            continue
+        ctx = model._where[(kind, el.id)]
+        ctx.id = el.id
+        sub = el.usersub
+        form = lib.PS_USER_DFLAG if "dflag" in CONVENTIONS[ctx.tag][1] else lib.PS_USER_PLAIN
+        if sub.library:
+            fn, keep, how = _library(ctx, sub), None, f"C library {sub.library}"
+        else:
+            fn, keep = _callback(ctx, sub, form, model)
+            how = f"Python callback ({sub.untraced})"
+        if len(sub.par) > 64:
+            raise ctx.error("at most 64 USER(...) parameters", sub.attribute)
+        keys = _declare(ctx, sub, fn, form, el.id)
+        k = len(model.user_routines)
+        model.user_routines.append(Routine(fn, form, el.id, tuple(sub.par), keys, keep))
+        inputs = [_key_tree(ctx, sub, key) for key in keys]
+        nvalues = CONVENTIONS[ctx.tag][2]
+        trees = [("user", k, chan, inputs) for chan in range(nvalues)]
+        if kind == "request":
+            el.exprs = trees
+            el.texts = [f"{sub.name} channel {c + 1}" for c in range(8)]
+        else:
+            el.expr = trees[0]
+        model.usersub_paths[f"{ctx.tag} {el.id}"] = (
+            f"{sub.describe()}: {how}, called from the kernel; its partials in "
+            f"{', '.join(keys + ['TIME'])} by central differences")
+    from ..deck.references import check_references
+    check_references(model)
+
+
+def _library(ctx, sub):
+    msg = ffi.new("char[256]")
+    fn = lib.ps_user_open(sub.library.encode(), str(sub.routine).encode(), msg, 256)
+    if fn == ffi.NULL:
+        raise ctx.error(f"cannot load {sub.routine} from {sub.library}: "
+                        f"{ffi.string(msg).decode(errors='replace')}", "usrsub_dll_name")
+    return fn
+
+
+def _declare(ctx, sub, fn, form, id):
+    """The system values the routine reads, from its iflag call."""
+    maxkeys = lib.PS_USER_MAXIN
+    keys = ffi.new("char[]", maxkeys * lib.PS_USER_KEY)
+    msg = ffi.new("char[256]")
+    par = ffi.new("double[]", list(sub.par) or [0.0])
+    n = lib.ps_user_declare(fn, form, id, par, len(sub.par), keys, maxkeys, msg, 256)
+    if n < 0:
+        raise ctx.error(f"{sub.name} (iflag call): {ffi.string(msg).decode(errors='replace')}",
+                        sub.attribute)
+    if n > maxkeys:
+        raise ctx.error(f"{sub.name} reads more than {maxkeys} system values", sub.attribute)
+    raw = ffi.buffer(keys)[:]
+    return [raw[i * lib.PS_USER_KEY:(i + 1) * lib.PS_USER_KEY].split(b"\0")[0].decode()
+            for i in range(n)]
+
+
+def _key_tree(ctx, sub, key):
+    """The expression tree of a canonical key such as "DM(9,1)"."""
+    name, _, rest = key.partition("(")
+    ids = [float(v) for v in rest.rstrip(")").split(",") if v]
+    node = ("call", name, [("num", v) for v in ids], 0)
+    try:
+        ex._check(node)
+    except ExpressionError as err:
+        raise ctx.error(f"{sub.name} reads {key}: {err.reason}", sub.attribute) from None
+    return node
+
+
+def _callback(ctx, sub, form, model):
+    """A cffi callback running the Python routine with MotionSolve's Python arguments."""
+    from ..deck.usersubs import python_routine
+    fn = python_routine(ctx, sub, model)
+    _, args, nvalues = CONVENTIONS[ctx.tag]
+    name = sub.name
+
+    def call(id, time, par, npar, dflag, iflag, value):
+        try:
+            n = npar[0]
+            given = {"id": id[0], "time": time[0], "par": [par[i] for i in range(n)],
+                     "npar": n, "dflag": dflag, "iflag": iflag}
+            with tracer.live(_live_sysfnc):
+                out = fn(*[given[a] for a in args])
+            values = [out] if nvalues == 1 else list(out)
+            for i, v in enumerate(values[:nvalues]):
+                value[i] = math.nan if v is None and nvalues == 1 else float(v or 0.0)
+        except BaseException as err:  # noqa: BLE001 - reported through the kernel, never raised
+            lib.ps_user_fail(f"{name} raised {type(err).__name__}: {err}".encode()[:190])
+            value[0] = math.nan
+
+    if form == lib.PS_USER_DFLAG:
+        def entry(id, time, par, npar, dflag, iflag, value):
+            call(id, time, par, npar, dflag[0], iflag[0], value)
+    else:
+        def entry(id, time, par, npar, iflag, value):
+            call(id, time, par, npar, 0, iflag[0], value)
+    cb = ffi.callback(_SIGNATURE[form], entry)
+    return ffi.cast("void *", cb), cb
+
+
+def _live_sysfnc(fnc, ids):
+    """py_sysfnc inside a kernel call: the value c_sysfnc gives the routine."""
+    ids = [int(i) for i in ids]
+    state, err = ffi.new("double *"), ffi.new("int *")
+    lib.c_sysfnc(str(fnc).encode(), ffi.new("int[]", ids or [0]), len(ids), state, err)
+    return [state[0], err[0]]
