@@ -102,3 +102,84 @@ def contact(zero_crossing, z0=1.0, **options):
     res = pysolver.loads(text).run(**options)
     (ev,) = [e for e in res.events if e.sensor == 1][:1]
     return ev.time, res.request(1)[list(res.t).index(ev.time)], res
+
+
+# -- seed example 3 with its two penalties as user subroutines, in every form ----------------
+
+#: The line constraint g = 1 + s x - z of seed example 3 as a Python PFOSUB: USER(marker, s).
+LINES_PFOSUB = '''def PFOSUB(id, time, par, npar, dflag, iflag):
+    ipar = [int(par[0])]
+    x = py_sysfnc("DX", ipar)[0]
+    z = py_sysfnc("DZ", ipar)[0]
+    return 1 + par[1] * x - z
+'''
+
+#: The same g written with a state-dependent branch, which cannot be traced.
+LINES_BRANCHY = '''def PFOSUB(id, time, par, npar, dflag, iflag):
+    ipar = [int(par[0])]
+    x = py_sysfnc("DX", ipar)[0]
+    z = py_sysfnc("DZ", ipar)[0]
+    if par[1] * x >= 0:
+        return 1 + abs(x) - z
+    return 1 - abs(x) - z
+'''
+
+#: The same g in C (c_sysary TDISP), built by usersub_library().
+LINES_C = r'''#include "pysolver_usersub.h"
+
+void PFOSUB(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+            double *value) {
+  int m = (int)par[0], n, err;
+  double p[3];
+  c_sysary("TDISP", &m, 1, p, &n, &err);
+  *value = 1.0 + par[1] * p[0] - p[2];
+}
+'''
+
+USERSUB_FORMS = ("expression", "script", "callable", "untraceable", "c")
+
+
+def usersub_library(folder, source=LINES_C, name="subs"):
+    """Build a user subroutine library with the system C compiler; None when there is none."""
+    import shutil
+    import subprocess
+
+    import pysolver
+    cc = shutil.which("cc") or shutil.which("gcc")
+    if cc is None:
+        return None
+    folder = pathlib.Path(folder)
+    (folder / f"{name}.c").write_text(source)
+    out = folder / f"{name}.so"
+    subprocess.run([cc, "-O2", "-shared", "-fPIC", f"-I{pysolver.get_include()}",
+                    str(folder / f"{name}.c"), "-o", str(out)], check=True)
+    return out
+
+
+def lines_deck(form, folder):
+    """Seed example 3 (decks/particle_between_lines.py) with both penalties in one form:
+    ``(deck text, fmt)``. Forms: expression, script (a Python script, traced), callable (a
+    function in the deck, traced), untraceable (a function the tracer cannot follow, called
+    from the kernel), c (a C library, called from the kernel)."""
+    text = (DECKS / "particle_between_lines.py").read_text()
+    if form == "expression":
+        return text, "py"
+    folder = pathlib.Path(folder)
+    if form == "script":
+        (folder / "lines.py").write_text(LINES_PFOSUB)
+        how = f"SCRIPT={str(folder / 'lines.py')!r}"
+    elif form == "c":
+        lib = usersub_library(folder)
+        if lib is None:
+            return None, "py"
+        how = f"ROUTINE={str(lib) + '::PFOSUB'!r}"
+    else:
+        source = LINES_PFOSUB if form == "callable" else LINES_BRANCHY
+        text = text.replace("PART(1,", source.replace("def PFOSUB", "def lines") + "\nPART(1,")
+        how = "ROUTINE=lines"
+    for k, sign in ((1, "1"), (2, "-1")):
+        expr = "1+DX(10)-DZ(10)" if k == 1 else "1-DX(10)-DZ(10)"
+        old = f'FUNCTION="{expr}"'
+        assert old in text
+        text = text.replace(old, f'FUNCTION="USER(10, {sign})", {how}')
+    return text, "py"

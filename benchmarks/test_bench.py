@@ -93,3 +93,17 @@ def test_stiff_pendulum(benchmark, control):
                              iterations=1)
     assert res.success
     benchmark.extra_info.update(res.stats)
+
+
+@pytest.mark.parametrize("form", ["expression", "script", "callable", "untraceable", "c"])
+def test_usersub_lines(benchmark, tmp_path, form):
+    """Seed example 3 with its penalties as user subroutines in each form; compare each with
+    the expression group member (``benchmarks/usersubs.py`` prints the ratios)."""
+    from scenes import lines_deck
+    text, fmt = lines_deck(form, tmp_path)
+    if text is None:
+        pytest.skip("no C compiler for the subroutine library")
+    model = pysolver.loads(text, fmt=fmt)
+    res = benchmark(model.run)
+    assert res.success
+    benchmark.extra_info.update(steps=res.stats["steps"])

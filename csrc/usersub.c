@@ -87,10 +87,15 @@ PS_EXPORT void c_sysfnc(const char* fnc, const int* ipar, int nsize, double* sta
   *errflg = 1;
   if (!ctx) return;
   if (!ctx->recording) {
-    /* the common case, kept fast: match code and ids against the declared inputs */
-    int code = ps_user_fn_code(fnc);
+    /* the common case, kept fast: the name as declared (upper case) and the same ids; any
+     * other spelling is normalised once */
+    int code = -2;
     for (int i = 0; i < ctx->nknown; i++) {
-      if (ctx->kfn[i] != code || ctx->kn[i] != nsize) continue;
+      if (ctx->kn[i] != nsize) continue;
+      if (strcmp(fnc, FUNCTIONS[ctx->kfn[i]]) != 0) {
+        if (code == -2) code = ps_user_fn_code(fnc);
+        if (ctx->kfn[i] != code) continue;
+      }
       int same = 1;
       for (int j = 0; j < nsize && same; j++) same = ctx->kid[4 * i + j] == ipar[j];
       if (same) {

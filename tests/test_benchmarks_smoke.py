@@ -53,8 +53,15 @@ def test_pytest_benchmark_suite_runs_once():
     env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(pysolver.__file__)))
     p = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
                         str(BENCH / "test_bench.py"), "--benchmark-disable", "-k",
-                        "catenary or (chain and not 5000) or load or (stiff_pendulum and pysolver)"],
+                        "catenary or (chain and not 5000) or load or (stiff_pendulum and pysolver)"
+                        " or (usersub and not untraceable)"],
                        capture_output=True, text=True, env=env,
                        cwd=str(BENCH))
     assert p.returncode == 0, p.stdout[-2000:] + p.stderr[-2000:]
     assert " passed" in p.stdout
+
+
+def test_usersub_report_runs():
+    mod = _module("usersubs")
+    out = _output(lambda: mod.call_cost(mod.forms(1, tols=(1e-4,))[0], 1))
+    assert "untraceable" in out and "us per call" in out

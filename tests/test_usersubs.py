@@ -442,3 +442,30 @@ def test_c_library_errors(c_library):
     assert not res.success
     assert "read a value its iflag call did not ask for: DY(9)" in res.message
     assert "0 rows" in res.summary()
+
+
+# -- seed example 3 in every form ---------------------------------------------------------------
+
+@pytest.mark.parametrize("form", ["script", "callable", "untraceable", "c"])
+def test_two_lines_in_every_form(tmp_path, form):
+    """Seed example 3 with both penalties as user subroutines (benchmarks/scenes.py): traced
+    forms give the expression version's answers and steps; the forms the kernel calls stay
+    within 3x the expression version's own global error, in at most 1.2x its steps."""
+    from scenes import lines_deck
+    text, fmt = lines_deck(form, tmp_path)
+    if text is None:
+        pytest.skip("no C compiler on this machine to build the subroutine library")
+    expr_text, _ = lines_deck("expression", tmp_path)
+    expr_model = pysolver.loads(expr_text, fmt="py")
+    ref, fine = expr_model.run(integr_tol=1e-10), expr_model.run(integr_tol=1e-12)
+    err = np.abs(ref.request(1)[:, :4] - fine.request(1)[:, :4]).max()
+    res = pysolver.loads(text, fmt=fmt).run(integr_tol=1e-10)
+    paths = list(res.meta["usersubs"].values())
+    assert len(paths) == 2
+    if form in ("script", "callable"):
+        assert all("traced into the kernel" in p for p in paths)
+        np.testing.assert_allclose(res.request(1)[:, :4], ref.request(1)[:, :4], atol=1e-9)
+        assert res.stats["steps"] == ref.stats["steps"]
+    else:
+        assert all("called from the kernel" in p for p in paths)
+        _close_to_expression(res, ref, fine, err)

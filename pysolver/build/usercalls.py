@@ -9,6 +9,7 @@ partials are differenced (csrc/usersub.c). The element's expression becomes the 
 """
 import dataclasses
 import math
+import threading
 
 from ..deck import expr as ex
 from ..deck import tracer
@@ -107,16 +108,18 @@ def _callback(ctx, sub, form, model):
     """A cffi callback running the Python routine with MotionSolve's Python arguments."""
     from ..deck.usersubs import python_routine
     fn = python_routine(ctx, sub, model)
-    _, args, nvalues = CONVENTIONS[ctx.tag]
+    nvalues = CONVENTIONS[ctx.tag][2]
     name = sub.name
+
+    plain = form == lib.PS_USER_PLAIN
 
     def call(id, time, par, npar, dflag, iflag, value):
         try:
             n = npar[0]
-            given = {"id": id[0], "time": time[0], "par": [par[i] for i in range(n)],
-                     "npar": n, "dflag": dflag, "iflag": iflag}
+            p = ffi.unpack(par, n) if n else []
             with tracer.live(_live_sysfnc):
-                out = fn(*[given[a] for a in args])
+                out = fn(id[0], time[0], p, n, iflag) if plain else \
+                    fn(id[0], time[0], p, n, dflag, iflag)
             values = [out] if nvalues == 1 else list(out)
             for i, v in enumerate(values[:nvalues]):
                 value[i] = math.nan if v is None and nvalues == 1 else float(v or 0.0)
@@ -134,9 +137,21 @@ def _callback(ctx, sub, form, model):
     return ffi.cast("void *", cb), cb
 
 
+_REQUESTS = {}                     # (fnc, ids) -> its C arguments, made once
+_OUT = threading.local()           # per thread: the double and int c_sysfnc writes
+
+
 def _live_sysfnc(fnc, ids):
     """py_sysfnc inside a kernel call: the value c_sysfnc gives the routine."""
-    ids = [int(i) for i in ids]
-    state, err = ffi.new("double *"), ffi.new("int *")
-    lib.c_sysfnc(str(fnc).encode(), ffi.new("int[]", ids or [0]), len(ids), state, err)
+    key = (fnc, tuple(ids))
+    req = _REQUESTS.get(key)
+    if req is None:
+        ints = [int(i) for i in ids]
+        req = _REQUESTS[key] = (str(fnc).upper().encode(), ffi.new("int[]", ints or [0]),
+                                len(ints))
+    out = getattr(_OUT, "v", None)
+    if out is None:
+        out = _OUT.v = (ffi.new("double *"), ffi.new("int *"))
+    state, err = out
+    lib.c_sysfnc(req[0], req[1], req[2], state, err)
     return [state[0], err[0]]

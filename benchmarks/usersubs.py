@@ -1,0 +1,79 @@
+"""User subroutine paths against the expression version: seed example 3 with both penalties as
+a traced Python script, a traced Python function, an untraceable Python function (called from the
+kernel through cffi) and a C library, at several tolerances; time ratios to the expression
+version (best of `repeat` runs in this process), steps, and the cost of one call.
+
+Run: ``python benchmarks/usersubs.py [--repeat 5]``.
+"""
+import argparse
+import tempfile
+import time
+
+import numpy as np
+
+import pysolver
+
+from scenes import USERSUB_FORMS, lines_deck
+
+
+def best(fn, repeat):
+    fn()
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def forms(repeat, tols=(1e-4, 1e-6, 1e-8)):
+    folder = tempfile.mkdtemp()
+    models = {}
+    for form in USERSUB_FORMS:
+        text, fmt = lines_deck(form, folder)
+        if text is not None:
+            models[form] = pysolver.loads(text, fmt=fmt)
+    print("Seed example 3, each penalty a user subroutine: time / expression version's time")
+    print(f"{'integr_tol':>10} {'form':>12} {'ms':>8} {'ratio':>6} {'steps':>6} {'max diff':>9}")
+    rows = []
+    for tol in tols:
+        ref = models["expression"].run(integr_tol=tol)
+        t_ref = best(lambda: models["expression"].run(integr_tol=tol), repeat)
+        for form, model in models.items():
+            res = model.run(integr_tol=tol)
+            t = best(lambda: model.run(integr_tol=tol), repeat)
+            diff = np.abs(res.request(1)[:, :2] - ref.request(1)[:, :2]).max()
+            rows.append((tol, form, t / t_ref))
+            print(f"{tol:10.0e} {form:>12} {t * 1e3:8.3f} {t / t_ref:6.2f} "
+                  f"{res.stats['steps']:6d} {diff:9.1e}")
+    return models, rows
+
+
+def call_cost(models, repeat):
+    """One residual of the untraceable and C forms against the expression version's; a residual
+    calls each of the two routines 7 times (its value, then +/- steps in DX, DZ and time)."""
+    print("\nCost of one routine call from the kernel (residual time difference / 14 calls)")
+    y = models["expression"]._kernel().layout.initial_state()
+    yp = np.zeros_like(y)
+    base = models["expression"]._kernel()
+    n = 2000
+    t_ref = best(lambda: [base.residual_array(0.0, y, yp) for _ in range(n)], repeat) / n
+    for form in ("untraceable", "c"):
+        if form not in models:
+            continue
+        k = models[form]._kernel()
+        t = best(lambda: [k.residual_array(0.0, y, yp) for _ in range(n)], repeat) / n
+        print(f"{form:>12}: {(t - t_ref) / 14 * 1e6:6.2f} us per call "
+              f"(residual {t * 1e6:.1f} us, expression version {t_ref * 1e6:.1f} us)")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--repeat", type=int, default=5)
+    args = parser.parse_args()
+    models, _ = forms(args.repeat)
+    call_cost(models, args.repeat)
+
+
+if __name__ == "__main__":
+    main()
