@@ -140,17 +140,14 @@ SIMULATE(TYPE="TRANSIENT", END=2.0, DTOUT=0.05)
 """
 
 
-def test_sensor_evaluate_variable_sforce_and_request_routines_match_expressions():
-    """One deck written twice, with expressions and with Python routines: same events, same
-    stored value, same force and the same eight request channels."""
-    body_expr = """
+BODY_EXPR = """
 VARIABLE(5, FUNCTION="2*9.81*SENVAL(7)")
 SFORCE(1, I=10, J=1, TRANSLATION=True, FUNCTION="VARVAL(5)")
 SENSOR(7, FUNCTION="DZ(10)", OPERATOR="LT", VALUE=5, EVALUATE="1 + 0*DZ(10)")
 REQUEST(1, F1="DZ(10)", F2="VZ(10)", F3="VARVAL(5)", F4="SFORCE(1, 0, 1, 0)",
         F5="SQRT(DZ(10)**2 + 1)", F6="ATAN2(VZ(10), 2)", F7="EXP(-TIME)", F8="SENVAL(7)")
 """
-    body_sub = """
+BODY_SUB = """
 def sensub(id, time, par, npar, iflag):
     return py_sysfnc("DZ", [10])[0]
 def sevsub(id, time, par, npar, iflag):
@@ -169,8 +166,13 @@ SENSOR(7, FUNCTION="USER()", ROUTINE=sensub, OPERATOR="LT", VALUE=5,
        EVALUATE="USER()", EVALUATE_ROUTINE=sevsub)
 REQUEST(1, FUNCTION="USER()", ROUTINE=reqsub)
 """
-    ref = pysolver.loads(BALL.format(body=body_expr), fmt="py").run()
-    res = pysolver.loads(BALL.format(body=body_sub), fmt="py").run()
+
+
+def test_sensor_evaluate_variable_sforce_and_request_routines_match_expressions():
+    """One deck written twice, with expressions and with Python routines: same events, same
+    stored value, same force and the same eight request channels."""
+    ref = pysolver.loads(BALL.format(body=BODY_EXPR), fmt="py").run()
+    res = pysolver.loads(BALL.format(body=BODY_SUB), fmt="py").run()
     assert ref.success and res.success
     assert [e.time for e in res.events] == [e.time for e in ref.events]
     assert res.events[0].time == pytest.approx(math.sqrt(10 / 9.81), abs=1e-9)
@@ -469,3 +471,26 @@ def test_two_lines_in_every_form(tmp_path, form):
     else:
         assert all("called from the kernel" in p for p in paths)
         _close_to_expression(res, ref, fine, err)
+
+
+def test_every_routine_kind_through_the_kernel_call_path():
+    """The sensor deck above with every routine made untraceable (a comparison on the state
+    that is always true): SENSUB, SEVSUB, VARSUB, SFOSUB and REQSUB are then called from the
+    kernel, and give the expression version's events and channels to its own accuracy."""
+    guard = '    if py_sysfnc("DZ", [10])[0] < -1e30:\n        return 0.0\n'
+    body = BODY_SUB
+    lines = []
+    for line in body.splitlines():
+        lines.append(line)
+        if line.startswith("def "):
+            lines.append(guard.rstrip("\n").replace("return 0.0", "return [0.0] * 8"
+                                                    if "reqsub" in line else "return 0.0"))
+    text = BALL.format(body="\n".join(lines))
+    ref = pysolver.loads(BALL.format(body=BODY_EXPR), fmt="py").run()
+    model = pysolver.loads(text, fmt="py")
+    res = model.run()
+    assert res.success, res.message
+    paths = res.meta["usersubs"]
+    assert len(paths) == 5 and all("Python callback" in p for p in paths.values())
+    assert res.events[0].time == pytest.approx(ref.events[0].time, abs=1e-8)
+    np.testing.assert_allclose(res.request(1), ref.request(1), rtol=0, atol=1e-6)
