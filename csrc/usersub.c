@@ -133,10 +133,7 @@ static const struct { const char* name; const char* parts[6]; int n; } ARRAYS[] 
 PS_EXPORT void c_sysary(const char* fnc, const int* ipar, int nsize, double* states,
                         int* nstates, int* errflg) {
   char name[16];
-  int n = 0;
-  for (const char* p = fnc; *p && n < 15; p++)
-    if (!isspace((unsigned char)*p)) name[n++] = (char)toupper((unsigned char)*p);
-  name[n] = '\0';
+  clean_name(name, fnc);
   *nstates = 0;
   *errflg = 1;
   for (size_t a = 0; a < sizeof(ARRAYS) / sizeof(*ARRAYS); a++) {
@@ -224,6 +221,7 @@ void ps_user_call(const psModel* m, psData* d, const psuHD* c, double* out, cons
   const double* arg[PS_USER_MAXIN + 1];
   double z[PS_USER_MAXIN + 1], fi[PS_USER_MAXIN + 1];
   double fij[(PS_USER_MAXIN + 1) * (PS_USER_MAXIN + 1)];
+  int flat[PS_USER_MAXIN + 1];   /* the routine gave exactly f0 at both +/- steps of input i */
   double* tvar = ps_tmp(m, d, PS_TMP_TAPE - 1);   /* time as a hyper-dual */
   psu_hd_var(c, tvar, t, c->order >= 1 ? c->nh - 1 : -1);
   for (int i = 0; i < nin; i++) {
@@ -253,9 +251,14 @@ void ps_user_call(const psModel* m, psData* d, const psuHD* c, double* out, cons
     double fm = eval(m, k, &ctx, z, nin, 1, chan);
     z[i] = zi;
     fi[i] = (fp - fm) / (2.0 * h);
+    flat[i] = fp == f0 && fm == f0;
   }
   for (int i = 0; c->order >= 2 && i < n; i++)
     for (int j = i; j < n; j++) {
+      if (flat[i] || flat[j]) {   /* no dependence on that input (time, usually): no calls */
+        fij[i * n + j] = fij[j * n + i] = 0.0;
+        continue;
+      }
       double hi = 1e-4 * fmax(1.0, fabs(z[i])), hj = 1e-4 * fmax(1.0, fabs(z[j])), v;
       double zi = z[i], zj = z[j];
       if (i == j) {
