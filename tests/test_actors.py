@@ -93,3 +93,13 @@ def test_actors_are_not_run_options():
     model = pysolver.loads(ball(""))
     with pytest.raises(TypeError, match="unknown run option 'actors'"):
         model.run(actors=[Periodic(0.1)])
+
+
+def test_sensor_firing_at_the_start_with_a_dt_action_runs():
+    """A sensor whose condition holds at t = 0 fires there; its dt action before the first
+    command keeps the command's print interval (the rows are every 0.25 s)."""
+    deck = ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="50" dt="0.01"/>',
+                z0=10.0, end=1.0, dt=0.25)
+    res = pysolver.loads(deck).run()
+    assert res.success and [e.time for e in res.events] == [0.0]
+    np.testing.assert_allclose(res.t, [0, 0.25, 0.5, 0.75, 1.0], atol=1e-12)

@@ -157,7 +157,9 @@ class Run:
 
     def add_actor(self, actor):
         """Add an actor that acts at its own times or when rows are written (before run())."""
-        assert not actor.nroots, "root functions are the kernel's: a root actor is compiled in"
+        if actor.nroots:
+            raise ValueError("an actor with root functions must be compiled into the kernel; "
+                             "add_actor takes actors that act at times or on output rows")
         self.actors.append(actor)
         self.onestep |= actor.needs_restore
         if type(actor).on_output is not Actor.on_output:

@@ -23,7 +23,6 @@ import dataclasses
 from ..options import AUTO_STEP_GROWTH, NONLIN_CONV_COEF, SPARSE_THRESHOLD
 from . import cida
 from .pyida import PyIDA
-from .step import ROOT_RETURN, TOO_MUCH_WORK, Step  # noqa: F401  (re-exported)
 
 
 @dataclasses.dataclass(frozen=True)

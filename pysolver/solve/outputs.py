@@ -110,9 +110,11 @@ class Printer(Actor):
         self.pending = collections.deque(print_times(t, end, dt))
 
     def set_interval(self, t, dt):
-        """A new print interval from t on (a sensor's dt action)."""
+        """A new print interval from t on (a sensor's dt action). Before the first command
+        (a sensor firing at the start) the command's own interval applies, as before."""
         self.dt = dt
-        self.pending = collections.deque(print_times(t, self.end, dt))
+        if self.end is not None:
+            self.pending = collections.deque(print_times(t, self.end, dt))
 
     def next_time(self, t):
         return self.pending[0] if self.pending else math.inf

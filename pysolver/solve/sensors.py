@@ -97,7 +97,7 @@ class Sensors(Actor):
         # IDA saw these crossings: take them as they are, then settle the rest
         f, _, _ = self.kernel.sensor_status(run.t, run.y, run.yp)
         for k in rearmed:
-            self._rearm(k, f[k], run.t)
+            self._rearm(k, f[k])
         flow = self._fire(run, fired, f) if fired else Flow()
         return flow.update(self._settle(run, set(fired), set(rearmed)))
 
@@ -127,11 +127,10 @@ class Sensors(Actor):
         self.kernel.armed[k] = 1
         self.kernel.sensor_side[k] = 1.0 if f >= self.sensors[k].value else -1.0
 
-    def _rearm(self, k, f, t):
+    def _rearm(self, k, f):
         self._arm(k, f)
         self.nrearms += 1
         self.verbose_active.discard(k)
-        self._check_chatter(t)
 
     def _settle(self, run, fired, rearmed):
         """Event iteration at one instant (see the module docstring)."""
@@ -142,8 +141,9 @@ class Sensors(Actor):
             up = [k for k in range(len(self.sensors))
                   if not armed[k] and k not in rearmed and rearms[k]]
             for k in up:
-                self._rearm(k, f[k], run.t)
+                self._rearm(k, f[k])
                 rearmed.add(k)
+                self._check_chatter(run.t)
             now = [k for k in range(len(self.sensors)) if armed[k] and k not in fired and holds[k]]
             if now:
                 fired.update(now)
