@@ -114,7 +114,7 @@ LINES_PFOSUB = '''def PFOSUB(id, time, par, npar, dflag, iflag):
     return 1 + par[1] * x - z
 '''
 
-#: The same g written with a state-dependent branch, which cannot be traced.
+#: The same g written with a state-dependent branch: traced into IF(...).
 LINES_BRANCHY = '''def PFOSUB(id, time, par, npar, dflag, iflag):
     ipar = [int(par[0])]
     x = py_sysfnc("DX", ipar)[0]
@@ -122,6 +122,14 @@ LINES_BRANCHY = '''def PFOSUB(id, time, par, npar, dflag, iflag):
     if par[1] * x >= 0:
         return 1 + abs(x) - z
     return 1 - abs(x) - z
+'''
+
+#: The same g through NumPy (a conversion to float), which cannot be traced.
+LINES_NUMPY = '''def PFOSUB(id, time, par, npar, dflag, iflag):
+    import numpy as np
+    ipar = [int(par[0])]
+    x, z = np.array([py_sysfnc("DX", ipar)[0], py_sysfnc("DZ", ipar)[0]], dtype=float)
+    return float(1 + par[1] * x - z)
 '''
 
 #: The same g in C (c_sysary TDISP), built by usersub_library().
@@ -136,7 +144,7 @@ void PFOSUB(int *id, double *time, double *par, int *npar, int *dflag, int *ifla
 }
 '''
 
-USERSUB_FORMS = ("expression", "script", "callable", "untraceable", "c")
+USERSUB_FORMS = ("expression", "script", "callable", "branchy", "untraceable", "c")
 
 
 def usersub_library(folder, source=LINES_C, name="subs"):
@@ -159,8 +167,9 @@ def usersub_library(folder, source=LINES_C, name="subs"):
 def lines_deck(form, folder):
     """Seed example 3 (decks/particle_between_lines.py) with both penalties in one form:
     ``(deck text, fmt)``. Forms: expression, script (a Python script, traced), callable (a
-    function in the deck, traced), untraceable (a function the tracer cannot follow, called
-    from the kernel), c (a C library, called from the kernel)."""
+    function in the deck, traced), branchy (a function with a state-dependent branch, traced
+    into IF), untraceable (a function through NumPy, called from the kernel), c (a C library,
+    called from the kernel)."""
     text = (DECKS / "particle_between_lines.py").read_text()
     if form == "expression":
         return text, "py"
@@ -174,7 +183,8 @@ def lines_deck(form, folder):
             return None, "py"
         how = f"ROUTINE={str(lib) + '::PFOSUB'!r}"
     else:
-        source = LINES_PFOSUB if form == "callable" else LINES_BRANCHY
+        source = {"callable": LINES_PFOSUB, "branchy": LINES_BRANCHY,
+                  "untraceable": LINES_NUMPY}[form]
         text = text.replace("PART(1,", source.replace("def PFOSUB", "def lines") + "\nPART(1,")
         how = "ROUTINE=lines"
     for k, sign in ((1, "1"), (2, "-1")):

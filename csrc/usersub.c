@@ -20,6 +20,7 @@
 
 #define PS_EXPORT __attribute__((visibility("default")))
 #define PS_USER_MAXPAR 64
+_Static_assert(PS_USER_CACHE == 2 + 3 * (PS_USER_MAXIN + 1), "PS_USER_CACHE layout");
 
 typedef void (*UserFnD)(int*, double*, double*, int*, int*, int*, double*);
 typedef void (*UserFnP)(int*, double*, double*, int*, int*, double*);
@@ -33,6 +34,7 @@ typedef struct {
   const int* kn;        /* ... numbers of ids                                     */
   const int* kid;       /* ... and ids (4 per key)                                */
   int nknown;
+  int next;             /* the key after the last one read: routines read in order */
   const double* values; /* evaluating: their current values                       */
   int error;            /* an error was reported                                  */
   char msg[200];
@@ -40,8 +42,10 @@ typedef struct {
 
 static __thread UserCtx* current = NULL;
 
-/* The expression-language functions c_sysfnc answers. */
-static const char* const FUNCTIONS[] = {
+/* The expression-language functions c_sysfnc answers, in code order. */
+enum { F_DX, F_DY, F_DZ, F_DM, F_VX, F_VY, F_VZ, F_VM, F_VR, F_ACCX, F_ACCY, F_ACCZ, F_WX, F_WY,
+       F_WZ, F_AX, F_AY, F_AZ, F_VARVAL, F_PFORCE, F_SFORCE, F_SENVAL, F_COUNT };
+static const char* const FUNCTIONS[F_COUNT] = {
     "DX", "DY", "DZ", "DM", "VX", "VY", "VZ", "VM", "VR", "ACCX", "ACCY", "ACCZ",
     "WX", "WY", "WZ", "AX", "AY", "AZ", "VARVAL", "PFORCE", "SFORCE", "SENVAL"};
 
@@ -53,11 +57,19 @@ static void clean_name(char* name, const char* fnc) {
   name[n] = '\0';
 }
 
+static int same_text(const char* a, const char* b) {
+  while (*a && *a == *b) a++, b++;
+  return *a == *b;
+}
+
 int ps_user_fn_code(const char* fnc) {
   char name[16];
-  clean_name(name, fnc);
-  for (size_t i = 0; i < sizeof(FUNCTIONS) / sizeof(*FUNCTIONS); i++)
-    if (!strcmp(name, FUNCTIONS[i])) return (int)i;
+  /* the spelling the header documents first; any other is normalised */
+  for (int pass = 0; pass < 2; pass++) {
+    for (int i = 0; i < F_COUNT; i++)
+      if (same_text(pass ? name : fnc, FUNCTIONS[i])) return i;
+    clean_name(name, fnc);
+  }
   return -1;
 }
 
@@ -79,75 +91,101 @@ static void fail(UserCtx* ctx, const char* what, const char* detail) {
   snprintf(ctx->msg, sizeof(ctx->msg), "%s%s", what, detail);
 }
 
-PS_EXPORT void c_sysfnc(const char* fnc, const int* ipar, int nsize, double* state,
-                        int* errflg) {
-  UserCtx* ctx = current;
-  char key[PS_USER_KEY];
-  *state = 0.0;
-  *errflg = 1;
-  if (!ctx) return;
-  if (!ctx->recording) {
-    /* the common case, kept fast: the name as declared (upper case) and the same ids; any
-     * other spelling is normalised once */
-    int code = -2;
-    for (int i = 0; i < ctx->nknown; i++) {
-      if (ctx->kn[i] != nsize) continue;
-      if (strcmp(fnc, FUNCTIONS[ctx->kfn[i]]) != 0) {
-        if (code == -2) code = ps_user_fn_code(fnc);
-        if (ctx->kfn[i] != code) continue;
-      }
-      int same = 1;
-      for (int j = 0; j < nsize && same; j++) same = ctx->kid[4 * i + j] == ipar[j];
-      if (same) {
-        *state = ctx->values[i];
-        *errflg = 0;
-        return;
-      }
-    }
+/* The declared key (function code, ids) being read, or -1; the one after the last match is
+ * tried first, so a routine that reads in the order it declared finds each in one test. */
+static int find_key(UserCtx* ctx, int code, const int* ipar, int nsize) {
+  for (int s = 0, i = ctx->next; s < ctx->nknown; s++, i = i + 1 < ctx->nknown ? i + 1 : 0) {
+    if (ctx->kfn[i] != code || ctx->kn[i] != nsize) continue;
+    int j = 0;
+    while (j < nsize && ctx->kid[4 * i + j] == ipar[j]) j++;
+    if (j < nsize) continue;
+    ctx->next = i + 1 < ctx->nknown ? i + 1 : 0;
+    return i;
   }
+  return -1;
+}
+
+/* Record key (recording) or report it as not declared (evaluating). */
+static void unknown_read(UserCtx* ctx, const char* fnc, const int* ipar, int nsize, int* errflg) {
+  char key[PS_USER_KEY];
   if (make_key(key, fnc, ipar, nsize) != 0) {
     fail(ctx, "c_sysfnc: unknown function ", key);
     return;
   }
-  if (ctx->recording) {
-    for (int i = 0; i < ctx->nkeys && i < ctx->maxkeys; i++)
-      if (!strcmp(ctx->keys + (long)i * PS_USER_KEY, key)) {
-        *errflg = 0;
-        return;
-      }
-    if (ctx->nkeys < ctx->maxkeys) memcpy(ctx->keys + (long)ctx->nkeys * PS_USER_KEY, key,
-                                          PS_USER_KEY);
-    ctx->nkeys++;
-    *errflg = 0;
+  if (!ctx->recording) {
+    fail(ctx, "read a value its iflag call did not ask for: ", key);
     return;
   }
-  fail(ctx, "read a value its iflag call did not ask for: ", key);
+  *errflg = 0;
+  for (int i = 0; i < ctx->nkeys && i < ctx->maxkeys; i++)
+    if (!strcmp(ctx->keys + (long)i * PS_USER_KEY, key)) return;
+  if (ctx->nkeys < ctx->maxkeys)
+    memcpy(ctx->keys + (long)ctx->nkeys * PS_USER_KEY, key, PS_USER_KEY);
+  ctx->nkeys++;
 }
 
-/* SYSARY arrays: their entries as SYSFNC functions; angular ones take at most three ids. */
-static const struct { const char* name; const char* parts[6]; int n; } ARRAYS[] = {
-    {"TDISP", {"DX", "DY", "DZ"}, 3}, {"TVEL", {"VX", "VY", "VZ"}, 3},
-    {"RVEL", {"WX", "WY", "WZ"}, 3}, {"VEL", {"VX", "VY", "VZ", "WX", "WY", "WZ"}, 6},
-    {"TACC", {"ACCX", "ACCY", "ACCZ"}, 3}};
+PS_EXPORT void c_sysfnc(const char* fnc, const int* ipar, int nsize, double* state,
+                        int* errflg) {
+  UserCtx* ctx = current;
+  *state = 0.0;
+  *errflg = 1;
+  if (!ctx) return;
+  if (!ctx->recording) {
+    /* the common case, kept fast: the name of the key expected next */
+    int code = ctx->next < ctx->nknown && same_text(fnc, FUNCTIONS[ctx->kfn[ctx->next]])
+                   ? ctx->kfn[ctx->next] : ps_user_fn_code(fnc);
+    int i = code < 0 ? -1 : find_key(ctx, code, ipar, nsize);
+    if (i >= 0) {
+      *state = ctx->values[i];
+      *errflg = 0;
+      return;
+    }
+  }
+  unknown_read(ctx, fnc, ipar, nsize, errflg);
+}
+
+/* SYSARY arrays: their entries as SYSFNC function codes; angular ones take at most three ids. */
+static const struct { const char* name; int parts[6]; int n; } ARRAYS[] = {
+    {"TDISP", {F_DX, F_DY, F_DZ}, 3}, {"TVEL", {F_VX, F_VY, F_VZ}, 3},
+    {"RVEL", {F_WX, F_WY, F_WZ}, 3}, {"VEL", {F_VX, F_VY, F_VZ, F_WX, F_WY, F_WZ}, 6},
+    {"TACC", {F_ACCX, F_ACCY, F_ACCZ}, 3}};
+#define NARRAYS ((int)(sizeof(ARRAYS) / sizeof(*ARRAYS)))
+
+static int array_code(const char* fnc) {
+  char name[16];
+  for (int pass = 0; pass < 2; pass++) {
+    for (int a = 0; a < NARRAYS; a++)
+      if (same_text(pass ? name : fnc, ARRAYS[a].name)) return a;
+    clean_name(name, fnc);
+  }
+  return -1;
+}
 
 PS_EXPORT void c_sysary(const char* fnc, const int* ipar, int nsize, double* states,
                         int* nstates, int* errflg) {
-  char name[16];
-  clean_name(name, fnc);
+  UserCtx* ctx = current;
+  int a = array_code(fnc);
   *nstates = 0;
   *errflg = 1;
-  for (size_t a = 0; a < sizeof(ARRAYS) / sizeof(*ARRAYS); a++) {
-    if (strcmp(name, ARRAYS[a].name)) continue;
-    *errflg = 0;
-    for (int i = 0; i < ARRAYS[a].n; i++) {
-      int e = 0, nids = ARRAYS[a].parts[i][0] == 'W' && nsize > 3 ? 3 : nsize;
-      c_sysfnc(ARRAYS[a].parts[i], ipar, nids, states + i, &e);
-      *errflg |= e;
-    }
-    *nstates = ARRAYS[a].n;
+  if (a < 0) {
+    char name[16];
+    clean_name(name, fnc);
+    if (ctx) fail(ctx, "c_sysary: unknown array ", name);
     return;
   }
-  if (current) fail(current, "c_sysary: unknown array ", name);
+  *errflg = 0;
+  for (int i = 0; i < ARRAYS[a].n; i++) {
+    int code = ARRAYS[a].parts[i], e = 0;
+    int nids = code >= F_WX && code <= F_WZ && nsize > 3 ? 3 : nsize;
+    int k = ctx && !ctx->recording ? find_key(ctx, code, ipar, nids) : -1;
+    if (k >= 0) {
+      states[i] = ctx->values[k];
+      continue;
+    }
+    c_sysfnc(FUNCTIONS[code], ipar, nids, states + i, &e);
+    *errflg |= e;
+  }
+  *nstates = ARRAYS[a].n;
 }
 
 PS_EXPORT void c_errmes(int errflg, const char* message, int id, const char* endflag) {
@@ -210,18 +248,34 @@ int ps_user_declare(void* fn, int form, int id, const double* par, int npar, cha
 static double eval(const psModel* m, int k, UserCtx* ctx, const double* z, int nin, int dflag,
                    int chan) {
   ctx->values = z;
+  ctx->next = 0;
   return call(m->user_fn[k], m->user_form[k], m->user_id[k], z[nin],
               m->user_par + m->user_par_adr[k], m->user_npar[k], dflag, 0, chan);
+}
+
+/* Evaluate with input i moved by h (and input j by hj when j >= 0). */
+static double eval_at(const psModel* m, int k, UserCtx* ctx, double* z, int nin, int chan,
+                      int i, double h, int j, double hj) {
+  double zi = z[i], zj = j >= 0 ? z[j] : 0.0;
+  z[i] = zi + h;
+  if (j >= 0) z[j] = zj + hj;
+  double f = eval(m, k, ctx, z, nin, 1, chan);
+  z[i] = zi;
+  if (j >= 0) z[j] = zj;
+  return f;
 }
 
 void ps_user_call(const psModel* m, psData* d, const psuHD* c, double* out, const int* a,
                   double t) {
   int k = a[0], nin = a[2], chan = a[3], n = nin + 1;   /* inputs, then time */
   const int* in = m->user_in + a[1];
+  double* cache = d->user_cache + (long)a[4] * PS_USER_CACHE;
+  double *cz = cache + 2, *cfi = cz + n, *cflat = cfi + n;
   const double* arg[PS_USER_MAXIN + 1];
   double z[PS_USER_MAXIN + 1], fi[PS_USER_MAXIN + 1];
   double fij[(PS_USER_MAXIN + 1) * (PS_USER_MAXIN + 1)];
-  int flat[PS_USER_MAXIN + 1];   /* the routine gave exactly f0 at both +/- steps of input i */
+  double fp[PS_USER_MAXIN + 1], fm[PS_USER_MAXIN + 1], H[PS_USER_MAXIN + 1];
+  int flat[PS_USER_MAXIN + 1];   /* the routine gave exactly f0 a step away in input i */
   double* tvar = ps_tmp(m, d, PS_TMP_TAPE - 1);   /* time as a hyper-dual */
   psu_hd_var(c, tvar, t, c->order >= 1 ? c->nh - 1 : -1);
   for (int i = 0; i < nin; i++) {
@@ -240,53 +294,61 @@ void ps_user_call(const psModel* m, psData* d, const psuHD* c, double* out, cons
   ctx.nknown = m->user_nkey[k];
   UserCtx* prev = current;
   current = &ctx;
-  double f0 = eval(m, k, &ctx, z, nin, 0, chan);
-  /* first partials by central differences (step ~ cbrt(eps)); the +/- values also give the
-   * diagonal second partials, refined with a larger step (~ eps^(1/4)) when needed */
+  /* the value and first partials of the last call at the same inputs (the residual before a
+   * Jacobian) are reused */
+  int need = c->order >= 1 ? 2 : 1, hit = cache[0] >= need;
+  for (int i = 0; hit && i < n; i++) hit = cz[i] == z[i];
+  double f0 = hit ? cache[1] : eval(m, k, &ctx, z, nin, 0, chan);
+  /* first partials by central differences (step ~ cbrt(eps)); an input whose forward step
+   * leaves the value exactly unchanged (time, usually) is taken as not read: no backward call */
   for (int i = 0; c->order >= 1 && i < n; i++) {
-    double zi = z[i], h = 6e-6 * fmax(1.0, fabs(zi));
-    z[i] = zi + h;
-    double fp = eval(m, k, &ctx, z, nin, 1, chan);
-    z[i] = zi - h;
-    double fm = eval(m, k, &ctx, z, nin, 1, chan);
-    z[i] = zi;
-    fi[i] = (fp - fm) / (2.0 * h);
-    flat[i] = fp == f0 && fm == f0;
+    if (hit) {
+      fi[i] = cfi[i];
+      flat[i] = cflat[i] != 0.0;
+      continue;
+    }
+    double h = 6e-6 * fmax(1.0, fabs(z[i]));
+    double f1 = eval_at(m, k, &ctx, z, nin, chan, i, h, -1, 0.0);
+    flat[i] = f1 == f0;
+    fi[i] = flat[i] ? 0.0 : (f1 - eval_at(m, k, &ctx, z, nin, chan, i, -h, -1, 0.0)) / (2.0 * h);
+  }
+  /* second partials with a larger step (~ eps^(1/4)): the diagonal from +/- steps, the rest
+   * from one diagonal pair of steps each and the diagonal values */
+  for (int i = 0; c->order >= 2 && i < n; i++) {
+    if (flat[i]) continue;
+    H[i] = 1e-4 * fmax(1.0, fabs(z[i]));
+    fp[i] = eval_at(m, k, &ctx, z, nin, chan, i, H[i], -1, 0.0);
+    fm[i] = eval_at(m, k, &ctx, z, nin, chan, i, -H[i], -1, 0.0);
   }
   for (int i = 0; c->order >= 2 && i < n; i++)
     for (int j = i; j < n; j++) {
-      if (flat[i] || flat[j]) {   /* no dependence on that input (time, usually): no calls */
-        fij[i * n + j] = fij[j * n + i] = 0.0;
-        continue;
+      double v = 0.0;
+      if (flat[i] || flat[j]) v = 0.0;
+      else if (i == j) v = (fp[i] - 2.0 * f0 + fm[i]) / (H[i] * H[i]);
+      else {
+        double fpp = eval_at(m, k, &ctx, z, nin, chan, i, H[i], j, H[j]);
+        double fmm = eval_at(m, k, &ctx, z, nin, chan, i, -H[i], j, -H[j]);
+        v = (fpp + fmm - fp[i] - fm[i] - fp[j] - fm[j] + 2.0 * f0) / (2.0 * H[i] * H[j]);
       }
-      double hi = 1e-4 * fmax(1.0, fabs(z[i])), hj = 1e-4 * fmax(1.0, fabs(z[j])), v;
-      double zi = z[i], zj = z[j];
-      if (i == j) {
-        z[i] = zi + hi;
-        double fp = eval(m, k, &ctx, z, nin, 1, chan);
-        z[i] = zi - hi;
-        double fm = eval(m, k, &ctx, z, nin, 1, chan);
-        v = (fp - 2.0 * f0 + fm) / (hi * hi);
-      } else {
-        double s = 0.0;
-        for (int q = 0; q < 4; q++) {
-          double si = q & 1 ? -1.0 : 1.0, sj = q & 2 ? -1.0 : 1.0;
-          z[i] = zi + si * hi;
-          z[j] = zj + sj * hj;
-          s += si * sj * eval(m, k, &ctx, z, nin, 1, chan);
-        }
-        v = s / (4.0 * hi * hj);
-      }
-      z[i] = zi;
-      z[j] = zj;
       fij[i * n + j] = fij[j * n + i] = v;
     }
   current = prev;
   if (ctx.error) {
+    cache[0] = 0.0;
     d->user_error = 1;
     snprintf(d->msg, sizeof(d->msg), "user subroutine (id %d): %s", m->user_id[k], ctx.msg);
     psu_hd_const(c, out, NAN);
     return;
+  }
+  if (!hit) {
+    cache[0] = need;
+    cache[1] = f0;
+    for (int i = 0; i < n; i++) {
+      cz[i] = z[i];
+      if (need < 2) continue;
+      cfi[i] = fi[i];
+      cflat[i] = flat[i];
+    }
   }
   psu_hd_nary(c, out, arg, n, f0, fi, fij);
 }

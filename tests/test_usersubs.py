@@ -309,14 +309,83 @@ def PFOSUB(id, time, par, npar, dflag, iflag):
     return y - ch if x >= 0 else y - math.cosh(-x)
 '''
 
+#: The same g through NumPy: a conversion to float, which cannot be traced.
+UNTRACEABLE = '''import numpy as np
+
+
+def PFOSUB(id, time, par, npar, dflag, iflag):
+    x, y = np.array([py_sysfnc("DX", [9])[0], py_sysfnc("DY", [9])[0]], dtype=float)
+    if x < 0.0:
+        return float(y - np.cosh(-x))
+    return float(y - np.cosh(x))
+'''
+
+
+def test_branches_on_the_state_are_traced_into_if(tmp_path):
+    """Both paths of the branch are traced and joined into IF(DX(9): ...): the expression
+    version's answers and steps."""
+    ref = pysolver.load(DECKS / "catenary_bead.xml").run(integr_tol=1e-10)
+    res = pysolver.loads(_deck_with(tmp_path, BRANCHY)).run(integr_tol=1e-10)
+    _agree(res, ref)
+    assert res.stats["steps"] == ref.stats["steps"]
+    (path,) = res.meta["usersubs"].values()
+    assert "traced into the kernel: IF(DX(9): (DY(9) - COSH(-(DX(9)))), (DY(9) - COSH(DX(9)))," \
+        in path
+
+
+def test_branch_tracing_joins_nested_branches_min_max_and_conditions_as_numbers():
+    """Nested branches, min/max, chained comparisons and a comparison used as 0/1 trace into
+    nested IFs that give the routine's own values at random states and on the boundaries."""
+    from pysolver.deck import tracer
+
+    def routine(x, y):
+        if x > 1.0:
+            v = max(x, y) if y != 2.0 else 7.0
+        elif 0 <= y < 1:
+            v = min(x * y, 0.5) + (x <= y) * 3.0
+        else:
+            v = -abs(x) if x else 2.0 * y
+        return v
+
+    sx, sy = (tracer.Sym(("call", name, [("num", 9.0)], 0)) for name in ("DX", "DY"))
+    leaves = tracer.explore(lambda: tracer.tree_of(routine(sx, sy)))
+    assert len(leaves) == 9
+    tree = tracer.join(leaves)
+    rng = np.random.default_rng(4)
+    points = [(x, y) for x, y in rng.uniform(-2, 3, size=(200, 2))]
+    points += [(0.0, 2.0), (2.0, 2.0), (0.5, 0.5), (0.5, 0.0), (1.0, 1.0)]
+    for x, y in points:
+        got = _eval_tree(tree, {"DX": x, "DY": y})
+        assert got == routine(x, y), (x, y)
+
+
+def _eval_tree(node, values):
+    """Evaluate a traced tree at given DX/DY (only the node kinds the test above produces)."""
+    kind = node[0]
+    if kind == "num":
+        return node[1]
+    if kind == "neg":
+        return -_eval_tree(node[1], values)
+    if kind == "bin":
+        a, b = _eval_tree(node[2], values), _eval_tree(node[3], values)
+        return {"+": a + b, "-": a - b, "*": a * b, "/": a / b if b else math.nan}[node[1]]
+    name, args = node[1], node[2]
+    if name in values:
+        return values[name]
+    if name == "ABS":
+        return abs(_eval_tree(args[0], values))
+    assert name == "IF", name
+    d = _eval_tree(args[0], values)
+    return _eval_tree(args[1 if d < 0 else 2 if d == 0 else 3], values)
+
 
 def test_untraceable_python_routine_is_called_from_the_kernel(tmp_path):
     ref, fine, err = _reference_error(str(DECKS / "catenary_bead.xml"))
-    model = pysolver.loads(_deck_with(tmp_path, BRANCHY))
+    model = pysolver.loads(_deck_with(tmp_path, UNTRACEABLE))
     res = model.run(integr_tol=1e-10)
     _close_to_expression(res, ref, fine, err)
     (path,) = res.meta["usersubs"].values()
-    assert "Python callback (not traced: comparison of a state-dependent value" in path
+    assert "Python callback (not traced: float() of a state-dependent value" in path
     assert "partials in DX(9), DY(9), TIME by central differences" in path
 
 
@@ -335,7 +404,7 @@ def _jacobian_like_the_expression(model, seed):
 
 
 def test_callback_jacobian_matches_the_exact_one(tmp_path):
-    _jacobian_like_the_expression(pysolver.loads(_deck_with(tmp_path, BRANCHY)), 5)
+    _jacobian_like_the_expression(pysolver.loads(_deck_with(tmp_path, UNTRACEABLE)), 5)
 
 
 def test_a_routine_failing_during_the_run_ends_it_with_its_message(tmp_path):
@@ -432,11 +501,18 @@ def test_c_routines_on_the_two_lines_and_a_sensor(c_library, tmp_path):
     _close_to_expression(res, ref, fine, err)
 
 
-def test_c_library_errors(c_library):
-    missing = pysolver.loads(bead_xml(f'type="USERSUB" usrsub_dll_name="{c_library}" '
-                                      'usrsub_fnc_name="NOPE" usrsub_param_string="USER(9)"'))
-    with pytest.raises(pysolver.DeckError, match="no function NOPE in") as info:
-        missing.run()
+def test_c_library_errors(c_library, tmp_path):
+    """A missing function and a file that is no library are DeckErrors at load (the symbol
+    table is read, the library not loaded); a routine reading undeclared values fails the run."""
+    with pytest.raises(pysolver.DeckError, match="exports no function NOPE \\(it exports: "
+                       "GREEDY, LINES, PFOSUB, SENSUB\\)") as info:
+        pysolver.loads(bead_xml(f'type="USERSUB" usrsub_dll_name="{c_library}" '
+                                'usrsub_fnc_name="NOPE" usrsub_param_string="USER(9)"'))
+    assert info.value.attribute == "usrsub_fnc_name" and info.value.id == 1
+    (tmp_path / "fake.so").write_text("not a library")
+    with pytest.raises(pysolver.DeckError, match="fake.so is not a shared library") as info:
+        pysolver.loads(bead_xml(f'type="USERSUB" usrsub_dll_name="{tmp_path / "fake.so"}" '
+                                'usrsub_param_string="USER(9)"'))
     assert info.value.attribute == "usrsub_dll_name"
     greedy = pysolver.loads(bead_xml(f'type="USERSUB" usrsub_dll_name="{c_library}" '
                                      'usrsub_fnc_name="GREEDY" usrsub_param_string="USER(9)"'))
@@ -448,7 +524,7 @@ def test_c_library_errors(c_library):
 
 # -- seed example 3 in every form ---------------------------------------------------------------
 
-@pytest.mark.parametrize("form", ["script", "callable", "untraceable", "c"])
+@pytest.mark.parametrize("form", ["script", "callable", "branchy", "untraceable", "c"])
 def test_two_lines_in_every_form(tmp_path, form):
     """Seed example 3 with both penalties as user subroutines (benchmarks/scenes.py): traced
     forms give the expression version's answers and steps; the forms the kernel calls stay
@@ -464,7 +540,7 @@ def test_two_lines_in_every_form(tmp_path, form):
     res = pysolver.loads(text, fmt=fmt).run(integr_tol=1e-10)
     paths = list(res.meta["usersubs"].values())
     assert len(paths) == 2
-    if form in ("script", "callable"):
+    if form in ("script", "callable", "branchy"):
         assert all("traced into the kernel" in p for p in paths)
         np.testing.assert_allclose(res.request(1)[:, :4], ref.request(1)[:, :4], atol=1e-9)
         assert res.stats["steps"] == ref.stats["steps"]
@@ -474,10 +550,10 @@ def test_two_lines_in_every_form(tmp_path, form):
 
 
 def test_every_routine_kind_through_the_kernel_call_path():
-    """The sensor deck above with every routine made untraceable (a comparison on the state
-    that is always true): SENSUB, SEVSUB, VARSUB, SFOSUB and REQSUB are then called from the
+    """The sensor deck above with every routine made untraceable (a float() conversion of the
+    state in a test that is always false): SENSUB, SEVSUB, VARSUB, SFOSUB and REQSUB are then called from the
     kernel, and give the expression version's events and channels to its own accuracy."""
-    guard = '    if py_sysfnc("DZ", [10])[0] < -1e30:\n        return 0.0\n'
+    guard = '    if float(py_sysfnc("DZ", [10])[0]) < -1e30:\n        return 0.0\n'
     body = BODY_SUB
     lines = []
     for line in body.splitlines():

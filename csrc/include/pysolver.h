@@ -55,7 +55,7 @@ enum psOp {
                         x0, h0, x1, h1; a5 the shape: 0 STEP, 1 STEP5, 2 HAVSIN */
   PS_OP_USER,        /* a user subroutine: routine a0, called with the values of the slots
                         user_in[a1 .. a1+a2-1] as the system values it declared; result channel a3
-                        (REQSUB: 0..7, others 0) */
+                        (REQSUB: 0..7, others 0); a4 its entry in d->user_cache */
   PS_OP_COUNT
 };
 
@@ -81,6 +81,9 @@ enum psMeasure {
                             double* value): SENSUB, SEVSUB, REQSUB (value[8]) */
 #define PS_USER_KEY 32   /* bytes of one canonical input key */
 #define PS_USER_MAXIN 16 /* most inputs one routine may declare */
+/* doubles of one PS_OP_USER instruction's cache: what it holds (0 nothing, 1 the value,
+ * 2 also the first partials), the value, then the inputs (with time), partials and flat flags */
+#define PS_USER_CACHE 53 /* 2 + 3 (PS_USER_MAXIN + 1) */
 
 /* Status codes returned by kernel functions. */
 #define PS_OK 0
@@ -163,6 +166,7 @@ typedef struct psModel {
 
   /* user subroutines called from tapes (PS_OP_USER) */
   int nuser;              /* number of routines                                 */
+  int nusercache;         /* number of PS_OP_USER instructions (cache entries)  */
   void** user_fn;         /* (nuser x 1) the routine (C calling convention)     */
   int* user_form;         /* (nuser x 1) PS_USER_*: its argument list           */
   int* user_id;           /* (nuser x 1) element id passed as *id               */
@@ -197,6 +201,9 @@ typedef struct psData {
   long nfail;             /* failed step attempts (a new time below the last)   */
   double last_t;          /* time of the last residual evaluation              */
   int user_error;         /* 1 after a user subroutine reported an error        */
+  double* user_cache;     /* (nusercache x PS_USER_CACHE) the last evaluation of
+                             each PS_OP_USER instruction, reused by the Jacobian
+                             at the same state; zero it to forget               */
   char msg[256];          /* message of the last error                          */
 } psData;
 

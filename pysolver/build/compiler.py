@@ -167,6 +167,7 @@ class Compiler:
         self.stack = []
         self.eidx = {eid: i for i, eid in enumerate(sorted(model.evaluates))}
         self.user_in, self._user_in_adr = [], {}   # input slots of PS_OP_USER instructions
+        self._user_cache = {}                      # PS_OP_USER rows -> their cache entry
 
     def const_index(self, v):
         key = v if not math.isnan(v) else "nan"
@@ -234,7 +235,11 @@ class Compiler:
         if key not in self._user_in_adr:
             self._user_in_adr[key] = len(self.user_in)
             self.user_in.extend(slots)
-        return tape.emit(lib.PS_OP_USER, k, self._user_in_adr[key], len(slots), channel)
+        adr = self._user_in_adr[key]
+        # one cache entry per distinct instruction (emit shares identical rows)
+        row = (id(tape), k, adr, channel)
+        cache = self._user_cache.setdefault(row, len(self._user_cache))
+        return tape.emit(lib.PS_OP_USER, k, adr, len(slots), channel, cache)
 
     def measure(self, tape, name, ids):
         if self.conservative and (name in _VEL or name in _ACC):
@@ -478,7 +483,7 @@ class Compiler:
             key_adr.append(len(keys))
             keys.extend(r.keys)
         return dict(
-            nuser=len(routines), user_fn=[r.fn for r in routines],
+            nuser=len(routines), nusercache=len(self._user_cache), user_fn=[r.fn for r in routines],
             user_form=i32([r.form for r in routines]), user_id=i32([r.id for r in routines]),
             user_par_adr=i32(par_adr), user_npar=i32([len(r.par) for r in routines]),
             user_par=f64(par), user_key_adr=i32(key_adr),

@@ -8,7 +8,7 @@ from .bindings import ffi, lib
 from .compiler import Compiler
 
 _INT_FIELDS = ("ny", "nbody", "nmarker", "ntape", "npen", "nsf", "nout", "hd_stride",
-               "max_slots", "max_bslots", "nsensor", "nuser")
+               "max_slots", "max_bslots", "nsensor", "nuser", "nusercache")
 
 
 class UserFailure(Exception):
@@ -82,6 +82,7 @@ class Kernel:
             "senval": np.zeros(max(len(model.evaluates), 1)),
             "sensor_f": np.zeros(max(self.nsensor, 1)),
             "sensor_side": np.ones(max(self.nsensor, 1)),
+            "user_cache": np.zeros(max(arrays["nusercache"], 1) * lib.PS_USER_CACHE),
         }
         self.armed = np.ones(max(self.nsensor, 1), dtype=np.int32)
         self._flags = (np.zeros(max(self.nsensor, 1), dtype=np.int32),
@@ -243,6 +244,7 @@ class Kernel:
         self.d.nfail = 0
         self.d.nroots = 0
         self.d.user_error = 0
+        self._work["user_cache"][:] = 0.0     # user subroutines are evaluated afresh
 
     @property
     def message(self):

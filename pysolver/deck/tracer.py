@@ -4,14 +4,21 @@ The routine is called once with symbolic stand-ins: ``time`` and every value ``p
 ``py_sysary`` return are :class:`Sym` objects, and arithmetic and the ``math`` functions on
 them build the same trees the expression parser builds (``('bin', '+', a, b)``,
 ``('call', 'SIN', [x], 0)``, ...). The result is compiled like any expression: it runs in C
-with exact derivatives and no Python per evaluation. A routine whose control flow depends on
-the state (``if DZ < 0: ...``), or that calls functions the expression language does not have,
-cannot be traced: :class:`Untraceable` says where and why.
+with exact derivatives and no Python per evaluation.
+
+Control flow that depends on the state (``if DZ < 0: ...``, ``min``, ``max``) is traced too: a
+comparison of traced values is a :class:`Cond`, and each time the routine asks for its truth
+value the tracer answers from a list of decisions. :func:`explore` runs the routine once per
+path (depth first, at most ``MAX_PATHS``) and :func:`join` folds the paths' results into the
+expression language's ``IF(a - b: neg, zero, pos)``, so every branch runs in C with the
+derivatives of the branch taken. A routine that converts a traced value to a number
+(``float``, NumPy), calls functions the expression language does not have, or has too many
+paths cannot be traced: :class:`Untraceable` says where and why.
 """
 import math
 import threading
 
-from ..errors import ExpressionError
+from ..errors import DeckError, ExpressionError
 from . import expr as ex
 
 _ACTIVE = threading.local()
@@ -23,6 +30,10 @@ class Untraceable(Exception):
 
 class SysfncError(Exception):
     """py_sysfnc / py_sysary was called with an unknown function or bad ids."""
+
+
+#: Most paths through a routine's state-dependent branches that are traced.
+MAX_PATHS = 64
 
 
 def _node(v):
@@ -67,19 +78,114 @@ class Sym:
     def __pos__(self): return self
     def __abs__(self): return Sym(("call", "ABS", [self.node], 0))
 
-    __bool__ = _refuse("truth value")
+    def _diff(self, o):
+        """a - b of a comparison (a itself against zero)."""
+        zero = isinstance(o, (int, float)) and not isinstance(o, bool) and o == 0
+        return self.node if zero else self._bin("-", o).node
+
+    def __bool__(self): return bool(Cond("!=", self.node))
+    def __lt__(self, o): return Cond("<", self._diff(o))
+    def __le__(self, o): return Cond("<=", self._diff(o))
+    def __gt__(self, o): return Cond(">", self._diff(o))
+    def __ge__(self, o): return Cond(">=", self._diff(o))
+    def __eq__(self, o): return Cond("==", self._diff(o))
+    def __ne__(self, o): return Cond("!=", self._diff(o))
+
     __float__ = _refuse("float()")
     __int__ = _refuse("int()")
     __index__ = _refuse("use as an index")
-    __lt__ = _refuse("comparison")
-    __le__ = _refuse("comparison")
-    __gt__ = _refuse("comparison")
-    __ge__ = _refuse("comparison")
-    __eq__ = _refuse("comparison")
-    __ne__ = _refuse("comparison")
     __hash__ = None
     __floordiv__ = __rfloordiv__ = __mod__ = __rmod__ = _refuse("// or % (use math.fmod)")
     __round__ = _refuse("round()")
+
+
+#: Which sign of d = a - b makes each comparison true: (d < 0, d == 0, d > 0).
+_TRUE_WHEN = {"<": (1, 0, 0), "<=": (1, 1, 0), ">": (0, 0, 1), ">=": (0, 1, 1),
+              "==": (0, 1, 0), "!=": (1, 0, 1)}
+
+
+class Cond(Sym):
+    """A comparison of traced values (``a < b`` as d = a - b and "<"). As a number it is 1 or 0;
+    its truth value is a branch, decided by the path being traced."""
+    __slots__ = ("op", "diff")
+
+    def __init__(self, op, diff):
+        self.op, self.diff = op, diff
+        super().__init__(self.select(("num", 1.0), ("num", 0.0)))
+
+    def select(self, yes, no):
+        """The tree IF(d: ...) that is `yes` where the comparison holds and `no` elsewhere."""
+        return ("call", "IF", [self.diff] + [yes if t else no for t in _TRUE_WHEN[self.op]], 0)
+
+    def __bool__(self):
+        paths = getattr(_ACTIVE, "paths", None)
+        if paths is None:
+            raise Untraceable("truth value of a state-dependent value outside a traced call")
+        return paths.decide(self)
+
+
+class _Paths:
+    """The decisions of one traced run: a given prefix, then True for every new branch."""
+
+    def __init__(self, prefix):
+        self.prefix, self.taken, self.conds = prefix, [], []
+
+    def decide(self, cond):
+        i = len(self.taken)
+        choice = self.prefix[i] if i < len(self.prefix) else True
+        self.taken.append(choice)
+        self.conds.append(cond)
+        return choice
+
+
+def explore(run):
+    """Run ``run()`` along every path of its state-dependent branches, depth first.
+
+    Returns a list of ``(decisions, conditions, result)``, one per path. Raises Untraceable when
+    there are more than MAX_PATHS paths, or when a path with branches raises (the exception is
+    chained): a routine that fails on some branch runs from the kernel instead, where it
+    raises only if the state takes that branch.
+    """
+    leaves, prefix = [], []
+    while True:
+        paths = _Paths(prefix)
+        prev, _ACTIVE.paths = getattr(_ACTIVE, "paths", None), paths
+        try:
+            result = run()
+        except Exception as err:
+            if not paths.taken or isinstance(err, (Untraceable, SysfncError, DeckError)):
+                raise
+            raise Untraceable(f"the branch {_describe(paths)} raises "
+                              f"{type(err).__name__}: {err}") from err
+        finally:
+            _ACTIVE.paths = prev
+        leaves.append((paths.taken, paths.conds, result))
+        if len(leaves) > MAX_PATHS:
+            raise Untraceable(f"more than {MAX_PATHS} paths through state-dependent branches")
+        # the next path: the last True decision taken the other way
+        last = max((i for i, d in enumerate(paths.taken) if d), default=-1)
+        if last < 0:
+            return leaves
+        prefix = paths.taken[:last] + [False]
+
+
+def _describe(paths):
+    return " and ".join(f"{'' if d else 'not '}{ex.unparse(c.diff)} {c.op} 0"
+                        for d, c in zip(paths.taken, paths.conds))
+
+
+def join(leaves, depth=0):
+    """Fold explore's paths (their results already trees) into one tree with IF nodes."""
+    if len(leaves) == 1 and len(leaves[0][0]) == depth:
+        return leaves[0][2]
+    cond = leaves[0][1][depth]
+    if any(len(d) <= depth or c[depth].op != cond.op or c[depth].diff != cond.diff
+           for d, c, _ in leaves):
+        raise Untraceable("the routine's branches differ between runs on the same path "
+                          "(it depends on something other than its arguments)")
+    yes = join([leaf for leaf in leaves if leaf[0][depth]], depth + 1)
+    no = join([leaf for leaf in leaves if not leaf[0][depth]], depth + 1)
+    return cond.select(yes, no)
 
 
 def _math_function(real, name, arity=1):

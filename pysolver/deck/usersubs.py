@@ -10,13 +10,14 @@ code; running it executes its scripts and loads its libraries.
 """
 import ast
 import os
+import sys
 import traceback
 import types
 
-from ..errors import ExpressionError
+from ..errors import DeckError, ExpressionError
 from ..model import UserSub
+from . import elfsyms, tracer
 from . import expr as ex
-from . import tracer
 
 #: Element -> (conventional routine name, its Python arguments, values it returns).
 CONVENTIONS = {
@@ -78,6 +79,7 @@ def from_attributes(model, ctx, a):
             raise ctx.error("give a C library (usrsub_dll_name) or a Python script "
                             "(script_name, interpreter), not both", "usrsub_dll_name")
         path = find_file(ctx, a["usrsub_dll_name"], model.source.file, "usrsub_dll_name")
+        _check_library(ctx, path, routine)
         return UserSub(name, routine, par, library=path, attribute="usrsub_dll_name")
     if a.get("script_name") is None:
         raise ctx.error(f"type=\"USERSUB\" needs the routine: script_name (a Python script "
@@ -103,6 +105,24 @@ def find_file(ctx, given, deck_file, attribute):
     what = "script" if attribute == "script_name" else "library"
     raise ctx.error(f"{what} {given!r} not found (looked in: {', '.join(candidates)})",
                     attribute)
+
+
+def _check_library(ctx, path, routine):
+    """The library exports `routine` (its symbol table read, the library not loaded)."""
+    try:
+        names = elfsyms.exported_functions(path)
+    except OSError as err:
+        raise ctx.error(f"cannot read library {path}: {err.strerror}", "usrsub_dll_name") \
+            from None
+    except elfsyms.NotElf as err:
+        if sys.platform.startswith("linux"):
+            raise ctx.error(f"{path} is not a shared library: {err}", "usrsub_dll_name") \
+                from None
+        return                          # another object format: checked when it is loaded
+    if routine not in names:
+        shown = ", ".join(sorted(names)[:12]) + (", ..." if len(names) > 12 else "")
+        raise ctx.error(f"library {path} exports no function {routine} (it exports: "
+                        f"{shown or 'none'})", "usrsub_fnc_name")
 
 
 def _check_script(ctx, path, routine, args):
@@ -227,30 +247,55 @@ def _where(err, file):
 
 
 def _trace(ctx, sub, id, model):
-    """Call the routine as MotionSolve does (iflag pass, then an evaluation) on traced values;
-    returns the trees of its values, or None when it cannot be traced (sub.untraced says why:
-    it will be called from the kernel)."""
+    """Call the routine as MotionSolve does (iflag pass, then an evaluation) on traced values,
+    along every path of its state-dependent branches; returns the trees of its values, or
+    None when it cannot be traced (sub.untraced says why: it will be called from the kernel)."""
     fn = python_routine(ctx, sub, model, traced=True)
     _, args, nvalues = CONVENTIONS[ctx.tag]
     file = sub.script or getattr(getattr(fn, "__code__", None), "co_filename", None)
     time = tracer.Sym(("name", "TIME", 0))
     par = list(sub.par)
-    values = []
-    for iflag in (1, 0):
+
+    def run(iflag):
         call = {"id": id, "time": time, "par": list(par), "npar": len(par), "dflag": 0,
                 "iflag": iflag}
-        try:
-            with tracer.active():
-                out = fn(*[call[k] for k in args])
-        except tracer.Untraceable as err:
-            sub.untraced = f"not traced: {_where(err, file)}"
-            return None
-        except tracer.SysfncError as err:
-            raise ctx.error(f"{sub.name}: {_where(err, file)}", sub.attribute) from None
-        except Exception as err:  # the routine's own error
-            raise ctx.error(f"{sub.name} raised {_where(err, file)}", sub.attribute) from None
-        if iflag == 0:
-            values = out
+        with tracer.active():
+            out = fn(*[call[k] for k in args])
+        return _value_trees(ctx, sub, out, nvalues) if iflag == 0 else None
+
+    try:
+        tracer.explore(lambda: run(1))
+        leaves = tracer.explore(lambda: run(0))
+        trees = [_join_channel(leaves, k) for k in range(nvalues)]
+    except tracer.Untraceable as err:
+        sub.untraced = f"not traced: {_where(err, file)}"
+        return None
+    except tracer.SysfncError as err:
+        raise ctx.error(f"{sub.name}: {_where(err, file)}", sub.attribute) from None
+    except DeckError:
+        raise
+    except Exception as err:  # the routine's own error
+        raise ctx.error(f"{sub.name} raised {_where(err, file)}", sub.attribute) from None
+    try:
+        for t in trees:
+            if t is not None:
+                ex._check(t)
+    except ExpressionError as err:   # pragma: no cover - the tracer builds checked nodes
+        raise ctx.error(f"{sub.name}: {err}", sub.attribute) from None
+    return trees
+
+
+def _join_channel(leaves, k):
+    """Channel k over every path; a channel some paths leave out is 0 there."""
+    values = [r[k] for _, _, r in leaves]
+    if all(v is None for v in values):
+        return None
+    return tracer.join([(d, c, ("num", 0.0) if v is None else v)
+                        for (d, c, _), v in zip(leaves, values)])
+
+
+def _value_trees(ctx, sub, values, nvalues):
+    """The trees of one return value: one per channel (None: a REQSUB channel left out)."""
     if nvalues == 1:
         values = [values]
     elif not isinstance(values, (list, tuple)) or len(values) > nvalues:
@@ -265,10 +310,4 @@ def _trace(ctx, sub, id, model):
             trees.append(tracer.tree_of(v))
         except tracer.Untraceable as err:
             raise ctx.error(f"{sub.name} returned {v!r}: {err}", sub.attribute) from None
-    try:
-        for t in trees:
-            if t is not None:
-                ex._check(t)
-    except ExpressionError as err:   # pragma: no cover - the tracer builds checked nodes
-        raise ctx.error(f"{sub.name}: {err}", sub.attribute) from None
     return trees
