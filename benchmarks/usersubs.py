@@ -1,6 +1,7 @@
 """User subroutine paths against the expression version: seed example 3 with both penalties as
-a traced Python script, a traced Python function, an untraceable Python function (called from the
-kernel through cffi) and a C library, at several tolerances; time ratios to the expression
+a traced Python script, a traced Python function, a Python function with a state-dependent branch
+(traced into IF), an untraceable Python function through NumPy (called from the kernel through
+cffi) and a C library, at several tolerances; time ratios to the expression
 version (best of `repeat` runs in this process), steps, and the cost of one call.
 
 Run: ``python benchmarks/usersubs.py [--repeat 5]``.
@@ -49,21 +50,28 @@ def forms(repeat, tols=(1e-4, 1e-6, 1e-8)):
     return models, rows
 
 
+#: Routine calls per residual of each form the kernel calls (both routines): the value, a
+#: forward and a backward step in each input the routine reads, one forward step in each it
+#: does not (C: TDISP gives DX, DY, DZ, and time; NumPy form: DX, DZ, and time).
+CALLS_PER_RESIDUAL = {"untraceable": 2 * 6, "c": 2 * 7}
+
+
 def call_cost(models, repeat):
-    """One residual of the untraceable and C forms against the expression version's; a residual
-    calls each of the two routines 7 times (its value, then +/- steps in DX, DZ and time)."""
-    print("\nCost of one routine call from the kernel (residual time difference / 14 calls)")
+    """One residual of the untraceable and C forms against the expression version's, each at a
+    new time (the kernel reuses a routine's values at an unchanged state)."""
+    print("\nCost of one routine call from the kernel (residual time difference / calls)")
     y = models["expression"]._kernel().layout.initial_state()
     yp = np.zeros_like(y)
     base = models["expression"]._kernel()
     n = 2000
-    t_ref = best(lambda: [base.residual_array(0.0, y, yp) for _ in range(n)], repeat) / n
-    for form in ("untraceable", "c"):
+    times = [1e-3 * i / n for i in range(n)]
+    t_ref = best(lambda: [base.residual_array(t, y, yp) for t in times], repeat) / n
+    for form, calls in CALLS_PER_RESIDUAL.items():
         if form not in models:
             continue
         k = models[form]._kernel()
-        t = best(lambda: [k.residual_array(0.0, y, yp) for _ in range(n)], repeat) / n
-        print(f"{form:>12}: {(t - t_ref) / 14 * 1e6:6.2f} us per call "
+        t = best(lambda: [k.residual_array(t, y, yp) for t in times], repeat) / n
+        print(f"{form:>12}: {(t - t_ref) / calls * 1e6:6.2f} us per call "
               f"(residual {t * 1e6:.1f} us, expression version {t_ref * 1e6:.1f} us)")
 
 

@@ -198,6 +198,10 @@ void ps_user_fail(const char* message) {
   if (current) fail(current, "", message);
 }
 
+const double* ps_user_values(void) {
+  return current && !current->recording ? current->values : NULL;
+}
+
 void* ps_user_open(const char* path, const char* name, char* msg, int msglen) {
   Dl_info info;
   /* make c_sysfnc and friends visible to libraries opened from here on */

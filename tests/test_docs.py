@@ -1,6 +1,7 @@
 """The documentation stays true: every deck it names exists and runs, its links resolve, and
-the README's Python example runs as written."""
+the README's Python and user subroutine examples run as written."""
 import os
+import pathlib
 import re
 
 import pytest
@@ -55,3 +56,39 @@ def test_readme_python_example_runs(capsys):
         os.chdir(cwd)
     out = capsys.readouterr().out
     assert "success: True" in out
+
+
+def test_readme_user_subroutine_examples_run(tmp_path):
+    """The README's XML element, Python script, C source and build command, as written, give
+    seed example 1's answers (traced Python: the expression's; C, which takes its own steps:
+    within 1e-7, relative for the force, at integr_tol 1e-10)."""
+    import shutil
+    import subprocess
+    import sys
+
+    import numpy as np
+    text = (ROOT / "README.md").read_text().split("## User subroutines", 1)[1]
+    (element,) = re.findall(r"```xml\n(.*?)```", text.split("##")[0], flags=re.S)
+    script = re.search(r"```python\n# bead.py\n(.*?)```", text, flags=re.S).group(1)
+    source = re.search(r"```c\n/\* bead.c \*/\n(.*?)```", text, flags=re.S).group(1)
+    build = re.search(r"```bash\n(cc -shared .*?)\n```", text, flags=re.S).group(1)
+    (tmp_path / "bead.py").write_text(script)
+    deck = re.sub(r"<Force_Penalty .*?/>", element.strip(),
+                  (ROOT / "decks" / "catenary_bead.xml").read_text(), flags=re.S)
+    (tmp_path / "bead.xml").write_text(deck)
+    ref = pysolver.load(ROOT / "decks" / "catenary_bead.xml").run(integr_tol=1e-10)
+    res = pysolver.load(tmp_path / "bead.xml").run(integr_tol=1e-10)
+    assert res.success and "traced into the kernel" in str(res.meta["usersubs"])
+    np.testing.assert_allclose(res.request(1)[:, :6], ref.request(1)[:, :6], rtol=0, atol=1e-9)
+    if shutil.which("cc") is None:
+        pytest.skip("no C compiler (cc) on this machine to build the README's library")
+    (tmp_path / "bead.c").write_text(source)
+    # the pysolver this test imports, installed or not
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(pysolver.__file__).parents[1]))
+    subprocess.run(build.replace("python -c", f"{sys.executable} -c"), shell=True,
+                   cwd=tmp_path, check=True, env=env)
+    (tmp_path / "bead_c.xml").write_text(deck.replace('script_name="bead.py"',
+                                                      'usrsub_dll_name="bead.so"'))
+    res = pysolver.load(tmp_path / "bead_c.xml").run(integr_tol=1e-10)
+    assert res.success and "C library" in str(res.meta["usersubs"])
+    np.testing.assert_allclose(res.request(1)[:, :6], ref.request(1)[:, :6], rtol=1e-7, atol=1e-7)

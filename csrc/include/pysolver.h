@@ -327,6 +327,11 @@ int ps_user_fn_code(const char* name);
  * current evaluation yields NaN and d->msg says why. Outside a call it does nothing. */
 void ps_user_fail(const char* message);
 
+/* Return the values of the system values the routine being called declared, in declaration
+ * order (what c_sysfnc answers from), or NULL outside an evaluating call. A Python routine
+ * reads them from here instead of calling c_sysfnc for each. */
+const double* ps_user_values(void);
+
 /* Return the rate of change of the kinetic energy, sum of m v.v' + w.(I w') over bodies, in
  * model units (the root function of MKEAM's kinetic-energy peaks). */
 double ps_power(const psModel* m, const double* y, const double* yp);

@@ -49,6 +49,8 @@ def bind(model):
         if len(sub.par) > 64:
             raise ctx.error("at most 64 USER(...) parameters", sub.attribute)
         keys = _declare(ctx, sub, fn, form, el.id)
+        if keep is not None:
+            keep[1].keys = keys         # the Python routine reads them by name
         k = len(model.user_routines)
         model.user_routines.append(Routine(fn, form, el.id, tuple(sub.par), keys, keep))
         inputs = [_key_tree(ctx, sub, key) for key in keys]
@@ -105,44 +107,78 @@ def _key_tree(ctx, sub, key):
 
 
 def _callback(ctx, sub, form, model):
-    """A cffi callback running the Python routine with MotionSolve's Python arguments."""
+    """A cffi callback running the Python routine with MotionSolve's Python arguments.
+
+    Returns the callback and a :class:`_Reader`, whose ``keys`` :func:`bind` sets once the
+    iflag call has declared them."""
     from ..deck.usersubs import python_routine
     fn = python_routine(ctx, sub, model)
     nvalues = CONVENTIONS[ctx.tag][2]
     name = sub.name
-
+    par = list(sub.par)
+    reader = _Reader()
     plain = form == lib.PS_USER_PLAIN
 
-    def call(id, time, par, npar, dflag, iflag, value):
+    def call(id, time, dflag, iflag, value):
+        prev = tracer.enter_live(reader.read)
         try:
-            n = npar[0]
-            p = ffi.unpack(par, n) if n else []
-            with tracer.live(_live_sysfnc):
-                out = fn(id[0], time[0], p, n, iflag) if plain else \
-                    fn(id[0], time[0], p, n, dflag, iflag)
-            values = [out] if nvalues == 1 else list(out)
-            for i, v in enumerate(values[:nvalues]):
-                value[i] = math.nan if v is None and nvalues == 1 else float(v or 0.0)
+            reader.values = lib.ps_user_values()
+            out = fn(id[0], time[0], list(par), len(par), iflag) if plain else \
+                fn(id[0], time[0], list(par), len(par), dflag, iflag)
+            if nvalues == 1:
+                value[0] = math.nan if out is None else float(out)
+            else:
+                for i, v in enumerate(list(out)[:nvalues]):
+                    value[i] = float(v or 0.0)
         except BaseException as err:  # noqa: BLE001 - reported through the kernel, never raised
             lib.ps_user_fail(f"{name} raised {type(err).__name__}: {err}".encode()[:190])
             value[0] = math.nan
+        finally:
+            tracer.leave_live(prev)
 
     if form == lib.PS_USER_DFLAG:
         def entry(id, time, par, npar, dflag, iflag, value):
-            call(id, time, par, npar, dflag[0], iflag[0], value)
+            call(id, time, dflag[0], iflag[0], value)
     else:
         def entry(id, time, par, npar, iflag, value):
-            call(id, time, par, npar, 0, iflag[0], value)
+            call(id, time, 0, iflag[0], value)
     cb = ffi.callback(_SIGNATURE[form], entry)
-    return ffi.cast("void *", cb), cb
+    return ffi.cast("void *", cb), (cb, reader)
+
+
+class _Reader:
+    """py_sysfnc inside a kernel call: the declared values straight from the kernel's array,
+    by (function, ids); anything else goes through c_sysfnc, which records it while declaring
+    and reports an undeclared read as the routine's error."""
+
+    def __init__(self):
+        self.index, self.values = {}, ffi.NULL
+
+    @property
+    def keys(self):
+        return self.index
+
+    @keys.setter
+    def keys(self, keys):
+        """The canonical keys ("DX(9)") in declaration order."""
+        for i, key in enumerate(keys):
+            name, _, rest = key.partition("(")
+            ids = tuple(int(v) for v in rest.rstrip(")").split(",") if v)
+            self.index[(name, ids)] = i
+
+    def read(self, fnc, ids):
+        i = self.index.get((fnc, tuple(ids))) if self.values != ffi.NULL else None
+        if i is None:
+            return _c_sysfnc(fnc, ids)
+        return [self.values[i], 0]
 
 
 _REQUESTS = {}                     # (fnc, ids) -> its C arguments, made once
 _OUT = threading.local()           # per thread: the double and int c_sysfnc writes
 
 
-def _live_sysfnc(fnc, ids):
-    """py_sysfnc inside a kernel call: the value c_sysfnc gives the routine."""
+def _c_sysfnc(fnc, ids):
+    """What c_sysfnc gives the routine for (fnc, ids)."""
     key = (fnc, tuple(ids))
     req = _REQUESTS.get(key)
     if req is None:

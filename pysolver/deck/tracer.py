@@ -338,21 +338,16 @@ class active:
         return False
 
 
-class live:
-    """Context in which py_sysfnc reads real values through `reader(fnc, ids)` (a routine
-    called from the kernel)."""
+def enter_live(reader):
+    """Make py_sysfnc read real values through `reader(fnc, ids)` (a routine called from the
+    kernel) until :func:`leave_live` restores what this returns."""
+    prev = (getattr(_ACTIVE, "on", False), getattr(_ACTIVE, "live", None))
+    _ACTIVE.on, _ACTIVE.live = False, reader
+    return prev
 
-    def __init__(self, reader):
-        self.reader = reader
 
-    def __enter__(self):
-        self.prev = (getattr(_ACTIVE, "on", False), getattr(_ACTIVE, "live", None))
-        _ACTIVE.on, _ACTIVE.live = False, self.reader
-        return self
-
-    def __exit__(self, *exc):
-        _ACTIVE.on, _ACTIVE.live = self.prev
-        return False
+def leave_live(prev):
+    _ACTIVE.on, _ACTIVE.live = prev
 
 
 def tree_of(value):
