@@ -407,6 +407,34 @@ def test_callback_jacobian_matches_the_exact_one(tmp_path):
     _jacobian_like_the_expression(pysolver.loads(_deck_with(tmp_path, UNTRACEABLE)), 5)
 
 
+def test_jacobian_reuses_the_residuals_partials_only_at_the_same_state(tmp_path):
+    """After a residual at the same state the Jacobian reuses the routine's value and first
+    partials (bit for bit the matrix it computes alone) and calls it only for second
+    differences: 2 per input it reads (DX, DY) and 2 for the pair, 6 in all; alone it also
+    makes the 6 first-order calls (value, +/- DX, +/- DY, one step in time, which is flat).
+    At another state nothing is reused."""
+    counted = UNTRACEABLE.replace("def PFOSUB(id, time, par, npar, dflag, iflag):\n",
+                                  "CALLS = []\n\n\ndef PFOSUB(id, time, par, npar, dflag, "
+                                  "iflag):\n    CALLS.append(iflag)\n")
+    model = pysolver.loads(_deck_with(tmp_path, counted))
+    k = model._kernel()
+    calls = next(iter(model._scripts.values()))["CALLS"]
+    rng = np.random.default_rng(8)
+    ya, ypa, yb, ypb = (rng.normal(size=k.ny) for _ in range(4))
+    k.reset_counters()
+    del calls[:]
+    alone = k.jacobian_array(0.3, ya, ypa, 7.0)
+    assert len(calls) == 12
+    k.reset_counters()
+    k.residual_array(0.3, ya, ypa)
+    assert len(calls) == 12 + 6
+    np.testing.assert_array_equal(k.jacobian_array(0.3, ya, ypa, 7.0), alone)
+    assert len(calls) == 12 + 6 + 6
+    k.residual_array(0.3, yb, ypb)
+    np.testing.assert_array_equal(k.jacobian_array(0.3, ya, ypa, 7.0), alone)
+    assert len(calls) == 12 + 6 + 6 + 6 + 12
+
+
 def test_a_routine_failing_during_the_run_ends_it_with_its_message(tmp_path):
     """The routine raises once the bead has slid left of x = 0.3: success=False, the message
     names the routine and the error, and the rows up to then are kept."""
