@@ -1,0 +1,119 @@
+"""The LoadControl law (seed 002): the velocity that makes a body's load follow a target.
+
+Every ``UpdateTime`` the controller reads the body's displacement x along its direction and
+the load L on it, and sets the body's velocity there for the next interval:
+
+- optional median filter of the last ``median_window`` loads (beyond the seed: contact loads
+  carry fat-tailed noise);
+- the load/displacement ratio by exponential smoothing,
+  ``A_t = (lam L x + gam A_{t-1}) / (lam x^2 + gam)``, ``lam = 2 (1 - a) / (L^2 + (A_{t-1} x)^2)``,
+  ``gam = a / A_{t-1}^2`` (a = ``smooth``);
+- the error in displacement units and its integral and derivative:
+  ``e_t = (1 - a) (L(t) - L) / A_t + a e_{t-1}``, ``Ie_t = (L(t) - L) / A_t + Ie_{t-1}``,
+  ``e2_t = (1 - a) e_t + a e2_{t-1}``, ``De_t = (1 - a) / a (e_t - e2_t)`` (Brown's double
+  smoothing);
+- ``V_t = Kp e_t + Ki Ie_t + 0.25 Ki De_t``, clamped to ``MaxVelocity`` in magnitude; a clamped
+  update does not accrue Ie.
+
+The seed leaves some points open; decided here:
+
+- **Before any load** A is unknown: the velocity stays the starting ``velocity`` and e, Ie, De
+  stay 0. The first update with L != 0 and x != 0 sets A = L / x (x measured from the body's
+  position at the start, so a gap before contact makes the first A low; smoothing corrects it).
+- **No information** (L = 0 and x = 0, or x = 0): the formula leaves A unchanged (lam x^2 = 0);
+  an update that would give A = 0, a non-finite A, or flip A's sign (a load pulling the way the
+  body pushes) keeps A_{t-1}.
+- **Signs** need no convention: A carries the sign of L / x, so e = (L(t) - L) / A is the
+  displacement still to go, in the direction's own sign.
+- **Median filter** of fewer samples than the window at the start: the median of those there are.
+"""
+import dataclasses
+import math
+import statistics
+
+#: What :meth:`LoadLaw.update` logs per update, in this order.
+FIELDS = ("time", "target", "measured", "filtered", "displacement", "A", "e", "Ie", "De",
+          "velocity", "clamped")
+
+
+@dataclasses.dataclass
+class LawParams:
+    """The task's parameters, with the seed's defaults."""
+    velocity: float                  # starting velocity (its sign chooses the first direction)
+    max_velocity: float = 1000.0
+    kp: float = 0.1
+    ki: float = 0.001
+    smooth: float = 0.95
+    median_window: int = 1           # samples; 1 = off
+
+    def check(self):
+        """Raise ValueError naming the first parameter out of its range."""
+        if not 0.0 < self.smooth < 1.0:
+            raise ValueError("smooth must be in (0, 1)")
+        if not self.max_velocity > 0.0:
+            raise ValueError("MaxVelocity must be > 0")
+        if int(self.median_window) != self.median_window or self.median_window < 1:
+            raise ValueError("median_window must be a whole number >= 1")
+        for name in ("velocity", "kp", "ki"):
+            if not math.isfinite(getattr(self, name)):
+                raise ValueError(f"{name} must be a finite number")
+
+
+class LoadLaw:
+    """The controller's state between updates; :meth:`update` runs one update.
+
+    Parameters
+    ----------
+    params : LawParams
+        The task's parameters.
+    """
+
+    def __init__(self, params):
+        params.check()
+        self.p = params
+        self.A = None
+        self.e = self.ie = self.e2 = 0.0
+        self.velocity = float(params.velocity)
+        self._loads = []
+        self.log = []
+
+    def update(self, t, x, load, target):
+        """Run one update at time t with displacement x, measured load and target load L(t);
+        return the velocity for the next interval and append a row of :data:`FIELDS` to
+        ``self.log``."""
+        p, a = self.p, self.p.smooth
+        self._loads = (self._loads + [float(load)])[-int(p.median_window):]
+        L = statistics.median(self._loads) if p.median_window > 1 else float(load)
+        self.A = self._ratio(x, L)
+        de = 0.0
+        clamped = False
+        if self.A is not None:
+            err = (target - L) / self.A
+            self.e = (1.0 - a) * err + a * self.e
+            ie = err + self.ie
+            self.e2 = (1.0 - a) * self.e + a * self.e2
+            de = (1.0 - a) / a * (self.e - self.e2)
+            v = p.kp * self.e + p.ki * ie + 0.25 * p.ki * de
+            clamped = abs(v) > p.max_velocity
+            if clamped:
+                v = math.copysign(p.max_velocity, v)
+            else:
+                self.ie = ie
+            self.velocity = v
+        self.log.append((t, target, float(load), L, x, math.nan if self.A is None else self.A,
+                         self.e, self.ie, de, self.velocity, clamped))
+        return self.velocity
+
+    def _ratio(self, x, L):
+        """A_t from A_{t-1}, x and the filtered load (the decisions in the module's text)."""
+        prev, a = self.A, self.p.smooth
+        if prev is None:
+            return L / x if L != 0.0 and x != 0.0 else None
+        denom = L * L + (prev * x) ** 2
+        if denom == 0.0:
+            return prev
+        lam, gam = 2.0 * (1.0 - a) / denom, a / prev ** 2
+        new = (lam * L * x + gam * prev) / (lam * x * x + gam)
+        if not math.isfinite(new) or new == 0.0 or (new > 0) != (prev > 0):
+            return prev
+        return new
