@@ -15,7 +15,7 @@ import pysolver
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 import andrews  # noqa: E402
-from scenes import PENDULUM, chain_deck  # noqa: E402
+from scenes import PENDULUM, USERSUB_FORMS, chain_deck  # noqa: E402
 
 DECKS = ["catenary_bead", "particle_above_line", "particle_between_lines", "torque_free_spin",
          "spinning_top"]
@@ -95,7 +95,7 @@ def test_stiff_pendulum(benchmark, control):
     benchmark.extra_info.update(res.stats)
 
 
-@pytest.mark.parametrize("form", ["expression", "script", "callable", "untraceable", "c"])
+@pytest.mark.parametrize("form", USERSUB_FORMS)
 def test_usersub_lines(benchmark, tmp_path, form):
     """Seed example 3 with its penalties as user subroutines in each form; compare each with
     the expression group member (``benchmarks/usersubs.py`` prints the ratios)."""
