@@ -30,7 +30,8 @@
   X(4, IDASetNonlinConvCoef) X(4, IDARootInit) X(4, IDASetRootDirection)                      \
   X(4, IDASetNoInactiveRootWarn) X(4, IDASolve) X(4, IDAGetRootInfo) X(4, IDAGetNumSteps)     \
   X(4, IDAGetNumResEvals) X(4, IDAGetNumJacEvals) X(4, IDAGetNumErrTestFails)                 \
-  X(4, IDAGetNumNonlinSolvConvFails) X(4, IDAGetNumGEvals) X(4, IDAGetLastStep) X(4, IDAFree)
+  X(4, IDAGetNumNonlinSolvConvFails) X(4, IDAGetNumGEvals) X(4, IDAGetLastStep) X(4, IDAFree)   \
+  X(4, IDASetId) X(4, IDASetSuppressAlg)
 
 #define PS_ENUM(lib, name) F_##name,
 enum { SUNDIALS_FNS(PS_ENUM) F_COUNT };
@@ -242,6 +243,18 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   SET(s, CALL(s, IDASetLinearSolver)(s->mem, s->LS, s->A), "IDASetLinearSolver");
   SET(s, CALL(s, IDASetJacFn)(s->mem, jac_fn), "IDASetJacFn");
   SET(s, CALL(s, IDASetMaxNumSteps)(s->mem, mxsteps), "IDASetMaxNumSteps");
+  if (m->nmotion > 0) {
+    /* motion reactions are algebraic: out of the error test (IDA copies id) */
+    N_Vector id = CALL(s, N_VNew_Serial)(n, s->ctx);
+    if (!id) return fail(s, "N_VNew_Serial", -1);
+    double* v = CALL(s, N_VGetArrayPointer)(id);
+    for (int i = 0; i < n; i++) v[i] = 1.0;
+    for (int k = 0; k < m->nmotion; k++) v[m->mot_lam[k]] = 0.0;
+    int flag = CALL(s, IDASetId)(s->mem, id);
+    CALL(s, N_VDestroy)(id);
+    if (flag < 0) return fail(s, "IDASetId", flag);
+    SET(s, CALL(s, IDASetSuppressAlg)(s->mem, 1), "IDASetSuppressAlg");
+  }
   memset(s->acc, 0, sizeof(s->acc));
   memset(s->win, 0, sizeof(s->win));
   s->win_h[0] = s->win_h[1] = 0.0;

@@ -251,6 +251,55 @@ static int check_finite(psData* d, const double* v, int n, const char* what) {
   return PS_OK;
 }
 
+/* Motion_Marker k: its reaction lam (a state, model force units) acts like a penalty force
+ * F = lam, Q_i = lam c_i with c_i = d(g')/du_i; its own row holds g' to the target rate: 0 for
+ * a displacement (g includes the expression), the expression for a velocity, and for an
+ * acceleration the state w whose row integrates w' = expression. The row has no lam in it
+ * (index 2): IDA leaves lam out of its error test. */
+static void motion_rows(const psModel* m, psData* d, double t, const double* y,
+                        const double* yp, Assembly* as) {
+  for (int k = 0; k < m->nmotion; k++) {
+    int tape = m->mot_tape[k], lam = m->mot_lam[k], w = m->mot_w[k], kind = m->mot_kind[k];
+    int order = as->deriv ? 2 : 1;
+    ps_tape_run(m, d, tape, order, !as->deriv, t, y, yp);
+    psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], order - 1, m->hd_stride};
+    const double* g = ps_slot(m, d, m->mot_g[k]);
+    const double* gd = ps_slot(m, d, m->mot_gd[k]);
+    const double* f = ps_slot(m, d, m->mot_f[k]);
+    double* L = ps_tmp(m, d, F_LEN);
+    double* ci = ps_tmp(m, d, F_CI);
+    double* Q = ps_tmp(m, d, F_Q);
+    double* sc = ps_tmp(m, d, F_SC);
+    psu_hd_const(&c, L, y[lam]);
+    int adr = m->tape_body_adr[tape];
+    for (int slot = 0; slot < m->tape_nbody[tape]; slot++) {
+      if (m->tbody_q[adr + slot] < 0) continue;
+      int b = m->tbody_body[adr + slot];
+      int nu = m->body_type[b] == PS_BODY_RIGID ? 6 : 3;
+      for (int i = 0; i < nu; i++) {
+        ps_rate_coeff(m, d, &c, g, tape, slot, i, ci, sc);
+        psu_hd_mul(&c, Q, L, ci);
+        scatter(m, &c, tape, m->body_uadr[b] + i, Q, as);
+        if (as->deriv) jadd(as, m->body_uadr[b] + i, lam, -m->force_scale * ci[0]);
+      }
+    }
+    as->res[lam] = gd[0] - (kind == PS_MOTION_V ? f[0] : kind == PS_MOTION_A ? y[w] : 0.0);
+    if (as->deriv) {
+      int badr = m->tape_basis_adr[tape];
+      for (int j = 0; j < c.n; j++) {
+        int bk = m->basis_kind[badr + j];
+        if (bk == PS_BASIS_T) continue;
+        jadd(as, lam, m->basis_idx[badr + j], gd[1 + j] * (bk == PS_BASIS_YP ? as->cj : 1.0));
+      }
+      if (kind == PS_MOTION_A) jadd(as, lam, w, -1.0);
+    }
+    if (kind == PS_MOTION_A) {
+      as->res[w] = yp[w] - f[0];
+      if (as->deriv) jadd(as, w, w, as->cj);
+    }
+  }
+}
+
 static int assemble(const psModel* m, psData* d, double t, const double* y, const double* yp,
                     Assembly* as) {
   if (as->jac) memset(as->jac, 0, sizeof(double) * (size_t)m->ny * (size_t)m->ny);
@@ -258,6 +307,7 @@ static int assemble(const psModel* m, psData* d, double t, const double* y, cons
   inertia_rows(m, t, y, yp, as);
   penalty_forces(m, d, t, y, yp, as);
   scalar_forces(m, d, t, y, yp, as);
+  motion_rows(m, d, t, y, yp, as);
   return PS_OK;
 }
 

@@ -46,6 +46,8 @@ int IDASetLinearSolver(void* mem, SUNLinearSolver ls, SUNMatrix a);
 int IDASetJacFn(void* mem, IDALsJacFn jac);
 int IDASetMaxNumSteps(void* mem, long mxsteps);
 int IDASetMaxStep(void* mem, sunrealtype hmax);
+int IDASetId(void* mem, N_Vector id);
+int IDASetSuppressAlg(void* mem, int suppressalg);
 int IDASetMinStep(void* mem, sunrealtype hmin);
 int IDASetInitStep(void* mem, sunrealtype hin);
 int IDASetStopTime(void* mem, sunrealtype tstop);

@@ -93,6 +93,21 @@ class ScalarForce:
 
 
 @dataclasses.dataclass
+class Motion:
+    """Motion_Marker: the displacement (D), velocity (V) or acceleration (A) of marker I
+    relative to J along one axis of J (X, Y, Z: DX/DY/DZ(I, J, J)) or about it (B1, B2, B3:
+    AX/AY/AZ(I, J)) follows expr, a function of time."""
+    id: int
+    i: int
+    j: int
+    direction: str
+    val_type: str
+    expr: tuple
+    text: str
+    label: str = ""
+
+
+@dataclasses.dataclass
 class Variable:
     id: int
     expr: tuple
@@ -207,6 +222,7 @@ class Model:
         self.bodies = {}
         self.penalties = {}
         self.sforces = {}
+        self.motions = {}
         self.variables = {}
         self.requests = {}
         self.sensors = {}
@@ -274,6 +290,9 @@ class Model:
         for s in self.sforces.values():
             lines.append(f"Force_Scalar_TwoBody {s.id} ({'torque' if s.torque else 'force'} "
                          f"I={s.i} J={s.j}): {s.text}")
+        for mo in self.motions.values():
+            lines.append(f"Motion_Marker {mo.id} ({mo.val_type} {mo.direction} I={mo.i} "
+                         f"J={mo.j}): {mo.text}")
         for v in self.variables.values():
             lines.append(f"Reference_Variable {v.id}: {v.text}")
         for r in self.requests.values():
@@ -298,8 +317,10 @@ class Model:
         return "\n".join(lines)
 
     def num_states(self) -> int:
-        """Number of IDA states: 6 per point body, 13 per rigid body."""
-        return sum({"point": 6, "rigid": 13}.get(b.kind, 0) for b in self.bodies.values())
+        """Number of IDA states: 6 per point body, 13 per rigid body, per motion its reaction
+        (and an acceleration motion its driven velocity)."""
+        return (sum({"point": 6, "rigid": 13}.get(b.kind, 0) for b in self.bodies.values())
+                + sum(1 + (m.val_type == "A") for m in self.motions.values()))
 
     def __reduce__(self):
         return (_rebuild, (self.source.file, self.source.text, self.source.fmt))

@@ -112,6 +112,16 @@ class Result:
             raise KeyError(f"no Post_Request with id {id}; requests: {self.request_ids}")
         return self._requests[id]
 
+    def motion(self, id: int) -> np.ndarray:
+        """Reaction of Motion_Marker `id` at the output times, shape (n,): the force (X, Y, Z)
+        or torque (B1, B2, B3) the motion applies to I's body along or about its axis of J
+        (J's body gets the opposite), in model units."""
+        name = f"motion{id}.reaction"
+        if name not in self.state_names:
+            known = [n.split(".")[0][6:] for n in self.state_names if n.endswith(".reaction")]
+            raise KeyError(f"no Motion_Marker {id} (motions: {', '.join(known) or 'none'})")
+        return self.y[:, self.state_names.index(name)]
+
     def columns(self) -> tuple[list, np.ndarray]:
         """Return (names, 2-D array) of time and every non-NULL request channel."""
         names, cols = ["time"], [self.t]

@@ -69,6 +69,11 @@ enum psMeasure {
   PS_M_COUNT
 };
 
+/* Motion kinds: what follows the expression (csrc/residual.c). */
+#define PS_MOTION_D 0  /* the displacement: g = measure - expr, g' = 0           */
+#define PS_MOTION_V 1  /* the velocity: g' = expr                               */
+#define PS_MOTION_A 2  /* the acceleration: g' = w with w' = expr               */
+
 /* Sensor comparisons. */
 #define PS_CMP_GE 0
 #define PS_CMP_LT 1
@@ -152,6 +157,19 @@ typedef struct psModel {
   int* sf_torque;         /* (nsf x 1) 1 for a torque about z of J, 0 a force   */
   int* sf_i;              /* (nsf x 1) I marker                                 */
   int* sf_j;              /* (nsf x 1) J marker                                 */
+
+  /* Motion_Marker: a reaction lam (an algebraic state, model force units) applied like a
+   * penalty force F = lam, and a residual row holding the driven measure's rate g' to its
+   * target (residual.c, motion_rows) */
+  int nmotion;            /* number of motions                                  */
+  int* mot_tape;          /* (nmotion x 1)                                      */
+  int* mot_g;             /* (nmotion x 1) slot of g: the measure (D: less expr) */
+  int* mot_gd;            /* (nmotion x 1) slot of g'                           */
+  int* mot_f;             /* (nmotion x 1) slot of the expression               */
+  int* mot_kind;          /* (nmotion x 1) PS_MOTION_*                          */
+  int* mot_lam;           /* (nmotion x 1) index of lam in y                    */
+  int* mot_w;             /* (nmotion x 1) A: index in y of the driven velocity
+                             w, w' = expr; -1 otherwise                         */
 
   /* Sensor_Event: expression f in a tape slot, compared with value */
   int* sensor_tape;       /* (nsensor x 1)                                      */

@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 
+from ..deck import motions
 from ..deck.expr import CONSTANTS
 from ..errors import DeckError
 from ..rotations import e_from_rot
@@ -58,6 +59,19 @@ class Layout:
             un = ["vx", "vy", "vz"] + (["wx", "wy", "wz"] if nu == 6 else [])
             self.names += [f"body{b.id}.{n}" for n in qn + un]
             off += nq + nu
+        # per Motion_Marker its reaction (an algebraic state); an acceleration motion also
+        # the driven velocity, which integrates its expression
+        self.motion_ids = sorted(model.motions)
+        self.lam, self.rate = [], []
+        for mid in self.motion_ids:
+            self.lam.append(off)
+            self.names.append(f"motion{mid}.reaction")
+            off += 1
+            if model.motions[mid].val_type == "A":
+                self.names.append(f"motion{mid}.velocity")
+                off += 1
+            self.rate.append(off - 1 if model.motions[mid].val_type == "A" else -1)
+        self.algebraic = list(self.lam)
         self.ny = off
 
     def initial_state(self):
@@ -340,6 +354,22 @@ class Compiler:
         return out
 
     # element tapes -------------------------------------------------------------------------
+    def motion(self, tape, mo):
+        """Slots (g, g', expr, kind) of a Motion_Marker: g the driven measure (less expr for a
+        displacement motion), g' its total time derivative, which the kernel constrains."""
+        touched = set()
+        tape.touch.append(touched)
+        phi = self.lower(tape, motions.measure(mo))
+        tape.touch.pop()
+        for s in touched:                 # g' needs the velocities of g's bodies
+            tape.bodies[s][1] = True
+        f = self.lower(tape, mo.expr)
+        g = tape.op(lib.PS_OP_SUB, phi, f) if mo.val_type == "D" else phi
+        gd = tape.emit(lib.PS_OP_GDOT, g)
+        tape.has_gdot = True
+        return g, gd, f, {"D": lib.PS_MOTION_D, "V": lib.PS_MOTION_V, "A": lib.PS_MOTION_A}[
+            mo.val_type]
+
     def new_tape(self):
         t = _Tape(self)
         self.tapes.append(t)
@@ -360,6 +390,11 @@ class Compiler:
             self.marker(t, sf.j)
             f = self.lower(t, sf.expr)
             self.sf.append((ti, f, int(sf.torque), self.midx[sf.i], self.midx[sf.j]))
+        self.mot = []
+        for k, mid in enumerate(self.layout.motion_ids):
+            ti, t = self.new_tape()
+            self.mot.append((ti, *self.motion(t, model.motions[mid]), self.layout.lam[k],
+                             self.layout.rate[k]))
         # forces that read SENVAL need a restart with consistent yp when a value is stored
         self.forces_use_senval = any(self.tapes[t].uses_senval for t, *_ in self.pen + self.sf)
         self.sensor = []
@@ -464,6 +499,10 @@ class Compiler:
             sf_tape=i32([s[0] for s in self.sf]), sf_f=i32([s[1] for s in self.sf]),
             sf_torque=i32([s[2] for s in self.sf]), sf_i=i32([s[3] for s in self.sf]),
             sf_j=i32([s[4] for s in self.sf]),
+            nmotion=len(self.mot), mot_tape=i32([x[0] for x in self.mot]),
+            mot_g=i32([x[1] for x in self.mot]), mot_gd=i32([x[2] for x in self.mot]),
+            mot_f=i32([x[3] for x in self.mot]), mot_kind=i32([x[4] for x in self.mot]),
+            mot_lam=i32([x[5] for x in self.mot]), mot_w=i32([x[6] for x in self.mot]),
             out_tape=i32([o[0] for o in self.out]), out_slot=i32([o[1] for o in self.out]),
             nsensor=len(self.sensor), sensor_tape=i32([x[0] for x in self.sensor]),
             sensor_slot=i32([x[1] for x in self.sensor]),

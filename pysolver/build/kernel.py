@@ -6,9 +6,10 @@ from ..options import SPARSE_THRESHOLD
 from . import usercalls
 from .bindings import ffi, lib
 from .compiler import Compiler
+from .consistent import consistent
 
 _INT_FIELDS = ("ny", "nbody", "nmarker", "ntape", "npen", "nsf", "nout", "hd_stride",
-               "max_slots", "max_bslots", "nsensor", "nuser", "nusercache")
+               "max_slots", "max_bslots", "nsensor", "nuser", "nusercache", "nmotion")
 
 
 class UserFailure(Exception):
@@ -286,7 +287,10 @@ class Kernel:
     def consistent_yp(self, t, y, iters=4):
         """Return yp with F(t, y, yp) = 0 by Newton's method on yp (F is linear in yp unless
         expressions use accelerations). dF/dyp is the difference of the iteration matrix at
-        cj = 1 and cj = 0; large scenes use the sparse path."""
+        cj = 1 and cj = 0; large scenes use the sparse path. With motions y is made consistent
+        too, in place (pysolver.build.consistent)."""
+        if self.arrays["nmotion"]:
+            return consistent(self, t, y)
         sparse = self.ny >= SPARSE_THRESHOLD
         if sparse:
             from scipy.sparse.linalg import spsolve

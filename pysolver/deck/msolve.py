@@ -22,7 +22,8 @@ import threading
 
 _STATE = threading.local()
 
-__all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "VARIABLE",
+__all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "MOTION",
+           "VARIABLE",
            "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM",
            "py_sysfnc", "py_sysary", "py_errmes"]
 
@@ -160,6 +161,15 @@ def SFORCE(id, I=None, J=None, TRANSLATION=False, ROTATION=False, **kw):  # noqa
     _emit("SFORCE", "Force_Scalar_TwoBody",
           {"I": "i_marker_id", "J": "j_marker_id", "FUNCTION": "expr", "LABEL": "label",
            **_USERSUB}, id, I=I, J=J, **kw)
+
+
+def MOTION(id, **kw):
+    """Motion of marker I relative to J (Motion_Marker): DIRECTION (X, Y, Z translations along
+    J's axes; B1, B2, B3 rotations about them), VAL_TYPE (D displacement, V velocity,
+    A acceleration), FUNCTION (a function of time), LABEL. The reaction is res.motion(id)."""
+    _emit("MOTION", "Motion_Marker",
+          {"I": "i_marker_id", "J": "j_marker_id", "DIRECTION": "direction",
+           "VAL_TYPE": "val_type", "FUNCTION": "expr", "LABEL": "label"}, id, **kw)
 
 
 def SENSOR(id, EVALUATE=None, **kw):

@@ -55,6 +55,11 @@ SCHEMA = {
                              "i_marker_id": ("id", REQ, None), "j_marker_id": ("id", REQ, None),
                              "expr": ("expr", OPT, None), "val_expression": ("expr", OPT, None),
                              "val": ("float", OPT, None), **_USERSUB},
+    "Motion_Marker": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                      "type": (("EXPRESSION",), OPT, "EXPRESSION"),
+                      "i_marker_id": ("id", REQ, None), "j_marker_id": ("id", REQ, None),
+                      "direction": (("X", "Y", "Z", "B1", "B2", "B3"), REQ, None),
+                      "val_type": (("D", "V", "A"), OPT, "D"), "expr": ("expr", REQ, None)},
     "Reference_Variable": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
                            "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
                            "expr": ("expr", OPT, None), "initial_value": ("float", OPT, 0.0),
@@ -102,6 +107,7 @@ COMMANDS = ("Simulate", "Stop")
 CANONICAL = {name.lower(): name for name in SCHEMA}
 _ID_KIND = {"Reference_Marker": "marker", "Body_Rigid": "body", "Body_Point": "body",
             "Force_Penalty": "penalty", "Force_Scalar_TwoBody": "sforce",
+            "Motion_Marker": "motion",
             "Reference_Variable": "variable", "Post_Request": "request",
             "Sensor_Event": "sensor", "Sensor_Evaluate": "evaluate"}
 

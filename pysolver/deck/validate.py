@@ -23,6 +23,7 @@ from ..options import DECK_NAMES, Options
 from . import units as un
 from . import usersubs
 from .bodies import add_bodies
+from .motions import add_motion
 from .references import check_references
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
 
@@ -86,6 +87,11 @@ def build_model(elements, source):
                             element="Simulate", attribute="analysis_type")
     for ctx, a in later:
         _force_like(model, ctx, a)
+    for cmd in model.commands:
+        if model.motions and cmd.analysis != "TRANSIENT":
+            raise DeckError(f"{cmd.analysis.lower()} analyses of scenes with Motion_Marker are "
+                            "not supported yet", file=source.file, line=cmd.line,
+                            element="Simulate", attribute="analysis_type")
     check_references(model)
     if not model.commands:
         model.commands.append(Simulate("TRANSIENT", 1.0, 0.01))
@@ -177,6 +183,8 @@ def _force_like(model, ctx, a):
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
                                              a["j_marker_id"], tree, text, a["label"], sub)
         model._where[("sforce", a["id"])] = ctx
+    elif tag == "Motion_Marker":
+        add_motion(model, ctx, a)
     elif tag == "Reference_Variable":
         tree, text, sub = _expression(model, ctx, a)
         model.variables[a["id"]] = Variable(a["id"], tree, text, a["label"], sub)

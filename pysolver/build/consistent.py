@@ -1,0 +1,90 @@
+"""Consistent initial conditions for scenes with motions (Motion_Marker).
+
+A motion adds a reaction lam (algebraic) and a row holding the driven measure's rate g' to its
+target; a displacement motion also needs g = 0 itself. Before IDA starts (and at restarts) the
+state is made consistent in three steps, each the smallest change that does it:
+
+1. positions: displacement motions' g = 0 by Newton steps moving the bodies along the motions'
+   own rate directions c = d(g')/du (the velocity that changes g fastest);
+2. velocities: the rate rows g' = target by the least-norm change of u along the same
+   directions; an acceleration motion's driven velocity w takes the current g';
+3. accelerations and reactions: yp and lam from the residual rows and the time derivative of
+   the rate rows (index reduction: d/dt (g' - target) = 0), which together are linear in them.
+"""
+import numpy as np
+
+from .bindings import ffi, lib
+
+
+def consistent(kernel, t, y, iters=8):
+    """Make y consistent in place (positions, velocities, lam, w) and return yp."""
+    lay = kernel.layout
+    lam = np.array(lay.lam)
+    y[lam] = 0.0
+    u_idx = np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" else 6))
+                            for b, ua in zip(lay.bodies, lay.uadr)]).astype(int)
+    yp = np.zeros_like(y)
+    kinds = kernel.arrays["mot_kind"]
+    disp = np.nonzero(kinds == lib.PS_MOTION_D)[0]
+    # 1. positions
+    for _ in range(iters if len(disp) else 0):
+        g = _motion_g(kernel, t, y)[disp]
+        if np.max(np.abs(g)) <= 1e-13 * (1.0 + np.max(np.abs(y))):
+            break
+        C = kernel.jacobian_array(t, y, yp, 0.0)[np.ix_(lam[disp], u_idx)]
+        du = np.zeros(kernel.ny)
+        du[u_idx] = C.T @ np.linalg.lstsq(C @ C.T, -g, rcond=None)[0]
+        _move(lay, y, du)
+    # 2. velocities: A motions take w = g'; the others change u
+    r = kernel.residual_array(t, y, yp)[lam]
+    for k, w in enumerate(lay.rate):
+        if w >= 0:
+            y[w] += r[k]
+            r[k] = 0.0
+    held = np.nonzero(kinds != lib.PS_MOTION_A)[0]
+    if len(held):
+        C = kernel.jacobian_array(t, y, yp, 0.0)[np.ix_(lam[held], u_idx)]
+        y[u_idx] += C.T @ np.linalg.lstsq(C @ C.T, -r[held], rcond=None)[0]
+    # 3. accelerations and reactions (linear in them unless forces read accelerations)
+    rows = np.setdiff1d(np.arange(kernel.ny), lam)
+    for _ in range(4):
+        J0 = kernel.jacobian_array(t, y, yp, 0.0)
+        D = kernel.jacobian_array(t, y, yp, 1.0) - J0
+        res = kernel.residual_array(t, y, yp)
+        h = 1e-6 * max(1.0, abs(t))
+        r_t = (kernel.residual_array(t + h, y, yp)[lam]
+               - kernel.residual_array(t - h, y, yp)[lam]) / (2 * h)
+        A = np.zeros((kernel.ny, kernel.ny))
+        A[:len(rows), :len(rows)] = D[np.ix_(rows, rows)]
+        A[:len(rows), len(rows):] = J0[np.ix_(rows, lam)]
+        A[len(rows):, :len(rows)] = J0[np.ix_(lam, rows)]
+        rhs = -np.concatenate([res[rows], J0[lam] @ yp + r_t])
+        dz = np.linalg.solve(A, rhs)
+        yp[rows] += dz[:len(rows)]
+        y[lam] += dz[len(rows):]
+        if np.max(np.abs(dz)) <= 1e-14 * (1 + np.max(np.abs(np.concatenate([yp, y[lam]])))):
+            break
+    return yp
+
+
+def _motion_g(kernel, t, y):
+    """The motions' g: the driven measure, less the expression for displacement motions."""
+    fb = ffi.from_buffer
+    yv, ypv = fb("double[]", np.ascontiguousarray(y)), fb("double[]", np.zeros_like(y))
+    a = kernel.arrays
+    return np.array([lib.ps_eval_tape(kernel.m, kernel.d, int(tape), int(slot), t, yv, ypv)
+                     for tape, slot in zip(a["mot_tape"], a["mot_g"])])
+
+
+def _move(lay, y, du):
+    """q += N(q) du: translate by du's velocities, rotate by its body angular velocities (Euler
+    parameters renormalised)."""
+    for b, qa, ua in zip(lay.bodies, lay.qadr, lay.uadr):
+        y[qa:qa + 3] += du[ua:ua + 3]
+        if b.kind != "rigid":
+            continue
+        e, w = y[qa + 3:qa + 7].copy(), du[ua + 3:ua + 6]
+        G = np.array([[-e[1], -e[2], -e[3]], [e[0], -e[3], e[2]], [e[3], e[0], -e[1]],
+                      [-e[2], e[1], e[0]]])
+        e += 0.5 * G @ w
+        y[qa + 3:qa + 7] = e / np.linalg.norm(e)

@@ -1,0 +1,74 @@
+"""Motion_Marker: checks at load.
+
+A motion drives marker I relative to marker J along or about one axis of J; its expression
+is a function of time only (the kernel differentiates it in time). At load: both markers
+exist, they are not on one body (ground included), a rotation does not involve a point body,
+and no two motions drive the same axis between the same two bodies.
+"""
+from ..model import Motion
+from . import expr as ex
+
+_MEASURE = {"X": "DX", "Y": "DY", "Z": "DZ", "B1": "AX", "B2": "AY", "B3": "AZ"}
+
+
+def add_motion(model, ctx, a):
+    """Validate one Motion_Marker's attributes and add it to the model."""
+    ctx.id = a["id"]
+    for key in ("i_marker_id", "j_marker_id"):
+        if a[key] not in model.markers:
+            raise ctx.error(f"marker {a[key]} does not exist", key)
+    bi, bj = (model.markers[a[k]].body for k in ("i_marker_id", "j_marker_id"))
+    ground = {b.id for b in model.bodies.values() if b.kind == "ground"}
+    if bi == bj or (bi in ground and bj in ground):
+        where = "ground" if bi in ground else f"body {bi}"
+        raise ctx.error(f"a motion needs I and J on different bodies, one of them moving; "
+                        f"both markers are on {where}", "j_marker_id")
+    rotation = a["direction"].startswith("B")
+    if rotation:
+        for key, b in (("i_marker_id", bi), ("j_marker_id", bj)):
+            if model.bodies[b].kind == "point":
+                raise ctx.error(f"a rotation ({a['direction']}) needs rigid bodies; marker "
+                                f"{a[key]} is on point body {b}", key)
+    tree, text = a["expr"]
+    if tree[0] == "user":
+        raise ctx.error("a motion's expression is a function of time, not a user subroutine",
+                        "expr")
+    reads = _measures(tree)
+    if reads:
+        raise ctx.error(f"a motion's expression must depend on time only; it reads "
+                        f"{', '.join(sorted(reads))}", "expr")
+    pair = (frozenset((bi, bj)), a["direction"])
+    for other in model.motions.values():
+        bodies = frozenset(model.markers[m].body for m in (other.i, other.j))
+        if (bodies, other.direction) == pair:
+            raise ctx.error(f"Motion_Marker {other.id} already drives {a['direction']} between "
+                            f"these bodies; two motions would fight over one coordinate",
+                            "direction")
+    model.motions[a["id"]] = Motion(a["id"], a["i_marker_id"], a["j_marker_id"],
+                                    a["direction"], a["val_type"], tree, text, a["label"])
+    model._where[("motion", a["id"])] = ctx
+
+
+def measure(motion):
+    """The expression tree of the driven quantity: DX/DY/DZ(I, J, J) or AX/AY/AZ(I, J)."""
+    name = _MEASURE[motion.direction]
+    ids = (motion.i, motion.j, motion.j) if name.startswith("D") else (motion.i, motion.j)
+    return ("call", name, [("num", float(i)) for i in ids], 0)
+
+
+def _measures(node, out=None):
+    """Names of the state-dependent functions an expression tree calls."""
+    out = set() if out is None else out
+    tag = node[0]
+    if tag == "neg":
+        _measures(node[1], out)
+    elif tag == "bin":
+        _measures(node[2], out)
+        _measures(node[3], out)
+    elif tag == "call":
+        if node[1] in ex.ID_ARGS:
+            out.add(node[1])
+        else:
+            for arg in node[2]:
+                _measures(arg, out)
+    return out
