@@ -67,6 +67,20 @@ def consistent(kernel, t, y, iters=8):
     return yp
 
 
+def reactions(kernel, t, y, yp):
+    """The motions' reactions that balance the residual's force rows at (t, y, yp), by least
+    squares. IDA interpolates output rows over its steps, and for the algebraic reactions,
+    which its error test leaves out, the interpolant can be far off (a jump in the reaction
+    inside a step spreads over the whole step): the driver recomputes them at every row."""
+    lam = np.array(kernel.layout.lam)
+    y = np.array(y, dtype=float)
+    y[lam] = 0.0
+    rows = np.setdiff1d(np.arange(kernel.ny), lam)
+    r = kernel.residual_array(t, y, yp)[rows]
+    C = kernel.jacobian_array(t, y, yp, 0.0)[np.ix_(rows, lam)]
+    return np.linalg.lstsq(C, -r, rcond=None)[0]
+
+
 def _motion_g(kernel, t, y):
     """The motions' g: the driven measure, less the expression for displacement motions."""
     fb = ffi.from_buffer

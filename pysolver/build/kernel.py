@@ -6,7 +6,7 @@ from ..options import SPARSE_THRESHOLD
 from . import usercalls
 from .bindings import ffi, lib
 from .compiler import Compiler
-from .consistent import consistent
+from .consistent import consistent, reactions
 
 _INT_FIELDS = ("ny", "nbody", "nmarker", "ntape", "npen", "nsf", "nout", "hd_stride",
                "max_slots", "max_bslots", "nsensor", "nuser", "nusercache", "nmotion")
@@ -283,6 +283,11 @@ class Kernel:
         jac = np.zeros((self.ny, self.ny))
         self.jacobian(t, np.ascontiguousarray(y, float), np.ascontiguousarray(yp, float), cj, jac)
         return jac
+
+    def reactions(self, t, y, yp):
+        """Motion reactions that balance the force rows at (t, y, yp) (see
+        pysolver.build.consistent.reactions)."""
+        return reactions(self, t, y, yp)
 
     def consistent_yp(self, t, y, iters=4):
         """Return yp with F(t, y, yp) = 0 by Newton's method on yp (F is linear in yp unless

@@ -129,6 +129,10 @@ class Printer(Actor):
         for _ in range(n):
             self.pending.popleft()
         if n:
+            if self.kernel.layout.lam:
+                Y = np.array(Y, dtype=float)
+                for t, y, yp in zip(times, Y, YP):
+                    self._reactions(t, y, yp)
             self.ts.extend(times)
             self.ys.extend(Y)
             self.yps.extend(YP)
@@ -143,6 +147,8 @@ class Printer(Actor):
         if self.ts and t == self.ts[-1]:
             self._drop_last()
         y, yp = np.array(y, dtype=float), np.array(yp, dtype=float)
+        if self.kernel.layout.lam:
+            self._reactions(t, y, yp)
         self.ts.append(t)
         self.ys.append(y)
         self.yps.append(yp)
@@ -158,6 +164,11 @@ class Printer(Actor):
             tp = self.pending.popleft()
             at = step if tp == step.t else solver.step(tp, tstop)
             self.emit(tp, at.y, at.yp)
+
+    def _reactions(self, t, y, yp):
+        """Motion reactions of a row from its force balance, not IDA's interpolant of them
+        (an algebraic state, outside its error test)."""
+        y[self.kernel.layout.lam] = self.kernel.reactions(t, y, yp)
 
     def _drop_last(self):
         self.ts.pop()
