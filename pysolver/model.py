@@ -108,6 +108,28 @@ class Motion:
 
 
 @dataclasses.dataclass
+class LoadControl:
+    """The LoadControl task (seed 002): every update_time, the velocity of `body` along global
+    axis `direction` (0, 1, 2) is set so that the load on it follows `load_expr` (a function of
+    time). The body is driven by the velocity motion `motion` (a Motion in Model.motions whose
+    expression is the controller's output)."""
+    id: int
+    body: int
+    direction: int
+    velocity: float
+    max_velocity: float
+    load_expr: tuple
+    load_text: str
+    kp: object                  # a number or "auto"
+    ki: object
+    smooth: float
+    update_time: float
+    median_window: int
+    motion: int
+    label: str = ""
+
+
+@dataclasses.dataclass
 class Variable:
     id: int
     expr: tuple
@@ -223,6 +245,7 @@ class Model:
         self.penalties = {}
         self.sforces = {}
         self.motions = {}
+        self.controls = {}        # LoadControl tasks by id
         self.variables = {}
         self.requests = {}
         self.sensors = {}
@@ -290,7 +313,12 @@ class Model:
         for s in self.sforces.values():
             lines.append(f"Force_Scalar_TwoBody {s.id} ({'torque' if s.torque else 'force'} "
                          f"I={s.i} J={s.j}): {s.text}")
+        for lc in self.controls.values():
+            lines.append(f"LoadControl {lc.id}: body {lc.body} along {'xyz'[lc.direction]}, "
+                         f"load {lc.load_text}, every {lc.update_time:g}")
         for mo in self.motions.values():
+            if mo.id < 0:
+                continue                  # a LoadControl's own drive
             lines.append(f"Motion_Marker {mo.id} ({mo.val_type} {mo.direction} I={mo.i} "
                          f"J={mo.j}): {mo.text}")
         for v in self.variables.values():

@@ -48,7 +48,8 @@ class Result:
     """
 
     def __init__(self, *, t, y, yp, outputs, channels, state_names, success, status, message,
-                 stats, timing, meta, labels=None, events=(), log=(), statics=()):
+                 stats, timing, meta, labels=None, events=(), log=(), statics=(),
+                 controllers=None):
         self.t = np.asarray(t)
         self.y = np.asarray(y)
         self.yp = np.asarray(yp)
@@ -63,6 +64,8 @@ class Result:
         self.events = list(events)
         self.log = list(log)
         self.statics = list(statics)
+        self._controllers = {lid: {k: np.asarray(v) for k, v in rec.items()}
+                             for lid, rec in (controllers or {}).items()}
         outputs = np.asarray(outputs).reshape(len(self.t), len(channels))
         self._requests = {}
         for col, (rid, k) in enumerate(channels):
@@ -111,6 +114,16 @@ class Result:
         if id not in self._requests:
             raise KeyError(f"no Post_Request with id {id}; requests: {self.request_ids}")
         return self._requests[id]
+
+    def controller(self, id: int) -> dict:
+        """Per-update record of LoadControl `id`: arrays ``time``, ``target``, ``measured``
+        and ``filtered`` load, ``displacement`` (from the start, along the axis), ``A`` (the
+        load/displacement ratio; NaN before any load), ``e``, ``Ie``, ``De``, ``velocity`` (for
+        the next interval) and ``clamped`` (MaxVelocity reached)."""
+        if id not in self._controllers:
+            raise KeyError(f"no LoadControl {id} (tasks: "
+                           f"{', '.join(map(str, self._controllers)) or 'none'})")
+        return self._controllers[id]
 
     def motion(self, id: int) -> np.ndarray:
         """Reaction of Motion_Marker `id` at the output times, shape (n,): the force (X, Y, Z)

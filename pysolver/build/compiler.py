@@ -205,6 +205,8 @@ class Compiler:
         tag = node[0]
         if tag == "user":
             return self.user_call(tape, *node[1:])
+        if tag == "ctrl":                 # a LoadControl's velocity: stored after SENVALs
+            return tape.emit(lib.PS_OP_SENVAL, len(self.eidx) + node[1])
         if tag == "num":
             return tape.const(node[1])
         if tag == "name":
@@ -408,6 +410,11 @@ class Compiler:
         for eid in sorted(model.evaluates):
             ti, t = self.new_tape()
             self.evaluate.append((ti, self.lower(t, model.evaluates[eid].expr)))
+        # LoadControl targets, evaluated by the controller at its updates
+        self.ctrl = []
+        for lid in sorted(model.controls):
+            ti, t = self.new_tape()
+            self.ctrl.append((ti, self.lower(t, model.controls[lid].load_expr)))
         self.out = []
         self.channels = []
         for rid in sorted(model.requests):

@@ -47,6 +47,7 @@ class Kernel:
         self.sensor_ids = sorted(model.sensors)
         self.evaluate_ids = sorted(model.evaluates)
         self.evaluate_tapes = comp.evaluate
+        self.control_tapes = comp.ctrl
         self.forces_use_senval = comp.forces_use_senval
         self.nsensor = arrays["nsensor"]
         self.ny = arrays["ny"]
@@ -80,7 +81,8 @@ class Kernel:
             "tmp": np.zeros(96 * stride),
             "res": np.zeros(max(2 * self.ny, 1)),
             "trip": np.zeros(1),
-            "senval": np.zeros(max(len(model.evaluates), 1)),
+            # stored Sensor_Evaluate values, then each LoadControl's velocity
+            "senval": np.zeros(max(len(model.evaluates) + len(model.controls), 1)),
             "sensor_f": np.zeros(max(self.nsensor, 1)),
             "sensor_side": np.ones(max(self.nsensor, 1)),
             "user_cache": np.zeros(max(arrays["nusercache"], 1) * lib.PS_USER_CACHE),
@@ -135,6 +137,13 @@ class Kernel:
     def evaluate(self, k, t, y, yp):
         """Evaluate Sensor_Evaluate number k (in id order) at (t, y, yp)."""
         tape, slot = self.evaluate_tapes[k]
+        return lib.ps_eval_tape(self.m, self.d, tape, slot, t,
+                                ffi.from_buffer("double[]", np.ascontiguousarray(y, float)),
+                                ffi.from_buffer("double[]", np.ascontiguousarray(yp, float)))
+
+    def control_target(self, k, t, y, yp):
+        """The target load L(t) of LoadControl number k (in id order)."""
+        tape, slot = self.control_tapes[k]
         return lib.ps_eval_tape(self.m, self.d, tape, slot, t,
                                 ffi.from_buffer("double[]", np.ascontiguousarray(y, float)),
                                 ffi.from_buffer("double[]", np.ascontiguousarray(yp, float)))

@@ -33,17 +33,15 @@ def add_motion(model, ctx, a):
     if tree[0] == "user":
         raise ctx.error("a motion's expression is a function of time, not a user subroutine",
                         "expr")
-    reads = _measures(tree)
+    reads = time_only(tree)
     if reads:
         raise ctx.error(f"a motion's expression must depend on time only; it reads "
                         f"{', '.join(sorted(reads))}", "expr")
-    pair = (frozenset((bi, bj)), a["direction"])
-    for other in model.motions.values():
-        bodies = frozenset(model.markers[m].body for m in (other.i, other.j))
-        if (bodies, other.direction) == pair:
-            raise ctx.error(f"Motion_Marker {other.id} already drives {a['direction']} between "
-                            f"these bodies; two motions would fight over one coordinate",
-                            "direction")
+    other = clashes(model, bi, bj, a["direction"], ground)
+    if other is not None:
+        what = f"Motion_Marker {other}" if other > 0 else f"LoadControl {-other}"
+        raise ctx.error(f"{what} already drives {a['direction']} between these bodies; two "
+                        f"motions would fight over one coordinate", "direction")
     model.motions[a["id"]] = Motion(a["id"], a["i_marker_id"], a["j_marker_id"],
                                     a["direction"], a["val_type"], tree, text, a["label"])
     model._where[("motion", a["id"])] = ctx
@@ -56,19 +54,33 @@ def measure(motion):
     return ("call", name, [("num", float(i)) for i in ids], 0)
 
 
-def _measures(node, out=None):
-    """Names of the state-dependent functions an expression tree calls."""
+def clashes(model, bi, bj, direction, ground):
+    """The id of a motion already driving `direction` between bodies bi and bj (a body id 0
+    or one in `ground` stands for ground), or None."""
+    def side(b):
+        return 0 if b == 0 or (ground and b in ground) or model.bodies[b].kind == "ground" else b
+    pair = frozenset((side(bi), side(bj)))
+    for other in model.motions.values():
+        bodies = frozenset(side(model.markers[m].body) if m else 0 for m in (other.i, other.j))
+        if bodies == pair and other.direction == direction:
+            return other.id
+    return None
+
+
+def time_only(node, out=None):
+    """Names of the state-dependent functions an expression tree calls (empty: it depends on
+    time only)."""
     out = set() if out is None else out
     tag = node[0]
     if tag == "neg":
-        _measures(node[1], out)
+        time_only(node[1], out)
     elif tag == "bin":
-        _measures(node[2], out)
-        _measures(node[3], out)
+        time_only(node[2], out)
+        time_only(node[3], out)
     elif tag == "call":
         if node[1] in ex.ID_ARGS:
             out.add(node[1])
         else:
             for arg in node[2]:
-                _measures(arg, out)
+                time_only(arg, out)
     return out

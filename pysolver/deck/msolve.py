@@ -23,7 +23,7 @@ import threading
 _STATE = threading.local()
 
 __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "MOTION",
-           "VARIABLE",
+           "LOADCONTROL", "VARIABLE",
            "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM",
            "py_sysfnc", "py_sysary", "py_errmes"]
 
@@ -170,6 +170,16 @@ def MOTION(id, **kw):
     _emit("MOTION", "Motion_Marker",
           {"I": "i_marker_id", "J": "j_marker_id", "DIRECTION": "direction",
            "VAL_TYPE": "val_type", "FUNCTION": "expr", "LABEL": "label"}, id, **kw)
+
+
+def LOADCONTROL(id=None, **kw):
+    """The LoadControl task (seed 002): MATERIAL (the body's id), DIRECTION (1, 2, 3),
+    VELOCITY (starting), MAXVELOCITY, LOAD_FUNCTION (target load, an expression of time; `t`
+    reads as TIME), KP, KI (numbers or "auto"), SMOOTH, UPDATETIME, MEDIAN_WINDOW, LABEL.
+    Per-update records: res.controller(id)."""
+    names = ("VELOCITY", "MATERIAL", "DIRECTION", "MAXVELOCITY", "LOAD_FUNCTION", "KP", "KI",
+             "SMOOTH", "UPDATETIME", "MEDIAN_WINDOW", "LOAD", "LABEL")
+    _emit("LOADCONTROL", "LoadControl", {n: n.lower() for n in names}, id, **kw)
 
 
 def SENSOR(id, EVALUATE=None, **kw):

@@ -60,6 +60,14 @@ SCHEMA = {
                       "i_marker_id": ("id", REQ, None), "j_marker_id": ("id", REQ, None),
                       "direction": (("X", "Y", "Z", "B1", "B2", "B3"), REQ, None),
                       "val_type": (("D", "V", "A"), OPT, "D"), "expr": ("expr", REQ, None)},
+    # a <CustomTasks><Schedule name="LoadControl"> block (seed 002), its Parameters flattened
+    "LoadControl": {"id": ("id", OPT, None), "label": ("str", OPT, ""),
+                    "velocity": ("float", REQ, None), "material": ("id", REQ, None),
+                    "direction": (("1", "2", "3"), REQ, None),
+                    "maxvelocity": ("pos", OPT, 1000.0), "load_function": ("str", REQ, None),
+                    "kp": ("gain", OPT, 0.1), "ki": ("gain", OPT, 0.001),
+                    "smooth": ("float", OPT, 0.95), "updatetime": ("pos", REQ, None),
+                    "median_window": ("id", OPT, 1), "load": (("REACTION",), OPT, "REACTION")},
     "Reference_Variable": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
                            "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
                            "expr": ("expr", OPT, None), "initial_value": ("float", OPT, 0.0),
@@ -165,6 +173,10 @@ def convert(ctx, name, kind, raw):
         if val <= 0:
             raise ctx.error(f"got {val}; expected a positive integer", name)
         return val
+    if kind == "gain":               # a number, or AUTO (chosen by the controller)
+        if str(raw).strip().upper() == "AUTO":
+            return "auto"
+        kind = "float"
     if kind in ("float", "pos", "nonneg"):
         try:
             val = float(str(raw).strip().replace("d", "e").replace("D", "e")) \

@@ -26,6 +26,7 @@ from .bodies import add_bodies
 from .motions import add_motion
 from .references import check_references
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
+from .tasks import add_loadcontrol
 
 
 def build_model(elements, source):
@@ -185,6 +186,8 @@ def _force_like(model, ctx, a):
         model._where[("sforce", a["id"])] = ctx
     elif tag == "Motion_Marker":
         add_motion(model, ctx, a)
+    elif tag == "LoadControl":
+        add_loadcontrol(model, ctx, a)
     elif tag == "Reference_Variable":
         tree, text, sub = _expression(model, ctx, a)
         model.variables[a["id"]] = Variable(a["id"], tree, text, a["label"], sub)

@@ -28,7 +28,15 @@ def read_elements(text, file):
         low = tag.lower()
         if low == "model":
             model_seen = True
-            elements.extend(_element(e, file) for e in child if isinstance(e.tag, str))
+            for e in child:
+                if not isinstance(e.tag, str):
+                    continue
+                if etree.QName(e).localname.lower() == "customtasks":
+                    elements.extend(_tasks(e, file))
+                else:
+                    elements.append(_element(e, file))
+        elif low == "customtasks":
+            elements.extend(_tasks(child, file))
         elif low == "command":
             elements.extend(_element(e, file) for e in child if isinstance(e.tag, str))
         else:
@@ -37,6 +45,36 @@ def read_elements(text, file):
         raise DeckError("no <Model> element: model elements must be inside <Model>", file=file,
                         line=root.sourceline, element=etree.QName(root).localname)
     return elements
+
+
+def _tasks(block, file):
+    """<CustomTasks>: each <Schedule name="TASK"> as an element TASK whose attributes are its
+    <Parameter name="...">value</Parameter> children (seed 002's layout). A parameter whose
+    name holds its value after the first word (``Load_Function 10*t``) gives that value."""
+    out = []
+    for sched in block:
+        if not isinstance(sched.tag, str):
+            continue
+        if etree.QName(sched).localname.lower() != "schedule":
+            raise DeckError("<CustomTasks> holds <Schedule> elements", file=file,
+                            line=sched.sourceline, element=etree.QName(sched).localname)
+        task = (sched.get("name") or "").strip()
+        attrs, names = {}, {}
+        for par in sched:
+            if not isinstance(par.tag, str):
+                continue
+            if etree.QName(par).localname.lower() != "parameter" or not par.get("name"):
+                raise DeckError("a <Schedule> holds <Parameter name=\"...\"> elements",
+                                file=file, line=par.sourceline, element=task or "Schedule")
+            key, _, inline = par.get("name").strip().partition(" ")
+            low = key.lower()
+            if low in attrs:
+                raise DeckError("parameter given twice", file=file, line=par.sourceline,
+                                element=task, attribute=key)
+            attrs[low] = inline.strip() if inline.strip() else (par.text or "").strip()
+            names[low] = key
+        out.append((task or "Schedule", attrs, sched.sourceline, names))
+    return out
 
 
 def _element(el, file):

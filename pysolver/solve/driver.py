@@ -18,6 +18,7 @@ import numpy as np
 from ..build.kernel import UserFailure
 from . import integrator, quasistatic
 from .actors import Actor, Flow
+from .loadcontrol import LoadControlTask
 from .outputs import Printer, Progress
 from .sensors import Chatter, Sensors
 from .step import ROOT_RETURN, TOO_MUCH_WORK
@@ -44,7 +45,9 @@ class Run:
         self.printer = Printer(kernel, self.bar)
         self.sensors = Sensors(model, kernel, self.log)
         self.printer.watchers = [self.sensors]
-        self.actors = [self.sensors, self.printer]
+        self.controls = [LoadControlTask(kernel, model.controls[lid], k)
+                         for k, lid in enumerate(sorted(model.controls))]
+        self.actors = [self.sensors, *self.controls, self.printer]
         # each actor's slice of IDA's root flags, in the kernel's root order
         self.root_slices, off = [], 0
         for a in self.actors:

@@ -31,6 +31,23 @@ import dataclasses
 import math
 import statistics
 
+def auto_gains(smooth, update_time):
+    """Gains for ``Kp = auto`` / ``Ki = auto``: ``(kp, ki)`` in 1/time.
+
+    In the seed's law e is the load error divided by A_t, a displacement; with A_t equal to the
+    true stiffness the loop per update is x_{k+1} = x_k + dt V_k, whatever the stiffness, so the
+    gains depend only on the smoothing a and the update interval dt (a change in A_t enters only
+    through the estimate's own error). With k = (1 - sqrt(a)) / (1 + sqrt(a)), the proportional
+    gain at which the loop through e's smoothing is critically damped (a double pole at
+    sqrt(a)), Kp dt = 1.6 k and Ki dt = 0.02 k (1 - sqrt(a)): a step in the target overshoots by
+    less than 4 % and settles to 2 % within 6 / (1 - sqrt(a)) updates (a = 0.95: 237), for every
+    a in (0, 1); the small integral gain removes the lag of a ramp slowly
+    (tests/test_loadlaw.py checks both on the closed loop).
+    """
+    k = (1.0 - math.sqrt(smooth)) / (1.0 + math.sqrt(smooth))
+    return 1.6 * k / update_time, 0.02 * k * (1.0 - math.sqrt(smooth)) / update_time
+
+
 #: What :meth:`LoadLaw.update` logs per update, in this order.
 FIELDS = ("time", "target", "measured", "filtered", "displacement", "A", "e", "Ie", "De",
           "velocity", "clamped")

@@ -48,4 +48,5 @@ def run_model(model, progress=None, overrides=None, actors=()):
                   outputs=pr.outs.array(len(kernel.channels)), channels=kernel.channels,
                   state_names=kernel.layout.names, success=success, status=status,
                   message=message, stats=stats, timing=timing, meta=meta, labels=labels,
-                  events=run.events, log=run.log, statics=run.statics)
+                  events=run.events, log=run.log, statics=run.statics,
+                  controllers={task.lc.id: task.records() for task in run.controls})
