@@ -31,6 +31,7 @@ import dataclasses
 import math
 import statistics
 
+
 def auto_gains(smooth, update_time):
     """Gains for ``Kp = auto`` / ``Ki = auto``: ``(kp, ki)`` in 1/time.
 
