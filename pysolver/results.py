@@ -164,6 +164,9 @@ class Result:
 
     def save(self, path: str | os.PathLike) -> str:
         """Write the results: ``.csv`` (time and request channels) or ``.npz`` (everything).
+        With LoadControl tasks a ``.csv`` has a sibling ``<stem>_controller<id>.csv`` per task
+        (one row per update, the fields of :meth:`controller`); a ``.npz`` holds them as
+        ``controller<id>_<field>``.
 
         Returns
         -------
@@ -173,6 +176,8 @@ class Result:
         path = os.fspath(path)
         if path.lower().endswith(".npz"):
             extra = {f"request_{rid}": self._requests[rid] for rid in self.request_ids}
+            extra.update({f"controller{lid}_{name}": col
+                          for lid, rec in self._controllers.items() for name, col in rec.items()})
             np.savez(path, t=self.t, y=self.y, yp=self.yp, state_names=np.array(self.state_names),
                      success=self.success, message=self.message, t_events=self.t_events,
                      i_events=self.i_events, **extra)
@@ -183,6 +188,12 @@ class Result:
                 w.writerow(names)
                 for row in data:
                     w.writerow([repr(float(v)) for v in row])
+            for lid, rec in self._controllers.items():
+                with open(f"{path[:-4]}_controller{lid}.csv", "w", newline="") as fh:
+                    w = csv.writer(fh)
+                    w.writerow(list(rec))
+                    for row in zip(*rec.values()):
+                        w.writerow([repr(float(v)) for v in row])
         else:
             raise ValueError(f"unknown result format for {path!r}: use .csv or .npz")
         return path
@@ -213,9 +224,21 @@ class Result:
             matplotlib.use("Agg", force=False)
         import matplotlib.pyplot as plt
         ids = self.request_ids or [None]
-        fig, axes = plt.subplots(len(ids), 1, figsize=(8, 2.6 * len(ids)), sharex=True,
+        ctrl = list(self._controllers)
+        fig, axes = plt.subplots(len(ids) + len(ctrl), 1,
+                                 figsize=(8, 2.6 * (len(ids) + len(ctrl))), sharex=True,
                                  squeeze=False)
-        for ax, rid in zip(axes[:, 0], ids):
+        for ax, lid in zip(axes[len(ids):, 0], ctrl):
+            rec = self._controllers[lid]
+            ax.plot(rec["time"], rec["target"], "k--", label="target load")
+            ax.plot(rec["time"], rec["measured"], label="measured load")
+            ax.set_title(f"LoadControl {lid}", fontsize=9)
+            ax.legend(fontsize=7, loc="upper left")
+            ax.grid(True, alpha=0.3)
+            vel = ax.twinx()
+            vel.plot(rec["time"], rec["velocity"], color="tab:red", lw=0.8, label="velocity")
+            vel.legend(fontsize=7, loc="lower right")
+        for ax, rid in zip(axes[:len(ids), 0], ids):
             if rid is None:
                 for j, name in enumerate(self.state_names[:8]):
                     ax.plot(self.t, self.y[:, j], label=name)
