@@ -111,3 +111,22 @@ def test_clamp_keeps_the_integral():
 def test_bad_parameters(kw, match):
     with pytest.raises(ValueError, match=match):
         LoadLaw(LawParams(velocity=1.0, **kw))
+
+
+@pytest.mark.parametrize("a", [0.5, 0.8, 0.95])
+def test_auto_gains_step_response(a):
+    """auto_gains' promise on the closed loop (exact spring, from rest): a step in the target
+    overshoots by less than 2 % and settles to 2 % within 3 / (1 - sqrt(a)) updates."""
+    from pysolver.solve.loadlaw import auto_gains
+    dt, k, target = 1e-2, -50.0, 10.0
+    kp, ki = auto_gains(a, dt)
+    law = LoadLaw(LawParams(velocity=-1e-4, kp=kp, ki=ki, smooth=a))
+    x, loads = 0.0, []
+    for i in range(int(30 / (1 - math.sqrt(a)))):
+        load = k * x
+        loads.append(load)
+        x += law.update(i * dt, x, load, target if i >= 1 else 0.0) * dt
+    loads = np.array(loads)
+    assert loads.max() < target * 1.02
+    outside = np.nonzero(np.abs(loads - target) > 0.02 * target)[0]
+    assert outside[-1] + 1 <= 3 / (1 - math.sqrt(a))

@@ -40,13 +40,15 @@ def auto_gains(smooth, update_time):
     gains depend only on the smoothing a and the update interval dt (a change in A_t enters only
     through the estimate's own error). With k = (1 - sqrt(a)) / (1 + sqrt(a)), the proportional
     gain at which the loop through e's smoothing is critically damped (a double pole at
-    sqrt(a)), Kp dt = 1.6 k and Ki dt = 0.02 k (1 - sqrt(a)): a step in the target overshoots by
-    less than 4 % and settles to 2 % within 6 / (1 - sqrt(a)) updates (a = 0.95: 237), for every
-    a in (0, 1); the small integral gain removes the lag of a ramp slowly
-    (tests/test_loadlaw.py checks both on the closed loop).
+    sqrt(a)), Kp dt = 1.6 k: a step in the target then overshoots by less than 2 % and settles
+    to 2 % within 3 / (1 - sqrt(a)) updates (a = 0.95: 119), for every a in (0, 1). Ki = 0: the
+    body's position integrates its velocity, so proportional action alone removes the error of
+    a constant target; an integral term would only shorten a ramp's lag (about
+    target rate x dt / (Kp dt) per update behind), at the price of overshoot and a slow tail
+    once the ramp ends (tests/test_loadlaw.py checks the step on the closed loop).
     """
     k = (1.0 - math.sqrt(smooth)) / (1.0 + math.sqrt(smooth))
-    return 1.6 * k / update_time, 0.02 * k * (1.0 - math.sqrt(smooth)) / update_time
+    return 1.6 * k / update_time, 0.0
 
 
 #: What :meth:`LoadLaw.update` logs per update, in this order.

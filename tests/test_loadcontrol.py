@@ -1,0 +1,113 @@
+"""The LoadControl task (seed 002) in a run: the load follows the target on a linear floor
+(A_t exactly its stiffness) and on a Hertz-like contact (A_t the secant), the velocity changes
+only at updates without spikes in the load, the Python statement equals the XML block, and bad
+parameters are DeckErrors that say where."""
+import numpy as np
+import pytest
+
+import pysolver
+
+from helpers import DECKS
+
+
+def _run(name):
+    res = pysolver.load(DECKS / name).run()
+    assert res.success, res.message
+    return res, res.controller(1)
+
+
+def test_linear_floor_A_is_the_stiffness_and_the_load_settles():
+    """The floor is 100 N/mm: A_t = -100 N/mm (load positive, displacement negative) from the
+    first loaded update; the step to 40 N at t = 2 s keeps auto_gains' promise (overshoot
+    below 2 % of the step, within 2 % after 3 / (1 - sqrt(0.8)) = 28 updates); the body's
+    velocity between updates is the one the controller set, and the recorded load is the floor
+    force at every update (no spike)."""
+    res, c = _run("loadcontrol_indenter.xml")
+    loaded = ~np.isnan(c["A"])
+    np.testing.assert_allclose(c["A"][loaded], -100.0, rtol=1e-6)
+    t, load = c["time"], c["measured"]
+    step = t >= 2.0
+    assert load[step].max() <= 40.0 + 0.02 * 20.0
+    outside = np.nonzero(np.abs(load[step] - 40.0) > 0.02 * 20.0)[0]
+    assert outside[-1] + 1 <= 3 / (1 - np.sqrt(0.8))
+    # the floor's push (-PFORCE: g = -DZ) in the output rows at the update times is the load
+    rows = np.searchsorted(res.t, t)
+    np.testing.assert_allclose(-res.request(1)[rows, 1], load, rtol=1e-9, atol=1e-9)
+    # between updates the velocity is the controller's (vz = dz/dt of the rows)
+    vz = res.y[1:, res.state_names.index("body2.vz")]
+    np.testing.assert_allclose(vz[1:], c["velocity"][:len(vz) - 1], rtol=1e-9, atol=1e-12)
+
+
+def test_hertz_contact_A_is_the_secant_and_auto_gains_settle():
+    """On a floor pushing 100 (-z)^1.5 N the ratio A_t follows the secant -100 |z|^0.5 as the
+    depth changes (within 1 % at the end), and with the gains chosen by the controller the load
+    settles on the 40 N step (within 2 % of it by t = 2.5 s, and stays there)."""
+    res, c = _run("loadcontrol_hertz.xml")
+    z = c["displacement"][-1]
+    assert abs(c["A"][-1] - (-100.0 * np.sqrt(-z))) <= 0.01 * 100.0 * np.sqrt(-z)
+    t, load = c["time"], c["measured"]
+    assert np.abs(load[t >= 2.5] - 40.0).max() <= 0.02 * 20.0
+
+
+def test_python_statement_equals_the_xml_block():
+    text = (DECKS / "loadcontrol_indenter.xml").read_text()
+    py = '''from pysolver.msolve import *
+UNITS(MASS="KILOGRAM", LENGTH="MILLIMETER", TIME="SECOND", FORCE="NEWTON")
+PART(1, GROUND=True)
+MARKER(1, PART=1)
+MARKER(10, PART=2, QP=[0, 0, 0])
+POINT_MASS(2, MASS=0.01, CM=10)
+PFORCE(1, FUNCTION="-DZ(10)", PENALTY=100, UNILATERAL=True, SMOOTHING_FACTOR=1e-4)
+REQUEST(1, F1="DZ(10)", F2="PFORCE(1)")
+LOADCONTROL(1, VELOCITY=-0.1, MATERIAL=2, DIRECTION=3, MAXVELOCITY=10,
+            LOAD_FUNCTION="IF(t-1: 20*t, 20, IF(t-2: 20, 40, 40))", KP="auto", KI="auto",
+            SMOOTH=0.8, UPDATETIME=0.01)
+INTEGRATOR(ERROR=1e-8)
+SIMULATE(TYPE="TRANSIENT", END=3.0, DTOUT=0.01)
+'''
+    a = pysolver.loads(text).run().controller(1)
+    b = pysolver.loads(py, fmt="py").run().controller(1)
+    for name in a:
+        np.testing.assert_array_equal(a[name], b[name], err_msg=name)
+
+
+def _with(param, value):
+    """The linear-floor deck with one parameter replaced (None: removed)."""
+    text = (DECKS / "loadcontrol_indenter.xml").read_text()
+    lines = text.splitlines(keepends=True)
+    out = []
+    for line in lines:
+        if f'<Parameter name="{param}' in line:
+            if value is not None:
+                out.append(f'        <Parameter name="{param}">{value}</Parameter>\n')
+            continue
+        out.append(line)
+    return "".join(out)
+
+
+@pytest.mark.parametrize("text,attribute,match", [
+    (_with("material", 7), "material", "material 7 is not a moving"),
+    (_with("material", 1), "material", "material 1 is not a moving"),
+    (_with("direction", 4), "direction", "expected one of 1, 2, 3"),
+    (_with("smooth", 1.0), "smooth", "expected 0 < smooth < 1"),
+    (_with("UpdateTime", 0), "UpdateTime", "expected a value > 0"),
+    (_with("MaxVelocity", -1), "MaxVelocity", "expected a value > 0"),
+    (_with("Kp", "fast"), "Kp", "expected a real number"),
+    (_with("UpdateTime", None), "updatetime", "missing required"),
+    ((DECKS / "loadcontrol_indenter.xml").read_text().replace(
+        "Load_Function IF(t-1: 20*t, 20, IF(t-2: 20, 40, 40))", "Load_Function 20*t+"),
+     "Load_Function", "bad Load_Function"),
+    ((DECKS / "loadcontrol_indenter.xml").read_text().replace(
+        "Load_Function IF(t-1: 20*t, 20, IF(t-2: 20, 40, 40))", "Load_Function 20*DZ(10)"),
+     "Load_Function", "must depend on time only; it reads DZ"),
+    ((DECKS / "loadcontrol_indenter.xml").read_text().replace(
+        "<Post_Request", '<Motion_Marker id="1" i_marker_id="10" j_marker_id="1" '
+        'direction="Z" val_type="V" expr="-1"/>\n    <Post_Request'),
+     "material", "Motion_Marker 1 already drives body 2 along Z"),
+    ((DECKS / "loadcontrol_indenter.xml").read_text().replace(
+        'name="LoadControl"', 'name="LoadKontrol"'), None, "unknown element <LoadKontrol>"),
+])
+def test_bad_parameters(text, attribute, match):
+    with pytest.raises(pysolver.DeckError, match=match) as info:
+        pysolver.loads(text)
+    assert info.value.attribute == attribute and info.value.line is not None
