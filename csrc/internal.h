@@ -30,7 +30,6 @@ typedef struct psuHD {
 
 /* Scratch hyper-duals in psData.tmp: the tape uses [0, PS_TMP_TAPE), force assembly the rest. */
 #define PS_TMP_TAPE 64
-#define PS_TMP_TOTAL 96
 
 /* hd.c: hyper-dual arithmetic. Every output may alias an input. */
 int psu_hd_size(int n, int nh, int order);

@@ -23,6 +23,8 @@
 #define F_SC 89
 #define F_Q 91
 #define F_CI 92
+#define F_PT 93
+#define F_FV 96
 
 /* Where derivatives go: a dense row-major matrix, or a list of (row, col, value) triplets
  * whose order depends only on the model's structure (used for sparse CSC matrices). */
@@ -125,10 +127,12 @@ static void inertia_rows(const psModel* m, double t, const double* y, const doub
   }
 }
 
-/* Generalized forces of a global force F at a marker and a global moment M on its body. */
-static void apply_load(const psModel* m, psData* d, const psuHD* c, int tape, int mk, int slot,
-                       const double* F, const double* Mo, double sign, Assembly* as) {
-  if (slot < 0 || m->marker_body[mk] < 0) return;
+/* Generalized forces on the body in tape slot `slot` of a global force F at the global point P
+ * (hyper-duals; F, P or Mo may be NULL) and a global moment Mo. */
+static void apply_at(const psModel* m, psData* d, const psuHD* c, int tape, int slot,
+                     const double* P, const double* F, const double* Mo, double sign,
+                     Assembly* as) {
+  if (slot < 0) return;
   int s = c->stride;
   int b = m->tbody_body[m->tape_body_adr[tape] + slot];
   int ua = m->body_uadr[b];
@@ -146,8 +150,7 @@ static void apply_load(const psModel* m, psData* d, const psuHD* c, int tape, in
   if (F) {
     double* p = ps_tmp(m, d, F_P);
     const double* r = ps_bc(m, d, slot, PS_BC_R);
-    ps_marker_pos(m, d, c, mk, slot, p);
-    for (int i = 0; i < 3; i++) psu_hd_lin(c, p + i * s, 1.0, p + i * s, -1.0, r + i * s, 0.0);
+    for (int i = 0; i < 3; i++) psu_hd_lin(c, p + i * s, 1.0, P + i * s, -1.0, r + i * s, 0.0);
     psu_hd_cross(c, mom, p, F, sc);
   } else {
     for (int i = 0; i < 3; i++) psu_hd_const(c, mom + i * s, 0.0);
@@ -164,6 +167,16 @@ static void apply_load(const psModel* m, psData* d, const psuHD* c, int tape, in
     psu_hd_lin(c, Q, sign, Q, 0.0, NULL, 0.0);
     scatter(m, c, tape, ua + 3 + k, Q, as);
   }
+}
+
+/* Generalized forces of a global force F at a marker and a global moment M on its body. */
+static void apply_load(const psModel* m, psData* d, const psuHD* c, int tape, int mk, int slot,
+                       const double* F, const double* Mo, double sign, Assembly* as) {
+  if (slot < 0 || m->marker_body[mk] < 0) return;
+  double* P = ps_tmp(m, d, F_PT);
+  if (F && m->body_type[m->tbody_body[m->tape_body_adr[tape] + slot]] == PS_BODY_RIGID)
+    ps_marker_pos(m, d, c, mk, slot, P);
+  apply_at(m, d, c, tape, slot, P, F, Mo, sign, as);
 }
 
 /* Force_Penalty: Q_i = F * d(g')/du_i with F = -p g - p1 g' (smoothed when unilateral). */
@@ -251,6 +264,34 @@ static int check_finite(psData* d, const double* v, int n, const char* what) {
   return PS_OK;
 }
 
+/* Force_Vector_TwoBody: F = X f with X the reference marker's axes, on I's body at I and
+ * opposite on J's body at the same point. */
+static void vector_forces(const psModel* m, psData* d, double t, const double* y,
+                          const double* yp, Assembly* as) {
+  for (int k = 0; k < m->nvf; k++) {
+    int tape = m->vf_tape[k];
+    ps_tape_run(m, d, tape, as->deriv + m->tape_order[tape], !as->deriv, t, y, yp);
+    psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], as->deriv, m->hd_stride};
+    int s = c.stride;
+    double* X = ps_tmp(m, d, F_RI);   /* 9 numbers: F_RI .. F_RI + 8 */
+    double* F = ps_tmp(m, d, F_FV);
+    double* sc = ps_tmp(m, d, F_SC);
+    ps_marker_axes(m, d, &c, m->vf_r[k], m->vf_sr[k], X);
+    for (int i = 0; i < 3; i++) {
+      psu_hd_const(&c, F + i * s, 0.0);
+      for (int j = 0; j < 3; j++) {
+        psu_hd_mul(&c, sc, X + (3 * i + j) * s, ps_slot(m, d, m->vf_f[3 * k + j]));
+        psu_hd_lin(&c, F + i * s, 1.0, F + i * s, 1.0, sc, 0.0);
+      }
+    }
+    int mi = m->vf_i[k], si = m->vf_si[k];
+    double* P = ps_tmp(m, d, F_PT);
+    ps_marker_pos(m, d, &c, mi, si, P);
+    apply_at(m, d, &c, tape, m->marker_body[mi] < 0 ? -1 : si, P, F, NULL, 1.0, as);
+    apply_at(m, d, &c, tape, m->vf_sj[k], P, F, NULL, -1.0, as);
+  }
+}
+
 /* Motion_Marker k: its reaction lam (a state, model force units) acts like a penalty force
  * F = lam, Q_i = lam c_i with c_i = d(g')/du_i; its own row holds g' to the target rate: 0 for
  * a displacement (g includes the expression), the expression for a velocity, and for an
@@ -307,6 +348,7 @@ static int assemble(const psModel* m, psData* d, double t, const double* y, cons
   inertia_rows(m, t, y, yp, as);
   penalty_forces(m, d, t, y, yp, as);
   scalar_forces(m, d, t, y, yp, as);
+  vector_forces(m, d, t, y, yp, as);
   motion_rows(m, d, t, y, yp, as);
   return PS_OK;
 }

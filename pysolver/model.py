@@ -93,6 +93,20 @@ class ScalarForce:
 
 
 @dataclasses.dataclass
+class VectorForce:
+    """Force_Vector_TwoBody: a force with components exprs (x, y, z of marker `ref`; None or 0:
+    global axes) on I's body at I, and its opposite on J's body at the same point (J is the
+    floating marker: only its body matters)."""
+    id: int
+    i: int
+    j: int
+    ref: int
+    exprs: list
+    texts: list
+    label: str = ""
+
+
+@dataclasses.dataclass
 class Motion:
     """Motion_Marker: the displacement (D), velocity (V) or acceleration (A) of marker I
     relative to J along one axis of J (X, Y, Z: DX/DY/DZ(I, J, J)) or about it (B1, B2, B3:
@@ -244,6 +258,7 @@ class Model:
         self.bodies = {}
         self.penalties = {}
         self.sforces = {}
+        self.vforces = {}
         self.motions = {}
         self.controls = {}        # LoadControl tasks by id
         self.variables = {}
@@ -313,6 +328,9 @@ class Model:
         for s in self.sforces.values():
             lines.append(f"Force_Scalar_TwoBody {s.id} ({'torque' if s.torque else 'force'} "
                          f"I={s.i} J={s.j}): {s.text}")
+        for vf in self.vforces.values():
+            lines.append(f"Force_Vector_TwoBody {vf.id} (I={vf.i} J={vf.j} in "
+                         f"{vf.ref or 'global'}): ({', '.join(vf.texts)})")
         for lc in self.controls.values():
             lines.append(f"LoadControl {lc.id}: body {lc.body} along {'xyz'[lc.direction]}, "
                          f"load {lc.load_text}, every {lc.update_time:g}")

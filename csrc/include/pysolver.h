@@ -29,6 +29,7 @@ extern "C" {
 
 /* Width of one tape instruction in ints: op followed by 9 operands a0..a8. */
 #define PS_INSTR_WIDTH 10
+#define PS_TMP_TOTAL 100   /* scratch hyper-duals in psData.tmp */
 
 /* Tape opcodes. Operands a0..a8 follow the op; "slot" means an earlier instruction's result. */
 enum psOp {
@@ -158,6 +159,17 @@ typedef struct psModel {
   int* sf_i;              /* (nsf x 1) I marker                                 */
   int* sf_j;              /* (nsf x 1) J marker                                 */
 
+  /* Force_Vector_TwoBody: components (slots) in the axes of marker r, applied at marker I on
+   * its body and opposite on J's body at the same point */
+  int nvf;                /* number of vector forces                            */
+  int* vf_tape;           /* (nvf x 1)                                          */
+  int* vf_f;              /* (nvf x 3) slots of the x, y, z components          */
+  int* vf_i;              /* (nvf x 1) I marker                                 */
+  int* vf_si;             /* (nvf x 1) body slot of I in the tape (-1 ground)   */
+  int* vf_sj;             /* (nvf x 1) body slot of J's body (-1 ground)        */
+  int* vf_r;              /* (nvf x 1) reference marker (-1: global axes)       */
+  int* vf_sr;             /* (nvf x 1) its body slot (-1 ground)                */
+
   /* Motion_Marker: a reaction lam (an algebraic state, model force units) applied like a
    * penalty force F = lam, and a residual row holding the driven measure's rate g' to its
    * target (residual.c, motion_rows) */
@@ -202,7 +214,7 @@ typedef struct psModel {
 typedef struct psData {
   double* slots;          /* (max_slots x hd_stride) tape registers             */
   double* bcache;         /* (max_bslots x 32 x hd_stride) body kinematics      */
-  double* tmp;            /* (96 x hd_stride) scratch numbers                   */
+  double* tmp;            /* (PS_TMP_TOTAL x hd_stride) scratch numbers         */
   double* res;            /* (2 ny x 1) residual scratch for the Jacobian        */
   double* trip;           /* (ntrip x 1) Jacobian triplet values (sparse mode)  */
   long nres;              /* residual evaluations                               */

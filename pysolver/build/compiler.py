@@ -392,13 +392,22 @@ class Compiler:
             self.marker(t, sf.j)
             f = self.lower(t, sf.expr)
             self.sf.append((ti, f, int(sf.torque), self.midx[sf.i], self.midx[sf.j]))
+        self.vf = []
+        for vid in sorted(model.vforces):
+            vf = model.vforces[vid]
+            ti, t = self.new_tape()
+            mi, si = self.marker(t, vf.i)
+            _, sj = self.marker(t, vf.j)
+            mr, sr = self.marker(t, vf.ref)
+            self.vf.append((ti, [self.lower(t, e) for e in vf.exprs], mi, si, sj, mr, sr))
         self.mot = []
         for k, mid in enumerate(self.layout.motion_ids):
             ti, t = self.new_tape()
             self.mot.append((ti, *self.motion(t, model.motions[mid]), self.layout.lam[k],
                              self.layout.rate[k]))
         # forces that read SENVAL need a restart with consistent yp when a value is stored
-        self.forces_use_senval = any(self.tapes[t].uses_senval for t, *_ in self.pen + self.sf)
+        self.forces_use_senval = any(self.tapes[t].uses_senval
+                                     for t, *_ in self.pen + self.sf + self.vf)
         self.sensor = []
         cmp = {"GE": lib.PS_CMP_GE, "LT": lib.PS_CMP_LT, "EQ": lib.PS_CMP_EQ}
         for sid in sorted(model.sensors):
@@ -506,6 +515,10 @@ class Compiler:
             sf_tape=i32([s[0] for s in self.sf]), sf_f=i32([s[1] for s in self.sf]),
             sf_torque=i32([s[2] for s in self.sf]), sf_i=i32([s[3] for s in self.sf]),
             sf_j=i32([s[4] for s in self.sf]),
+            nvf=len(self.vf), vf_tape=i32([v[0] for v in self.vf]),
+            vf_f=i32([f for v in self.vf for f in v[1]]), vf_i=i32([v[2] for v in self.vf]),
+            vf_si=i32([v[3] for v in self.vf]), vf_sj=i32([v[4] for v in self.vf]),
+            vf_r=i32([v[5] for v in self.vf]), vf_sr=i32([v[6] for v in self.vf]),
             nmotion=len(self.mot), mot_tape=i32([x[0] for x in self.mot]),
             mot_g=i32([x[1] for x in self.mot]), mot_gd=i32([x[2] for x in self.mot]),
             mot_f=i32([x[3] for x in self.mot]), mot_kind=i32([x[4] for x in self.mot]),

@@ -9,7 +9,7 @@ from .compiler import Compiler
 from .consistent import consistent, reactions
 
 _INT_FIELDS = ("ny", "nbody", "nmarker", "ntape", "npen", "nsf", "nout", "hd_stride",
-               "max_slots", "max_bslots", "nsensor", "nuser", "nusercache", "nmotion")
+               "max_slots", "max_bslots", "nsensor", "nuser", "nusercache", "nmotion", "nvf")
 
 
 class UserFailure(Exception):
@@ -78,7 +78,7 @@ class Kernel:
         self._work = {
             "slots": np.zeros(arrays["max_slots"] * stride),
             "bcache": np.zeros(arrays["max_bslots"] * 32 * stride),
-            "tmp": np.zeros(96 * stride),
+            "tmp": np.zeros(lib.PS_TMP_TOTAL * stride),
             "res": np.zeros(max(2 * self.ny, 1)),
             "trip": np.zeros(1),
             # stored Sensor_Evaluate values, then each LoadControl's velocity

@@ -22,7 +22,8 @@ import threading
 
 _STATE = threading.local()
 
-__all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "MOTION",
+__all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "VFORCE",
+           "MOTION",
            "LOADCONTROL", "VARIABLE",
            "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM",
            "py_sysfnc", "py_sysary", "py_errmes"]
@@ -161,6 +162,16 @@ def SFORCE(id, I=None, J=None, TRANSLATION=False, ROTATION=False, **kw):  # noqa
     _emit("SFORCE", "Force_Scalar_TwoBody",
           {"I": "i_marker_id", "J": "j_marker_id", "FUNCTION": "expr", "LABEL": "label",
            **_USERSUB}, id, I=I, J=J, **kw)
+
+
+def VFORCE(id, **kw):
+    """Vector force (Force_Vector_TwoBody): I (where it acts), JFLOAT (the body taking the
+    reaction, at the same point), RM (the marker whose axes resolve FX, FY, FZ; global if
+    omitted), FX, FY, FZ, LABEL."""
+    _emit("VFORCE", "Force_Vector_TwoBody",
+          {"I": "i_marker_id", "JFLOAT": "j_floating_marker_id", "RM": "ref_marker_id",
+           "FX": "fx_expression", "FY": "fy_expression", "FZ": "fz_expression",
+           "LABEL": "label"}, id, **kw)
 
 
 def MOTION(id, **kw):

@@ -45,6 +45,9 @@ def _expressions(model):
         for el in table.values():
             if el.expr is not None:
                 yield (kind, el.id), el.usersub.attribute if el.usersub else "expr", el.expr
+    for vf in model.vforces.values():
+        for c, e in zip("xyz", vf.exprs):
+            yield ("vforce", vf.id), f"f{c}_expression", e
     for r in model.requests.values():
         for k, e in enumerate(r.exprs):
             if e is not None:

@@ -55,6 +55,12 @@ SCHEMA = {
                              "i_marker_id": ("id", REQ, None), "j_marker_id": ("id", REQ, None),
                              "expr": ("expr", OPT, None), "val_expression": ("expr", OPT, None),
                              "val": ("float", OPT, None), **_USERSUB},
+    "Force_Vector_TwoBody": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                             "type": (("FORCEONLY",), OPT, "FORCEONLY"),
+                             "i_marker_id": ("id", REQ, None),
+                             "j_floating_marker_id": ("id", REQ, None),
+                             "ref_marker_id": ("id", OPT, None),
+                             **{f"f{c}_expression": ("expr?", OPT, None) for c in "xyz"}},
     "Motion_Marker": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
                       "type": (("EXPRESSION",), OPT, "EXPRESSION"),
                       "i_marker_id": ("id", REQ, None), "j_marker_id": ("id", REQ, None),
@@ -115,7 +121,7 @@ COMMANDS = ("Simulate", "Stop")
 CANONICAL = {name.lower(): name for name in SCHEMA}
 _ID_KIND = {"Reference_Marker": "marker", "Body_Rigid": "body", "Body_Point": "body",
             "Force_Penalty": "penalty", "Force_Scalar_TwoBody": "sforce",
-            "Motion_Marker": "motion",
+            "Motion_Marker": "motion", "Force_Vector_TwoBody": "vforce",
             "Reference_Variable": "variable", "Post_Request": "request",
             "Sensor_Event": "sensor", "Sensor_Evaluate": "evaluate"}
 

@@ -18,6 +18,7 @@ from ..model import (
     Simulate,
     Static,
     Variable,
+    VectorForce,
 )
 from ..options import DECK_NAMES, Options
 from . import units as un
@@ -184,6 +185,16 @@ def _force_like(model, ctx, a):
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
                                              a["j_marker_id"], tree, text, a["label"], sub)
         model._where[("sforce", a["id"])] = ctx
+    elif tag == "Force_Vector_TwoBody":
+        for key in ("i_marker_id", "j_floating_marker_id", "ref_marker_id"):
+            if a[key] is not None and a[key] not in model.markers:
+                raise ctx.error(f"marker {a[key]} does not exist", key)
+        comps = [a[f"f{c}_expression"] for c in "xyz"]
+        model.vforces[a["id"]] = VectorForce(
+            a["id"], a["i_marker_id"], a["j_floating_marker_id"], a["ref_marker_id"] or 0,
+            [e[0] if e else ("num", 0.0) for e in comps], [e[1] if e else "0" for e in comps],
+            a["label"])
+        model._where[("vforce", a["id"])] = ctx
     elif tag == "Motion_Marker":
         add_motion(model, ctx, a)
     elif tag == "LoadControl":
