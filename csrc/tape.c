@@ -378,6 +378,11 @@ void ps_tape_run(const psModel* m, psData* d, int tape, int order, int values_on
       case PS_OP_GDOT: gdot(m, d, &c, tape, ps_slot(m, d, a[0]), out); break;
       case PS_OP_SENVAL: psu_hd_const(&c, out, d->senval[a[0]]); break;
       case PS_OP_USER: ps_user_call(m, d, &c, out, a, t); break;
+      case PS_OP_STATE: {
+        int pos = m->tape_nbasis[tape] - m->tape_nstate[tape] + a[1];
+        psu_hd_var(&c, out, y[a[0]], pos < c.n ? pos : -1);
+        break;
+      }
       case PS_OP_STEPC: step_const(&c, out, ps_slot(m, d, a[0]), m->consts + 0, a); break;
       case PS_OP_AXDOT: {
         double* X1 = ps_tmp(m, d, T_X);

@@ -148,3 +148,34 @@ def test_bad_motions(text, attribute, match):
     with pytest.raises(pysolver.DeckError, match=match) as info:
         pysolver.loads(text, fmt="py")
     assert info.value.attribute == attribute and info.value.line is not None
+
+
+def test_motion_measure_in_requests_and_forces():
+    """MOTION(1) is the reaction, MOTION(1, 0, 2, 0) its x component on I, MOTION(1, 1, 2, 0)
+    the opposite on J; a force reading it (a lateral push 0.1 MOTION(1), like friction from a
+    normal force) gives y = 0.1 k v t^3 / (6 m) exactly; the Jacobian's reaction column is
+    right (central differences)."""
+    extra = SPRING + 'VFORCE(2, I=10, JFLOAT=1, FY="0.1*MOTION(1)")\n'
+    text = deck(POINT, motion("X", "V", "0.5"), extra).replace(
+        'F7="VX(10,1,1)")', 'F7="VX(10,1,1)", F8="MOTION(1)")')
+    text += 'REQUEST(2, F1="MOTION(1, 0, 2, 0)", F2="MOTION(1, 1, 2, 0)", F3="MOTION(1, 0, 1, 0)",'
+    text += ' F4="MOTION(1, 1, 8, 0)", F5="MOTION(1, 0, 6, 0)")\n'
+    res = run(text)
+    t = res.t
+    np.testing.assert_allclose(res.request(1)[:, 7], res.motion(1), rtol=1e-12, atol=1e-12)
+    r2 = res.request(2)
+    np.testing.assert_allclose(r2[:, 0], 1000.0 * 0.5 * t, rtol=1e-8, atol=1e-12)
+    np.testing.assert_allclose(r2[:, 1], -r2[:, 0], rtol=0, atol=0)
+    np.testing.assert_allclose(r2[:, 2], np.abs(r2[:, 0]), rtol=0, atol=0)
+    # torque on J (ground, at the origin) of the opposite force at I = (x, y, 0): about z
+    y = res.request(1)[:, 1]
+    np.testing.assert_allclose(r2[:, 3], y * r2[:, 0], rtol=1e-9, atol=1e-12)
+    assert np.all(r2[:, 4] == 0.0)
+    np.testing.assert_allclose(y, 0.1 * 1000.0 * 0.5 * t ** 3 / (6 * 2.0), rtol=0, atol=1e-9)
+    k = pysolver.loads(text, fmt="py")._kernel()
+    rng = np.random.default_rng(2)
+    y0, yp0 = rng.normal(size=k.ny), rng.normal(size=k.ny)
+    J = k.jacobian_array(0.3, y0, yp0, 5.0)
+    fd = fd_iteration_matrix(k, 0.3, y0, yp0, 5.0)
+    assert np.abs(J - fd).max() <= 1e-6 * np.abs(fd).max()
+    assert J[k.layout.uadr[0] + 1, k.layout.lam[0]] == -0.1     # the push's reaction column

@@ -57,6 +57,8 @@ enum psOp {
   PS_OP_USER,        /* a user subroutine: routine a0, called with the values of the slots
                         user_in[a1 .. a1+a2-1] as the system values it declared; result channel a3
                         (REQSUB: 0..7, others 0); a4 its entry in d->user_cache */
+  PS_OP_STATE,       /* the state entry y[a0] (a motion's reaction), the tape's a1-th extra
+                        basis entry (the last tape_nstate entries of its basis) */
   PS_OP_COUNT
 };
 
@@ -136,6 +138,8 @@ typedef struct psModel {
   int* tape_body_adr;     /* (ntape x 1) first body slot in tbody_*             */
   int* tape_nbody;        /* (ntape x 1) number of bodies the tape touches      */
   int* tape_order;        /* (ntape x 1) least derivative order it must run at  */
+  int* tape_nstate;       /* (ntape x 1) extra state entries (PS_OP_STATE) at the
+                             end of its basis                                   */
   int* code;              /* (ncode x PS_INSTR_WIDTH) instructions              */
   double* consts;         /* (nconst x 1)                                       */
   int* basis_kind;        /* (nbasis x 1) PS_BASIS_*                            */

@@ -97,6 +97,7 @@ class _Tape:
         self.touch = []           # stack of sets of body slots touched
         self.has_gdot = False
         self.uses_senval = False
+        self.states = []          # y entries read with their derivative (PS_OP_STATE)
 
     def body_slot(self, bidx, need_u=False, need_a=False):
         if bidx not in self.slot_of:
@@ -226,6 +227,8 @@ class Compiler:
             return self.penalty_force(tape, int(args[0][1]))[1]
         if name == "SFORCE":
             return self.sforce_measure(tape, *(int(a[1]) for a in args))
+        if name == "MOTION":
+            return self.motion_measure(tape, *(int(a[1]) for a in args))
         if name == "SENVAL":
             tape.uses_senval = True
             return tape.emit(lib.PS_OP_SENVAL, self.eidx[int(args[0][1])])
@@ -355,6 +358,48 @@ class Compiler:
         self.stack.pop()
         return out
 
+    def motion_measure(self, tape, mid, jflag=None, comp=None, rm=0):
+        """MOTION(id): the reaction along (about) the motion's axis of J; MOTION(id, jflag,
+        comp, rm): 1 |force|, 2-4 force in rm, 5 |torque|, 6-8 torque on I (jflag 0) or J
+        (jflag 1). A translation's force acts at I: no torque on I, on J the torque of the
+        opposite force about J. A rotation's torque is taken along J's axis."""
+        k = self.layout.motion_ids.index(mid)
+        lam = self.layout.lam[k]
+        if lam not in tape.states:
+            tape.states.append(lam)
+        L = tape.emit(lib.PS_OP_STATE, lam, tape.states.index(lam))
+        if jflag is None:
+            return L
+        mo = self.model.motions[mid]
+        rot = mo.direction.startswith("B")
+        axis = int(mo.direction[1]) - 1 if rot else "XYZ".index(mo.direction)
+        mul, sub = lib.PS_OP_MUL, lib.PS_OP_SUB
+        mj, sj = self.marker(tape, mo.j)
+        mr, sr = self.marker(tape, rm)
+        signed = tape.op(mul, tape.const(-1.0 if jflag else 1.0), L)
+        # the force (translation) or torque (rotation) in rm's axes
+        vec = [tape.op(mul, signed, tape.emit(lib.PS_OP_AXDOT, mj, axis, mr, c, sj, sr))
+               for c in range(3)]
+        zero = tape.const(0.0)
+        if rot:
+            force, torque = [zero] * 3, vec
+        elif jflag:
+            d = [self.measure(tape, n, [mo.i, mo.j, rm]) for n in ("DX", "DY", "DZ")]
+            force = vec
+            torque = [tape.op(sub, tape.op(mul, d[(c + 1) % 3], vec[(c + 2) % 3]),
+                              tape.op(mul, d[(c + 2) % 3], vec[(c + 1) % 3])) for c in range(3)]
+        else:
+            force, torque = vec, [zero] * 3
+        if comp in (2, 3, 4):
+            return force[comp - 2]
+        if comp in (6, 7, 8):
+            return torque[comp - 6]
+        parts = force if comp == 1 else torque
+        total = tape.op(lib.PS_OP_ADD, tape.op(mul, parts[0], parts[0]),
+                        tape.op(lib.PS_OP_ADD, tape.op(mul, parts[1], parts[1]),
+                                tape.op(mul, parts[2], parts[2])))
+        return tape.op(lib.PS_OP_SQRT, total)
+
     # element tapes -------------------------------------------------------------------------
     def motion(self, tape, mo):
         """Slots (g, g', expr, kind) of a Motion_Marker: g the driven measure (less expr for a
@@ -440,7 +485,7 @@ class Compiler:
         i32 = lambda v: np.ascontiguousarray(v, dtype=np.int32)
         f64 = lambda v: np.ascontiguousarray(v, dtype=np.float64)
         code, tcode, tlen, tbadr, tnb, tbody, tnbody, tord = [], [], [], [], [], [], [], []
-        tnh = []
+        tnh, tnst = [], []
         bkind, bidx, tb_body, tb_q, tb_u, tb_a, tb_w = [], [], [], [], [], [], []
         for t in self.tapes:
             tcode.append(len(code))
@@ -474,6 +519,11 @@ class Compiler:
                         bkind += [kind] * nu
                         bidx += list(range(lay.uadr[bi], lay.uadr[bi] + nu))
                         n += nu
+            # extra state entries (motion reactions) read by PS_OP_STATE
+            bkind += [lib.PS_BASIS_Y] * len(t.states)
+            bidx += list(t.states)
+            n += len(t.states)
+            tnst.append(len(t.states))
             tnb.append(n)
         stride = max((1 + n + h * (h + 1) // 2 for n, h in zip(tnb, tnh)), default=2)
         # markers in their body's frame (ground markers: global)
@@ -506,7 +556,7 @@ class Compiler:
             tape_code_adr=i32(tcode), tape_len=i32(tlen), tape_basis_adr=i32(tbadr),
             tape_nbasis=i32(tnb), tape_nh=i32(tnh), tape_body_adr=i32(tbody),
             tape_nbody=i32(tnbody),
-            tape_order=i32(tord), code=i32(np.array(code, dtype=np.int32).reshape(-1)),
+            tape_order=i32(tord), tape_nstate=i32(tnst), code=i32(np.array(code, dtype=np.int32).reshape(-1)),
             consts=f64(self.consts), basis_kind=i32(bkind), basis_idx=i32(bidx),
             tbody_body=i32(tb_body), tbody_q=i32(tb_q), tbody_u=i32(tb_u), tbody_a=i32(tb_a),
             tbody_w=i32(tb_w),

@@ -39,10 +39,11 @@ FUNCTIONS = {
     **MEASURES,
     "STEP": (5, 5), "STEP5": (5, 5), "HAVSIN": (5, 5), "IMPACT": (7, 7), "BISTOP": (8, 8),
     "IF": (4, 4), "VARVAL": (1, 1), "PFORCE": (1, 1), "SFORCE": (4, 4), "SENVAL": (1, 1),
+    "MOTION": (1, 4),
 }
 #: Functions whose arguments are element ids (integer literals).
 ID_ARGS = {**{m: "marker" for m in MEASURES}, "VARVAL": "variable", "PFORCE": "penalty",
-           "SFORCE": "sforce", "SENVAL": "evaluate"}
+           "SFORCE": "sforce", "SENVAL": "evaluate", "MOTION": "motion"}
 
 _TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eEdD][+-]?\d+)?|\.\d+(?:[eEdD][+-]?\d+)?)"
                     r"|([A-Za-z_][A-Za-z_0-9]*)|(\*\*|[-+*/(),:]))")
@@ -197,17 +198,20 @@ def _check(node):
             want = str(lo) if lo == hi else f"{lo} to {hi}"
             raise ExpressionError(f"{name} takes {want} arguments, got {len(args)}", col)
         if name in ID_ARGS:
-            nid = len(args) if name != "SFORCE" else 1
+            nid = len(args) if name not in ("SFORCE", "MOTION") else 1
             for a in args[:nid]:
                 if a[0] != "num" or a[1] != int(a[1]) or a[1] < 0:
                     raise ExpressionError(f"{name} expects {ID_ARGS[name]} ids as integer "
                                           "literals", col)
-            if name == "SFORCE":
+            if name == "MOTION" and len(args) not in (1, 4):
+                raise ExpressionError("MOTION(id) is the reaction along the motion's axis; "
+                                      "MOTION(id, jflag, comp, rm) a component", col)
+            if name in ("SFORCE", "MOTION") and len(args) == 4:
                 for a, what in zip(args[1:], ("jflag (0 or 1)", "comp (1..8)", "rm marker id")):
                     if a[0] != "num" or a[1] != int(a[1]):
                         raise ExpressionError(f"SFORCE expects {what} as an integer literal", col)
                 if args[1][1] not in (0, 1) or not 1 <= args[2][1] <= 8:
-                    raise ExpressionError("SFORCE(id, jflag, comp, rm): jflag is 0 or 1 and "
+                    raise ExpressionError(f"{name}(id, jflag, comp, rm): jflag is 0 or 1 and "
                                           "comp is 1..8", col)
         else:
             for a in args:
@@ -250,9 +254,9 @@ def references(node, out=None):
         name, args = node[1], node[2]
         if name in ID_ARGS:
             kind = ID_ARGS[name]
-            if name == "SFORCE":
-                out.setdefault("sforce", set()).add(int(args[0][1]))
-                if int(args[3][1]):
+            if name in ("SFORCE", "MOTION"):
+                out.setdefault(kind, set()).add(int(args[0][1]))
+                if len(args) == 4 and int(args[3][1]):
                     out.setdefault("marker", set()).add(int(args[3][1]))
             else:
                 for a in args:

@@ -7,7 +7,7 @@ def check_references(model):
     """Every id an expression names must exist; penalty g must depend on displacements only."""
     tables = {"marker": model.markers, "variable": model.variables,
               "penalty": model.penalties, "sforce": model.sforces,
-              "evaluate": model.evaluates}
+              "evaluate": model.evaluates, "motion": model.motions}
     where = model._where
     for se in model.sensors.values():
         if se.evaluate_id is not None and se.evaluate_id not in model.evaluates:
@@ -59,7 +59,7 @@ class _Cycle(Exception):
 
 
 _DYNAMIC = {"VX", "VY", "VZ", "VM", "VR", "ACCX", "ACCY", "ACCZ", "WX", "WY", "WZ", "PFORCE",
-            "SFORCE"}
+            "SFORCE", "MOTION"}
 
 
 def _dynamic(model, node, stack):

@@ -130,9 +130,11 @@ class Printer(Actor):
             self.pending.popleft()
         if n:
             if self.kernel.layout.lam:
-                Y = np.array(Y, dtype=float)
-                for t, y, yp in zip(times, Y, YP):
+                # the rows' reactions from their force balance, and the channels again
+                Y, REQ = np.array(Y, dtype=float), np.array(REQ, dtype=float)
+                for t, y, yp, out in zip(times, Y, YP, REQ):
                     self._reactions(t, y, yp)
+                    out[:] = self.kernel.outputs(t, y, yp)
             self.ts.extend(times)
             self.ys.extend(Y)
             self.yps.extend(YP)
