@@ -370,6 +370,16 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
   return check_finite(d, res, m->ny, "residual");
 }
 
+int ps_penalty_loads(const psModel* m, psData* d, double t, const double* y, const double* yp,
+                     double* q) {
+  Assembly as = {q, NULL, NULL, NULL, NULL, 0, 0, 0.0, m->ny};
+  for (int i = 0; i < m->ny; i++) q[i] = 0.0;
+  penalty_forces(m, d, t, y, yp, &as);
+  /* scatter subtracted force_scale * Q: give Q */
+  for (int i = 0; i < m->ny; i++) q[i] /= -m->force_scale;
+  return check_finite(d, q, m->ny, "penalty loads");
+}
+
 int ps_jacobian(const psModel* m, psData* d, double t, const double* y, const double* yp,
                 double cj, double* jac) {
   Assembly as = {d->res, jac, NULL, NULL, NULL, 0, 1, cj, m->ny};

@@ -140,6 +140,7 @@ class LoadControl:
     update_time: float
     median_window: int
     motion: int
+    load: str = "REACTION"      # or "CONTACT": the penalties' force on the body
     label: str = ""
 
 

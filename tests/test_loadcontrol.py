@@ -111,3 +111,15 @@ def test_bad_parameters(text, attribute, match):
     with pytest.raises(pysolver.DeckError, match=match) as info:
         pysolver.loads(text)
     assert info.value.attribute == attribute and info.value.line is not None
+
+
+def test_contact_load_is_the_floor_force():
+    """load="contact" reads the penalties' force on the body; on the floor deck (no other
+    force, the body at constant velocity between updates) it equals the drive's load
+    (1e-12 relative) and the runs are the same."""
+    text = (DECKS / "loadcontrol_indenter.xml").read_text().replace(
+        '<Parameter name="UpdateTime">0.01</Parameter>',
+        '<Parameter name="UpdateTime">0.01</Parameter>\n<Parameter name="load">contact</Parameter>')
+    a = pysolver.load(DECKS / "loadcontrol_indenter.xml").run().controller(1)
+    b = pysolver.loads(text).run().controller(1)
+    np.testing.assert_allclose(b["measured"], a["measured"], rtol=1e-12, atol=1e-12)

@@ -246,6 +246,12 @@ typedef struct psData {
 int ps_residual(const psModel* m, psData* d, double t, const double* y, const double* yp,
                 double* res);
 
+/* Write into q (length m->ny) the generalized forces of all Force_Penalty elements at
+ * (t, y, yp), in model force units, on the velocity rows (zero elsewhere): the contact load a
+ * LoadControl task with load="contact" reads. Returns PS_OK or PS_ERR_NONFINITE. */
+int ps_penalty_loads(const psModel* m, psData* d, double t, const double* y, const double* yp,
+                     double* q);
+
 /* SUNDIALS IDA opened at run time from shared libraries, and one integration with it
  * (csrc/ida.c). Opaque: made by ps_ida_load (the libraries, once per process) and ps_ida_new
  * (one integration object sharing them), freed by ps_ida_delete. */

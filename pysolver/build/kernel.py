@@ -141,6 +141,16 @@ class Kernel:
                                 ffi.from_buffer("double[]", np.ascontiguousarray(y, float)),
                                 ffi.from_buffer("double[]", np.ascontiguousarray(yp, float)))
 
+    def penalty_loads(self, t, y, yp):
+        """Generalized forces of all penalties at (t, y, yp) on the velocity rows, model force
+        units (a new array)."""
+        q = np.zeros(self.ny)
+        fb = ffi.from_buffer
+        lib.ps_penalty_loads(self.m, self.d, t, fb("double[]", np.ascontiguousarray(y, float)),
+                             fb("double[]", np.ascontiguousarray(yp, float)),
+                             fb("double[]", q))
+        return q
+
     def control_target(self, k, t, y, yp):
         """The target load L(t) of LoadControl number k (in id order)."""
         tape, slot = self.control_tapes[k]

@@ -186,7 +186,8 @@ def MOTION(id, **kw):
 def LOADCONTROL(id=None, **kw):
     """The LoadControl task (seed 002): MATERIAL (the body's id), DIRECTION (1, 2, 3),
     VELOCITY (starting), MAXVELOCITY, LOAD_FUNCTION (target load, an expression of time; `t`
-    reads as TIME), KP, KI (numbers or "auto"), SMOOTH, UPDATETIME, MEDIAN_WINDOW, LABEL.
+    reads as TIME), KP, KI (numbers or "auto"), SMOOTH, UPDATETIME, MEDIAN_WINDOW, LOAD
+    ("reaction": the drive's, default; "contact": the penalties' force on the body), LABEL.
     Per-update records: res.controller(id)."""
     names = ("VELOCITY", "MATERIAL", "DIRECTION", "MAXVELOCITY", "LOAD_FUNCTION", "KP", "KI",
              "SMOOTH", "UPDATETIME", "MEDIAN_WINDOW", "LOAD", "LABEL")

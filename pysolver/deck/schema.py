@@ -73,7 +73,7 @@ SCHEMA = {
                     "maxvelocity": ("pos", OPT, 1000.0), "load_function": ("str", REQ, None),
                     "kp": ("gain", OPT, 0.1), "ki": ("gain", OPT, 0.001),
                     "smooth": ("float", OPT, 0.95), "updatetime": ("pos", REQ, None),
-                    "median_window": ("id", OPT, 1), "load": (("REACTION",), OPT, "REACTION")},
+                    "median_window": ("id", OPT, 1), "load": (("REACTION", "CONTACT"), OPT, "REACTION")},
     "Reference_Variable": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
                            "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
                            "expr": ("expr", OPT, None), "initial_value": ("float", OPT, 0.0),

@@ -53,7 +53,7 @@ def add_loadcontrol(model, ctx, a):
     model.motions[-lid] = motion
     model.controls[lid] = LoadControl(
         lid, body.id, axis, a["velocity"], a["maxvelocity"], tree, text, a["kp"], a["ki"],
-        a["smooth"], a["updatetime"], a["median_window"], -lid, a["label"])
+        a["smooth"], a["updatetime"], a["median_window"], -lid, a["load"], a["label"])
     model._where[("loadcontrol", lid)] = ctx
 
 

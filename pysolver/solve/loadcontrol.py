@@ -24,6 +24,7 @@ class LoadControlTask(Actor):
         lay = kernel.layout
         self.value = len(kernel.evaluate_tapes) + k          # its slot in kernel.senval
         self.q = lay.qadr[lay.index[lc.body]] + lc.direction
+        self.u = lay.uadr[lay.index[lc.body]] + lc.direction
         self.lam = lay.motion_ids.index(lc.motion)
         auto = auto_gains(lc.smooth, lc.update_time)
         kp = auto[0] if lc.kp == "auto" else lc.kp
@@ -47,7 +48,10 @@ class LoadControlTask(Actor):
     def on_time(self, run):
         k = self.kernel
         t = run.t
-        load = -float(k.reactions(t, run.y, run.yp)[self.lam])
+        if self.lc.load == "CONTACT":
+            load = float(k.penalty_loads(t, run.y, run.yp)[self.u])
+        else:
+            load = -float(k.reactions(t, run.y, run.yp)[self.lam])
         target = k.control_target(self.k, t, run.y, run.yp)
         v = self.law.update(t, float(run.y[self.q]) - self.x0, load, target)
         k.senval[self.value] = v
