@@ -26,7 +26,7 @@ class LoadControlTask(Actor):
         self.q = lay.qadr[lay.index[lc.body]] + lc.direction
         self.u = lay.uadr[lay.index[lc.body]] + lc.direction
         self.lam = lay.motion_ids.index(lc.motion)
-        auto = auto_gains(lc.smooth, lc.update_time)
+        auto = auto_gains(lc.smooth, lc.update_time, lc.median_window)
         kp = auto[0] if lc.kp == "auto" else lc.kp
         ki = auto[1] if lc.ki == "auto" else lc.ki
         self.law = LoadLaw(LawParams(lc.velocity, lc.max_velocity, kp, ki, lc.smooth,
