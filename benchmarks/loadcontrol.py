@@ -6,7 +6,11 @@ Prints, per scene and gains: the ramp's mean lag (t in 0.5..1 s), the error at t
 hold (t = 2 s), the step's overshoot (% of the 20 N step), the updates until the load stays
 within 2 % of the step, the final A_t and the wall time.
 
-Run: ``python benchmarks/loadcontrol.py``.
+Then the noisy particle bed (decks/loadcontrol_bed.py, load = the contact force): RMS tracking
+error after the first 0.2 s, with median_window 1, 5 and 9, for 50 and (with --big) 200
+particles.
+
+Run: ``python benchmarks/loadcontrol.py [--big]``.
 """
 import pathlib
 import time
@@ -40,6 +44,26 @@ def figures(res):
             c["A"][-1])
 
 
+def bed(sizes):
+    print(f"\n{'particles':>9} {'median':>6} {'RMS error N':>11} {'kurtosis':>8} {'clamped':>7} "
+          f"{'s':>6}")
+    text = (DECKS / "loadcontrol_bed.py").read_text()
+    for nx, nz in sizes:
+        for window in (1, 5, 9):
+            deck = text.replace("MEDIAN_WINDOW = 1", f"MEDIAN_WINDOW = {window}").replace(
+                "NX, NZ = 10, 5", f"NX, NZ = {nx}, {nz}")
+            t0 = time.perf_counter()
+            res = pysolver.loads(deck, fmt="py").run()
+            sec = time.perf_counter() - t0
+            c = res.controller(1)
+            late = c["time"] > 0.2
+            rms = np.sqrt(np.mean((c["measured"][late] - c["target"][late]) ** 2))
+            d = np.diff(c["measured"])
+            kurt = np.mean((d - d.mean()) ** 4) / np.var(d) ** 2
+            print(f"{nx * nz:9d} {window:6d} {rms:11.4f} {kurt:8.1f} {int(c['clamped'].sum()):7d} "
+                  f"{sec:6.1f}")
+
+
 def main():
     print(f"{'scene':>9} {'gains':>6} {'ramp lag N':>10} {'hold err N':>10} {'overshoot %':>11} "
           f"{'settle upd':>10} {'A_t end':>9} {'ms':>6}")
@@ -57,4 +81,6 @@ def main():
 
 
 if __name__ == "__main__":
+    import sys
     main()
+    bed([(10, 5)] + ([(20, 10)] if "--big" in sys.argv else []))
