@@ -15,7 +15,8 @@ def _run(args):
     out = args.output or os.path.splitext(os.path.basename(args.deck))[0] + "_out"
     os.makedirs(out, exist_ok=True)
     csv_path = res.save(os.path.join(out, "requests.csv"))
-    written = [csv_path]
+    written = [csv_path] + [os.path.join(out, f"requests_controller{lid}.csv")
+                            for lid in res.controller_ids]
     if not args.no_plot:
         png_path = os.path.join(out, "requests.png")
         try:

@@ -115,6 +115,11 @@ class Result:
             raise KeyError(f"no Post_Request with id {id}; requests: {self.request_ids}")
         return self._requests[id]
 
+    @property
+    def controller_ids(self):
+        """Ids of the LoadControl tasks whose records :meth:`controller` gives."""
+        return sorted(self._controllers)
+
     def controller(self, id: int) -> dict:
         """Per-update record of LoadControl `id`: arrays ``time``, ``target``, ``measured``
         and ``filtered`` load, ``displacement`` (from the start, along the axis), ``A`` (the
