@@ -143,3 +143,18 @@ def test_noisy_bed_with_a_median_filter():
     weight = 5e-3 * 9.81
     np.testing.assert_allclose(c["measured"], weight - res.motion(-1)[rows], rtol=1e-8,
                                atol=1e-10)
+
+
+def test_records_are_saved_and_plotted(tmp_path):
+    """res.save writes the per-update records beside the requests (CSV) or inside (NPZ), equal
+    to res.controller; res.plot draws a LoadControl panel."""
+    res, c = _run("loadcontrol_indenter.xml")
+    res.save(tmp_path / "r.csv")
+    table = np.genfromtxt(tmp_path / "r_controller1.csv", delimiter=",", names=True)
+    for name in ("time", "target", "measured", "velocity"):
+        np.testing.assert_array_equal(table[name], c[name])
+    res.save(tmp_path / "r.npz")
+    with np.load(tmp_path / "r.npz") as z:
+        np.testing.assert_array_equal(z["controller1_A"], c["A"])
+    fig = res.plot()
+    assert any(ax.get_title() == "LoadControl 1" for ax in fig.axes)
