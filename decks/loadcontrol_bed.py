@@ -1,16 +1,15 @@
 """LoadControl with a noisy load: an indenter (a sphere of radius 3 mm on a point body) pressed
-into a hexagonally packed bed of particles (radius 1 mm, 1 g each, 2D in x-z; 48 with the
-default 10 x 5) in a box, every contact a unilateral
-penalty (10 N/mm, damping 0.01 N s/mm). Units kg, mm, s, N; gravity -9810 mm/s^2. The load is
+into a hexagonally packed bed of particles (radius 1 mm, 1 g each, 2D in x-z; 53 with the
+default 11 x 5) in a box, every contact a unilateral penalty (10 N/mm, damping 0.01 N s/mm). Units kg, mm, s, N; gravity -9810 mm/s^2. The load is
 the contact force on the indenter (load="contact"), which jumps as particles slip and
 rearrange: the seed's fat-tailed contact noise. Target: a ramp of 0.6 N/s. Change NX, NZ for
-bigger beds (benchmarks/loadcontrol.py runs 48 and 195 particles), and MEDIAN_WINDOW to filter
+bigger beds (benchmarks/loadcontrol.py runs 53 and 195 particles), and MEDIAN_WINDOW to filter
 the load."""
 import math
 
 from pysolver.msolve import *
 
-NX, NZ = 10, 5                 # particles per row, rows
+NX, NZ = 11, 5                 # particles per row (odd rows one fewer), rows
 MEDIAN_WINDOW = 1
 R, RI, GAP = 1.0, 3.0, 2.0     # particle radius, indenter radius, particle spacing
 K, C = 10.0, 0.01              # contact stiffness (N/mm) and damping (N s/mm)

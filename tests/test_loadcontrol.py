@@ -126,7 +126,7 @@ def test_contact_load_is_the_floor_force():
 
 
 def test_noisy_bed_with_a_median_filter():
-    """decks/loadcontrol_bed.py (50 particles, every contact a penalty) with median_window 5,
+    """decks/loadcontrol_bed.py (53 particles, every contact a penalty) with median_window 5,
     for 0.4 s: the contact load is fat-tailed (its update-to-update changes have kurtosis
     above 6; a Gaussian's is 3), the loop stays stable (never clamped), and at every update
     the indenter, at constant velocity, is in balance: contact load = weight - the drive's
