@@ -6,10 +6,12 @@
 >>> res.request(1)[:, 0]                               # doctest: +SKIP
 """
 from ._version import __version__
+from .batch import Sweep, grid, sample, sweep
 from .deck.loader import load, loads
 from .errors import DeckError
 from .headers import get_include
 from .model import Model
 from .results import Result
 
-__all__ = ["load", "loads", "DeckError", "Model", "Result", "get_include", "__version__"]
+__all__ = ["load", "loads", "DeckError", "Model", "Result", "get_include", "__version__",
+           "sweep", "grid", "sample", "Sweep"]

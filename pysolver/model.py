@@ -42,6 +42,9 @@ class Body:
     vel: np.ndarray = None       # initial velocity, global
     omega: np.ndarray = None     # initial angular velocity, body frame
     label: str = ""
+    cg: int = None               # its centre-of-mass marker (the body frame)
+    im_rot: np.ndarray = None    # axes of the inertia marker in the body frame
+    inertia_im: np.ndarray = None    # inertia as the deck gives it, about the im axes
 
 
 @dataclasses.dataclass

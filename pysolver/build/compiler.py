@@ -85,6 +85,15 @@ class Layout:
         return y
 
 
+def _number(node):
+    """The value of a tree that is a number (or a negated one), else None."""
+    if node[0] == "num":
+        return node[1]
+    if node[0] == "neg" and node[1][0] == "num":
+        return -node[1][1]
+    return None
+
+
 class _Tape:
     """Builds one tape; instructions are hash-consed so shared subexpressions run once."""
 
@@ -123,9 +132,17 @@ class _Tape:
         return self.emit(lib.PS_OP_CONST, self.c.const_index(float(v)))
 
     def value(self, slot):
-        """The constant value of a slot, or None when it is not a constant."""
+        """The constant value of a slot, or None when it is not a constant (a parameter a
+        batch study may change is not)."""
         row = self.code[slot]
-        return self.c.consts[row[1]] if row[0] == lib.PS_OP_CONST else None
+        if row[0] != lib.PS_OP_CONST or row[1] in self.c.param_slots:
+            return None
+        return self.c.consts[row[1]]
+
+    def param(self, path, v):
+        """A number of the model a case of a sweep may change (pysolver.build.params): a
+        constant slot of its own, never folded."""
+        return self.emit(lib.PS_OP_CONST, self.c.param_index(path, v))
 
     def op(self, op, *slots):
         vals = [self.value(s) for s in slots]
@@ -141,10 +158,11 @@ class _Tape:
         return self.emit(lib.PS_OP_CLAMP01, d)
 
     def step_const(self, x, x0, h0, x1, h1, kind="STEP"):
-        """STEP-family function of slot x between constant points: one instruction."""
-        return self.emit(lib.PS_OP_STEPC, x, *[self.c.const_index(float(v))
-                                               for v in (x0, h0, x1, h1)],
-                         ("STEP", "STEP5", "HAVSIN").index(kind))
+        """STEP-family function of slot x between constant points (numbers, or (path, value)
+        parameters): one instruction."""
+        idx = [self.c.param_index(*v) if isinstance(v, tuple) else self.c.const_index(float(v))
+               for v in (x0, h0, x1, h1)]
+        return self.emit(lib.PS_OP_STEPC, x, *idx, ("STEP", "STEP5", "HAVSIN").index(kind))
 
     def step(self, x, x0, h0, x1, h1, kind="STEP"):
         bounds = [self.value(s) for s in (x0, h0, x1, h1)]
@@ -176,6 +194,7 @@ class Compiler:
         self.conservative = conservative   # MKEAM: velocity-dependent terms (damping) removed
         self.layout = Layout(model)
         self.consts, self._cidx = [], {}
+        self.params, self.param_slots = {}, set()   # sweep parameters: path -> const slot
         self.markers = sorted(model.markers)
         self.midx = {mid: i for i, mid in enumerate(self.markers)}
         self.tapes = []
@@ -183,6 +202,14 @@ class Compiler:
         self.eidx = {eid: i for i, eid in enumerate(sorted(model.evaluates))}
         self.user_in, self._user_in_adr = [], {}   # input slots of PS_OP_USER instructions
         self._user_cache = {}                      # PS_OP_USER rows -> their cache entry
+
+    def param_index(self, path, v):
+        """The constant slot of parameter `path` (one per path, whatever its value)."""
+        if path not in self.params:
+            self.params[path] = len(self.consts)
+            self.param_slots.add(len(self.consts))
+            self.consts.append(float(v))
+        return self.params[path]
 
     def const_index(self, v):
         key = v if not math.isnan(v) else "nan"
@@ -222,7 +249,12 @@ class Compiler:
         if name in _MEASURE:
             return self.measure(tape, name, [int(a[1]) for a in args])
         if name == "VARVAL":
-            return self.lower(tape, self.model.variables[int(args[0][1])].expr)
+            vid = int(args[0][1])
+            expr = self.model.variables[vid].expr
+            number = _number(expr)
+            if number is not None:        # a named number: a parameter of sweeps
+                return tape.param(f"Reference_Variable/{vid}/value", number)
+            return self.lower(tape, expr)
         if name == "PFORCE":
             return self.penalty_force(tape, int(args[0][1]))[1]
         if name == "SFORCE":
@@ -317,17 +349,19 @@ class Compiler:
         for s in touched:                 # g' needs the velocities of g's bodies
             tape.bodies[s][1] = True
         mul, add = lib.PS_OP_MUL, lib.PS_OP_ADD
+        where = f"Force_Penalty/{pid}"
         gd = None
         if p.penalty1 > 0 and not self.conservative:
             gd = tape.emit(lib.PS_OP_GDOT, g)
             tape.has_gdot = True
         if p.unilateral:
-            S = tape.step_const(g, 0.0, 0.0, p.smoothing, 1.0)
-            k = tape.op(mul, tape.const(p.penalty), S)
-            c = tape.op(mul, tape.const(p.penalty1), S) if gd is not None else None
+            S = tape.step_const(g, 0.0, 0.0, (f"{where}/smoothing_factor", p.smoothing), 1.0)
+            k = tape.op(mul, tape.param(f"{where}/penalty", p.penalty), S)
+            c = tape.op(mul, tape.param(f"{where}/penalty1", p.penalty1), S) \
+                if gd is not None else None
         else:
-            k = tape.const(p.penalty)
-            c = tape.const(p.penalty1) if gd is not None else None
+            k = tape.param(f"{where}/penalty", p.penalty)
+            c = tape.param(f"{where}/penalty1", p.penalty1) if gd is not None else None
         f = tape.op(mul, k, g)
         if gd is not None:
             f = tape.op(add, f, tape.op(mul, c, gd))

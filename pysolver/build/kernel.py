@@ -48,6 +48,8 @@ class Kernel:
         self.evaluate_ids = sorted(model.evaluates)
         self.evaluate_tapes = comp.evaluate
         self.control_tapes = comp.ctrl
+        self.params = comp.params               # sweep parameters: path -> slot in consts
+        self.marker_index = dict(comp.midx)     # marker id -> its row in the marker arrays
         self.forces_use_senval = comp.forces_use_senval
         self.nsensor = arrays["nsensor"]
         self.ny = arrays["ny"]

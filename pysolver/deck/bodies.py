@@ -60,7 +60,7 @@ def add_bodies(model, bodies_raw, markers_raw):
         vel = np.array([a["v_ic_x"], a["v_ic_y"], a["v_ic_z"]])
         if ctx.tag == "Body_Point":
             model.bodies[a["id"]] = Body(a["id"], "point", a["mass"], None, cg.pos.copy(),
-                                         np.eye(3), vel, np.zeros(3), a["label"])
+                                         np.eye(3), vel, np.zeros(3), a["label"], cg=cg.id)
             continue
         im = marker_of(ctx, a, "im_id") or cg
         marker_of(ctx, a, "lprf_id")
@@ -75,7 +75,7 @@ def add_bodies(model, bodies_raw, markers_raw):
         model.bodies[a["id"]] = Body(a["id"], "rigid", a["mass"], Rb @ Iim @ Rb.T,
                                      cg.pos.copy(), cg.rot.copy(), vel,
                                      np.array([a["w_ic_x"], a["w_ic_y"], a["w_ic_z"]]),
-                                     a["label"])
+                                     a["label"], cg=cg.id, im_rot=Rb, inertia_im=Iim)
     for mid, (ctx, a) in markers_raw.items():
         ctx.id = mid
         if a["body_id"] not in model.bodies:

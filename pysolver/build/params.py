@@ -1,0 +1,205 @@
+"""Numbers of a compiled model that the cases of a sweep change without recompiling.
+
+A case is a dict of paths such as ``"Force_Penalty/10/penalty"`` or ``"Body_Point/2/v_ic_x"``
+to numbers. Each path names a number the kernel reads at run time, never a constant baked into
+its instructions: penalty coefficients and named numbers (a Reference_Variable that is a
+number, read with VARVAL) have constant slots of their own (the compiler's parameters); masses,
+inertias, marker positions, gravity and sensor thresholds are entries of the kernel's arrays;
+initial velocities and positions make the initial state; Param_Transient and Param_Static
+settings are run options. :meth:`Parameters.apply` puts the deck's values back first, so cases
+never leak into each other. Paths are case-insensitive in the element and attribute names.
+"""
+import dataclasses
+
+import numpy as np
+
+from ..errors import DeckError
+from ..options import DECK_NAMES
+
+_STATIC = ("max_ke_tol", "max_dq_tol", "max_num_iter", "max_imbalance", "max_error",
+           "stability", "compliance_delta", "tlimit", "alimit")
+_INERTIA = {"xx": (0, 0), "yy": (1, 1), "zz": (2, 2), "xy": (0, 1), "yz": (1, 2), "xz": (0, 2)}
+
+
+def _error(path, msg):
+    parts = str(path).split("/")
+    return DeckError(f"sweep parameter {path!r}: {msg}", element=parts[0] or None,
+                     attribute=parts[-1] if len(parts) > 1 else None)
+
+
+class Parameters:
+    """The changeable numbers of one compiled model.
+
+    Parameters
+    ----------
+    model : pysolver.Model
+    kernel : pysolver.build.kernel.Kernel
+        Its compiled kernel (``model._kernel()``).
+    """
+
+    def __init__(self, model, kernel):
+        self.model, self.kernel = model, kernel
+        self._base = {}                 # path -> the deck's value, for the paths set so far
+        self._names = {}                # lower-case path -> canonical path
+        for path in self.paths():
+            self._names[path.lower()] = path
+
+    def paths(self):
+        """Every path a case may set, sorted."""
+        m = self.model
+        out = list(self.kernel.params)
+        for b in m.bodies.values():
+            if b.kind == "ground":
+                continue
+            tag = "Body_Point" if b.kind == "point" else "Body_Rigid"
+            out.append(f"{tag}/{b.id}/mass")
+            out += [f"{tag}/{b.id}/v_ic_{c}" for c in "xyz"]
+            if b.kind == "rigid":
+                out += [f"{tag}/{b.id}/w_ic_{c}" for c in "xyz"]
+                out += [f"{tag}/{b.id}/inertia_{k}" for k in _INERTIA]
+        for mid, mk in m.markers.items():
+            if m.bodies[mk.body].kind == "point" and m.bodies[mk.body].cg != mid:
+                continue                  # a point body's only meaningful marker is its cg
+            out += [f"Reference_Marker/{mid}/pos_{c}" for c in "xyz"]
+        out += [f"Force_Gravity/grav_{c}" for c in "xyz"]
+        for sid in m.sensors:
+            out += [f"Sensor_Event/{sid}/value", f"Sensor_Event/{sid}/error_tol"]
+        out += [f"Param_Transient/{k}" for k in DECK_NAMES]
+        out += [f"Param_Static/{k}" for k in _STATIC]
+        return sorted(out)
+
+    def canonical(self, path):
+        """The path as :meth:`paths` spells it; DeckError when the model has no such number."""
+        got = self._names.get(str(path).lower())
+        if got is None:
+            raise _error(path, self._why_not(str(path)))
+        return got
+
+    def apply(self, case):
+        """Put the deck's values back, then set those of `case` ({path: number}); return the
+        run options the case sets (Param_Transient)."""
+        self.reset()
+        options = {}
+        for raw, value in case.items():
+            path = self.canonical(raw)
+            try:
+                v = float(value)
+            except (TypeError, ValueError):
+                raise _error(raw, f"got {value!r}; expected a number") from None
+            if not np.isfinite(v):
+                raise _error(raw, f"got {value!r}; expected a finite number")
+            if path.startswith("Param_Transient/"):
+                options[path.split("/")[1]] = v
+                continue
+            if path not in self._base:
+                self._base[path] = self._get(path)
+            self._set(path, v)
+        if "max_num_steps" in options:
+            options["max_num_steps"] = int(options["max_num_steps"])
+        return options
+
+    def reset(self):
+        """The deck's values everywhere."""
+        for path, v in self._base.items():
+            self._set(path, v)
+        self._base.clear()
+
+    # one path -----------------------------------------------------------------------------
+    def _get(self, path):
+        kind, *key = path.split("/")
+        m = self.model
+        if path in self.kernel.params:
+            return float(self.kernel.arrays["consts"][self.kernel.params[path]])
+        if kind in ("Body_Point", "Body_Rigid"):
+            b, attr = m.bodies[int(key[0])], key[1]
+            if attr == "mass":
+                return b.mass
+            if attr.startswith("inertia_"):
+                i, j = _INERTIA[attr[8:]]
+                return float(b.inertia_im[i, j])
+            vec = b.vel if attr.startswith("v_ic") else b.omega
+            return float(vec["xyz".index(attr[-1])])
+        if kind == "Reference_Marker":
+            return float(m.markers[int(key[0])].pos["xyz".index(key[1][-1])])
+        if kind == "Force_Gravity":
+            return float(m.gravity["xyz".index(key[0][-1])])
+        if kind == "Sensor_Event":
+            return float(getattr(m.sensors[int(key[0])], key[1]))
+        if kind == "Param_Static":
+            return float(getattr(m.static, key[0]))
+        raise AssertionError(path)
+
+    def _set(self, path, v):
+        kind, *key = path.split("/")
+        m, k = self.model, self.kernel
+        if path in k.params:
+            k.arrays["consts"][k.params[path]] = v
+        elif kind in ("Body_Point", "Body_Rigid"):
+            self._set_body(path, m.bodies[int(key[0])], key[1], v)
+        elif kind == "Reference_Marker":
+            self._set_marker(path, int(key[0]), "xyz".index(key[1][-1]), v)
+        elif kind == "Force_Gravity":
+            m.gravity["xyz".index(key[0][-1])] = v
+            k.m.gravity = list(m.gravity)
+        elif kind == "Sensor_Event":
+            sid = int(key[0])
+            setattr(m.sensors[sid], key[1], v)
+            row = sorted(m.sensors).index(sid)
+            k.arrays["sensor_value" if key[1] == "value" else "sensor_tol"][row] = v
+        elif kind == "Param_Static":
+            m.static = dataclasses.replace(m.static, **{key[0]: type(getattr(m.static,
+                                                                                key[0]))(v)})
+        else:
+            raise AssertionError(path)
+
+    def _set_body(self, path, b, attr, v):
+        k = self.kernel
+        row = k.layout.index[b.id]
+        if attr == "mass":
+            if v <= 0:
+                raise _error(path, f"got {v:g}; expected a mass > 0")
+            b.mass = v
+            k.arrays["body_mass"][row] = v
+        elif attr.startswith("inertia_"):
+            i, j = _INERTIA[attr[8:]]
+            raw = b.inertia_im.copy()
+            raw[i, j] = raw[j, i] = v
+            ev = np.linalg.eigvalsh(raw)
+            if ev.min() <= 0 or ev[2] > ev[0] + ev[1] + 1e-12 * ev[2]:
+                raise _error(path, "the inertia tensor must stay positive definite and satisfy "
+                             "the triangle inequality")
+            b.inertia_im = raw
+            b.inertia = b.im_rot @ raw @ b.im_rot.T
+            k.arrays["body_inertia"][9 * row:9 * row + 9] = b.inertia.reshape(-1)
+        else:
+            vec = b.vel if attr.startswith("v_ic") else b.omega
+            vec["xyz".index(attr[-1])] = v
+
+    def _set_marker(self, path, mid, axis, v):
+        """A marker's global position; a body's cg marker moves the body (its other markers
+        stay where they are in space)."""
+        m, k = self.model, self.kernel
+        mk = m.markers[mid]
+        mk.pos[axis] = v
+        body = m.bodies[mk.body]
+        if body.kind != "ground" and body.cg == mid:
+            body.pos[axis] = v
+            movers = [x for x in m.markers.values() if x.body == body.id]
+        else:
+            movers = [mk]
+        for x in movers:
+            row = k.marker_index[x.id]
+            local = x.pos if body.kind == "ground" else body.rot.T @ (x.pos - body.pos)
+            k.arrays["marker_pos"][3 * row:3 * row + 3] = local
+
+    def _why_not(self, path):
+        parts = path.split("/")
+        kinds = sorted({p.split("/")[0] for p in self._names.values()})
+        if parts[0] not in kinds and parts[0].lower() not in {x.lower() for x in kinds}:
+            return f"unknown element; sweeps change {', '.join(kinds)}"
+        if parts[0].lower() == "force_penalty" and path.lower().endswith("/penalty1"):
+            return ("the deck's penalty1 is 0, so the compiled model has no damping term to "
+                    "change (a structural change: give the deck a nonzero penalty1)")
+        near = [p for p in self._names.values() if p.lower().startswith(parts[0].lower() + "/")]
+        return ("no such number in this model (structural attributes such as ids, types and "
+                f"flags cannot change); this element's: {', '.join(near[:12])}")
