@@ -60,6 +60,8 @@ def main(argv=None):
     check = sub.add_parser("check", help="validate a deck and list what it contains")
     check.add_argument("deck")
     check.set_defaults(func=_check)
+    from .batch.cli import add_parser
+    add_parser(sub)
     args = parser.parse_args(argv)
     try:
         return args.func(args)

@@ -135,3 +135,26 @@ def test_bad_outputs_are_refused_before_any_case_runs():
         pysolver.sweep(DECK, [{}], processes=0, outputs={"a": "final:request/7/1"})
     with pytest.raises(ValueError, match="FUNC one of final, max, min, mean"):
         pysolver.sweep(DECK, [{}], processes=0, outputs={"a": "median:request/1/1"})
+
+
+def test_cli_sweep_writes_the_table_and_resumes(tmp_path, capsys):
+    from pysolver.cli import main
+    args = ["sweep", str(DECK), "--set", f"{PEN}=5e3,1e4", "--set", f"{POS}=90,100",
+            "--output", "x_end=final:request/1/1", "-j", "0", "-o", str(tmp_path), "-q"]
+    assert main(args) == 0
+    import csv
+    with open(tmp_path / "table.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert [r["status"] for r in rows] == ["ok"] * 4 and len(list(tmp_path.glob("results/*"))) == 4
+    ref = pysolver.loads(edited({PEN: 1e4, POS: 90.0})).run()
+    assert float(rows[2]["x_end"]) == ref.request(1)[-1, 0]
+    assert main(args) == 0
+    with open(tmp_path / "table.csv", newline="") as fh:
+        assert all(r["resumed"] == "True" for r in csv.DictReader(fh))
+    bad = ["sweep", str(DECK), "--set", "Force_Penalty/7/penalty=1,2", "-j", "0", "-o",
+           str(tmp_path / "bad"), "-q"]
+    assert main(bad) == 1
+    sampled = ["sweep", str(DECK), "--set", f"{PEN}=5e3,2e4", "--sample", "lhs:3", "--seed",
+               "1", "-j", "0", "-o", str(tmp_path / "lhs"), "-q"]
+    assert main(sampled) == 0
+    capsys.readouterr()
