@@ -144,33 +144,45 @@ def _serial(model, todo, outputs):
 
 
 def _dask(client, model, todo, outputs):
+    """Cases as Dask tasks, a few dozen per task (a task costs the scheduler about a
+    millisecond); a task that fails (a worker lost) runs again case by case, so that only the
+    case that kills a worker is marked crashed."""
     from dask.distributed import as_completed
     remote = client.scatter(model, broadcast=True)
-    futures = {client.submit(_dask_case, remote, case, outputs, store, pure=False): idx
-               for idx, case, store in todo}
+    nworkers = max(1, len(client.scheduler_info().get("workers", {})))
+    size = max(1, min(50, len(todo) // (8 * nworkers)))
+    chunks = [todo[i:i + size] for i in range(0, len(todo), size)]
+    futures = {client.submit(_dask_cases, remote, chunk, outputs, pure=False): chunk
+               for chunk in chunks}
     for fut in as_completed(futures):
-        idx = futures[fut]
+        chunk = futures[fut]
         try:
-            row = fut.result()
+            yield from fut.result()
+            continue
         except Exception as err:  # noqa: BLE001 - a worker lost or the task failed there
-            kind = "crashed" if type(err).__name__ == "KilledWorker" else "error"
-            row = {"status": kind, "message": f"{type(err).__name__}: {err}",
-                   "wall": math.nan, "steps": None}
-        yield idx, row
+            if len(chunk) == 1:
+                kind = "crashed" if type(err).__name__ == "KilledWorker" else "error"
+                yield chunk[0][0], {"status": kind, "message": f"{type(err).__name__}: {err}",
+                                    "wall": math.nan, "steps": None}
+                continue
+        yield from _dask(client, model, chunk, outputs)      # smaller chunks, down to one
 
 
 _RUNNERS = {}
 
 
-def _dask_case(model, case, outputs, store):
-    """A case on a Dask worker, with one compiled model per worker and deck."""
+def _dask_cases(model, chunk, outputs):
+    """Cases on a Dask worker, with one compiled model per worker and deck."""
     runner = _RUNNERS.get(model.source.sha256)
     if runner is None:
         runner = _RUNNERS[model.source.sha256] = CaseRunner(model)
-    row, res = runner.run(case, outputs)
-    if store and res is not None:
-        save_result(res, store)
-    return row
+    out = []
+    for idx, case, store in chunk:
+        row, res = runner.run(case, outputs)
+        if store and res is not None:
+            save_result(res, store)
+        out.append((idx, row))
+    return out
 
 
 class _Store:
