@@ -15,6 +15,7 @@ import time
 import numpy as np
 
 import pysolver
+
 from scenes import DECKS
 
 DECK = DECKS / "particle_between_lines.xml"
