@@ -92,3 +92,20 @@ def test_readme_user_subroutine_examples_run(tmp_path):
     res = pysolver.load(tmp_path / "bead_c.xml").run(integr_tol=1e-10)
     assert res.success and "C library" in str(res.meta["usersubs"])
     np.testing.assert_allclose(res.request(1)[:, :6], ref.request(1)[:, :6], rtol=1e-7, atol=1e-7)
+
+
+def test_readme_batch_example_runs(tmp_path):
+    """The README's sweep example, as a script (worker processes re-import it), in a fresh
+    folder: every case ok, the directory written."""
+    import subprocess
+    import sys
+    text = (ROOT / "README.md").read_text().split("## Batch studies", 1)[1]
+    script = re.search(r"```python\n(.*?)```", text, flags=re.S).group(1)
+    script = script.replace('"decks/', f'"{ROOT}/decks/')
+    script += '    assert (sw.table["status"] == "ok").all() and res.success\n'
+    (tmp_path / "study.py").write_text(script)
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(pysolver.__file__).parents[1]))
+    out = subprocess.run([sys.executable, "study.py"], cwd=tmp_path, env=env,
+                         capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert len(list((tmp_path / "study" / "results").glob("*.pkl"))) == 12
