@@ -12,6 +12,7 @@ workers need).
 import collections
 import multiprocessing as mp
 import os
+import pathlib
 import pickle
 import signal
 import time
@@ -51,8 +52,13 @@ def _context():
     if "forkserver" not in methods:
         return mp.get_context("spawn")
     ctx = mp.get_context("forkserver")
-    # workers fork from a server that has imported pysolver once: no import per worker
-    ctx.set_forkserver_preload(["pysolver", "pysolver.solve.run", "pysolver.batch.case"])
+    # workers fork from a server that has imported pysolver once: no import per worker. The
+    # server imports with the working folder first on its path: when that folder holds another
+    # pysolver (a source checkout beside an installed one) the workers import theirs instead.
+    here = pathlib.Path(__file__).resolve().parents[1]
+    shadow = pathlib.Path.cwd() / "pysolver"
+    if not shadow.exists() or shadow.resolve() == here:
+        ctx.set_forkserver_preload(["pysolver", "pysolver.solve.run", "pysolver.batch.case"])
     return ctx
 
 
