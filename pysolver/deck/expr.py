@@ -14,6 +14,7 @@ so ``-2**2 == -4`` and ``2**3**2 == 512``. The parser produces a small tree of t
 ``('call', NAME, [args], col)``. Semantic checks (function names, argument counts, ids) are
 done here too, so that a deck fails at load time and not during a run.
 """
+import math
 import re
 
 from ..errors import ExpressionError
@@ -60,7 +61,10 @@ def tokenize(text):
             raise ExpressionError(f"unexpected character {text[col]!r}", col)
         col = m.start(m.lastindex)
         if m.group(1):
-            tokens.append(("num", float(m.group(1).replace("d", "e").replace("D", "e")), col))
+            value = float(m.group(1).replace("d", "e").replace("D", "e"))
+            if not math.isfinite(value):
+                raise ExpressionError(f"the number {m.group(1)} is too large for a double", col)
+            tokens.append(("num", value, col))
         elif m.group(2):
             tokens.append(("name", m.group(2).upper(), col))
         else:
@@ -70,10 +74,28 @@ def tokenize(text):
     return tokens
 
 
+#: Deepest nesting an expression may have: parentheses, function calls, unary signs and the
+#: terms of one sum or product each add a level (the trees are walked recursively).
+MAX_DEPTH = 120
+
+
+def _too_deep(col):
+    return ExpressionError(f"the expression nests deeper than {MAX_DEPTH} levels (parentheses, "
+                           "calls, signs and the terms of one sum or product each count); "
+                           "split it with Reference_Variables", col)
+
+
 class _Parser:
     def __init__(self, text):
         self.toks = tokenize(text)
         self.i = 0
+        self.depth = 0
+
+    def nest(self):
+        """Enter one level of recursion; ExpressionError past MAX_DEPTH."""
+        self.depth += 1
+        if self.depth > MAX_DEPTH:
+            raise _too_deep(self.peek()[2])
 
     def peek(self):
         return self.toks[self.i]
@@ -108,13 +130,17 @@ class _Parser:
         return node
 
     def unary(self):
-        if self.at("-"):
-            self.take()
-            return ("neg", self.unary())
-        if self.at("+"):
-            self.take()
-            return self.unary()
-        return self.power()
+        self.nest()
+        try:
+            if self.at("-"):
+                self.take()
+                return ("neg", self.unary())
+            if self.at("+"):
+                self.take()
+                return self.unary()
+            return self.power()
+        finally:
+            self.depth -= 1
 
     def power(self):
         base = self.primary()
@@ -170,8 +196,82 @@ def parse(text):
     kind, val, col = p.peek()
     if kind != "end":
         raise ExpressionError(f"unexpected {val!r} after the end of the expression", col)
+    if depth(node) > MAX_DEPTH:
+        raise _too_deep(0)
     _check(node)
+    _constant_parts(node)
     return node
+
+
+def _fn(name):
+    """NumPy's version of a math function of the language, for constant arguments."""
+    import numpy as np
+    sign = lambda a, b: np.abs(a) * (1.0 if b >= 0 else -1.0)  # noqa: E731
+    table = {"ABS": np.abs, "ACOS": np.arccos, "ASIN": np.arcsin, "ATAN": np.arctan,
+             "COS": np.cos, "COSH": np.cosh, "SIN": np.sin, "SINH": np.sinh, "TAN": np.tan,
+             "TANH": np.tanh, "EXP": np.exp, "LOG": np.log, "LOG10": np.log10,
+             "SQRT": np.sqrt, "AINT": np.trunc, "ANINT": lambda x: np.sign(x) *
+             np.floor(np.abs(x) + 0.5), "ATAN2": np.arctan2, "MOD": np.fmod,
+             "MAX": np.maximum, "MIN": np.minimum, "SIGN": sign,
+             "DIM": lambda a, b: np.maximum(a - b, 0.0)}
+    return table.get(name)
+
+
+def _constant_parts(tree):
+    """ExpressionError when a part of the tree that depends on nothing (numbers, constants
+    and math functions of them) evaluates to infinity or NaN: 1/0, 10**400, LOG(-1), ..."""
+    import numpy as np
+    ops = {"+": np.add, "-": np.subtract, "*": np.multiply, "/": np.divide, "**": np.power}
+    values = {}
+    order, stack = [], [tree]
+    while stack:                        # post-order without recursion
+        node = stack.pop()
+        order.append(node)
+        if node[0] == "neg":
+            stack.append(node[1])
+        elif node[0] == "bin":
+            stack += [node[2], node[3]]
+        elif node[0] == "call" and node[1] not in ID_ARGS:
+            stack += list(node[2])
+    with np.errstate(all="ignore"):
+        for node in reversed(order):
+            tag, v = node[0], None
+            if tag == "num":
+                v = node[1]
+            elif tag == "name" and node[1] in CONSTANTS:
+                v = CONSTANTS[node[1]]
+            elif tag == "neg" and id(node[1]) in values:
+                v = -values[id(node[1])]
+            elif tag == "bin" and id(node[2]) in values and id(node[3]) in values:
+                v = float(ops[node[1]](np.float64(values[id(node[2])]),
+                                       np.float64(values[id(node[3])])))
+            elif tag == "call" and _fn(node[1]) is not None and \
+                    all(id(a) in values for a in node[2]):
+                v = float(_fn(node[1])(*[np.float64(values[id(a)]) for a in node[2]]))
+            if v is None:
+                continue
+            if not math.isfinite(v):
+                raise ExpressionError(f"{unparse(node)} is {v} (a constant part of the "
+                                      "expression)", node[3] if tag == "call" else 0)
+            values[id(node)] = v
+
+
+def depth(node):
+    """Depth of a tree, computed without recursion."""
+    deepest, stack = 0, [(node, 1)]
+    while stack:
+        n, d = stack.pop()
+        deepest = max(deepest, d)
+        tag = n[0]
+        if tag == "neg":
+            stack.append((n[1], d + 1))
+        elif tag == "bin":
+            stack += [(n[2], d + 1), (n[3], d + 1)]
+        elif tag == "call":
+            stack += [(a, d + 1) for a in n[2]]
+        elif tag == "user":
+            stack += [(a, d + 1) for a in n[3]]
+    return deepest
 
 
 def _check(node):

@@ -1,8 +1,11 @@
 """Entry points that turn a deck file or text into a validated Model."""
 from __future__ import annotations
 
+import io
 import os
+import re
 import sys
+import tokenize
 import traceback
 
 from ..errors import DeckError
@@ -34,10 +37,38 @@ def load(path: str | os.PathLike) -> Model:
         There is no such file.
     """
     path = os.fspath(path)
-    with open(path, encoding="utf-8") as fh:
-        text = fh.read()
+    if os.path.isdir(path):
+        raise DeckError("is a folder, not a deck file", file=path)
+    with open(path, "rb") as fh:
+        raw = fh.read()
     fmt = "py" if path.lower().endswith(".py") else "xml"
-    return loads(text, fmt=fmt, file=path)
+    return loads(_decode(raw, fmt, path), fmt=fmt, file=path)
+
+
+_XML_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*?encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
+
+
+def _decode(raw, fmt, path):
+    """A deck's text: XML in the encoding its declaration names (UTF-8 without one), Python
+    by its coding line (PEP 263)."""
+    if fmt == "py":
+        try:
+            encoding = tokenize.detect_encoding(io.BytesIO(raw).readline)[0]
+        except SyntaxError as err:
+            raise DeckError(f"cannot read the file: {err}", file=path) from None
+    else:
+        found = _XML_ENCODING.match(raw)
+        encoding = found.group(1).decode() if found else "utf-8"
+    try:
+        return raw.decode(encoding)
+    except LookupError:
+        raise DeckError(f"unknown text encoding {encoding!r} in the XML declaration",
+                        file=path, line=1) from None
+    except UnicodeDecodeError as err:
+        line = raw[:err.start].count(b"\n") + 1
+        raise DeckError(f"the file is not valid {encoding} text (byte {err.start}: "
+                        f"{raw[err.start:err.start + 1]!r}); declare its encoding",
+                        file=path, line=line) from None
 
 
 def loads(text: str, fmt: str = "xml", file: str = "<string>") -> Model:

@@ -171,11 +171,16 @@ def convert(ctx, name, kind, raw):
         raise ctx.error(f"got {raw!r}; expected TRUE or FALSE", name)
     if kind == "id":
         try:
-            val = int(str(raw).strip()) if not isinstance(raw, (int, float)) else raw
-            if isinstance(val, float) and val != int(val):
+            if isinstance(raw, (int, float)) and not isinstance(raw, bool):
+                val = raw
+            else:
+                text = str(raw).strip()
+                # whole numbers in E notation too (max_num_steps="1e8")
+                val = int(text) if text.lstrip("+-").isdigit() else float(text)
+            if isinstance(val, float) and (not math.isfinite(val) or val != int(val)):
                 raise ValueError
             val = int(val)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             raise ctx.error(f"got {raw!r}; expected a positive integer", name) from None
         if val <= 0:
             raise ctx.error(f"got {val}; expected a positive integer", name)

@@ -276,6 +276,11 @@ def _trace(ctx, sub, id, model):
         raise
     except Exception as err:  # the routine's own error
         raise ctx.error(f"{sub.name} raised {_where(err, file)}", sub.attribute) from None
+    deepest = max((ex.depth(t) for t in trees if t is not None), default=0)
+    if deepest > ex.MAX_DEPTH:
+        sub.untraced = (f"not traced: its expression nests {deepest} levels deep, more than "
+                        f"the {ex.MAX_DEPTH} a traced expression may")
+        return None
     try:
         for t in trees:
             if t is not None:

@@ -5,6 +5,8 @@ bodies (:mod:`.bodies`), the force-like elements and commands (here), and every 
 expression makes (:mod:`.references`). Both deck formats end here, so they build identical
 models.
 """
+import math
+
 import numpy as np
 
 from ..errors import DeckError
@@ -101,6 +103,10 @@ def build_model(elements, source):
     return model
 
 
+#: Most output rows one Simulate command may ask for (a memory budget applies at run time).
+MAX_ROWS = 1e9
+
+
 def _simulate(ctx, a, model, t_prev):
     if a["analysis_type"] == "STATIC":
         # an equilibrium at the current time, or at end_time when given
@@ -131,6 +137,10 @@ def _simulate(ctx, a, model, t_prev):
         dt = (end - t_prev) / a["num_step"]
     else:
         dt = (end - t_prev) / 100.0
+    rows = (end - t_prev) / dt
+    if not math.isfinite(end - t_prev) or not rows < MAX_ROWS:
+        raise ctx.error(f"{end - t_prev:g} s every {dt:g} s would be {rows:.3g} output rows; "
+                        f"at most {MAX_ROWS:.0e} per command", given[0] if given else "end_time")
     model.commands.append(Simulate(a["analysis_type"], end, dt, ctx.line))
     return end
 

@@ -3,6 +3,8 @@
 Reading a deck never executes code: the parser resolves no entities, loads no DTD and
 fetches nothing from the network.
 """
+import re
+
 from lxml import etree
 
 from ..errors import DeckError
@@ -11,14 +13,25 @@ _PARSER = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=Fals
                           remove_comments=True, remove_pis=True, huge_tree=False)
 
 
+_DECLARED = re.compile(r"""^(\s*<\?xml[^>]*?)\s+encoding\s*=\s*["'][^"']*["']""")
+
+
 def read_elements(text, file):
-    """Return the deck's elements as (tag, attrs, line, names) in document order."""
+    """Return the deck's elements as (tag, attrs, line, names) in document order. Text is
+    already decoded: its encoding declaration is dropped (the bytes given to the parser are
+    UTF-8)."""
+    if isinstance(text, str):
+        text = _DECLARED.sub(r"\1", text, count=1).encode()
     try:
-        root = etree.fromstring(text.encode() if isinstance(text, str) else text, _PARSER)
+        root = etree.fromstring(text, _PARSER)
     except etree.XMLSyntaxError as err:
         line = err.lineno if hasattr(err, "lineno") else None
         raise DeckError(f"malformed XML: {err.msg if hasattr(err, 'msg') else err}",
                         file=file, line=line) from None
+    if root.getroottree().docinfo.internalDTD is not None or \
+            root.getroottree().docinfo.doctype:
+        raise DeckError("a DOCTYPE (DTD, entities) is not allowed in a deck", file=file,
+                        line=1)
     elements = []
     model_seen = False
     for child in root:

@@ -11,6 +11,7 @@ every converged step is kept with each actor's snapshot, so that the run can go 
 last one before an event (restore-and-shrink). Scenes without one pay nothing for it.
 """
 import collections
+import os
 import time
 
 import numpy as np
@@ -174,12 +175,25 @@ class Run:
             flow.update(actor.on_roots(self, step.roots[sl]))
         return self.apply(flow)
 
+    def check_output_budget(self, cmd):
+        """Stop before allocating when the command's output rows would pass the memory budget
+        (PYSOLVER_OUTPUT_BUDGET bytes, default 2 GiB)."""
+        rows = (cmd.end_time - self.t) / cmd.print_interval + 1
+        per_row = 8 * (2 * self.kernel.ny + max(len(self.kernel.channels), 1))
+        budget = float(os.environ.get("PYSOLVER_OUTPUT_BUDGET", 2 ** 31))
+        if rows * per_row > budget:
+            raise Stop(False, -500, f"the Simulate command ending at {cmd.end_time:g} would "
+                       f"write {rows:.3g} output rows ({rows * per_row / 2 ** 30:.3g} GiB), "
+                       f"more than the output budget of {budget / 2 ** 30:.3g} GiB; give a "
+                       "larger print_interval or set PYSOLVER_OUTPUT_BUDGET (bytes)")
+
     # a transient command -------------------------------------------------------------
     def run_transient(self, cmd):
         if self.need_start:
             self.start(self.first_step)
             self.first_step = None
         printer = self.printer
+        self.check_output_budget(cmd)
         printer.begin_command(self.t, cmd.end_time, cmd.print_interval)
         start_steps = self.steps()
         timed = [a for a in self.actors if a is not printer]
