@@ -4,7 +4,9 @@
  * then scalar two-body forces. The residual and the Jacobian share one assembly pass; with
  * jac == NULL it computes values only.
  */
+#define _POSIX_C_SOURCE 200809L   /* sigaction */
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -353,9 +355,45 @@ static int assemble(const psModel* m, psData* d, double t, const double* y, cons
   return PS_OK;
 }
 
+/* Ctrl-C during a run: the first SIGINT sets the flag the residual checks (the run stops at
+ * its next residual, with the rows so far); a second one ends the process at once. */
+static volatile sig_atomic_t interrupted = 0;
+static struct sigaction previous;
+static int armed = 0;
+
+static void on_sigint(int sig) {
+  if (interrupted) {
+    signal(sig, SIG_DFL);
+    raise(sig);
+    return;
+  }
+  interrupted = 1;
+}
+
+void ps_interrupt_arm(void) {
+  struct sigaction act;
+  memset(&act, 0, sizeof(act));
+  act.sa_handler = on_sigint;
+  sigemptyset(&act.sa_mask);
+  interrupted = 0;
+  if (!armed && sigaction(SIGINT, &act, &previous) == 0) armed = 1;
+}
+
+void ps_interrupt_disarm(void) {
+  if (armed) sigaction(SIGINT, &previous, NULL);
+  armed = 0;
+}
+
+int ps_interrupted(void) { return interrupted; }
+
 int ps_residual(const psModel* m, psData* d, double t, const double* y, const double* yp,
                 double* res) {
   Assembly as = {res, NULL, NULL, NULL, NULL, 0, 0, 0.0, m->ny};
+  if (interrupted) {
+    snprintf(d->msg, sizeof(d->msg), "interrupted");
+    d->user_error = 1;     /* not recoverable: IDA returns at once */
+    return PS_ERR_NONFINITE;
+  }
   d->nres++;
   /* A new time is a new step attempt; IDA retries a failed attempt (error test or
    * convergence) from the same base with a smaller step, so a new time below the last one

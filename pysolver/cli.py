@@ -37,6 +37,8 @@ def _run(args):
     print(res.summary())
     written.append(stats_path)
     print(f"wrote {', '.join(written)}")
+    if res.status == -600:
+        return 130                  # interrupted: the rows so far were written
     return 0 if res.success else 1
 
 

@@ -2,6 +2,7 @@
 line, element, attribute, what was expected), never a traceback into internals; constants that
 are infinite or NaN are refused at load; output grids that cannot fit are refused before any
 memory is taken."""
+import re
 import subprocess
 import sys
 
@@ -96,3 +97,37 @@ def test_check_of_a_folder_exits_2(tmp_path):
                          capture_output=True, text=True, cwd=tmp_path, env=env)
     assert out.returncode == 2 and "is a folder, not a deck file" in out.stderr
     assert "Traceback" not in out.stderr
+
+
+def test_ctrl_c_stops_a_run_and_the_cli_writes_the_rows(tmp_path):
+    """SIGINT to `pysolver run` on a long deck (the stiff pendulum for 1e5 s): it stops at once (the C kernel's handler
+    ends the run at its next residual), exits 130, and writes the rows computed so far, the
+    CSV agreeing with stats.json."""
+    import json
+    import os
+    import pathlib
+    import signal
+    import time
+    deck = tmp_path / "long.xml"
+    text = (DECKS / "stiff_penalty_pendulum.xml").read_text()
+    text = re.sub(r'end_time="[^"]*"', 'end_time="100000.0"', text)
+    deck.write_text(text.replace("<Param_Transient", '<Param_Transient max_num_steps="1e9"'))
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(pysolver.__file__).parents[1]))
+    proc = subprocess.Popen([sys.executable, "-m", "pysolver.cli", "run", str(deck), "-o",
+                             str(tmp_path / "out"), "-q", "--no-plot"], cwd=tmp_path, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(3.0)                                  # imports, compile, then integrating
+    assert proc.poll() is None
+    t0 = time.perf_counter()
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=30)
+    latency = time.perf_counter() - t0
+    assert proc.returncode == 130, err[-2000:]
+    assert latency < 0.5 + 1.0                       # stop, then write the rows and exit
+    stats = json.loads((tmp_path / "out" / "stats.json").read_text())
+    assert not stats["success"] and stats["message"].startswith("interrupted at t = ")
+    rows = (tmp_path / "out" / "requests.csv").read_text().strip().splitlines()[1:]
+    assert len(rows) == stats["stats"]["outputs"] > 10
+    t_last = float(rows[-1].split(",")[0])
+    assert 0.0 < t_last < 100000.0
+    assert "Traceback" not in err

@@ -246,6 +246,14 @@ typedef struct psData {
 int ps_residual(const psModel* m, psData* d, double t, const double* y, const double* yp,
                 double* res);
 
+/* Ctrl-C during a run: ps_interrupt_arm installs a SIGINT handler (saving the previous one)
+ * whose first signal makes every later ps_residual fail at once, not recoverably, with the
+ * message "interrupted", and whose second ends the process; ps_interrupt_disarm puts the
+ * previous handler back; ps_interrupted says whether the signal came. */
+void ps_interrupt_arm(void);
+void ps_interrupt_disarm(void);
+int ps_interrupted(void);
+
 /* Write into q (length m->ny) the generalized forces of all Force_Penalty elements at
  * (t, y, yp), in model force units, on the velocity rows (zero elsewhere): the contact load a
  * LoadControl task with load="contact" reads. Returns PS_OK or PS_ERR_NONFINITE. */

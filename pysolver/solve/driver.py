@@ -16,6 +16,7 @@ import time
 
 import numpy as np
 
+from ..build.bindings import lib
 from ..build.kernel import UserFailure
 from . import integrator, quasistatic
 from .actors import Actor, Flow
@@ -198,6 +199,8 @@ class Run:
         start_steps = self.steps()
         timed = [a for a in self.actors if a is not printer]
         while printer.pending:
+            if lib.ps_interrupted():
+                raise Stop(False, -600, f"interrupted at t = {self.t:.6g}")
             if self.act_due(timed):
                 return
             # IDA stops exactly at the next instant an actor named (tstop), or the command's end
@@ -218,6 +221,8 @@ class Run:
                     step = self.solver.step(tstop, tstop)
             else:
                 step = self.solver.step(min(printer.pending[0], tstop), tstop)
+            if lib.ps_interrupted():          # Ctrl-C: the rows so far are kept
+                raise Stop(False, -600, f"interrupted at t = {self.t:.6g}")
             if self.kernel.d.user_error:      # a user subroutine reported an error
                 raise Stop(False, -400, f"{self.kernel.message} (t = {step.t:.6g})")
             if step.status == TOO_MUCH_WORK or \

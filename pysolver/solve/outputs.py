@@ -5,7 +5,6 @@ each print time of the current Simulate command. Its instants change nothing, so
 may hand a whole run of them to the integrator in one call (:meth:`Printer.times_before`,
 :meth:`Printer.take`), which the C driver runs without returning to Python.
 """
-import collections
 import math
 import sys
 import time
@@ -21,6 +20,52 @@ def print_times(t0, end, dt):
     times = t0 + dt * np.arange(1, n + 1)
     times = times[times < end - 1e-12 * max(1.0, abs(end))]
     return np.append(times, end)
+
+
+class Grid:
+    """The print times of :func:`print_times`, generated as they are asked for (a long command
+    holds no list of its times)."""
+
+    #: Most times one batch call of the integrator gets (it returns to Python after them).
+    BATCH = 10000
+
+    def __init__(self, t0=0.0, end=0.0, dt=1.0, empty=False):
+        self.t0, self.end, self.dt = t0, end, dt
+        n = max(int(math.floor((end - t0) / dt + 1e-9)), 0)
+        # grid times within rounding of the end give way to the end itself
+        while n and t0 + dt * n >= end - 1e-12 * max(1.0, abs(end)):
+            n -= 1
+        self.n, self.k, self.end_left = n, 1, not empty
+
+    def __bool__(self):
+        return self.k <= self.n or self.end_left
+
+    def __len__(self):
+        return max(self.n - self.k + 1, 0) + int(self.end_left)
+
+    def __getitem__(self, i):
+        if i != 0 or not self:
+            raise IndexError(i)
+        return self.t0 + self.dt * self.k if self.k <= self.n else self.end
+
+    def popleft(self):
+        t = self[0]
+        if self.k <= self.n:
+            self.k += 1
+        else:
+            self.end_left = False
+        return t
+
+    def upto(self, t_limit):
+        """The next times up to t_limit, at most BATCH of them."""
+        out = []
+        k = self.k
+        while len(out) < self.BATCH and k <= self.n and self.t0 + self.dt * k <= t_limit:
+            out.append(self.t0 + self.dt * k)
+            k += 1
+        if len(out) < self.BATCH and k > self.n and self.end_left and self.end <= t_limit:
+            out.append(self.end)
+        return out
 
 
 class Rows:
@@ -100,28 +145,29 @@ class Printer(Actor):
         self.ys, self.yps, self.outs = Rows(), Rows(), Rows()
         self.dt = None
         self.end = None
-        self.pending = collections.deque()
+        self.pending = Grid(empty=True)
         self.watchers = []        # actors with on_output, told of every row written
 
     # the schedule --------------------------------------------------------------------
     def begin_command(self, t, end, dt):
         """Print every dt from t to end (a new Simulate command)."""
         self.end, self.dt = end, dt
-        self.pending = collections.deque(print_times(t, end, dt))
+        self.pending = Grid(t, end, dt)
 
     def set_interval(self, t, dt):
         """A new print interval from t on (a sensor's dt action). Before the first command
         (a sensor firing at the start) the command's own interval applies, as before."""
         self.dt = dt
         if self.end is not None:
-            self.pending = collections.deque(print_times(t, self.end, dt))
+            self.pending = Grid(t, self.end, dt)
 
     def next_time(self, t):
         return self.pending[0] if self.pending else math.inf
 
     def times_before(self, t_limit):
-        """The pending print times up to t_limit, for one batch call of the integrator."""
-        return [tp for tp in self.pending if tp <= t_limit]
+        """The pending print times up to t_limit (at most Grid.BATCH), for one batch call of
+        the integrator."""
+        return self.pending.upto(t_limit)
 
     def take(self, times, Y, YP, REQ):
         """Keep the rows of a batch the integrator ran through, and drop those times."""
@@ -187,4 +233,4 @@ class Printer(Actor):
         while self.ts and self.ts[-1] > t:
             self._drop_last()
         last = self.ts[-1] if self.ts else t
-        self.pending = collections.deque(print_times(last, self.end, self.dt))
+        self.pending = Grid(last, self.end, self.dt)

@@ -1,8 +1,10 @@
 """``Model.run``: options, one :class:`~.driver.Run`, and the :class:`~pysolver.Result`."""
 import dataclasses
+import threading
 import time
 
 from .._version import __version__
+from ..build.bindings import lib
 from ..results import Result
 from .driver import Run
 
@@ -22,7 +24,15 @@ def run_model(model, progress=None, overrides=None, actors=()):
     for actor in actors:
         run.add_actor(actor)
     t_run = time.perf_counter()
-    success, status, message = run.run()
+    # Ctrl-C (main thread only): the C kernel's handler ends the run at its next residual
+    main = threading.current_thread() is threading.main_thread()
+    if main:
+        lib.ps_interrupt_arm()
+    try:
+        success, status, message = run.run()
+    finally:
+        if main:
+            lib.ps_interrupt_disarm()
     t_end = time.perf_counter()
     ida, growth_limited_at = run.counters()
     c = kernel.counters
