@@ -181,6 +181,27 @@ static void apply_load(const psModel* m, psData* d, const psuHD* c, int tape, in
   apply_at(m, d, c, tape, slot, P, F, Mo, sign, as);
 }
 
+/* Add Q_i = F c_i, c_i = d(g')/du_i, for every free body the tape reads; when lam >= 0 (a
+ * motion's reaction, F = lam) also the Jacobian column of lam. */
+static void rate_force(const psModel* m, psData* d, const psuHD* c, const double* g, int tape,
+                       const double* F, int lam, Assembly* as) {
+  double* ci = ps_tmp(m, d, F_CI);
+  double* Q = ps_tmp(m, d, F_Q);
+  double* sc = ps_tmp(m, d, F_SC);
+  int adr = m->tape_body_adr[tape];
+  for (int slot = 0; slot < m->tape_nbody[tape]; slot++) {
+    if (m->tbody_q[adr + slot] < 0) continue;
+    int b = m->tbody_body[adr + slot];
+    int nu = m->body_type[b] == PS_BODY_RIGID ? 6 : 3;
+    for (int i = 0; i < nu; i++) {
+      ps_rate_coeff(m, d, c, g, tape, slot, i, ci, sc);
+      psu_hd_mul(c, Q, F, ci);
+      scatter(m, c, tape, m->body_uadr[b] + i, Q, as);
+      if (lam >= 0 && as->deriv) jadd(as, m->body_uadr[b] + i, lam, -m->force_scale * ci[0]);
+    }
+  }
+}
+
 /* Force_Penalty: Q_i = F * d(g')/du_i with F = -p g - p1 g' (smoothed when unilateral). */
 static void penalty_forces(const psModel* m, psData* d, double t, const double* y,
                            const double* yp, Assembly* as) {
@@ -189,22 +210,7 @@ static void penalty_forces(const psModel* m, psData* d, double t, const double* 
     int order = as->deriv ? 2 : 1;
     ps_tape_run(m, d, tape, order, !as->deriv, t, y, yp);
     psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], order - 1, m->hd_stride};
-    const double* g = ps_slot(m, d, m->pen_g[p]);
-    const double* F = ps_slot(m, d, m->pen_f[p]);
-    double* ci = ps_tmp(m, d, F_CI);
-    double* Q = ps_tmp(m, d, F_Q);
-    double* sc = ps_tmp(m, d, F_SC);
-    int adr = m->tape_body_adr[tape];
-    for (int slot = 0; slot < m->tape_nbody[tape]; slot++) {
-      if (m->tbody_q[adr + slot] < 0) continue;
-      int b = m->tbody_body[adr + slot];
-      int nu = m->body_type[b] == PS_BODY_RIGID ? 6 : 3;
-      for (int i = 0; i < nu; i++) {
-        ps_rate_coeff(m, d, &c, g, tape, slot, i, ci, sc);
-        psu_hd_mul(&c, Q, F, ci);
-        scatter(m, &c, tape, m->body_uadr[b] + i, Q, as);
-      }
-    }
+    rate_force(m, d, &c, ps_slot(m, d, m->pen_g[p]), tape, ps_slot(m, d, m->pen_f[p]), -1, as);
   }
 }
 
@@ -310,22 +316,8 @@ static void motion_rows(const psModel* m, psData* d, double t, const double* y,
     const double* gd = ps_slot(m, d, m->mot_gd[k]);
     const double* f = ps_slot(m, d, m->mot_f[k]);
     double* L = ps_tmp(m, d, F_LEN);
-    double* ci = ps_tmp(m, d, F_CI);
-    double* Q = ps_tmp(m, d, F_Q);
-    double* sc = ps_tmp(m, d, F_SC);
     psu_hd_const(&c, L, y[lam]);
-    int adr = m->tape_body_adr[tape];
-    for (int slot = 0; slot < m->tape_nbody[tape]; slot++) {
-      if (m->tbody_q[adr + slot] < 0) continue;
-      int b = m->tbody_body[adr + slot];
-      int nu = m->body_type[b] == PS_BODY_RIGID ? 6 : 3;
-      for (int i = 0; i < nu; i++) {
-        ps_rate_coeff(m, d, &c, g, tape, slot, i, ci, sc);
-        psu_hd_mul(&c, Q, L, ci);
-        scatter(m, &c, tape, m->body_uadr[b] + i, Q, as);
-        if (as->deriv) jadd(as, m->body_uadr[b] + i, lam, -m->force_scale * ci[0]);
-      }
-    }
+    rate_force(m, d, &c, g, tape, L, lam, as);
     as->res[lam] = gd[0] - (kind == PS_MOTION_V ? f[0] : kind == PS_MOTION_A ? y[w] : 0.0);
     if (as->deriv) {
       int badr = m->tape_basis_adr[tape];

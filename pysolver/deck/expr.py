@@ -338,31 +338,37 @@ def unparse(node):
     return f"{name}({', '.join(unparse(a) for a in args)})"
 
 
-def references(node, out=None):
+def nodes(tree):
+    """Yield every node of an expression tree (depth first, without recursion)."""
+    stack = [tree]
+    while stack:
+        node = stack.pop()
+        yield node
+        tag = node[0]
+        if tag == "user":
+            stack.extend(node[3])
+        elif tag == "neg":
+            stack.append(node[1])
+        elif tag == "bin":
+            stack.extend(node[2:4])
+        elif tag == "call":
+            stack.extend(node[2])
+
+
+def references(tree, out=None):
     """Return {kind: set(ids)} of the elements an expression tree refers to by id."""
     out = out if out is not None else {}
-    tag = node[0]
-    if tag == "user":
-        for a in node[3]:
-            references(a, out)
-    elif tag == "neg":
-        references(node[1], out)
-    elif tag == "bin":
-        references(node[2], out)
-        references(node[3], out)
-    elif tag == "call":
+    for node in nodes(tree):
+        if node[0] != "call" or node[1] not in ID_ARGS:
+            continue
         name, args = node[1], node[2]
-        if name in ID_ARGS:
-            kind = ID_ARGS[name]
-            if name in ("SFORCE", "MOTION"):
-                out.setdefault(kind, set()).add(int(args[0][1]))
-                if len(args) == 4 and int(args[3][1]):
-                    out.setdefault("marker", set()).add(int(args[3][1]))
-            else:
-                for a in args:
-                    if int(a[1]) != 0 or kind != "marker":
-                        out.setdefault(kind, set()).add(int(a[1]))
+        kind = ID_ARGS[name]
+        if name in ("SFORCE", "MOTION"):
+            out.setdefault(kind, set()).add(int(args[0][1]))
+            if len(args) == 4 and int(args[3][1]):
+                out.setdefault("marker", set()).add(int(args[3][1]))
         else:
             for a in args:
-                references(a, out)
+                if int(a[1]) != 0 or kind != "marker":
+                    out.setdefault(kind, set()).add(int(a[1]))
     return out

@@ -67,20 +67,7 @@ def clashes(model, bi, bj, direction, ground):
     return None
 
 
-def time_only(node, out=None):
+def time_only(tree):
     """Names of the state-dependent functions an expression tree calls (empty: it depends on
     time only)."""
-    out = set() if out is None else out
-    tag = node[0]
-    if tag == "neg":
-        time_only(node[1], out)
-    elif tag == "bin":
-        time_only(node[2], out)
-        time_only(node[3], out)
-    elif tag == "call":
-        if node[1] in ex.ID_ARGS:
-            out.add(node[1])
-        else:
-            for arg in node[2]:
-                time_only(arg, out)
-    return out
+    return {n[1] for n in ex.nodes(tree) if n[0] == "call" and n[1] in ex.ID_ARGS}
