@@ -31,7 +31,10 @@
   X(4, IDASetNoInactiveRootWarn) X(4, IDASolve) X(4, IDAGetRootInfo) X(4, IDAGetNumSteps)     \
   X(4, IDAGetNumResEvals) X(4, IDAGetNumJacEvals) X(4, IDAGetNumErrTestFails)                 \
   X(4, IDAGetNumNonlinSolvConvFails) X(4, IDAGetNumGEvals) X(4, IDAGetLastStep) X(4, IDAFree)   \
-  X(4, IDASetId) X(4, IDASetSuppressAlg)
+  X(4, IDASetId) X(4, IDASetSuppressAlg) X(4, IDAGetCurrentStep)
+
+/* A step shorter than this times |t| is at rounding level. */
+#define PS_IDA_ROUNDING 1e-10
 
 #define PS_ENUM(lib, name) F_##name,
 enum { SUNDIALS_FNS(PS_ENUM) F_COUNT };
@@ -109,10 +112,14 @@ const char* ps_ida_message(const psIDA* s) { return s->msg; }
 static int res_fn(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* ud) {
   psIDA* s = (psIDA*)ud;
   __typeof__(&N_VGetArrayPointer) data = CALL(s, N_VGetArrayPointer);
-  /* a non-finite residual is a recoverable failure: IDA retries with a smaller step; an error
-   * a user subroutine reported is not: the run ends with its message */
+  /* a non-finite residual is a recoverable failure: IDA retries with a smaller step, unless
+   * the step is already at rounding level (the solution itself runs into the NaN: it would
+   * creep towards it forever); an error a user subroutine reported is not: the run ends */
   if (ps_residual(s->m, s->d, t, data(yy), data(yp), data(rr)) == PS_OK) return 0;
-  return s->d->user_error ? -1 : 1;
+  if (s->d->user_error) return -1;
+  sunrealtype h = 1.0;
+  CALL(s, IDAGetCurrentStep)(s->mem, &h);
+  return fabs(h) <= PS_IDA_ROUNDING * fabs(t) ? -1 : 1;
 }
 
 /* Called with each Jacobian evaluation (IDA forms one after every error-test failure, so about

@@ -261,17 +261,6 @@ static void scalar_forces(const psModel* m, psData* d, double t, const double* y
   }
 }
 
-static int check_finite(psData* d, const double* v, int n, const char* what) {
-  for (int i = 0; i < n; i++) {
-    if (d->user_error) return PS_ERR_NONFINITE;   /* d->msg holds the subroutine's message */
-    if (!isfinite(v[i])) {
-      snprintf(d->msg, sizeof(d->msg), "%s entry %d is not finite (%g)", what, i, v[i]);
-      return PS_ERR_NONFINITE;
-    }
-  }
-  return PS_OK;
-}
-
 /* Force_Vector_TwoBody: F = X f with X the reference marker's axes, on I's body at I and
  * opposite on J's body at the same point. */
 static void vector_forces(const psModel* m, psData* d, double t, const double* y,
@@ -333,6 +322,92 @@ static void motion_rows(const psModel* m, psData* d, double t, const double* y,
       if (as->deriv) jadd(as, w, w, as->cj);
     }
   }
+}
+
+/* Record the first non-finite value found (kind, index, value) and a message. */
+static int found_bad(psData* d, int kind, int index, double v) {
+  d->bad_kind = kind;
+  d->bad_index = index;
+  d->bad_value = v;
+  snprintf(d->msg, sizeof(d->msg), "non-finite value (%g)", v);
+  return 1;
+}
+
+/* Whether any of the value and first partials of element value slots is not finite. */
+static int bad_slots(const psModel* m, psData* d, int tape, int order, const int* slots,
+                     int n, double* v) {
+  int width = order > 0 ? 1 + m->tape_nbasis[tape] : 1;
+  for (int k = 0; k < n; k++) {
+    const double* x = ps_slot(m, d, slots[k]);
+    for (int j = 0; j < width; j++)
+      if (!isfinite(x[j])) {
+        *v = x[j];
+        d->bad_partial = j > 0;
+        return 1;
+      }
+  }
+  return 0;
+}
+
+/* A residual (deriv = 0) or Jacobian (deriv = 1) came out non-finite at (t, y, yp): find the
+ * first state, element value (or, for the Jacobian, its first partials) that is, in the order
+ * the residual assembles them. Runs only on that failure path. */
+static void diagnose(const psModel* m, psData* d, double t, const double* y, const double* yp,
+                     int deriv) {
+  double v = 0.0;
+  d->bad_t = t;
+  d->bad_partial = 0;
+  memcpy(d->bad_y, y, sizeof(double) * (size_t)m->ny);
+  for (int i = 0; i < m->ny; i++) {
+    if (!isfinite(y[i]) && found_bad(d, PS_BAD_STATE, i, y[i])) return;
+    if (!isfinite(yp[i]) && found_bad(d, PS_BAD_RATE, i, yp[i])) return;
+  }
+  for (int p = 0; p < m->npen; p++) {
+    int tape = m->pen_tape[p], slots[2] = {m->pen_g[p], m->pen_f[p]};
+    ps_tape_run(m, d, tape, 1 + deriv, 1 - deriv, t, y, yp);
+    if (bad_slots(m, d, tape, deriv, slots, 2, &v) && found_bad(d, PS_BAD_PENALTY, p, v))
+      return;
+  }
+  for (int k = 0; k < m->nsf; k++) {
+    int tape = m->sf_tape[k];
+    ps_tape_run(m, d, tape, deriv + m->tape_order[tape], 1 - deriv, t, y, yp);
+    if (bad_slots(m, d, tape, deriv, &m->sf_f[k], 1, &v) && found_bad(d, PS_BAD_SFORCE, k, v))
+      return;
+  }
+  for (int k = 0; k < m->nvf; k++) {
+    int tape = m->vf_tape[k];
+    ps_tape_run(m, d, tape, deriv + m->tape_order[tape], 1 - deriv, t, y, yp);
+    if (bad_slots(m, d, tape, deriv, &m->vf_f[3 * k], 3, &v) &&
+        found_bad(d, PS_BAD_VFORCE, k, v))
+      return;
+  }
+  for (int k = 0; k < m->nmotion; k++) {
+    int tape = m->mot_tape[k], slots[2] = {m->mot_f[k], m->mot_gd[k]};
+    ps_tape_run(m, d, tape, 1 + deriv, 1 - deriv, t, y, yp);
+    if (bad_slots(m, d, tape, deriv, slots, 2, &v) && found_bad(d, PS_BAD_MOTION, k, v))
+      return;
+  }
+  found_bad(d, deriv ? PS_BAD_JACOBIAN : PS_BAD_RESIDUAL, -1, NAN);
+}
+
+/* PS_OK if v[0..n) is finite; otherwise diagnose where the non-finite value came from. When no
+ * element's value is, the entry is reported: v's index i if rows is set (a residual row, or
+ * row * ny + column of a dense Jacobian), -1 otherwise. */
+static int check_finite(const psModel* m, psData* d, double t, const double* y,
+                        const double* yp, const double* v, long n, int deriv, int rows) {
+  if (d->user_error) return PS_ERR_NONFINITE;   /* d->msg holds the subroutine's message */
+  for (long i = 0; i < n; i++) {
+    if (!isfinite(v[i])) {
+      double bad = v[i];
+      diagnose(m, d, t, y, yp, deriv);
+      if (d->bad_kind == PS_BAD_RESIDUAL || d->bad_kind == PS_BAD_JACOBIAN) {
+        d->bad_index = rows ? (int)i : -1;
+        d->bad_value = bad;
+      }
+      return PS_ERR_NONFINITE;
+    }
+  }
+  return PS_OK;
 }
 
 static int assemble(const psModel* m, psData* d, double t, const double* y, const double* yp,
@@ -397,7 +472,7 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
   }
   d->last_t = t;
   assemble(m, d, t, y, yp, &as);
-  return check_finite(d, res, m->ny, "residual");
+  return check_finite(m, d, t, y, yp, res, m->ny, 0, 1);
 }
 
 int ps_penalty_loads(const psModel* m, psData* d, double t, const double* y, const double* yp,
@@ -407,7 +482,7 @@ int ps_penalty_loads(const psModel* m, psData* d, double t, const double* y, con
   penalty_forces(m, d, t, y, yp, &as);
   /* scatter subtracted force_scale * Q: give Q */
   for (int i = 0; i < m->ny; i++) q[i] /= -m->force_scale;
-  return check_finite(d, q, m->ny, "penalty loads");
+  return check_finite(m, d, t, y, yp, q, m->ny, 0, 0);
 }
 
 int ps_jacobian(const psModel* m, psData* d, double t, const double* y, const double* yp,
@@ -415,7 +490,7 @@ int ps_jacobian(const psModel* m, psData* d, double t, const double* y, const do
   Assembly as = {d->res, jac, NULL, NULL, NULL, 0, 1, cj, m->ny};
   d->njac++;
   assemble(m, d, t, y, yp, &as);
-  return check_finite(d, jac, m->ny * m->ny, "Jacobian");
+  return check_finite(m, d, t, y, yp, jac, (long)m->ny * m->ny, 1, 1);
 }
 
 int ps_jacobian_pattern(const psModel* m, psData* d, int* rows, int* cols) {
@@ -436,7 +511,7 @@ int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, cons
   assemble(m, d, t, y, yp, &as);
   for (int i = 0; i < nnz; i++) data[i] = 0.0;
   for (int k = 0; k < ntrip; k++) data[map[k]] += d->trip[k];
-  return check_finite(d, data, nnz, "Jacobian");
+  return check_finite(m, d, t, y, yp, data, nnz, 1, 0);
 }
 
 /* Evaluate every sensor's expression into d->sensor_f (derivative order 0). */
@@ -455,6 +530,14 @@ int ps_roots(const psModel* m, psData* d, double t, const double* y, const doubl
              double* g) {
   d->nroots++;
   sensor_values(m, d, t, y, yp);
+  for (int k = 0; k < m->nsensor; k++)
+    if (!isfinite(d->sensor_f[k])) {
+      d->bad_t = t;
+      d->bad_partial = 0;
+      memcpy(d->bad_y, y, sizeof(double) * (size_t)m->ny);
+      found_bad(d, PS_BAD_SENSOR, k, d->sensor_f[k]);
+      return PS_ERR_NONFINITE;
+    }
   for (int k = 0; k < m->nsensor; k++) {
     double f = d->sensor_f[k], v = m->sensor_value[k], tol = m->sensor_tol[k];
     int armed = d->sensor_armed[k];

@@ -65,6 +65,7 @@ int IDAGetNumErrTestFails(void* mem, long* n);
 int IDAGetNumNonlinSolvConvFails(void* mem, long* n);
 int IDAGetNumGEvals(void* mem, long* n);
 int IDAGetLastStep(void* mem, sunrealtype* hlast);
+int IDAGetCurrentStep(void* mem, sunrealtype* hcur);
 void IDAFree(void** mem);
 
 #endif

@@ -19,7 +19,8 @@ class Result:
         0 success, 1 halted by a sensor; negative: an integrator failure code (SUNDIALS
         IDA's), -100 too many steps, -200 sensor events chatter, -300 a static analysis failed,
         -400 a user subroutine failed, -500 the outputs would pass the memory budget, -600
-        interrupted (Ctrl-C; the rows up to then are kept).
+        interrupted (Ctrl-C; the rows up to then are kept), -700 a value became NaN or infinite
+        (the message names the element, its expression, the time and the state).
     message : str
     t : ndarray, shape (n,)
         Output times (print times of every Simulate command, the initial time first).

@@ -238,8 +238,24 @@ typedef struct psData {
   double* user_cache;     /* (nusercache x PS_USER_CACHE) the last evaluation of
                              each PS_OP_USER instruction, reused by the Jacobian
                              at the same state; zero it to forget               */
+  int bad_kind;           /* what the last non-finite value was in (PS_BAD_*),
+                             0 none; set only on that failure path               */
+  int bad_index;          /* which one: element index in id order, state index,
+                             or residual row / Jacobian entry row * ny + column   */
+  double bad_t;           /* the time of that evaluation                        */
+  int bad_partial;        /* 1 if it was a first partial of the element's value  */
+  double bad_value;       /* the non-finite value itself                        */
+  double* bad_y;          /* (ny x 1) the state at that evaluation              */
   char msg[256];          /* message of the last error                          */
 } psData;
+
+/* Where a non-finite value was found (psData.bad_kind): the state or its rate, a Force_Penalty,
+ * Force_Scalar_TwoBody, Force_Vector_TwoBody, Motion_Marker or Sensor_Event expression, or,
+ * when no element's value is, a residual row or a Jacobian entry (a derivative overflowed). */
+enum {
+  PS_BAD_NONE = 0, PS_BAD_STATE, PS_BAD_RATE, PS_BAD_PENALTY, PS_BAD_SFORCE, PS_BAD_VFORCE,
+  PS_BAD_MOTION, PS_BAD_SENSOR, PS_BAD_RESIDUAL, PS_BAD_JACOBIAN
+};
 
 /* Evaluate the DAE residual res = F(t, y, yp).
  * All arrays have length m->ny. Returns PS_OK, or PS_ERR_NONFINITE with a message in d->msg. */
@@ -341,7 +357,8 @@ int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, cons
  * EQ entering the band |f - value| <= tol from its side s: s (value + s tol - f) (one crossing,
  * so a fast pass through a narrow band is not missed). A fired sensor watches for re-arming
  * instead: GE (value - tol) - f, LT f - (value + tol), EQ |f - value| - 2 tol. Writes f into
- * d->sensor_f. Returns PS_OK. */
+ * d->sensor_f. Returns PS_OK, or PS_ERR_NONFINITE (d->bad_kind = PS_BAD_SENSOR) when a sensor's
+ * expression is not finite. */
 int ps_roots(const psModel* m, psData* d, double t, const double* y, const double* yp,
              double* g);
 

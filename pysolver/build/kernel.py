@@ -12,8 +12,13 @@ _INT_FIELDS = ("ny", "nbody", "nmarker", "ntape", "npen", "nsf", "nout", "hd_str
                "max_slots", "max_bslots", "nsensor", "nuser", "nusercache", "nmotion", "nvf")
 
 
+#: Trial times closer than this times |t| to a non-finite residual are at rounding level.
+ROUNDING = 1e-10
+
+
 class UserFailure(Exception):
-    """A user subroutine reported an error during a kernel call (scikit-sundae path)."""
+    """A kernel call failed for good (scikit-sundae path): a user subroutine reported an error
+    (``d.user_error`` set), or a non-finite value IDA's trial steps cannot step around."""
 
 
 class Kernel:
@@ -88,6 +93,7 @@ class Kernel:
             "sensor_f": np.zeros(max(self.nsensor, 1)),
             "sensor_side": np.ones(max(self.nsensor, 1)),
             "user_cache": np.zeros(max(arrays["nusercache"], 1) * lib.PS_USER_CACHE),
+            "bad_y": np.zeros(self.ny),      # the state of the last non-finite value
         }
         self.armed = np.ones(max(self.nsensor, 1), dtype=np.int32)
         self._flags = (np.zeros(max(self.nsensor, 1), dtype=np.int32),
@@ -103,6 +109,12 @@ class Kernel:
         for key, val in self._work.items():
             setattr(self.d, key, ffi.cast("double *", ffi.from_buffer(val)))
         self.d.sensor_armed = ffi.cast("int *", ffi.from_buffer(self.armed))
+
+    @property
+    def bad_state(self):
+        """The state (t, y) at which the kernel last found a non-finite value (see ps_residual);
+        meaningful while ``d.bad_kind`` is set."""
+        return self.d.bad_t, self._work["bad_y"].copy()
 
     @property
     def senval(self):
@@ -193,12 +205,19 @@ class Kernel:
         m, d, fb = self.m, self.d, ffi.from_buffer
         res_c, jac_c = lib.ps_residual, lib.ps_jacobian
 
+        bad_t = [None]
+
         def residual(t, y, yp, res):
             rc = res_c(m, d, t, fb("double[]", y), fb("double[]", yp), fb("double[]", res))
-            # a non-finite residual is recoverable for IDA; a user subroutine's error is not
-            # (scikit-sundae would retry on any return code, so it is raised)
-            if rc and d.user_error:
-                raise UserFailure(self.message)
+            if rc:
+                # a non-finite residual is recoverable for IDA, unless trial times have closed
+                # in on it to rounding level (the solution runs into it); a user subroutine's
+                # error is not (scikit-sundae retries on any return code, so it is raised)
+                if d.user_error:
+                    raise UserFailure(self.message)
+                if bad_t[0] is not None and 0 < abs(t - bad_t[0]) <= ROUNDING * abs(t):
+                    raise UserFailure(self.message)
+                bad_t[0] = t
             return rc
 
         def jacobian(t, y, yp, cj, jac):
@@ -323,13 +342,18 @@ class Kernel:
         yp = np.zeros(self.ny)
         for _ in range(iters):
             r = self.residual_array(t, y, yp)
+            if not np.isfinite(r).all():     # d.bad_kind says where
+                return np.full(self.ny, np.nan)
             if sparse:
-                A = (self.jacobian_csc_array(t, y, yp, 1.0)
-                     - self.jacobian_csc_array(t, y, yp, 0.0)).tocsc()
-                dyp = spsolve(A, -r)
+                J1, J0 = self.jacobian_csc_array(t, y, yp, 1.0), \
+                    self.jacobian_csc_array(t, y, yp, 0.0)
+                finite = np.isfinite(J1.data).all() and np.isfinite(J0.data).all()
             else:
-                A = self.jacobian_array(t, y, yp, 1.0) - self.jacobian_array(t, y, yp, 0.0)
-                dyp = np.linalg.solve(A, -r)
+                J1, J0 = self.jacobian_array(t, y, yp, 1.0), self.jacobian_array(t, y, yp, 0.0)
+                finite = np.isfinite(J1).all() and np.isfinite(J0).all()
+            if not finite:
+                return np.full(self.ny, np.nan)
+            dyp = spsolve((J1 - J0).tocsc(), -r) if sparse else np.linalg.solve(J1 - J0, -r)
             yp += dyp
             if np.max(np.abs(dyp)) <= 1e-14 * (1 + np.max(np.abs(yp))):
                 break

@@ -18,7 +18,7 @@ import numpy as np
 
 from ..build.bindings import lib
 from ..build.kernel import UserFailure
-from . import integrator, quasistatic
+from . import integrator, nonfinite, quasistatic
 from .actors import Actor, Flow
 from .loadcontrol import LoadControlTask
 from .outputs import Printer, Progress
@@ -203,6 +203,7 @@ class Run:
                 raise Stop(False, -600, f"interrupted at t = {self.t:.6g}")
             if self.act_due(timed):
                 return
+            self.kernel.d.bad_kind = 0        # a non-finite value names itself in C (below)
             # IDA stops exactly at the next instant an actor named (tstop), or the command's end
             tstop = min([cmd.end_time] + [a.next_time(self.t) for a in timed])
             # after a (re)start IDA sizes its first step from the distance to the requested
@@ -231,6 +232,9 @@ class Run:
                            f"{self.options.max_num_steps} steps in one Simulate command "
                            f"(stopped at t = {step.t:.6g})")
             if not step.success:
+                why = nonfinite.describe(self.model, self.kernel)
+                if why:
+                    raise Stop(False, -700, f"IDA failed at t = {step.t:.6g} after a {why}")
                 raise Stop(False, step.status, f"IDA failed at t = {step.t:.6g}: {step.message}")
             # outputs up to the point reached: the point itself, or IDA's interpolant
             t = step.t
@@ -267,7 +271,11 @@ class Run:
                     "QUASI-STATIC": lambda c: quasistatic.run_quasi_static(self, c)}
         try:
             try:
+                k.d.bad_kind = 0
                 self.yp = k.consistent_yp(self.t, self.y)
+                if k.d.bad_kind or not np.isfinite(self.yp).all():
+                    why = nonfinite.describe(self.model, k) or "non-finite acceleration"
+                    raise Stop(False, -700, f"initial conditions: {why}")
                 flow = Flow()
                 for actor in self.actors:
                     flow.update(actor.start(self))
@@ -281,7 +289,8 @@ class Run:
             except UserFailure as err:      # a user subroutine failed outside IDA's calls
                 raise Stop(False, -400, f"{err} (t = {self.t:.6g})") from None
             except quasistatic.StaticFailure as err:
-                raise Stop(False, -300, str(err)) from None
+                why = nonfinite.describe(self.model, k)
+                raise Stop(False, -300, f"{err}" + (f"; last {why}" if why else "")) from None
         except Stop as stop:
             return stop.success, stop.status, stop.message
         finally:

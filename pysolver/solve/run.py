@@ -6,6 +6,7 @@ import time
 from .._version import __version__
 from ..build.bindings import lib
 from ..results import Result
+from . import nonfinite
 from .driver import Run
 
 
@@ -54,8 +55,10 @@ def run_model(model, progress=None, overrides=None, actors=()):
             "usersubs": dict(model.usersub_paths)}
     labels = {(r.id, k): n for r in model.requests.values() for k, n in enumerate(r.names) if n}
     pr = run.printer
+    outputs = pr.outs.array(len(kernel.channels))
+    run.log.extend(nonfinite.channels(model, kernel.channels, pr.ts, outputs))
     return Result(t=pr.ts, y=pr.ys.array(kernel.ny), yp=pr.yps.array(kernel.ny),
-                  outputs=pr.outs.array(len(kernel.channels)), channels=kernel.channels,
+                  outputs=outputs, channels=kernel.channels,
                   state_names=kernel.layout.names, success=success, status=status,
                   message=message, stats=stats, timing=timing, meta=meta, labels=labels,
                   events=run.events, log=run.log, statics=run.statics,

@@ -11,8 +11,11 @@ _MESSAGES = {0: "Successful function return.", 1: "Reached specified tstop.",
              -2: "The requested accuracy could not be achieved.",
              -3: "Error test failures occurred too many times.",
              -4: "Convergence test failures occurred too many times.",
+             -6: "The linear solver's setup function failed.",
              -8: "The residual function failed unrecoverably.",
-             -12: "The residual function failed recoverably too many times."}
+             -9: "The residual function failed recoverably too many times.",
+             -10: "The root function failed.",
+             -12: "The residual function failed at the first call."}
 
 
 @dataclasses.dataclass

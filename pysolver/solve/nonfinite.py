@@ -1,0 +1,89 @@
+"""Messages for a non-finite value the kernel found (psData.bad_kind, set in C only on that
+failure path): which element, its expression, the time and the state."""
+import math
+
+import numpy as np
+
+from ..build.bindings import lib
+
+_SHOWN = 12        # state entries quoted in a message
+
+
+def _elements(model):
+    """bad_kind -> (element type name, elements in the kernel's order, expression texts)."""
+    def texts(e):
+        return [e.text] if hasattr(e, "text") else list(e.texts)
+    kinds = {lib.PS_BAD_PENALTY: ("Force_Penalty", model.penalties),
+             lib.PS_BAD_SFORCE: ("Force_Scalar_TwoBody", model.sforces),
+             lib.PS_BAD_VFORCE: ("Force_Vector_TwoBody", model.vforces),
+             lib.PS_BAD_MOTION: ("Motion_Marker", model.motions),
+             lib.PS_BAD_SENSOR: ("Sensor_Event", model.sensors)}
+    return {k: (name, [table[i] for i in sorted(table)], texts) for k, (name, table) in
+            kinds.items()}
+
+
+def _state(names, y):
+    shown = ", ".join(f"{n} = {v:.6g}" for n, v in zip(names[:_SHOWN], y[:_SHOWN]))
+    more = len(names) - _SHOWN
+    return shown + (f", ... ({more} more)" if more > 0 else "")
+
+
+def describe(model, kernel):
+    """Return the message for the kernel's last non-finite value, or None if there was none:
+    the element and its expression, the time and the state of that evaluation."""
+    d = kernel.d
+    kind, index, value = d.bad_kind, d.bad_index, d.bad_value
+    if kind == lib.PS_BAD_NONE:
+        return None
+    names = kernel.layout.names
+    t, y = kernel.bad_state
+    if kind in (lib.PS_BAD_STATE, lib.PS_BAD_RATE):
+        what = f"state {names[index]}" + (" rate" if kind == lib.PS_BAD_RATE else "")
+    elif kind == lib.PS_BAD_RESIDUAL:
+        what = (f"the residual of {names[index]}" if index >= 0 else "the residual") + \
+            " (no element's value is: a mass, inertia or a product overflowed)"
+    elif kind == lib.PS_BAD_JACOBIAN:
+        n = len(names)
+        entry = (f"d res({names[index // n]}) / d {names[index % n]}" if index >= 0
+                 else "an entry")
+        what = (f"the Jacobian, {entry} (a derivative of an expression is infinite, such as "
+                f"SQRT or ACOS at the end of its domain)")
+    else:
+        name, elements, texts = _elements(model)[kind]
+        e = elements[index]
+        what = f"{name} {e.id}: " + "; ".join(texts(e))
+        if getattr(e, "usersub", None) is not None:
+            what += f" (user subroutine {e.usersub.name})"
+    number = "nan" if math.isnan(value) else f"{value:g}"
+    noun = "derivative" if d.bad_partial else "value"
+    return (f"non-finite {noun} ({number}) in {what}, at t = {t:.9g}; "
+            f"state: {_state(names, y)}")
+
+
+
+def channels(model, channels, t, outputs):
+    """Log lines for the request channels that are not finite somewhere: one per channel, with
+    its expression and the first time (NULL channels, never defined, are left out).
+
+    Parameters
+    ----------
+    model : Model
+    channels : list of (request id, channel index)
+    t : ndarray, shape (n,)
+    outputs : ndarray, shape (n, len(channels))
+    """
+    lines = []
+    if outputs.size == 0 or np.isfinite(outputs).all():
+        return lines
+    bad = ~np.isfinite(outputs)
+    for col in np.flatnonzero(bad.any(axis=0)):
+        rid, k = channels[col]
+        req = model.requests[rid]
+        if req.exprs[k] is None and req.usersub is None:
+            continue
+        rows = np.flatnonzero(bad[:, col])
+        text = req.texts[k] if req.texts[k] else f"{req.usersub.name} channel {k + 1}"
+        lines.append(f"request {rid} channel {k + 1} ({text}) is not finite at {len(rows)} of "
+                     f"{len(t)} output times, first at t = {t[rows[0]]:.9g} "
+                     f"({outputs[rows[0], col]:g})")
+    return lines

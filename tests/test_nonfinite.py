@@ -1,0 +1,86 @@
+"""Non-finite values at run time (issue 13): a NaN or infinity in a force, motion, sensor or the
+state ends the run with success=False and status -700, naming the element, its expression, the
+time and the state of that evaluation; non-finite request channels are kept and listed in the
+log. Both integrators (C driver, scikit-sundae) report alike."""
+import math
+import re
+
+import numpy as np
+import pytest
+
+import pysolver
+
+from helpers import DECKS
+
+ABOVE = (DECKS / "particle_above_line.xml").read_text()      # falls from y = 3 under -9.81 g
+PUSHED = (DECKS / "sensor_halt_acceleration.xml").read_text()
+G_EXPR = 'expr="1 + dx(10) - dy(10)"'
+T_AT_2 = math.sqrt(2 * 1.0 / 9.81)        # free fall from y = 3 to y = 2
+
+
+def _penalty(extra):
+    return ABOVE.replace(G_EXPR, f'expr="1 + dx(10) - dy(10) + {extra}"')
+
+
+def _bad_time_and_y(message):
+    t = float(re.search(r"at t = ([0-9.e+-]+); state", message).group(1))
+    y = float(re.search(r"body2\.y = ([0-9.e+-]+)", message).group(1))
+    return t, y
+
+
+@pytest.mark.parametrize("jacobian", ["exact", "dq"])    # C driver / scikit-sundae callbacks
+@pytest.mark.parametrize("extra", ["LOG(DY(10) - 2)", "SQRT(DY(10) - 2)"])
+def test_a_force_running_into_nan_names_itself(extra, jacobian):
+    """g is finite only while y > 2 (the term keeps the penalty inactive): the solution reaches
+    y = 2 at t = sqrt(2/g) and cannot go on. IDA must stop there, at once (no creeping towards
+    it with ever smaller steps), and say which expression went NaN, when and where."""
+    res = pysolver.loads(_penalty(extra)).run(jacobian=jacobian)
+    assert not res.success and res.status == -700
+    assert f"non-finite value (nan) in Force_Penalty 10: 1 + dx(10) - dy(10) + {extra}" \
+        in res.message
+    t, y = _bad_time_and_y(res.message)
+    assert abs(t - T_AT_2) < 1e-5 and abs(y - 2.0) < 1e-4
+    assert res.stats["steps"] < 200                  # it does not creep towards t = 0.4515
+    # the rows before are kept and agree with free fall
+    assert len(res.t) > 80 and res.t[-1] <= T_AT_2
+    assert np.allclose(res.y[:, 1], 3 - 9.81 * res.t ** 2 / 2, atol=1e-4)
+
+
+def test_a_nan_at_the_initial_conditions_names_the_force():
+    res = pysolver.loads(_penalty("LOG(DY(10) - 4)")).run()
+    assert res.status == -700 and res.message.startswith("initial conditions: non-finite "
+                                                         "value (nan) in Force_Penalty 10")
+    assert "at t = 0; state: body2.x = 0, body2.y = 3," in res.message
+    assert len(res.t) == 0 or np.isfinite(res.y).all()
+
+
+def test_an_infinite_derivative_is_named_as_a_derivative():
+    """SQRT(ABS(DY)) at DY = 0: the force is finite, its Jacobian entry is not."""
+    text = PUSHED.replace('expr="2*TIME"', 'expr="2*TIME + SQRT(ABS(DY(21)))"')
+    res = pysolver.loads(text).run()
+    assert res.status == -700
+    assert "non-finite derivative" in res.message
+    assert "Force_Scalar_TwoBody 1: 2*TIME + SQRT(ABS(DY(21)))" in res.message
+    assert "... (1 more)" in res.message           # 13 states: the first 12 quoted
+
+
+def test_a_sensor_expression_going_nan_names_the_sensor():
+    sensor = ('<Sensor_Event id="3" expr="SQRT(DY(10) - 2)" value="0.1" compare="LT" '
+              'error_tol="1e-6" halt="FALSE"/>\n    <Param_Transient')
+    res = pysolver.loads(ABOVE.replace("<Param_Transient", sensor)).run()
+    assert res.status == -700 and "in Sensor_Event 3: SQRT(DY(10) - 2)" in res.message
+    t, y = _bad_time_and_y(res.message)
+    assert y < 2.0 and t > T_AT_2 - 1e-6
+    # it fired first, where SQRT(y - 2) = 0.1, y = 2.01
+    assert len(res.events) == 1 and abs(res.events[0].time - math.sqrt(2 * 0.99 / 9.81)) < 1e-5
+
+
+def test_non_finite_request_channels_are_kept_and_logged_once():
+    """DX/(DY - 3) is 0/0 at the first row only."""
+    text = ABOVE.replace('expr1="DX(10)"', 'expr1="DX(10)/(DY(10)-3)"')
+    res = pysolver.loads(text).run()
+    assert res.success
+    col = res.request(1)[:, 0]
+    assert np.isnan(col[0]) and np.isfinite(col[1:]).all()
+    assert res.log == ["request 1 channel 1 (DX(10)/(DY(10)-3)) is not finite at 1 of 401 "
+                       "output times, first at t = 0 (nan)"]
