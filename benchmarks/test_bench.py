@@ -107,3 +107,25 @@ def test_usersub_lines(benchmark, tmp_path, form):
     res = benchmark(model.run)
     assert res.success
     benchmark.extra_info.update(steps=res.stats["steps"])
+
+
+@pytest.mark.parametrize("writer", ["c", "csv_module"])
+def test_csv_writer(benchmark, tmp_path, writer):
+    """100,000 rows of 6 random numbers: the C writer (Result.save) against the csv module
+    writing the same text (repr of each float), the writer before it."""
+    import csv
+
+    import numpy as np
+
+    from pysolver.results import _write_csv
+    data = np.random.default_rng(0).standard_normal((100_000, 6))
+    names = [f"c{i}" for i in range(6)]
+    path = tmp_path / "out.csv"
+
+    def python_writer():
+        with open(path, "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(names)
+            for row in data:
+                w.writerow([repr(float(v)) for v in row])
+    benchmark(python_writer if writer == "csv_module" else lambda: _write_csv(path, names, data))

@@ -17,7 +17,7 @@ import cffi
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 HEADER = ROOT / "csrc" / "include" / "pysolver.h"
 USERSUB_HEADER = ROOT / "csrc" / "include" / "pysolver_usersub.h"
-SOURCES = ["hd.c", "kinematics.c", "tape.c", "residual.c", "usersub.c", "ida.c"]
+SOURCES = ["hd.c", "kinematics.c", "tape.c", "residual.c", "usersub.c", "ida.c", "csv.c"]
 
 
 def cdef_from_header(text, start_at="#define PS_BODY_POINT"):
@@ -37,7 +37,8 @@ def make_builder():
         "pysolver._kernel",
         '#include "pysolver.h"',
         sources=[str(ROOT / "csrc" / s) for s in SOURCES],
-        include_dirs=[str(ROOT / "csrc" / "include"), str(ROOT / "csrc")],
+        include_dirs=[str(ROOT / "csrc" / "include"), str(ROOT / "csrc"),
+                      str(ROOT / "csrc" / "third_party")],
         extra_compile_args=["-std=c99", "-O3", "-fvisibility=hidden", "-flto", "-D_DEFAULT_SOURCE"],
         extra_link_args=["-O3", "-flto"],
         libraries=["m", "dl"],

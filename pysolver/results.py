@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import csv
+import io
 import os
 
 import numpy as np
@@ -190,18 +191,10 @@ class Result:
                      success=self.success, message=self.message, t_events=self.t_events,
                      i_events=self.i_events, **extra)
         elif path.lower().endswith(".csv"):
-            names, data = self.columns()
-            with open(path, "w", newline="") as fh:
-                w = csv.writer(fh)
-                w.writerow(names)
-                for row in data:
-                    w.writerow([repr(float(v)) for v in row])
+            _write_csv(path, *self.columns())
             for lid, rec in self._controllers.items():
-                with open(f"{path[:-4]}_controller{lid}.csv", "w", newline="") as fh:
-                    w = csv.writer(fh)
-                    w.writerow(list(rec))
-                    for row in zip(*rec.values()):
-                        w.writerow([repr(float(v)) for v in row])
+                data = np.column_stack([np.asarray(v, float) for v in rec.values()])
+                _write_csv(f"{path[:-4]}_controller{lid}.csv", list(rec), data)
         else:
             raise ValueError(f"unknown result format for {path!r}: use .csv or .npz")
         return path
@@ -287,3 +280,16 @@ class Result:
     def __repr__(self):
         return (f"<pysolver.Result success={self.success} n={len(self.t)} "
                 f"steps={self.stats.get('steps')} message={self.message!r}>")
+
+
+def _write_csv(path, names, data):
+    """Write a header of `names` and the rows of `data` (numbers as ``repr`` writes them; the
+    C writer does ~30 ns a number against ~0.5 us in Python)."""
+    from .build.bindings import ffi, lib
+    header = io.StringIO()
+    csv.writer(header).writerow(names)
+    data = np.ascontiguousarray(data, dtype=float).reshape(-1, len(names))
+    rc = lib.ps_write_csv(os.fsencode(path), b"w", header.getvalue().encode(),
+                          ffi.from_buffer("double[]", data), data.shape[0], data.shape[1])
+    if rc:
+        raise OSError(rc, os.strerror(rc), path)

@@ -410,6 +410,17 @@ int ps_outputs(const psModel* m, psData* d, double t, const double* y, const dou
 double ps_eval_tape(const psModel* m, psData* d, int tape, int slot, double t, const double* y,
                     const double* yp);
 
+/* Write f into out as Python's repr(float) writes it (the shortest digits that read back to
+ * the same double), NUL-terminated; out holds at least 26 characters. Returns the length. */
+int ps_format_double(double f, char* out);
+
+/* Write a CSV file: open path with fopen mode ("w" or "a"), write header (already a complete
+ * line, or ""), then nrows rows of ncols numbers from data (row-major), each as
+ * ps_format_double writes it, separated by commas, each row ended by CR LF (the csv module's
+ * default dialect). Returns 0, or an errno value if the file could not be opened or written. */
+int ps_write_csv(const char* path, const char* mode, const char* header, const double* data,
+                 long nrows, int ncols);
+
 #ifdef __cplusplus
 }
 #endif

@@ -70,20 +70,25 @@ class Grid:
 
 class Rows:
     """Output rows kept as whole (k x n) blocks, as the C driver returns them, plus single rows;
-    joined once at the end. Only the last row is addressable."""
+    joined once at the end. Only the last row is addressable. Rows of scalars (times) are
+    kept as (k,) blocks."""
 
     def __init__(self):
         self.parts = []
         self.n = 0
 
     def append(self, row):
-        self.parts.append(np.asarray(row)[None, :])
+        self.parts.append(np.asarray(row, dtype=float)[None, ...])
         self.n += 1
 
     def extend(self, block):
         if len(block):
-            self.parts.append(block)
+            self.parts.append(np.asarray(block, dtype=float))
             self.n += len(block)
+
+    @property
+    def last(self):
+        return self.parts[-1][-1]
 
     def pop(self):
         last = self.parts[-1]
@@ -97,11 +102,23 @@ class Rows:
     def __len__(self):
         return self.n
 
-    def array(self, width):
-        """All rows as one (n x width) array."""
+    def array(self, width=None):
+        """All rows as one (n x width) array, or (n,) for scalar rows (width None). The blocks
+        are copied into it one at a time and dropped as they go, so the peak is the rows once
+        plus one block, not twice."""
+        shape = (self.n,) if width is None else (self.n, width)
         if not self.parts:
-            return np.zeros((0, width))
-        return np.concatenate(self.parts, axis=0)
+            return np.zeros(shape)
+        if len(self.parts) > 1:
+            out = np.empty(shape)
+            i = 0
+            self.parts.reverse()
+            while self.parts:
+                block = self.parts.pop()
+                out[i:i + len(block)] = block
+                i += len(block)
+            self.parts = [out]
+        return self.parts[0]
 
 
 class Progress:
@@ -141,8 +158,7 @@ class Printer(Actor):
 
     def __init__(self, kernel, bar):
         self.kernel, self.bar = kernel, bar
-        self.ts = []
-        self.ys, self.yps, self.outs = Rows(), Rows(), Rows()
+        self.ts, self.ys, self.yps, self.outs = Rows(), Rows(), Rows(), Rows()
         self.dt = None
         self.end = None
         self.pending = Grid(empty=True)
@@ -190,9 +206,9 @@ class Printer(Actor):
     # rows ----------------------------------------------------------------------------
     def emit(self, t, y, yp, out=None):
         """Write a row at t; a later row at the same time replaces the earlier one."""
-        if self.ts and t < self.ts[-1]:
+        if self.ts and t < self.ts.last:
             return
-        if self.ts and t == self.ts[-1]:
+        if self.ts and t == self.ts.last:
             self._drop_last()
         y, yp = np.array(y, dtype=float), np.array(yp, dtype=float)
         if self.kernel.layout.lam:
@@ -230,7 +246,7 @@ class Printer(Actor):
     def restore(self, dt, t):
         """Back at time t: rows past t are redone on the schedule of that time."""
         self.dt = dt
-        while self.ts and self.ts[-1] > t:
+        while self.ts and self.ts.last > t:
             self._drop_last()
-        last = self.ts[-1] if self.ts else t
+        last = self.ts.last if self.ts else t
         self.pending = Grid(last, self.end, self.dt)

@@ -55,9 +55,9 @@ def run_model(model, progress=None, overrides=None, actors=()):
             "usersubs": dict(model.usersub_paths)}
     labels = {(r.id, k): n for r in model.requests.values() for k, n in enumerate(r.names) if n}
     pr = run.printer
-    outputs = pr.outs.array(len(kernel.channels))
-    run.log.extend(nonfinite.channels(model, kernel.channels, pr.ts, outputs))
-    return Result(t=pr.ts, y=pr.ys.array(kernel.ny), yp=pr.yps.array(kernel.ny),
+    ts, outputs = pr.ts.array(), pr.outs.array(len(kernel.channels))
+    run.log.extend(nonfinite.channels(model, kernel.channels, ts, outputs))
+    return Result(t=ts, y=pr.ys.array(kernel.ny), yp=pr.yps.array(kernel.ny),
                   outputs=outputs, channels=kernel.channels,
                   state_names=kernel.layout.names, success=success, status=status,
                   message=message, stats=stats, timing=timing, meta=meta, labels=labels,
