@@ -70,11 +70,11 @@ class Result:
         self.statics = list(statics)
         self._controllers = {lid: {k: np.asarray(v) for k, v in rec.items()}
                              for lid, rec in (controllers or {}).items()}
-        outputs = np.asarray(outputs).reshape(len(self.t), len(channels))
+        # request channels stay one (n, channels) array; request(id) builds its (n, 8) view
+        self._outputs = np.asarray(outputs).reshape(len(self.t), len(channels))
+        self._column = {tuple(ch): col for col, ch in enumerate(channels)}
+        self._request_ids = sorted({rid for rid, _ in self._column})
         self._requests = {}
-        for col, (rid, k) in enumerate(channels):
-            arr = self._requests.setdefault(rid, np.full((len(self.t), 8), np.nan))
-            arr[:, k] = outputs[:, col]
 
     @property
     def compliance(self):
@@ -105,7 +105,7 @@ class Result:
     @property
     def request_ids(self):
         """Ids of the Post_Request elements, sorted."""
-        return sorted(self._requests)
+        return list(self._request_ids)
 
     def request(self, id: int) -> np.ndarray:
         """Return Post_Request `id` as an (n, 8) array: channels expr1..expr8, NaN for NULL.
@@ -115,9 +115,20 @@ class Result:
         KeyError
             There is no request with that id.
         """
-        if id not in self._requests:
+        if id not in self._request_ids:
             raise KeyError(f"no Post_Request with id {id}; requests: {self.request_ids}")
+        if id not in self._requests:
+            arr = np.full((len(self.t), 8), np.nan)
+            for k in range(8):
+                if (id, k) in self._column:
+                    arr[:, k] = self._outputs[:, self._column[(id, k)]]
+            self._requests[id] = arr
         return self._requests[id]
+
+    def _channel(self, rid, k):
+        """Channel k of request rid as an (n,) array (NaN when it is NULL)."""
+        col = self._column.get((rid, k))
+        return self._outputs[:, col] if col is not None else np.full(len(self.t), np.nan)
 
     @property
     def controller_ids(self):
@@ -148,11 +159,11 @@ class Result:
         """Return (names, 2-D array) of time and every non-NULL request channel."""
         names, cols = ["time"], [self.t]
         for rid in self.request_ids:
-            arr = self._requests[rid]
             for k in range(8):
-                if not np.all(np.isnan(arr[:, k])) or self._labels.get((rid, k)):
+                col = self._channel(rid, k)
+                if not np.all(np.isnan(col)) or self._labels.get((rid, k)):
                     names.append(self._labels.get((rid, k)) or f"REQ{rid}.{k + 1}")
-                    cols.append(arr[:, k])
+                    cols.append(col)
         return names, np.column_stack(cols)
 
     def to_dataframe(self):
@@ -184,7 +195,7 @@ class Result:
         """
         path = os.fspath(path)
         if path.lower().endswith(".npz"):
-            extra = {f"request_{rid}": self._requests[rid] for rid in self.request_ids}
+            extra = {f"request_{rid}": self.request(rid) for rid in self.request_ids}
             extra.update({f"controller{lid}_{name}": col
                           for lid, rec in self._controllers.items() for name, col in rec.items()})
             np.savez(path, t=self.t, y=self.y, yp=self.yp, state_names=np.array(self.state_names),
@@ -244,7 +255,7 @@ class Result:
                 for j, name in enumerate(self.state_names[:8]):
                     ax.plot(self.t, self.y[:, j], label=name)
             else:
-                arr = self._requests[rid]
+                arr = self.request(rid)
                 for k in range(8):
                     if not np.all(np.isnan(arr[:, k])):
                         ax.plot(self.t, arr[:, k],
