@@ -44,6 +44,7 @@ def _run(args):
 
 def _check(args):
     model = load(args.deck)
+    model.check()
     print(model.summary())
     print("deck is valid")
     return 0

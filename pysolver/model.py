@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .errors import DeckError
 from .options import Options
 
 if TYPE_CHECKING:               # for annotations only: results come later in the flow
@@ -311,6 +312,26 @@ class Model:
             from .build import Kernel
             self._compiled[conservative] = Kernel(self, conservative)
         return self._compiled[conservative]
+
+    def check(self):
+        """Run every check a run makes before integrating: compile the kernel and check each
+        Simulate command's output rows against the memory budget (PYSOLVER_OUTPUT_BUDGET).
+
+        Raises
+        ------
+        DeckError
+            Naming the Simulate command (file, line) whose outputs would not fit.
+        """
+        from .solve.outputs import over_budget
+        kernel = self._kernel()
+        t = 0.0
+        for cmd in self.commands:
+            if cmd.analysis == "TRANSIENT":
+                why = over_budget(t, cmd, kernel.ny, len(kernel.channels))
+                if why:
+                    raise DeckError(why, file=self.source.file, line=cmd.line,
+                                    element="Simulate", attribute="print_interval")
+            t = cmd.end_time if cmd.end_time is not None else t
 
     def summary(self) -> str:
         """Return a short human-readable listing of what the deck contains."""

@@ -131,3 +131,20 @@ def test_ctrl_c_stops_a_run_and_the_cli_writes_the_rows(tmp_path):
     t_last = float(rows[-1].split(",")[0])
     assert 0.0 < t_last < 100000.0
     assert "Traceback" not in err
+
+
+def test_check_runs_the_output_budget_check_a_run_makes(tmp_path):
+    """end_time 1e6 every 5 ms loads (the grid is below 1e9 rows), but a run would stop at once
+    with status -500; check says so, with the Simulate command's line, and exits 2."""
+    import os
+    import pathlib
+    deck = tmp_path / "long.xml"
+    deck.write_text(SEED3.replace('end_time="3.0"', 'end_time="1e6"'))
+    with pytest.raises(pysolver.DeckError, match=r"2e\+08 output rows \(29.8 GiB\)") as info:
+        pysolver.load(deck).check()
+    assert info.value.element == "Simulate" and info.value.line == 22
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(pysolver.__file__).parents[1]))
+    out = subprocess.run([sys.executable, "-m", "pysolver.cli", "check", str(deck)],
+                         capture_output=True, text=True, cwd=tmp_path, env=env)
+    assert out.returncode == 2 and "output budget" in out.stderr and "Traceback" not in out.stderr
+    pysolver.loads(SEED3).check()                     # a deck that fits passes

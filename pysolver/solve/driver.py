@@ -11,7 +11,6 @@ every converged step is kept with each actor's snapshot, so that the run can go 
 last one before an event (restore-and-shrink). Scenes without one pay nothing for it.
 """
 import collections
-import os
 import time
 
 import numpy as np
@@ -21,7 +20,7 @@ from ..build.kernel import UserFailure
 from . import integrator, nonfinite, quasistatic
 from .actors import Actor, Flow
 from .loadcontrol import LoadControlTask
-from .outputs import Printer, Progress
+from .outputs import Printer, Progress, over_budget
 from .sensors import Chatter, Sensors
 from .step import ROOT_RETURN, TOO_MUCH_WORK
 
@@ -178,15 +177,10 @@ class Run:
 
     def check_output_budget(self, cmd):
         """Stop before allocating when the command's output rows would pass the memory budget
-        (PYSOLVER_OUTPUT_BUDGET bytes, default 2 GiB)."""
-        rows = (cmd.end_time - self.t) / cmd.print_interval + 1
-        per_row = 8 * (2 * self.kernel.ny + max(len(self.kernel.channels), 1))
-        budget = float(os.environ.get("PYSOLVER_OUTPUT_BUDGET", 2 ** 31))
-        if rows * per_row > budget:
-            raise Stop(False, -500, f"the Simulate command ending at {cmd.end_time:g} would "
-                       f"write {rows:.3g} output rows ({rows * per_row / 2 ** 30:.3g} GiB), "
-                       f"more than the output budget of {budget / 2 ** 30:.3g} GiB; give a "
-                       "larger print_interval or set PYSOLVER_OUTPUT_BUDGET (bytes)")
+        (see outputs.over_budget)."""
+        why = over_budget(self.t, cmd, self.kernel.ny, len(self.kernel.channels))
+        if why:
+            raise Stop(False, -500, why)
 
     # a transient command -------------------------------------------------------------
     def run_transient(self, cmd):

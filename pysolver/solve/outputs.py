@@ -6,6 +6,7 @@ may hand a whole run of them to the integrator in one call (:meth:`Printer.times
 :meth:`Printer.take`), which the C driver runs without returning to Python.
 """
 import math
+import os
 import sys
 import time
 
@@ -20,6 +21,20 @@ def print_times(t0, end, dt):
     times = t0 + dt * np.arange(1, n + 1)
     times = times[times < end - 1e-12 * max(1.0, abs(end))]
     return np.append(times, end)
+
+
+def over_budget(t0, cmd, ny, nchannels):
+    """The message when a transient command from t0 would write more output rows than the
+    memory budget (PYSOLVER_OUTPUT_BUDGET bytes, default 2 GiB) allows, else None."""
+    rows = (cmd.end_time - t0) / cmd.print_interval + 1
+    per_row = 8 * (2 * ny + max(nchannels, 1))
+    budget = float(os.environ.get("PYSOLVER_OUTPUT_BUDGET", 2 ** 31))
+    if rows * per_row <= budget:
+        return None
+    return (f"the Simulate command ending at {cmd.end_time:g} would write {rows:.3g} output "
+            f"rows ({rows * per_row / 2 ** 30:.3g} GiB), more than the output budget of "
+            f"{budget / 2 ** 30:.3g} GiB; give a larger print_interval or set "
+            "PYSOLVER_OUTPUT_BUDGET (bytes)")
 
 
 class Grid:
