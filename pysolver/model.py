@@ -299,8 +299,15 @@ class Model:
         Result
             ``success=False`` with a message when the integration fails; never raises for
             that. Can be called repeatedly; each call starts from the deck's initial state.
+
+        Raises
+        ------
+        DeckError
+            The deck has no moving body: there is nothing to run.
         """
         from .solve import run_model  # the facade: solving comes after the model
+        if not any(b.kind != "ground" for b in self.bodies.values()):
+            self.check()                  # the DeckError saying there is nothing to run
         return run_model(self, progress=progress, overrides=options)
 
     def _kernel(self, conservative=False):
@@ -320,9 +327,14 @@ class Model:
         Raises
         ------
         DeckError
-            Naming the Simulate command (file, line) whose outputs would not fit.
+            The deck has no moving body, or a Simulate command's outputs would not fit (naming
+            its file and line).
         """
         from .solve.outputs import over_budget
+        if not any(b.kind != "ground" for b in self.bodies.values()):
+            raise DeckError("the deck has no moving body (a Body_Rigid that is not ground, or "
+                            "a Body_Point): there is nothing to simulate",
+                            file=self.source.file)
         kernel = self._kernel()
         t = 0.0
         for cmd in self.commands:

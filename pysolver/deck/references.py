@@ -1,5 +1,5 @@
 """Checks of the references between elements: every id an expression names exists, no
-VARVAL cycles, and penalty constraints g(q, t) use displacement measures only."""
+cycles of VARVAL, PFORCE and SFORCE references, and penalty constraints g(q, t) use displacement measures only."""
 from . import expr as ex
 
 
@@ -30,7 +30,13 @@ def check_references(model):
         try:
             dyn = _dynamic(model, tree, ())
         except _Cycle as cyc:
-            raise ctx.error(f"VARVAL cycle through variables {cyc.args[0]}", attr) from None
+            chain = cyc.args[0]
+            if all(name == "VARVAL" for name, _ in chain):
+                what = "VARVAL cycle through variables " + " -> ".join(str(i) for _, i in chain)
+            else:
+                what = "the expressions refer to each other in a cycle: " + \
+                    " -> ".join(f"{name}({i})" for name, i in chain)
+            raise ctx.error(what, attr) from None
         if key[0] == "penalty" and dyn:
             raise ctx.error("a penalty constraint g(q, t) may use displacement measures only "
                             f"(found {dyn}); velocities enter through penalty1", attr)
@@ -80,17 +86,16 @@ def _dynamic(model, node, stack):
         return _dynamic(model, node[2], stack) or _dynamic(model, node[3], stack)
     if tag == "call":
         name, args = node[1], node[2]
-        if name == "VARVAL":
-            vid = int(args[0][1])
-            if vid in stack:
-                raise _Cycle(" -> ".join(map(str, stack + (vid,))))
-            return _dynamic(model, model.variables[vid].expr, stack + (vid,))
+        if name in ("VARVAL", "PFORCE", "SFORCE"):
+            ref = (name, int(args[0][1]))
+            if ref in stack:
+                raise _Cycle(stack[stack.index(ref):] + (ref,))
+            table = {"VARVAL": model.variables, "PFORCE": model.penalties,
+                     "SFORCE": model.sforces}[name]
+            inner = _dynamic(model, table[ref[1]].expr, stack + (ref,))
+            return name if name in _DYNAMIC else inner
         if name in _DYNAMIC:
-            found = name
-            if name in ("PFORCE", "SFORCE"):
-                table = model.penalties if name == "PFORCE" else model.sforces
-                _dynamic(model, table[int(args[0][1])].expr, stack)
-            return found
+            return name
         if name not in ex.ID_ARGS:
             for a in args:
                 r = _dynamic(model, a, stack)

@@ -19,7 +19,7 @@ from ..build.bindings import lib
 from ..build.kernel import UserFailure
 from . import integrator, nonfinite, quasistatic
 from .actors import Actor, Flow
-from .loadcontrol import LoadControlTask
+from .loadcontrol import LoadControlTask, NonFinite
 from .outputs import Printer, Progress, over_budget
 from .sensors import Chatter, Sensors
 from .step import ROOT_RETURN, TOO_MUCH_WORK
@@ -280,6 +280,8 @@ class Run:
                     commands[cmd.analysis](cmd)
             except Chatter as err:
                 raise Stop(False, -200, str(err)) from None
+            except NonFinite as err:
+                raise Stop(False, -700, str(err)) from None
             except UserFailure as err:      # a user subroutine failed outside IDA's calls
                 raise Stop(False, -400, f"{err} (t = {self.t:.6g})") from None
             except quasistatic.StaticFailure as err:

@@ -11,9 +11,14 @@ body's velocity takes the new value, accelerations and the reaction are solved f
 IDA is restarted there, so no impulse enters the logged load.
 """
 import copy
+import math
 
 from .actors import Actor, Flow
 from .loadlaw import FIELDS, LawParams, LoadLaw, auto_gains
+
+
+class NonFinite(Exception):
+    """A LoadControl task's load, target or velocity is not finite."""
 
 
 class LoadControlTask(Actor):
@@ -53,7 +58,14 @@ class LoadControlTask(Actor):
         else:
             load = -float(k.reactions(t, run.y, run.yp)[self.lam])
         target = k.control_target(self.k, t, run.y, run.yp)
+        for what, value in (("measured load", load), ("target load", target)):
+            if not math.isfinite(value):
+                raise NonFinite(f"LoadControl {self.lc.id}: the {what} is {value} at t = "
+                                f"{t:.9g}")
         v = self.law.update(t, float(run.y[self.q]) - self.x0, load, target)
+        if not math.isfinite(v):
+            raise NonFinite(f"LoadControl {self.lc.id}: the control law's velocity is {v} at "
+                            f"t = {t:.9g} (load {load:g}, target {target:g})")
         k.senval[self.value] = v
         run.yp = k.consistent_yp(t, run.y)
         self.n += 1

@@ -163,8 +163,9 @@ class LoadLaw:
             return L / x if L != 0.0 and x != 0.0 else None
         if L == 0.0 or x == 0.0:
             return prev
-        denom = L * L + (prev * x) ** 2
-        lam, gam = 2.0 * (1.0 - a) / denom, a / prev ** 2
+        # products, not powers: an overflow is inf (rejected below), not an OverflowError
+        denom = L * L + (prev * x) * (prev * x)
+        lam, gam = 2.0 * (1.0 - a) / denom, a / (prev * prev)
         new = (lam * L * x + gam * prev) / (lam * x * x + gam)
         if not math.isfinite(new) or new == 0.0 or (new > 0) != (prev > 0):
             return prev
