@@ -4,6 +4,8 @@ import pytest
 import pysolver
 from pysolver import DeckError
 
+from helpers import DECKS
+
 HEAD = '<MotionSolve>\n<Model>\n<Body_Rigid id="1" isground="TRUE"/>\n'
 BASE = ('<Reference_Marker id="10" body_id="2" pos_z="1"/>\n'
         '<Body_Point id="2" cg_id="10" mass="1"/>\n')
@@ -136,3 +138,37 @@ def test_nothing_runs_half_way():
     text = deck(PEN.format(extra="") + '<Post_Request id="1" expr1="DZ(10"/>\n')
     with pytest.raises(DeckError, match="Post_Request id=1"):
         pysolver.loads(text)
+
+
+@pytest.mark.parametrize("old,new,element,chain", [
+    ('expr="2*TIME"', 'expr="2*TIME + SFORCE(1,0,1,0)"', "Force_Scalar_TwoBody",
+     "SFORCE(1) -> SFORCE(1)"),
+])
+def test_force_reference_cycles_are_deck_errors(old, new, element, chain):
+    """Found by the fuzzer: a force whose expression reads its own SFORCE/PFORCE recursed
+    until RecursionError."""
+    text = (DECKS / "sensor_halt_acceleration.xml").read_text().replace(old, new)
+    with pytest.raises(pysolver.DeckError, match="refer to each other in a cycle") as info:
+        pysolver.loads(text)
+    assert info.value.element == element and chain in str(info.value)
+
+
+def test_a_penalty_reading_its_own_pforce_is_a_cycle():
+    text = (DECKS / "particle_above_line.xml").read_text().replace(
+        'expr="1 + dx(10) - dy(10)"', 'expr="1 + dx(10) - dy(10) + PFORCE(10)"')
+    with pytest.raises(pysolver.DeckError, match=r"cycle: PFORCE\(10\) -> PFORCE\(10\)"):
+        pysolver.loads(text)
+
+
+@pytest.mark.parametrize("text,fmt", [
+    ("", "py"),
+    ('<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/></Model>'
+     '<Simulate analysis_type="Transient" end_time="1" print_interval="0.1"/></MotionSolve>',
+     "xml")])
+def test_a_deck_without_a_moving_body_is_a_deck_error_when_run(text, fmt):
+    """Found by the fuzzer (an empty Python deck): the run crashed in NumPy. Loading such a deck
+    (to read its markers) is fine; running or checking it is a DeckError."""
+    model = pysolver.loads(text, fmt=fmt)
+    for call in (model.run, model.check):
+        with pytest.raises(pysolver.DeckError, match="no moving body"):
+            call()

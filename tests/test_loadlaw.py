@@ -130,3 +130,13 @@ def test_auto_gains_step_response(a):
     assert loads.max() < target * 1.02
     outside = np.nonzero(np.abs(loads - target) > 0.02 * target)[0]
     assert outside[-1] + 1 <= 3 / (1 - math.sqrt(a))
+
+
+def test_a_ratio_past_the_float_range_keeps_the_last_one():
+    """Found by the fuzzer: A_{t-1} = 1e200 made (A x)^2 raise OverflowError. The update is now
+    inf there and is rejected like any non-finite ratio: A stays."""
+    law = LoadLaw(LawParams(velocity=-1.0, smooth=0.5))
+    law.update(0.0, -1e-200, 1.0, 1.0)           # first A = L / x = -1e200
+    assert law.A == -1e200
+    law.update(1.0, -2e-200, 1.0, 1.0)
+    assert law.A == -1e200

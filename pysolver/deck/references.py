@@ -1,5 +1,6 @@
 """Checks of the references between elements: every id an expression names exists, no
-cycles of VARVAL, PFORCE and SFORCE references, and penalty constraints g(q, t) use displacement measures only."""
+cycles of VARVAL, PFORCE and SFORCE references, and penalty constraints g(q, t) use
+displacement measures only."""
 from . import expr as ex
 
 

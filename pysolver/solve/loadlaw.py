@@ -166,7 +166,10 @@ class LoadLaw:
         # products, not powers: an overflow is inf (rejected below), not an OverflowError
         denom = L * L + (prev * x) * (prev * x)
         lam, gam = 2.0 * (1.0 - a) / denom, a / (prev * prev)
-        new = (lam * L * x + gam * prev) / (lam * x * x + gam)
+        den = lam * x * x + gam
+        if den == 0.0 or not math.isfinite(den):
+            return prev
+        new = (lam * L * x + gam * prev) / den
         if not math.isfinite(new) or new == 0.0 or (new > 0) != (prev > 0):
             return prev
         return new
