@@ -167,6 +167,10 @@ import json, math, os, sys, traceback
 import numpy as np
 import pysolver
 os.chdir(sys.argv[1])
+# answers go to a private copy of stdout: a deck that prints writes to stderr instead
+answers = os.fdopen(os.dup(1), "w")
+os.dup2(2, 1)
+sys.stdout = sys.stderr
 for line in sys.stdin:
     path = json.loads(line)["path"]
     try:
@@ -193,7 +197,7 @@ for line in sys.stdin:
                "message": "KeyboardInterrupt"}
     except BaseException as err:
         out = {"outcome": "traceback", "message": traceback.format_exc()[-2000:]}
-    print(json.dumps(out), flush=True)
+    print(json.dumps(out), file=answers, flush=True)
 """
 
 
@@ -217,8 +221,12 @@ class Worker:
         if not ready:
             return None
         line = self.proc.stdout.readline()
-        return json.loads(line) if line else {"outcome": "crash",
-                                              "status": self.proc.wait()}
+        if not line:
+            return {"outcome": "crash", "status": self.proc.wait()}
+        try:
+            return json.loads(line)
+        except ValueError:
+            return {"outcome": "garbled", "line": line[:300]}
 
     def run(self, path, timeout):
         if self.proc is None or self.proc.poll() is not None:

@@ -109,3 +109,32 @@ def test_readme_batch_example_runs(tmp_path):
                          capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stderr[-2000:]
     assert len(list((tmp_path / "study" / "results").glob("*.pkl"))) == 12
+
+
+def test_readme_python_example_runs_from_a_checkout_root(tmp_path):
+    """Issue 13: after the README's install, the example run from the repository root imported
+    the checkout's own ``pysolver`` folder (it shadows the installed package), whose kernel was
+    not built: "C kernel is not built". Now a checkout builds its kernel in place on first
+    import. Checked on a copy of the source tree without any built kernel, as `python -c`
+    from its root."""
+    import shutil
+    import subprocess
+    import sys
+    files = subprocess.run(["git", "ls-files"], cwd=ROOT, capture_output=True, text=True)
+    if files.returncode:
+        pytest.skip("not a git checkout")
+    copy = tmp_path / "checkout"
+    for name in files.stdout.splitlines():
+        if name.startswith(("pysolver/", "csrc/", "decks/")):
+            (copy / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(ROOT / name, copy / name)
+    assert not list((copy / "pysolver").glob("_kernel*"))
+    text = (ROOT / "README.md").read_text()
+    (example,) = re.findall(r"## From Python\n\n```python\n(.*?)```", text, flags=re.S)
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    out = subprocess.run([sys.executable, "-c", example], cwd=copy, env=env,
+                         capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-3000:]
+    assert "success: True" in out.stdout
+    assert "building the C kernel in this source checkout" in out.stderr
+    assert list((copy / "pysolver").glob("_kernel*"))

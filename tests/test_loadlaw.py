@@ -140,3 +140,11 @@ def test_a_ratio_past_the_float_range_keeps_the_last_one():
     assert law.A == -1e200
     law.update(1.0, -2e-200, 1.0, 1.0)
     assert law.A == -1e200
+
+
+def test_a_ratio_update_that_underflows_keeps_the_last_one():
+    """Found by the fuzzer: L^2 + (A x)^2 underflowed to 0 (ZeroDivisionError)."""
+    law = LoadLaw(LawParams(velocity=-1.0, smooth=0.5))
+    law.update(0.0, -1e-170, 1e-170, 1.0)         # first A = -1
+    law.update(1.0, -2e-170, 1e-170, 1.0)         # L^2 and (A x)^2 are below 1e-323
+    assert law.A == -1.0 and math.isfinite(law.velocity)

@@ -84,3 +84,26 @@ def test_non_finite_request_channels_are_kept_and_logged_once():
     assert np.isnan(col[0]) and np.isfinite(col[1:]).all()
     assert res.log == ["request 1 channel 1 (DX(10)/(DY(10)-3)) is not finite at 1 of 401 "
                        "output times, first at t = 0 (nan)"]
+
+
+def test_a_singular_iteration_matrix_at_the_start_is_a_message():
+    """Found by the fuzzer: penalty1 = 1e308 on the spinning top made dF/dyp singular and
+    np.linalg.solve raised LinAlgError out of run()."""
+    text = (DECKS / "spinning_top.xml").read_text().replace(
+        'expr="DY(21,1)" penalty="1e6" penalty1="500"', 'expr="DY(21,1)" penalty="1e6" '
+        'penalty1="1e308"')
+    assert 'penalty1="1e308"' in text
+    res = pysolver.loads(text).run()
+    assert res.status == -700 and "the accelerations cannot be solved for" in res.message
+
+
+def test_a_contact_at_the_first_step_with_restore_and_shrink():
+    """Found by the fuzzer: a zero-crossing sensor firing at the first step restored a snapshot
+    taken before the command's print interval was set (TypeError). g = TIME: the contact
+    penalty pushes from t = 0 on; the run must finish."""
+    text = (DECKS / "contact_onset_zero_crossing.xml").read_text()
+    text = text.replace('expr="-DZ(10)" penalty="1e6"', 'expr="TIME" penalty="1e6"')
+    assert 'expr="TIME"' in text
+    res = pysolver.loads(text).run()
+    assert res.success, res.message
+    assert res.t[-1] == pysolver.loads(text).commands[-1].end_time

@@ -353,7 +353,11 @@ class Kernel:
                 finite = np.isfinite(J1).all() and np.isfinite(J0).all()
             if not finite:
                 return np.full(self.ny, np.nan)
-            dyp = spsolve((J1 - J0).tocsc(), -r) if sparse else np.linalg.solve(J1 - J0, -r)
+            try:
+                dyp = (spsolve((J1 - J0).tocsc(), -r) if sparse
+                       else np.linalg.solve(J1 - J0, -r))
+            except np.linalg.LinAlgError:          # singular dF/dyp: the caller says so
+                return np.full(self.ny, np.nan)
             yp += dyp
             if np.max(np.abs(dyp)) <= 1e-14 * (1 + np.max(np.abs(yp))):
                 break

@@ -184,12 +184,13 @@ class Run:
 
     # a transient command -------------------------------------------------------------
     def run_transient(self, cmd):
+        printer = self.printer
+        self.check_output_budget(cmd)
+        # the schedule first: the first converged step's snapshot holds the command's interval
+        printer.begin_command(self.t, cmd.end_time, cmd.print_interval)
         if self.need_start:
             self.start(self.first_step)
             self.first_step = None
-        printer = self.printer
-        self.check_output_budget(cmd)
-        printer.begin_command(self.t, cmd.end_time, cmd.print_interval)
         start_steps = self.steps()
         timed = [a for a in self.actors if a is not printer]
         while printer.pending:
@@ -268,7 +269,9 @@ class Run:
                 k.d.bad_kind = 0
                 self.yp = k.consistent_yp(self.t, self.y)
                 if k.d.bad_kind or not np.isfinite(self.yp).all():
-                    why = nonfinite.describe(self.model, k) or "non-finite acceleration"
+                    why = nonfinite.describe(self.model, k) or (
+                        "the accelerations cannot be solved for: dF/dyp is singular or not "
+                        "finite (a zero or huge mass, inertia or penalty1?)")
                     raise Stop(False, -700, f"initial conditions: {why}")
                 flow = Flow()
                 for actor in self.actors:

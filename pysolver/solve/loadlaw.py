@@ -164,8 +164,10 @@ class LoadLaw:
         if L == 0.0 or x == 0.0:
             return prev
         # products, not powers: an overflow is inf (rejected below), not an OverflowError
-        denom = L * L + (prev * x) * (prev * x)
-        lam, gam = 2.0 * (1.0 - a) / denom, a / (prev * prev)
+        denom, pp = L * L + (prev * x) * (prev * x), prev * prev
+        if denom == 0.0 or pp == 0.0:            # underflow: no information, A stays
+            return prev
+        lam, gam = 2.0 * (1.0 - a) / denom, a / pp
         den = lam * x * x + gam
         if den == 0.0 or not math.isfinite(den):
             return prev
