@@ -210,7 +210,7 @@ class Run:
                 # all pending outputs up to the stop, an event or a failure in one call (from C:
                 # without returning to Python)
                 times = printer.times_before(tstop)
-                if times:
+                if len(times):
                     step, Y, YP, REQ, n = self.solver.outputs(times, tstop)
                     printer.take(times[:n], Y, YP, REQ)
                 else:

@@ -72,15 +72,21 @@ class Grid:
         return t
 
     def upto(self, t_limit):
-        """The next times up to t_limit, at most BATCH of them."""
-        out = []
-        k = self.k
-        while len(out) < self.BATCH and k <= self.n and self.t0 + self.dt * k <= t_limit:
-            out.append(self.t0 + self.dt * k)
-            k += 1
-        if len(out) < self.BATCH and k > self.n and self.end_left and self.end <= t_limit:
-            out.append(self.end)
+        """The next times up to t_limit, at most BATCH of them (an array)."""
+        last = min(self.n, self.k + self.BATCH - 1)
+        out = self.t0 + self.dt * np.arange(self.k, last + 1, dtype=float)
+        out = out[:np.searchsorted(out, t_limit, side="right")]
+        if len(out) < self.BATCH and last == self.n and len(out) == last - self.k + 1 and \
+                self.end_left and self.end <= t_limit:
+            out = np.append(out, self.end)
         return out
+
+    def drop(self, count):
+        """Drop the next `count` times (those a batch ran through)."""
+        grid = min(count, max(self.n - self.k + 1, 0))
+        self.k += grid
+        if count > grid:
+            self.end_left = False
 
 
 class Rows:
@@ -203,8 +209,7 @@ class Printer(Actor):
     def take(self, times, Y, YP, REQ):
         """Keep the rows of a batch the integrator ran through, and drop those times."""
         n = len(times)
-        for _ in range(n):
-            self.pending.popleft()
+        self.pending.drop(n)
         if n:
             if self.kernel.layout.lam:
                 # the rows' reactions from their force balance, and the channels again
