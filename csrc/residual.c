@@ -602,3 +602,65 @@ double ps_eval_tape(const psModel* m, psData* d, int tape, int slot, double t, c
   ps_tape_run(m, d, tape, m->tape_order[tape], 1, t, y, yp);
   return ps_slot(m, d, slot)[0];
 }
+
+/* Solve A x = b in place (b becomes x) by LU with partial pivoting; A (n x n, row-major) is
+ * overwritten. Returns PS_ERR_SINGULAR on a zero or non-finite pivot. */
+static int lu_solve(int n, double* A, double* b, int* piv) {
+  for (int k = 0; k < n; k++) {
+    int p = k;
+    for (int i = k + 1; i < n; i++)
+      if (fabs(A[(long)i * n + k]) > fabs(A[(long)p * n + k])) p = i;
+    double pivot = A[(long)p * n + k];
+    if (pivot == 0.0 || !isfinite(pivot)) return PS_ERR_SINGULAR;
+    piv[k] = p;
+    if (p != k) {
+      for (int j = 0; j < n; j++) {
+        double tmp = A[(long)k * n + j];
+        A[(long)k * n + j] = A[(long)p * n + j];
+        A[(long)p * n + j] = tmp;
+      }
+      double tmp = b[k];
+      b[k] = b[p];
+      b[p] = tmp;
+    }
+    for (int i = k + 1; i < n; i++) {
+      double f = A[(long)i * n + k] / pivot;
+      if (f == 0.0) continue;
+      for (int j = k + 1; j < n; j++) A[(long)i * n + j] -= f * A[(long)k * n + j];
+      b[i] -= f * b[k];
+    }
+  }
+  for (int i = n - 1; i >= 0; i--) {
+    double s = b[i];
+    for (int j = i + 1; j < n; j++) s -= A[(long)i * n + j] * b[j];
+    b[i] = s / A[(long)i * n + i];
+  }
+  return PS_OK;
+}
+
+int ps_consistent_yp(const psModel* m, psData* d, double t, const double* y, double* yp,
+                     double* work, int* piv, int iters) {
+  int n = m->ny;
+  double* A = work;
+  double* J0 = work + (long)n * n;
+  double* r = work + 2L * n * n;
+  for (int i = 0; i < n; i++) yp[i] = 0.0;
+  for (int it = 0; it < iters; it++) {
+    int rc = ps_residual(m, d, t, y, yp, r);
+    if (rc == PS_OK) rc = ps_jacobian(m, d, t, y, yp, 1.0, A);
+    if (rc == PS_OK) rc = ps_jacobian(m, d, t, y, yp, 0.0, J0);
+    if (rc != PS_OK) return rc;
+    for (long k = 0; k < (long)n * n; k++) A[k] -= J0[k];
+    for (int i = 0; i < n; i++) r[i] = -r[i];
+    if (lu_solve(n, A, r, piv) != PS_OK) return PS_ERR_SINGULAR;
+    double step = 0.0, size = 0.0;
+    for (int i = 0; i < n; i++) {
+      yp[i] += r[i];
+      step = fmax(step, fabs(r[i]));
+      size = fmax(size, fabs(yp[i]));
+    }
+    if (!isfinite(step)) return PS_ERR_SINGULAR;
+    if (step <= 1e-14 * (1.0 + size)) break;
+  }
+  return PS_OK;
+}

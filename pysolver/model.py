@@ -278,6 +278,7 @@ class Model:
         self.usersub_paths = {}   # element -> how its user subroutine runs (filled when compiled)
         self.user_routines = []   # routines the kernel calls (pysolver.build.usercalls)
         self._scripts = {}        # user subroutine scripts run so far: path -> namespace
+        self._run_settings = None  # the last run's options and their dicts (solve/run.py)
         self._where = {}          # (kind, id) -> location of the element, for errors
 
     # public API -------------------------------------------------------------------------

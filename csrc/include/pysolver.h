@@ -96,6 +96,7 @@ enum psMeasure {
 /* Status codes returned by kernel functions. */
 #define PS_OK 0
 #define PS_ERR_NONFINITE 1 /* an expression or force evaluated to NaN or infinity */
+#define PS_ERR_SINGULAR 2  /* a matrix to solve with is singular */
 
 typedef struct psModel {
   /* sizes */
@@ -261,6 +262,15 @@ enum {
  * All arrays have length m->ny. Returns PS_OK, or PS_ERR_NONFINITE with a message in d->msg. */
 int ps_residual(const psModel* m, psData* d, double t, const double* y, const double* yp,
                 double* res);
+
+/* Consistent rates at (t, y): yp with F(t, y, yp) = 0 by Newton's method on yp from yp = 0 (F is
+ * linear in yp unless expressions read accelerations, so one step usually converges), with
+ * dF/dyp = J(cj = 1) - J(cj = 0) factored by dense LU with partial pivoting. work holds
+ * 2 ny^2 + ny doubles and piv ny ints (allocated by the caller). At most iters steps; stops when
+ * the update is below 1e-14 (1 + |yp|). Returns PS_OK, PS_ERR_NONFINITE (diagnosed as by
+ * ps_residual) or PS_ERR_SINGULAR. */
+int ps_consistent_yp(const psModel* m, psData* d, double t, const double* y, double* yp,
+                     double* work, int* piv, int iters);
 
 /* Ctrl-C during a run: ps_interrupt_arm installs a SIGINT handler (saving the previous one)
  * whose first signal makes every later ps_residual fail at once, not recoverably, with the

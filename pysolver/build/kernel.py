@@ -103,6 +103,7 @@ class Kernel:
         self._set_work()
         self._out = np.zeros(max(arrays["nout"], 1))
         self._sparse = None
+        self._cyp = None                 # consistent_yp's work arrays, made on first use
         self._bind()
 
     def _set_work(self):
@@ -337,6 +338,19 @@ class Kernel:
         if self.arrays["nmotion"]:
             return consistent(self, t, y)
         sparse = self.ny >= SPARSE_THRESHOLD
+        if not sparse:                     # in C: a residual, two Jacobians, LU, per step
+            if self._cyp is None:
+                self._cyp = (np.zeros(2 * self.ny * self.ny + self.ny),
+                             np.zeros(self.ny, dtype=np.int32))
+            work, piv = self._cyp
+            yp = np.zeros(self.ny)
+            fb = ffi.from_buffer
+            rc = lib.ps_consistent_yp(self.m, self.d, t, fb("double[]", np.ascontiguousarray(
+                y, float)), fb("double[]", yp), fb("double[]", work),
+                ffi.cast("int *", fb(piv)), iters)
+            if rc != lib.PS_OK and self.d.user_error:
+                raise UserFailure(self.message)
+            return yp if rc == lib.PS_OK else np.full(self.ny, np.nan)
         if sparse:
             from scipy.sparse.linalg import spsolve
         yp = np.zeros(self.ny)

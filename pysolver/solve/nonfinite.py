@@ -73,7 +73,9 @@ def channels(model, channels, t, outputs):
     outputs : ndarray, shape (n, len(channels))
     """
     lines = []
-    if outputs.size == 0 or np.isfinite(outputs).all():
+    if outputs.size == 0 or math.isfinite(outputs.sum()):   # the sum is finite: all are
+        return lines
+    if np.isfinite(outputs).all():                           # finite, but the sum overflowed
         return lines
     bad = ~np.isfinite(outputs)
     for col in np.flatnonzero(bad.any(axis=0)):

@@ -18,7 +18,7 @@ def run_model(model, progress=None, overrides=None, actors=()):
     actors, such as its sensors, are always there).
     """
     t_start = time.perf_counter()
-    options = model.transient.replace(**(overrides or {}))
+    options, used, static, labels = _settings(model, overrides)
     kernel = model._kernel()
     kernel.reset_counters()
     run = Run(model, kernel, options, progress)
@@ -47,13 +47,11 @@ def run_model(model, progress=None, overrides=None, actors=()):
              "growth_limited_at": growth_limited_at}
     setup = (t_run - t_start) + ((run.t_setup or t_end) - t_run)
     timing = {"setup": setup, "integrate": (t_end - t_start) - setup, "total": t_end - t_start}
-    used = dataclasses.asdict(options)
-    used.update(linsolver=run.plan.linsolver, backend="c" if run.plan.use_c else "sksundae")
+    used = dict(used, linsolver=run.plan.linsolver,
+                backend="c" if run.plan.use_c else "sksundae")
     meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
             "options": used, "ny": kernel.ny, "stepping": "onestep" if run.onestep else "normal",
-            "static": dataclasses.asdict(model.static),
-            "usersubs": dict(model.usersub_paths)}
-    labels = {(r.id, k): n for r in model.requests.values() for k, n in enumerate(r.names) if n}
+            "static": dict(static), "usersubs": dict(model.usersub_paths)}
     pr = run.printer
     ts, outputs = pr.ts.array(), pr.outs.array(len(kernel.channels))
     run.log.extend(nonfinite.channels(model, kernel.channels, ts, outputs))
@@ -63,3 +61,23 @@ def run_model(model, progress=None, overrides=None, actors=()):
                   message=message, stats=stats, timing=timing, meta=meta, labels=labels,
                   events=run.events, log=run.log, statics=run.statics,
                   controllers={task.lc.id: task.records() for task in run.controls})
+
+
+def _settings(model, overrides):
+    """(options, options as a dict, Param_Static as a dict, request labels) of a run, kept on
+    the model for the next run with the same deck settings and overrides (dataclasses.asdict
+    alone cost about a third of a short run's Python)."""
+    items = tuple(sorted((overrides or {}).items()))
+    key = (id(model.transient), id(model.static), items)
+    cached = getattr(model, "_run_settings", None)
+    try:
+        if cached is not None and cached[0] == key:
+            return cached[3:]
+    except (TypeError, ValueError):     # an override that does not compare (an array)
+        pass
+    options = model.transient.replace(**dict(items))
+    labels = {(r.id, k): n for r in model.requests.values() for k, n in enumerate(r.names) if n}
+    # the key's objects are kept alive with it, so their ids are not reused
+    model._run_settings = (key, model.transient, model.static, options,
+                           dataclasses.asdict(options), dataclasses.asdict(model.static), labels)
+    return model._run_settings[3:]
