@@ -31,7 +31,9 @@
   X(4, IDASetNoInactiveRootWarn) X(4, IDASolve) X(4, IDAGetRootInfo) X(4, IDAGetNumSteps)     \
   X(4, IDAGetNumResEvals) X(4, IDAGetNumJacEvals) X(4, IDAGetNumErrTestFails)                 \
   X(4, IDAGetNumNonlinSolvConvFails) X(4, IDAGetNumGEvals) X(4, IDAGetLastStep) X(4, IDAFree)   \
-  X(4, IDASetId) X(4, IDASetSuppressAlg) X(4, IDAGetCurrentStep)
+  X(4, IDASetId) X(4, IDASetSuppressAlg) X(4, IDAGetCurrentStep) X(7, SUNSparseMatrix)          \
+  X(7, SUNSparseMatrix_Data) X(7, SUNSparseMatrix_IndexValues)                                \
+  X(7, SUNSparseMatrix_IndexPointers) X(8, SUNLinSol_SuperLUMT)
 
 /* A step shorter than this times |t| is at rounding level. */
 #define PS_IDA_ROUNDING 1e-10
@@ -44,7 +46,11 @@ static const struct { int lib; const char* name; } FNS[F_COUNT] = {SUNDIALS_FNS(
 /* The function `name` of s's table, with the type of its prototype. */
 #define CALL(s, name) ((__typeof__(&name))(s)->fn[F_##name])
 
-#define PS_NLIBS 7
+#define PS_NLIBS 9
+
+/* Libraries from this index on are optional (the sparse matrix and SuperLU_MT): without them
+ * the C driver does dense and band only. */
+#define PS_FIRST_OPTIONAL 7
 
 /* Steps per window over which watch() counts IDA's error-test failures. */
 #define PS_IDA_WINDOW 50
@@ -58,7 +64,11 @@ struct psIDA {
   SUNMatrix A;            /* dense or band matrix                                   */
   SUNLinearSolver LS;     /* linear solver                                          */
   int band;               /* 1: band matrix filled through map                      */
-  const int* map;         /* (ntrip x 1) band storage index of each triplet         */
+  int sparse;             /* 1: CSC matrix (SuperLU_MT) filled through map          */
+  const int* map;         /* (ntrip x 1) band or CSC storage index of each triplet  */
+  const int* colptr;      /* (ny + 1) CSC column pointers of the fixed pattern      */
+  const int* rowind;      /* (nnz) CSC row indices of the fixed pattern             */
+  int nnz;                /* entries of the CSC pattern                             */
   int ntrip;              /* number of Jacobian triplets                            */
   long nstore;            /* doubles of band storage                                */
   const psModel* m;       /* model being integrated                                 */
@@ -79,7 +89,9 @@ psIDA* ps_ida_load(const char* const* paths, char* msg, int msglen) {
     return NULL;
   }
   for (int i = 0; i < PS_NLIBS; i++) {
+    if (!paths[i] && i >= PS_FIRST_OPTIONAL) continue;
     s->lib[i] = dlopen(paths[i], RTLD_NOW | RTLD_LOCAL);
+    if (!s->lib[i] && i >= PS_FIRST_OPTIONAL) continue;
     if (!s->lib[i]) {
       snprintf(msg, (size_t)msglen, "cannot open %s: %s", paths[i], dlerror());
       free(s);
@@ -87,9 +99,11 @@ psIDA* ps_ida_load(const char* const* paths, char* msg, int msglen) {
     }
   }
   for (int k = 0; k < F_COUNT; k++) {
-    s->fn[k] = dlsym(s->lib[FNS[k].lib], FNS[k].name);
+    if (s->lib[FNS[k].lib]) s->fn[k] = dlsym(s->lib[FNS[k].lib], FNS[k].name);
     /* a function may sit in another library of the set in other SUNDIALS builds */
-    for (int i = 0; i < PS_NLIBS && !s->fn[k]; i++) s->fn[k] = dlsym(s->lib[i], FNS[k].name);
+    for (int i = 0; i < PS_NLIBS && !s->fn[k]; i++)
+      if (s->lib[i]) s->fn[k] = dlsym(s->lib[i], FNS[k].name);
+    if (!s->fn[k] && FNS[k].lib >= PS_FIRST_OPTIONAL) continue;
     if (!s->fn[k]) {
       snprintf(msg, (size_t)msglen, "SUNDIALS function %s not found", FNS[k].name);
       free(s);
@@ -108,6 +122,12 @@ psIDA* ps_ida_new(const psIDA* loaded) {
 }
 
 const char* ps_ida_message(const psIDA* s) { return s->msg; }
+
+int ps_ida_has_sparse(const psIDA* s) {
+  return s->fn[F_SUNSparseMatrix] && s->fn[F_SUNSparseMatrix_Data] &&
+         s->fn[F_SUNSparseMatrix_IndexValues] && s->fn[F_SUNSparseMatrix_IndexPointers] &&
+         s->fn[F_SUNLinSol_SuperLUMT];
+}
 
 static int res_fn(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* ud) {
   psIDA* s = (psIDA*)ud;
@@ -152,6 +172,19 @@ static int jac_fn(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yp, N_Vec
   psIDA* s = (psIDA*)ud;
   if (s->auto_eta > 0 && !s->limited_at) watch(s);
   __typeof__(&N_VGetArrayPointer) data = CALL(s, N_VGetArrayPointer);
+  if (s->sparse) {
+    /* IDA zeroes the matrix, pattern included, before each call: write the fixed pattern,
+     * then the kernel's triplets summed into the CSC values through the map */
+    sunindextype* rows = CALL(s, SUNSparseMatrix_IndexValues)(J);
+    sunindextype* cols = CALL(s, SUNSparseMatrix_IndexPointers)(J);
+    for (int k = 0; k < s->nnz; k++) rows[k] = s->rowind[k];
+    for (int j = 0; j <= s->m->ny; j++) cols[j] = s->colptr[j];
+    double* v = CALL(s, SUNSparseMatrix_Data)(J);
+    if (ps_jacobian_csc(s->m, s->d, t, data(yy), data(yp), cj, s->map, s->ntrip, v, s->nnz) ==
+        PS_OK)
+      return 0;
+    return s->d->user_error ? -1 : 1;
+  }
   if (s->band) {
     /* kernel triplets scattered into band storage through a precomputed map */
     double* b = CALL(s, SUNBandMatrix_Data)(J);
@@ -216,7 +249,8 @@ static int fail(psIDA* s, const char* what, int flag) {
 
 int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* y0,
                 const double* yp0, double rtol, double atol, double hmax, double hmin, double h0,
-                long mxsteps, const int* rootdir, int mu, int ml, const int* map, int ntrip) {
+                long mxsteps, const int* rootdir, int mu, int ml, const int* map, int ntrip,
+                const int* colptr, const int* rowind, int nnz) {
   int n = m->ny;
   release(s);
   s->m = m;
@@ -235,7 +269,17 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   SET(s, CALL(s, IDASetUserData)(s->mem, s), "IDASetUserData");
   SET(s, CALL(s, IDASStolerances)(s->mem, rtol, atol), "IDASStolerances");
   s->band = mu >= 0 && ml >= 0;
-  if (s->band) {
+  s->sparse = mu == PS_IDA_SPARSE;
+  if (s->sparse) {
+    if (!ps_ida_has_sparse(s)) return fail(s, "SuperLU_MT (not in this SUNDIALS build)", -1);
+    s->map = map;
+    s->ntrip = ntrip;
+    s->colptr = colptr;
+    s->rowind = rowind;
+    s->nnz = nnz;
+    s->A = CALL(s, SUNSparseMatrix)(n, n, nnz, 0, s->ctx);
+    if (s->A) s->LS = CALL(s, SUNLinSol_SuperLUMT)(s->y, s->A, 1, s->ctx);
+  } else if (s->band) {
     int smu = mu + ml < n - 1 ? mu + ml : n - 1;
     s->map = map;
     s->ntrip = ntrip;
@@ -246,7 +290,9 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
     s->A = CALL(s, SUNDenseMatrix)(n, n, s->ctx);
     if (s->A) s->LS = CALL(s, SUNLinSol_Dense)(s->y, s->A, s->ctx);
   }
-  if (!s->A || !s->LS) return fail(s, s->band ? "SUNBandMatrix" : "SUNDenseMatrix", -1);
+  if (!s->A || !s->LS)
+    return fail(s, s->sparse ? "SUNSparseMatrix" : s->band ? "SUNBandMatrix" : "SUNDenseMatrix",
+                -1);
   SET(s, CALL(s, IDASetLinearSolver)(s->mem, s->LS, s->A), "IDASetLinearSolver");
   SET(s, CALL(s, IDASetJacFn)(s->mem, jac_fn), "IDASetJacFn");
   SET(s, CALL(s, IDASetMaxNumSteps)(s->mem, mxsteps), "IDASetMaxNumSteps");

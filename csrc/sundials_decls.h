@@ -9,7 +9,7 @@
 #include <stdint.h>
 
 typedef double sunrealtype;
-typedef int64_t sunindextype; /* the wheel's build: SUNDIALS_INDEX_SIZE 64 */
+typedef int32_t sunindextype; /* the wheel's SUNDIALS_INDEX_SIZE is 32 (see its c_config.pxi) */
 typedef struct _generic_N_Vector* N_Vector;
 typedef struct _generic_SUNMatrix* SUNMatrix;
 typedef struct _generic_SUNLinearSolver* SUNLinearSolver;
@@ -36,6 +36,13 @@ SUNLinearSolver SUNLinSol_Dense(N_Vector y, SUNMatrix a, SUNContext ctx);
 SUNMatrix SUNBandMatrix(sunindextype n, sunindextype mu, sunindextype ml, SUNContext ctx);
 sunrealtype* SUNBandMatrix_Data(SUNMatrix a);
 SUNLinearSolver SUNLinSol_Band(N_Vector y, SUNMatrix a, SUNContext ctx);
+/* compressed-sparse-column matrices and SuperLU_MT (CSC_MAT = 0) */
+SUNMatrix SUNSparseMatrix(sunindextype m, sunindextype n, sunindextype nnz, int sparsetype,
+                          SUNContext ctx);
+sunrealtype* SUNSparseMatrix_Data(SUNMatrix a);
+sunindextype* SUNSparseMatrix_IndexValues(SUNMatrix a);
+sunindextype* SUNSparseMatrix_IndexPointers(SUNMatrix a);
+SUNLinearSolver SUNLinSol_SuperLUMT(N_Vector y, SUNMatrix a, int num_threads, SUNContext ctx);
 /* IDA */
 void* IDACreate(SUNContext ctx);
 int IDAInit(void* mem, IDAResFn res, sunrealtype t0, N_Vector y0, N_Vector yp0);

@@ -27,24 +27,46 @@ def test_csc_matches_dense(deck):
 
 def test_sparse_and_dense_runs_agree():
     model = pysolver.loads(chain_deck(10, end_time=0.3))
-    # the same Newton test as scikit-sundae's sparse path (IDA's own coefficient)
-    a = model.run(linsolver="dense", nonlin_conv_coef=0.33)
+    # from C: the same driver and Newton test; only the linear solver differs
+    a = model.run(linsolver="dense")
     b = model.run(linsolver="sparse")
     assert a.meta["options"]["linsolver"] == "dense" and b.meta["options"]["linsolver"] == "sparse"
+    assert a.meta["options"]["backend"] == b.meta["options"]["backend"] == "c"
     assert a.success and b.success
     np.testing.assert_allclose(a.request(1), b.request(1), atol=1e-9)
     assert abs(a.stats["steps"] - b.stats["steps"]) <= 2
+    # through scikit-sundae (IDA's own Newton coefficient on both sides)
+    c = model.run(linsolver="dense", nonlin_conv_coef=0.33)
+    d = model.run(linsolver="sparse", backend="sksundae")
+    assert d.meta["options"]["backend"] == "sksundae" and d.success
+    np.testing.assert_allclose(c.request(1), d.request(1), atol=1e-9)
+    assert abs(c.stats["steps"] - d.stats["steps"]) <= 2
+
+
+def _closed_chain(n):
+    """chain_deck(n) with its free end tied back to its first mass: the Jacobian is no band."""
+    text = chain_deck(n, end_time=0.02)
+    tie = (f'<Force_Penalty id="{n + 1}" expr="DM({1000 + n - 1},1000) - {0.1 * (n - 1)}" '
+           'penalty="1e3" penalty1="1"/>\n<Post_Request')
+    return text.replace("<Post_Request", tie, 1)
 
 
 def test_auto_picks_a_structured_solver_for_large_scenes():
     """From 300 states: IDA's band solver from C when the Jacobian is a narrow band (a chain),
-    otherwise SuperLU_MT through scikit-sundae."""
+    otherwise SUNDIALS' sparse matrix and SuperLU_MT, also from C (scikit-sundae on request)."""
     from pysolver.options import SPARSE_THRESHOLD
     model = pysolver.loads(chain_deck(SPARSE_THRESHOLD // 6 + 1, end_time=0.02))
     assert model.run(backend="c").meta["options"]["linsolver"] == "band"
     res = model.run(backend="sksundae")
     assert res.success and res.meta["options"]["linsolver"] == "sparse"
     assert pysolver.loads(chain_deck(3, end_time=0.02)).run().meta["options"]["linsolver"] == "dense"
+    closed = pysolver.loads(_closed_chain(SPARSE_THRESHOLD // 6 + 1))
+    a = closed.run()
+    assert a.success and (a.meta["options"]["linsolver"], a.meta["options"]["backend"]) == \
+        ("sparse", "c")
+    b = closed.run(linsolver="dense")
+    np.testing.assert_allclose(a.y, b.y, atol=1e-9)
+    assert abs(a.stats["steps"] - b.stats["steps"]) <= 2
 
 
 def test_chain_constraint_and_pendulum_physics():

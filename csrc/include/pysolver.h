@@ -291,11 +291,19 @@ int ps_penalty_loads(const psModel* m, psData* d, double t, const double* y, con
  * (one integration object sharing them), freed by ps_ida_delete. */
 typedef struct psIDA psIDA;
 
-/* Open the seven SUNDIALS 7 shared libraries whose paths are given in this order: core,
- * nvecserial, sunmatrixdense, sunlinsoldense, ida, sunmatrixband, sunlinsolband, and look up
- * the functions used. Returns the loaded table (its libraries stay open for the process's
- * life), or NULL with a message in msg (msglen bytes). */
+/* Open the nine SUNDIALS 7 shared libraries whose paths are given in this order: core,
+ * nvecserial, sunmatrixdense, sunlinsoldense, ida, sunmatrixband, sunlinsolband, and the
+ * optional sunmatrixsparse and sunlinsolsuperlumt (NULL paths, or libraries that do not open,
+ * leave the sparse solver out), and look up the functions used. Returns the loaded table (its
+ * libraries stay open for the process's life), or NULL with a message in msg (msglen bytes). */
 psIDA* ps_ida_load(const char* const* paths, char* msg, int msglen);
+
+/* Whether a table from ps_ida_load has the sparse matrix and SuperLU_MT (ps_ida_init's
+ * mu = PS_IDA_SPARSE). */
+int ps_ida_has_sparse(const psIDA* s);
+
+/* ps_ida_init's mu selecting the sparse solver. */
+enum { PS_IDA_SPARSE = -2 };
 
 /* Return a new integration object using the functions of a table from ps_ida_load (not
  * started; see ps_ida_init), or NULL when out of memory. Free it with ps_ida_delete. */
@@ -311,11 +319,15 @@ const char* ps_ida_message(const psIDA* s);
  * has sensors, its root functions with directions rootdir (length m->nsensor). hmax, hmin,
  * h0 <= 0 mean IDA's defaults. mu, ml >= 0 select a band solver with those bandwidths, whose
  * matrix is filled from the kernel's triplets (ps_jacobian_pattern order) at the band storage
- * indices map (ntrip entries; map must outlive the integration); otherwise dense.
- * Returns PS_OK, or -1 with a message (ps_ida_message); a failed set-up frees what it built. */
+ * indices map (ntrip entries); mu = PS_IDA_SPARSE selects a compressed-sparse-column matrix
+ * with the fixed pattern colptr (ny + 1) and rowind (nnz), filled from the triplets at the
+ * value indices map, factored by SuperLU_MT on one thread; otherwise dense. map, colptr and
+ * rowind must outlive the integration. Returns PS_OK, or -1 with a message (ps_ida_message);
+ * a failed set-up frees what it built. */
 int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* y0,
                 const double* yp0, double rtol, double atol, double hmax, double hmin, double h0,
-                long mxsteps, const int* rootdir, int mu, int ml, const int* map, int ntrip);
+                long mxsteps, const int* rootdir, int mu, int ml, const int* map, int ntrip,
+                const int* colptr, const int* rowind, int nnz);
 
 /* Tune IDA's step control for stiff penalties. eta_max > 0 limits how fast IDA may grow its
  * step (IDA's default 2); nlconv > 0 sets the Newton convergence coefficient (IDA's default

@@ -252,6 +252,11 @@ class Kernel:
         ldim = smu + ml + 1
         return np.ascontiguousarray(cols * ldim + (rows - cols + smu), dtype=np.int32)
 
+    def csc_map(self):
+        """Index into the CSC data array of :meth:`sparsity` of each kernel triplet (int32)."""
+        self.sparsity()
+        return self._sparse[1]
+
     def jacobian_csc_fn(self):
         """Return a scikit-sundae ``jacfn`` filling the CSC data array of :meth:`sparsity`."""
         self.sparsity()

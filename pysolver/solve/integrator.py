@@ -48,9 +48,9 @@ def plan(kernel, options):
         mu, ml = kernel.bandwidths()
         if 4 * (mu + ml + 1) <= kernel.ny:
             band = (mu, ml)
-    want_c = backend in ("auto", "c") and options.jacobian == "exact" and \
-        (not sparse or band is not None)
-    use_c = want_c and cida.available()
+    want_c = backend in ("auto", "c") and options.jacobian == "exact"
+    use_c = want_c and cida.available() and (not sparse or band is not None or
+                                             cida.sparse_available())
     if backend == "c" and not use_c:
         raise ValueError("backend='c' needs the dense exact-Jacobian path and SUNDIALS "
                          "libraries from the scikit-sundae wheel")
@@ -61,7 +61,7 @@ def plan(kernel, options):
                              "C (dense or band scenes, exact Jacobian, the scikit-sundae "
                              "wheel's SUNDIALS libraries)")
     if use_c:
-        return Plan(True, False, band)
+        return Plan(True, sparse and band is None, band)
     return Plan(False, sparse, None)
 
 
@@ -72,7 +72,8 @@ def make(kernel, options, the_plan, bounds):
     if the_plan.use_c:
         tune = (options.max_step_growth or 0.0, options.nonlin_conv_coef or NONLIN_CONV_COEF,
                 AUTO_STEP_GROWTH)
-        return cida.CIDA(kernel, tol, tol, *bounds, mxsteps, band=the_plan.band, tune=tune)
+        return cida.CIDA(kernel, tol, tol, *bounds, mxsteps, band=the_plan.band, tune=tune,
+                         sparse=the_plan.sparse)
     if the_plan.sparse:
         lin = dict(linsolver="sparse", sparsity=kernel.sparsity(), jacfn=kernel.jacobian_csc_fn())
     else:
