@@ -13,7 +13,28 @@ state is made consistent in three steps, each the smallest change that does it:
 """
 import numpy as np
 
+from ..options import SPARSE_THRESHOLD
 from .bindings import ffi, lib
+
+
+class _Jac:
+    """The iteration matrix at cj, dense or (from SPARSE_THRESHOLD states) sparse, with the
+    few block operations the steps below need."""
+
+    def __init__(self, kernel, t, y, yp, cj):
+        self.sparse = kernel.ny >= SPARSE_THRESHOLD
+        self.J = (kernel.jacobian_csc_array(t, y, yp, cj) if self.sparse
+                  else kernel.jacobian_array(t, y, yp, cj))
+
+    def block(self, rows, cols):
+        """J[rows, cols] as a dense array (a few rows or columns)."""
+        if self.sparse:
+            return self.J[:, cols].tocsr()[rows].toarray()
+        return self.J[np.ix_(rows, cols)]
+
+    def rows_times(self, rows, v):
+        """J[rows] @ v."""
+        return (self.J @ v)[rows]
 
 
 def consistent(kernel, t, y, iters=8):
@@ -31,7 +52,7 @@ def consistent(kernel, t, y, iters=8):
         g = _motion_g(kernel, t, y)[disp]
         if np.max(np.abs(g)) <= 1e-13 * (1.0 + np.max(np.abs(y))):
             break
-        C = kernel.jacobian_array(t, y, yp, 0.0)[np.ix_(lam[disp], u_idx)]
+        C = _Jac(kernel, t, y, yp, 0.0).block(lam[disp], u_idx)
         du = np.zeros(kernel.ny)
         du[u_idx] = C.T @ np.linalg.lstsq(C @ C.T, -g, rcond=None)[0]
         _move(lay, y, du)
@@ -43,23 +64,19 @@ def consistent(kernel, t, y, iters=8):
             r[k] = 0.0
     held = np.nonzero(kinds != lib.PS_MOTION_A)[0]
     if len(held):
-        C = kernel.jacobian_array(t, y, yp, 0.0)[np.ix_(lam[held], u_idx)]
+        C = _Jac(kernel, t, y, yp, 0.0).block(lam[held], u_idx)
         y[u_idx] += C.T @ np.linalg.lstsq(C @ C.T, -r[held], rcond=None)[0]
     # 3. accelerations and reactions (linear in them unless forces read accelerations)
     rows = np.setdiff1d(np.arange(kernel.ny), lam)
     for _ in range(4):
-        J0 = kernel.jacobian_array(t, y, yp, 0.0)
-        D = kernel.jacobian_array(t, y, yp, 1.0) - J0
+        J0 = _Jac(kernel, t, y, yp, 0.0)
+        D = _Jac(kernel, t, y, yp, 1.0).J - J0.J
         res = kernel.residual_array(t, y, yp)
         h = 1e-6 * max(1.0, abs(t))
         r_t = (kernel.residual_array(t + h, y, yp)[lam]
                - kernel.residual_array(t - h, y, yp)[lam]) / (2 * h)
-        A = np.zeros((kernel.ny, kernel.ny))
-        A[:len(rows), :len(rows)] = D[np.ix_(rows, rows)]
-        A[:len(rows), len(rows):] = J0[np.ix_(rows, lam)]
-        A[len(rows):, :len(rows)] = J0[np.ix_(lam, rows)]
-        rhs = -np.concatenate([res[rows], J0[lam] @ yp + r_t])
-        dz = np.linalg.solve(A, rhs)
+        rhs = -np.concatenate([res[rows], J0.rows_times(lam, yp) + r_t])
+        dz = _solve_saddle(D, J0.J, rows, lam, rhs, J0.sparse)
         yp[rows] += dz[:len(rows)]
         y[lam] += dz[len(rows):]
         if np.max(np.abs(dz)) <= 1e-14 * (1 + np.max(np.abs(np.concatenate([yp, y[lam]])))):
@@ -77,8 +94,24 @@ def reactions(kernel, t, y, yp):
     y[lam] = 0.0
     rows = np.setdiff1d(np.arange(kernel.ny), lam)
     r = kernel.residual_array(t, y, yp)[rows]
-    C = kernel.jacobian_array(t, y, yp, 0.0)[np.ix_(rows, lam)]
+    C = _Jac(kernel, t, y, yp, 0.0).block(rows, lam)
     return np.linalg.lstsq(C, -r, rcond=None)[0]
+
+
+def _solve_saddle(D, J0, rows, lam, rhs, sparse):
+    """Solve [[D_rr, J0_rl], [J0_lr, 0]] z = rhs (accelerations, then reactions)."""
+    if not sparse:
+        n = len(rows) + len(lam)
+        A = np.zeros((n, n))
+        A[:len(rows), :len(rows)] = D[np.ix_(rows, rows)]
+        A[:len(rows), len(rows):] = J0[np.ix_(rows, lam)]
+        A[len(rows):, :len(rows)] = J0[np.ix_(lam, rows)]
+        return np.linalg.solve(A, rhs)
+    import scipy.sparse as sp
+    from scipy.sparse.linalg import spsolve
+    D, J0 = D.tocsr(), J0.tocsr()
+    A = sp.bmat([[D[rows][:, rows], J0[rows][:, lam]], [J0[lam][:, rows], None]], format="csc")
+    return spsolve(A, rhs)
 
 
 def _motion_g(kernel, t, y):
