@@ -61,28 +61,26 @@ def describe(model, kernel):
 
 
 
-def channels(model, channels, t, outputs):
+def channels(model, kernel, t, outputs):
     """Log lines for the request channels that are not finite somewhere: one per channel, with
     its expression and the first time (NULL channels, never defined, are left out).
 
     Parameters
     ----------
     model : Model
-    channels : list of (request id, channel index)
+    kernel : Kernel
+        Its ``channels`` name the columns of `outputs`: (request id, channel index).
     t : ndarray, shape (n,)
-    outputs : ndarray, shape (n, len(channels))
+    outputs : ndarray, shape (n, len(kernel.channels))
     """
+    defined = np.flatnonzero(kernel.arrays["out_tape"][:outputs.shape[1]] >= 0)
     lines = []
-    if outputs.size == 0 or math.isfinite(outputs.sum()):   # the sum is finite: all are
-        return lines
-    if np.isfinite(outputs).all():                           # finite, but the sum overflowed
+    if outputs.size == 0 or math.isfinite(outputs[:, defined].sum()):  # then all are finite
         return lines
     bad = ~np.isfinite(outputs)
-    for col in np.flatnonzero(bad.any(axis=0)):
-        rid, k = channels[col]
+    for col in defined[bad[:, defined].any(axis=0)]:
+        rid, k = kernel.channels[col]
         req = model.requests[rid]
-        if req.exprs[k] is None and req.usersub is None:
-            continue
         rows = np.flatnonzero(bad[:, col])
         text = req.texts[k] if req.texts[k] else f"{req.usersub.name} channel {k + 1}"
         lines.append(f"request {rid} channel {k + 1} ({text}) is not finite at {len(rows)} of "

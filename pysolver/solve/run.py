@@ -54,7 +54,7 @@ def run_model(model, progress=None, overrides=None, actors=()):
             "static": dict(static), "usersubs": dict(model.usersub_paths)}
     pr = run.printer
     ts, outputs = pr.ts.array(), pr.outs.array(len(kernel.channels))
-    run.log.extend(nonfinite.channels(model, kernel.channels, ts, outputs))
+    run.log.extend(nonfinite.channels(model, kernel, ts, outputs))
     return Result(t=ts, y=pr.ys.array(kernel.ny), yp=pr.yps.array(kernel.ny),
                   outputs=outputs, channels=kernel.channels,
                   state_names=kernel.layout.names, success=success, status=status,
