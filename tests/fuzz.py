@@ -201,6 +201,16 @@ for line in sys.stdin:
 """
 
 
+def _package_parent():
+    """The folder holding the pysolver this process imports (installed or the checkout), so
+    that workers test the same one and never build a kernel of their own."""
+    try:
+        import pysolver
+    except ImportError:
+        return ROOT
+    return pathlib.Path(pysolver.__file__).resolve().parents[1]
+
+
 class Worker:
     """A Python process loading and running decks one at a time (restarted after a crash or a
     hang)."""
@@ -210,7 +220,7 @@ class Worker:
         self.proc = None
 
     def _start(self):
-        env = dict(os.environ, PYTHONPATH=str(ROOT), OMP_NUM_THREADS="1",
+        env = dict(os.environ, PYTHONPATH=str(_package_parent()), OMP_NUM_THREADS="1",
                    OPENBLAS_NUM_THREADS="1", PYSOLVER_OUTPUT_BUDGET=str(2 ** 29))
         self.proc = subprocess.Popen([sys.executable, "-c", WORKER, self.folder],
                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE,
