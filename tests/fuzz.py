@@ -222,9 +222,12 @@ class Worker:
     def _start(self):
         env = dict(os.environ, PYTHONPATH=str(_package_parent()), OMP_NUM_THREADS="1",
                    OPENBLAS_NUM_THREADS="1", PYSOLVER_OUTPUT_BUDGET=str(2 ** 29))
+        # run in the cases' folder: `python -c` puts its working folder first on the path,
+        # and a checkout there would shadow the package under test
         self.proc = subprocess.Popen([sys.executable, "-c", WORKER, self.folder],
                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                     stderr=subprocess.DEVNULL, text=True, env=env)
+                                     stderr=subprocess.DEVNULL, text=True, env=env,
+                                     cwd=self.folder)
 
     def _read(self, timeout):
         ready, _, _ = select.select([self.proc.stdout], [], [], timeout)

@@ -85,7 +85,7 @@ def test_a_million_output_rows_stay_within_three_times_their_size(tmp_path):
     env = dict(os.environ, PYTHONPATH=str(pathlib.Path(pysolver.__file__).parents[1]))
     out = subprocess.run([sys.executable, "-c", RSS_SCRIPT,
                           str(DECKS / "particle_between_lines.xml"), str(tmp_path)],
-                         capture_output=True, text=True, env=env, timeout=300)
+                         capture_output=True, text=True, env=env, timeout=300, cwd=tmp_path)
     assert out.returncode == 0, out.stderr
     r = json.loads(out.stdout)
     assert r["success"] and r["rows"] == 1_000_001
