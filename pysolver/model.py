@@ -8,6 +8,7 @@ the later stages and imports them when called, so this module imports no later s
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 from typing import TYPE_CHECKING
 
@@ -243,7 +244,7 @@ class Source:
     text: str
     fmt: str
 
-    @property
+    @functools.cached_property
     def sha256(self):
         return hashlib.sha256(self.text.encode()).hexdigest()
 

@@ -1,4 +1,6 @@
 """A compiled scene bound to the C kernel: psModel + psData and fast call wrappers."""
+import functools
+
 import numpy as np
 
 from ..deck import usersubs
@@ -110,6 +112,11 @@ class Kernel:
         for key, val in self._work.items():
             setattr(self.d, key, ffi.cast("double *", ffi.from_buffer(val)))
         self.d.sensor_armed = ffi.cast("int *", ffi.from_buffer(self.armed))
+
+    @functools.cached_property
+    def defined_channels(self):
+        """Columns of the request channels that have an expression (not NULL)."""
+        return np.flatnonzero(self.arrays["out_tape"][:len(self.channels)] >= 0)
 
     @property
     def bad_state(self):

@@ -38,7 +38,7 @@ class Run:
 
     def __init__(self, model, kernel, options, progress):
         self.model, self.kernel, self.options = model, kernel, options
-        self.plan = integrator.plan(kernel, options)
+        self.plan = integrator.cached_plan(kernel, options)
         self.hmax = options.h_max          # None: unbounded
         self.hmin = options.h_min or 0.0
         self.events, self.log, self.statics = [], [], []

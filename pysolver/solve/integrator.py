@@ -19,6 +19,7 @@ The interface (duck-typed):
     wrapper does not report them) and growth_limited_at.
 """
 import dataclasses
+import os
 
 from ..options import AUTO_STEP_GROWTH, NONLIN_CONV_COEF, SPARSE_THRESHOLD
 from . import cida
@@ -35,6 +36,17 @@ class Plan:
     @property
     def linsolver(self):
         return "band" if self.band else "sparse" if self.sparse else "dense"
+
+
+def cached_plan(kernel, options):
+    """:func:`plan`, kept on the kernel for the next run with the same options object and
+    PYSOLVER_BACKEND (runs of one model reuse their options; see solve.run)."""
+    key = (id(options), os.environ.get("PYSOLVER_BACKEND"))
+    cache = kernel.__dict__.setdefault("_plans", {})
+    if key not in cache:
+        cache.clear()                       # one entry: the options object is kept alive
+        cache[key] = (options, plan(kernel, options))
+    return cache[key][1]
 
 
 def plan(kernel, options):
