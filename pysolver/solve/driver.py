@@ -97,8 +97,8 @@ class Run:
 
     def steps(self):
         """Converged steps so far, counted by the kernel from the times of residual calls."""
-        c = self.kernel.counters
-        return c["attempts"] - c["nfail"]
+        d = self.kernel.d
+        return int(d.ntimes - d.nfail)
 
     # restore-and-shrink ------------------------------------------------------------------
     def remember_step(self):
