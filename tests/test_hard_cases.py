@@ -154,7 +154,9 @@ def test_long_run_has_constant_work_per_step_and_no_memory_growth():
     long = pysolver.loads(pendulum_deck(1e8, end=10.0, c=0.0, dt=0.1))   # same 101 outputs
     # a fixed step control (the automatic limit would switch on part-way through)
     opts = dict(integr_tol=1e-8, backend="c", max_step_growth=1.1)
-    short.run(**opts)                                # warm-up: libraries, caches
+    short.run(**opts)                                # warm-up: libraries, compiled kernels,
+    long.run(**opts)                                 # cached run settings
+
     rss0 = _resident_bytes()
     tracemalloc.start()
     a = short.run(**opts)
