@@ -10,7 +10,8 @@ Run: ``python benchmarks/overhead.py``.
 """
 import pathlib
 import re
-import time
+
+from usersubs import best
 
 import pysolver
 
@@ -19,15 +20,6 @@ from scenes import chain_deck
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DECKS = ["particle_between_lines", "particle_above_line", "catenary_bead", "torque_free_spin",
          "spinning_top"]
-
-
-def best(fn, repeat):
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return min(times)
 
 
 def one_step_text(text):
