@@ -471,7 +471,10 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
     d->ntimes++;
   }
   d->last_t = t;
-  assemble(m, d, t, y, yp, &as);
+  if (m->gen)
+    m->gen->residual(m, d->senval, t, y, yp, 0.0, res);
+  else
+    assemble(m, d, t, y, yp, &as);
   return check_finite(m, d, t, y, yp, res, m->ny, 0, 1);
 }
 
@@ -489,11 +492,26 @@ int ps_jacobian(const psModel* m, psData* d, double t, const double* y, const do
                 double cj, double* jac) {
   Assembly as = {d->res, jac, NULL, NULL, NULL, 0, 1, cj, m->ny};
   d->njac++;
-  assemble(m, d, t, y, yp, &as);
+  if (m->gen) {
+    const psGen* gen = m->gen;
+    memset(jac, 0, sizeof(double) * (size_t)m->ny * (size_t)m->ny);
+    gen->jacobian(m, d->senval, t, y, yp, cj, d->trip);
+    for (int k = 0; k < gen->ntrip; k++) jac[(long)gen->trow[k] * m->ny + gen->tcol[k]] = d->trip[k];
+  } else {
+    assemble(m, d, t, y, yp, &as);
+  }
   return check_finite(m, d, t, y, yp, jac, (long)m->ny * m->ny, 1, 1);
 }
 
 int ps_jacobian_pattern(const psModel* m, psData* d, int* rows, int* cols) {
+  if (m->gen) {
+    if (rows)
+      for (int k = 0; k < m->gen->ntrip; k++) {
+        rows[k] = m->gen->trow[k];
+        cols[k] = m->gen->tcol[k];
+      }
+    return m->gen->ntrip;
+  }
   /* the structure does not depend on values: assemble once at a harmless state */
   double* y = d->res;
   for (int i = 0; i < m->ny; i++) y[i] = 0.0;
@@ -508,7 +526,10 @@ int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, cons
                     double cj, const int* map, int ntrip, double* data, int nnz) {
   Assembly as = {d->res, NULL, d->trip, NULL, NULL, 0, 1, cj, m->ny};
   d->njac++;
-  assemble(m, d, t, y, yp, &as);
+  if (m->gen)
+    m->gen->jacobian(m, d->senval, t, y, yp, cj, d->trip);
+  else
+    assemble(m, d, t, y, yp, &as);
   for (int i = 0; i < nnz; i++) data[i] = 0.0;
   for (int k = 0; k < ntrip; k++) data[map[k]] += d->trip[k];
   return check_finite(m, d, t, y, yp, data, nnz, 1, 0);
@@ -517,6 +538,10 @@ int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, cons
 /* Evaluate every sensor's expression into d->sensor_f (derivative order 0). */
 static void sensor_values(const psModel* m, psData* d, double t, const double* y,
                           const double* yp) {
+  if (m->gen) {
+    m->gen->sensors(m, d->senval, t, y, yp, 0.0, d->sensor_f);
+    return;
+  }
   int last = -1;
   for (int k = 0; k < m->nsensor; k++) {
     int tape = m->sensor_tape[k];
@@ -583,6 +608,10 @@ double ps_power(const psModel* m, const double* y, const double* yp) {
 
 int ps_outputs(const psModel* m, psData* d, double t, const double* y, const double* yp,
                double* out) {
+  if (m->gen) {
+    m->gen->outputs(m, d->senval, t, y, yp, 0.0, out);
+    return PS_OK;
+  }
   int last = -1;
   for (int k = 0; k < m->nout; k++) {
     int tape = m->out_tape[k];

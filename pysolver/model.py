@@ -312,15 +312,19 @@ class Model:
             self.check()                  # the DeckError saying there is nothing to run
         return run_model(self, progress=progress, overrides=options)
 
-    def _kernel(self, conservative=False):
+    def _kernel(self, conservative=False, kind=None):
         """The compiled kernel of this model, built on first use and reused by every run
-        (a second one without damping for MKEAM)."""
+        (a second one without damping for MKEAM). kind: "auto", "generated" or "tapes"
+        (None: ``PYSOLVER_KERNEL``, else "auto"; see Options.kernel)."""
         if self._compiled is None:
             self._compiled = {}
-        if conservative not in self._compiled:
+        if kind is None:
+            kind = Options().resolved_kernel()
+        key = (conservative, kind == "tapes")
+        if key not in self._compiled:
             from .build import Kernel
-            self._compiled[conservative] = Kernel(self, conservative)
-        return self._compiled[conservative]
+            self._compiled[key] = Kernel(self, conservative, kind)
+        return self._compiled[key]
 
     def check(self):
         """Run every check a run makes before integrating: compile the kernel and check each

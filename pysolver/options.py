@@ -34,7 +34,7 @@ _RULES = {
     "nonlin_conv_coef": (lambda v: 0 < v < 1, "in (0, 1)"),
 }
 _CHOICES = {"linsolver": ("auto", "dense", "sparse"), "jacobian": ("exact", "dq"),
-            "backend": ("auto", "c", "sksundae")}
+            "backend": ("auto", "c", "sksundae"), "kernel": ("auto", "generated", "tapes")}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -42,7 +42,7 @@ class Options:
     """How a model is integrated.
 
     The first seven fields are ``Param_Transient``'s attributes (same names, units of the
-    deck); the last three are run-time choices. Change them per run with
+    deck); the last four are run-time choices. Change them per run with
     ``model.run(name=value, ...)``.
 
     Attributes
@@ -70,6 +70,11 @@ class Options:
     backend : {"auto", "c", "sksundae"} or None
         IDA driven from C, or through scikit-sundae's Python callbacks. None: the
         ``PYSOLVER_BACKEND`` environment variable, else "auto" (C where the scene allows).
+    kernel : {"auto", "generated", "tapes"} or None
+        The scene's generated C (compiled once per deck, cached on disk; "auto" and
+        "generated" fall back to the tapes, with a log line, when no C compiler works or the
+        scene calls a user subroutine from the kernel), or the tape interpreter. None: the
+        ``PYSOLVER_KERNEL`` environment variable, else "auto".
     """
     integr_tol: float = 1e-3
     h_max: Optional[float] = None
@@ -81,6 +86,7 @@ class Options:
     linsolver: str = "auto"
     jacobian: str = "exact"
     backend: Optional[str] = None
+    kernel: Optional[str] = None
 
     def __post_init__(self):
         for name in _RULES:
@@ -115,6 +121,13 @@ class Options:
         if backend not in _CHOICES["backend"]:
             raise ValueError(f"backend must be 'auto', 'c' or 'sksundae', not {backend!r}")
         return backend
+
+    def resolved_kernel(self) -> str:
+        """The kernel asked for: the option, else ``PYSOLVER_KERNEL``, else "auto"."""
+        kind = self.kernel or os.environ.get("PYSOLVER_KERNEL", "auto")
+        if kind not in _CHOICES["kernel"]:
+            raise ValueError(f"kernel must be 'auto', 'generated' or 'tapes', not {kind!r}")
+        return kind
 
 
 NAMES = tuple(f.name for f in dataclasses.fields(Options))

@@ -280,6 +280,9 @@ class Result:
                  f"{s['njac']}  failed step attempts: {s['nfail']}",
                  f"wall time: setup {self.timing['setup']:.4f} s, integration "
                  f"{self.timing['integrate']:.4f} s"]
+        if self.timing.get("compile") or self.timing.get("generate"):
+            lines.append(f"kernel: generated C, made in {self.timing['generate']:.3f} s and "
+                         f"compiled in {self.timing['compile']:.3f} s (cached for later runs)")
         if s.get("growth_limited_at"):
             lines.insert(3, f"stiff penalty mode: IDA's step growth limited from step "
                             f"{s['growth_limited_at']}")

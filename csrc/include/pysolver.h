@@ -98,6 +98,35 @@ enum psMeasure {
 #define PS_ERR_NONFINITE 1 /* an expression or force evaluated to NaN or infinity */
 #define PS_ERR_SINGULAR 2  /* a matrix to solve with is singular */
 
+struct psModel;
+
+/* One function of a deck's generated C (pysolver/build/codegen): residual rows, iteration
+ * matrix triplet values, sensor expressions or request channels at (t, y, yp) into out, reading
+ * the sweep parameters from m's arrays and stored Sensor_Evaluate values from sv; cj is the
+ * iteration matrix's coefficient (read by the Jacobian only). */
+typedef void (*psGenFn)(const struct psModel* m, const double* sv, double t, const double* y,
+                        const double* yp, double cj, double* out);
+
+/* Version of the psGen layout; a generated library with another one is not used. */
+#define PS_GEN_VERSION 1
+
+/* The table a generated library exports as ps_gen_table: straight-line C for one compiled scene
+ * (same results as its tapes to rounding), the iteration matrix as ntrip (row, col) triplets
+ * sorted by column then row, each entry once. */
+typedef struct psGen {
+  int version;            /* PS_GEN_VERSION                                     */
+  int ny;                 /* states of the scene it was generated for           */
+  int ntrip;              /* structural nonzeros of the iteration matrix        */
+  int nsensor;            /* sensor expressions                                 */
+  int nout;               /* request channels                                   */
+  const int* trow;        /* (ntrip x 1) row of each nonzero                    */
+  const int* tcol;        /* (ntrip x 1) column of each nonzero                 */
+  psGenFn residual;       /* out: ny residual rows                              */
+  psGenFn jacobian;       /* out: ntrip values of dF/dy + cj dF/dyp             */
+  psGenFn sensors;        /* out: nsensor expression values                     */
+  psGenFn outputs;        /* out: nout channel values (NaN for NULL channels)   */
+} psGen;
+
 typedef struct psModel {
   /* sizes */
   int ny;                 /* number of states                                  */
@@ -214,6 +243,10 @@ typedef struct psModel {
   int* user_key_n;        /* (nkey total x 1) number of ids                     */
   int* user_key_ids;      /* (nkey total x 4) the ids                           */
   int* user_in;           /* (slots of PS_OP_USER inputs, in declaration order) */
+
+  /* generated C for this scene, or NULL: the tapes above are interpreted. The tapes stay the
+   * reference: the diagnosis of a non-finite value and ps_penalty_loads run them. */
+  const psGen* gen;
 } psModel;
 
 typedef struct psData {
@@ -392,6 +425,11 @@ int ps_roots(const psModel* m, psData* d, double t, const double* y, const doubl
  * holds and rearms have m->nsensor entries. Returns PS_OK. */
 int ps_sensor_status(const psModel* m, psData* d, double t, const double* y, const double* yp,
                      int* holds, int* rearms);
+
+/* Open the generated library at path (RTLD_LOCAL; it stays open for the process's life) and
+ * return its ps_gen_table, checked against m (version and sizes), or NULL with a message in msg
+ * (msglen bytes). */
+const psGen* ps_gen_open(const char* path, const psModel* m, char* msg, int msglen);
 
 /* Open the shared library at path and return its function name, or NULL with a message in msg
  * (msglen bytes). The kernel's own symbols (c_sysfnc, c_sysary, c_errmes) are made global

@@ -33,6 +33,11 @@ class Kernel:
     conservative : bool, optional
         Compile without velocity-dependent terms (penalty1 and velocity measures read as 0),
         for MKEAM's undamped motion.
+    kind : {"auto", "generated", "tapes"}, optional
+        "generated" or "auto": generate the scene's C, compile it (cached on disk, see
+        :mod:`pysolver.build.codegen`) and call it; the tape interpreter runs when that is not
+        possible ("auto" says why in :attr:`codegen`; "generated" too, it never fails a run).
+        "tapes": interpret the tapes.
 
     Attributes
     ----------
@@ -42,9 +47,12 @@ class Kernel:
         Where each body's coordinates are in the state.
     channels : list of (request id, channel index)
         Meaning of each entry of :meth:`outputs`.
+    codegen : dict
+        Which kernel runs: ``{"kernel": "generated", "generate": s, "compile": s, "cached":
+        bool, "path": ...}`` or ``{"kernel": "tapes", "why": ...}``.
     """
 
-    def __init__(self, model, conservative=False):
+    def __init__(self, model, conservative=False, kind="auto"):
         usersubs.resolve(model)         # Python user subroutines traced into expressions
         usercalls.bind(model)           # the others called from the kernel
         comp = Compiler(model, conservative)
@@ -106,7 +114,24 @@ class Kernel:
         self._out = np.zeros(max(arrays["nout"], 1))
         self._sparse = None
         self._cyp = None                 # consistent_yp's work arrays, made on first use
+        self.codegen = {"kernel": "tapes", "why": "kernel='tapes' asked for"}
+        if kind != "tapes":
+            self._generate()
         self._bind()
+
+    def _generate(self):
+        """Attach the generated C of this scene (pysolver.build.codegen), if it can be made."""
+        from . import codegen
+        info = codegen.attach(self, lib, ffi)
+        gen = info.pop("gen", None)
+        if gen is not None:
+            self.m.gen = gen
+            self._work["trip"] = np.zeros(max(gen.ntrip, 1))
+            self._set_work()
+        if info["kernel"] == "generated":    # reported in the timing of the first run
+            info["generate_unreported"], info["compile_unreported"] = info["generate"], \
+                info["compile"]
+        self.codegen = info
 
     def _set_work(self):
         for key, val in self._work.items():

@@ -19,9 +19,13 @@ def run_model(model, progress=None, overrides=None, actors=()):
     """
     t_start = time.perf_counter()
     options, used, static, labels = _settings(model, overrides)
-    kernel = model._kernel()
+    kind = options.resolved_kernel()
+    kernel = model._kernel(kind=kind)
     kernel.reset_counters()
     run = Run(model, kernel, options, progress)
+    gen = kernel.codegen
+    if gen["kernel"] == "tapes" and kind != "tapes":
+        run.log.append(f"kernel: the tapes run ({gen['why']})")
     for actor in actors:
         run.add_actor(actor)
     t_run = time.perf_counter()
@@ -46,12 +50,16 @@ def run_model(model, progress=None, overrides=None, actors=()):
              "ncfn": ida["ncfn"] if run.plan.use_c else None,
              "growth_limited_at": growth_limited_at}
     setup = (t_run - t_start) + ((run.t_setup or t_end) - t_run)
-    timing = {"setup": setup, "integrate": (t_end - t_start) - setup, "total": t_end - t_start}
+    timing = {"setup": setup, "integrate": (t_end - t_start) - setup, "total": t_end - t_start,
+              # the one-time cost of the generated kernel, on the run that built it
+              "generate": gen.pop("generate_unreported", 0.0),
+              "compile": gen.pop("compile_unreported", 0.0)}
     used = dict(used, linsolver=run.plan.linsolver,
                 backend="c" if run.plan.use_c else "sksundae")
     meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
             "options": used, "ny": kernel.ny, "stepping": "onestep" if run.onestep else "normal",
-            "static": dict(static), "usersubs": dict(model.usersub_paths)}
+            "static": dict(static), "usersubs": dict(model.usersub_paths),
+            "kernel": gen["kernel"]}
     pr = run.printer
     ts, outputs = pr.ts.array(), pr.outs.array(len(kernel.channels))
     run.log.extend(nonfinite.channels(model, kernel, ts, outputs))

@@ -1,0 +1,26 @@
+/* Loading a deck's generated C (pysolver/build/codegen): the library exports one psGen table
+ * whose functions residual.c calls in place of the tape interpreter. */
+#define _GNU_SOURCE
+#include <dlfcn.h>
+#include <stdio.h>
+
+#include "internal.h"
+
+const psGen* ps_gen_open(const char* path, const psModel* m, char* msg, int msglen) {
+  void* lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+  if (!lib) {
+    snprintf(msg, (size_t)msglen, "cannot open %s: %s", path, dlerror());
+    return NULL;
+  }
+  const psGen* gen = (const psGen*)dlsym(lib, "ps_gen_table");
+  if (!gen) {
+    snprintf(msg, (size_t)msglen, "%s has no ps_gen_table", path);
+    return NULL;
+  }
+  if (gen->version != PS_GEN_VERSION || gen->ny != m->ny || gen->nsensor != m->nsensor ||
+      gen->nout != m->nout) {
+    snprintf(msg, (size_t)msglen, "%s was generated for another scene or version", path);
+    return NULL;
+  }
+  return gen;
+}

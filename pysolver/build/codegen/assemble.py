@@ -1,0 +1,182 @@
+"""The residual F(t, y, yp), the iteration matrix dF/dy + cj dF/dyp, the sensor expressions
+and the request channels of a :class:`~.scene.Scene`, as graph nodes (csrc/residual.c)."""
+from ..bindings import lib
+
+
+class Assembly:
+    """Symbolic residual rows, Jacobian triplets, sensor values and outputs.
+
+    Attributes
+    ----------
+    res : list of int
+        Residual row nodes.
+    trip : list of (row, col, node)
+        Structural nonzeros of the iteration matrix, column-major and sorted.
+    sensors, outputs : list of int or None
+        Sensor expression nodes; request channel nodes (None: a NULL channel).
+    """
+
+    def __init__(self, scene):
+        self.s = scene
+        g, a = scene.g, scene.a
+        self.res = [g.zero] * scene.ny
+        self._inertia()
+        self._penalties()
+        self._scalar_forces()
+        self._vector_forces()
+        self._motions()
+        self.trip = self._jacobian()
+        self.sensors = [scene.tape(int(t))[int(s)]
+                        for t, s in zip(a["sensor_tape"][:a["nsensor"]],
+                                        a["sensor_slot"][:a["nsensor"]])]
+        self.outputs = [None if t < 0 else scene.tape(int(t))[int(s)]
+                        for t, s in zip(a["out_tape"][:a["nout"]], a["out_slot"][:a["nout"]])]
+
+    # rows -------------------------------------------------------------------------------
+    def scatter(self, row, Q):
+        """Subtract force_scale * Q from residual row `row`."""
+        g = self.s.g
+        self.res[row] = g.sub(self.res[row], g.mul(g.const(self.s.cf), Q))
+
+    def _inertia(self):
+        s, g, a = self.s, self.s.g, self.s.a
+        y, yp = s.y, s.yp
+        for b in range(int(a["nbody"])):
+            kb = s.body(b)
+            qa, ua = kb["qa"], kb["ua"]
+            mass = s.par("body_mass", b)
+            for i in range(3):
+                self.res[qa + i] = g.sub(yp[qa + i], y[ua + i])
+                self.res[ua + i] = g.mul(mass, g.sub(yp[ua + i], s.par("gravity", i)))
+            if not kb["rigid"]:
+                continue
+            e, w = kb["e"], kb["wb"]
+            G = [[g.neg(e[1]), g.neg(e[2]), g.neg(e[3])], [e[0], g.neg(e[3]), e[2]],
+                 [e[3], e[0], g.neg(e[1])], [g.neg(e[2]), e[1], e[0]]]
+            for r in range(4):
+                row = yp[qa + 3 + r]
+                for k in range(3):
+                    row = g.sub(row, g.mul(g.mul(g.const(0.5), G[r][k]), w[k]))
+                self.res[qa + 3 + r] = row
+            Im = [s.par("body_inertia", 9 * b + k) for k in range(9)]
+            wd = yp[ua + 3:ua + 6]
+            Iw, Iwd = s.mat_vec(Im, w), s.mat_vec(Im, wd)
+            for i in range(3):
+                j, k = (i + 1) % 3, (i + 2) % 3
+                self.res[ua + 3 + i] = g.sub(g.add(Iwd[i], g.mul(w[j], Iw[k])), g.mul(w[k], Iw[j]))
+
+    def rate_force(self, tape, gnode, F):
+        """Q_i = F d(g')/du_i on every body the tape reads."""
+        s, g = self.s, self.s.g
+        for b in s.tape_bodies(tape):
+            ua = s.body(b)["ua"]
+            for i in range(s.nu(b)):
+                self.scatter(ua + i, g.mul(F, s.rate_coeff(gnode, b, i)))
+
+    def _penalties(self):
+        a, s = self.s.a, self.s
+        for p in range(int(a["npen"])):
+            tape = int(a["pen_tape"][p])
+            slots = s.tape(tape)
+            self.rate_force(tape, slots[a["pen_g"][p]], slots[a["pen_f"][p]])
+
+    def apply_at(self, tape, slot, P, F, Mo, sign):
+        """Generalized forces of a global force F at the global point P and a moment Mo."""
+        s, g = self.s, self.s.g
+        if slot < 0:
+            return
+        kb = s.body(s.slot_body(tape, slot))
+        ua = kb["ua"]
+        if F is not None:
+            for i in range(3):
+                self.scatter(ua + i, g.lin(sign, F[i]))
+        if not kb["rigid"]:
+            return
+        mom = g.cross(g.vsub(P, kb["r"]), F) if F is not None else [g.zero] * 3
+        if Mo is not None:
+            mom = g.vadd(mom, Mo)
+        A = kb["A"]
+        for k in range(3):
+            Q = g.add(g.add(g.mul(A[k], mom[0]), g.mul(A[3 + k], mom[1])), g.mul(A[6 + k], mom[2]))
+            self.scatter(ua + 3 + k, g.lin(sign, Q))
+
+    def apply_load(self, tape, mk, slot, F, Mo, sign):
+        s = self.s
+        if slot < 0 or s.a["marker_body"][mk] < 0:
+            return
+        rigid = s.body(s.slot_body(tape, slot))["rigid"]
+        P = s.pos(tape, mk, slot) if F is not None and rigid else None
+        self.apply_at(tape, slot, P, F, Mo, sign)
+
+    def _scalar_forces(self):
+        s, g, a = self.s, self.s.g, self.s.a
+        mb = a["marker_body"]
+        for k in range(int(a["nsf"])):
+            tape = int(a["sf_tape"][k])
+            f = s.tape(tape)[a["sf_f"][k]]
+            mi, mj = int(a["sf_i"][k]), int(a["sf_j"][k])
+            si = -1 if mb[mi] < 0 else 0
+            sj = -1 if mb[mj] < 0 else (0 if mb[mi] < 0 or mb[mi] == mb[mj] else 1)
+            if a["sf_torque"][k]:
+                X = s.axes(tape, mj, sj)
+                vec = [g.mul(f, X[3 * i + 2]) for i in range(3)]
+                self.apply_load(tape, mi, si, None, vec, 1.0)
+                self.apply_load(tape, mj, sj, None, vec, -1.0)
+                continue
+            rel = g.vsub(s.pos(tape, mi, si), s.pos(tape, mj, sj))
+            inv = s.norm(rel, lambda n2: g.div(g.one, g.fn("sqrt", n2)))
+            vec = [g.mul(g.mul(r, inv), f) for r in rel]
+            self.apply_load(tape, mi, si, vec, None, 1.0)
+            self.apply_load(tape, mj, sj, vec, None, -1.0)
+
+    def _vector_forces(self):
+        s, g, a = self.s, self.s.g, self.s.a
+        for k in range(int(a["nvf"])):
+            tape = int(a["vf_tape"][k])
+            slots = s.tape(tape)
+            f = [slots[a["vf_f"][3 * k + j]] for j in range(3)]
+            X = s.axes(tape, int(a["vf_r"][k]), int(a["vf_sr"][k]))
+            F = []
+            for i in range(3):
+                v = g.zero
+                for j in range(3):
+                    v = g.add(v, g.mul(X[3 * i + j], f[j]))
+                F.append(v)
+            mi, si = int(a["vf_i"][k]), int(a["vf_si"][k])
+            P = s.pos(tape, mi, si)
+            self.apply_at(tape, -1 if a["marker_body"][mi] < 0 else si, P, F, None, 1.0)
+            self.apply_at(tape, int(a["vf_sj"][k]), P, F, None, -1.0)
+
+    def _motions(self):
+        s, g, a = self.s, self.s.g, self.s.a
+        for k in range(int(a["nmotion"])):
+            tape, lam, w = int(a["mot_tape"][k]), int(a["mot_lam"][k]), int(a["mot_w"][k])
+            kind = int(a["mot_kind"][k])
+            slots = s.tape(tape)
+            gn, gd, f = slots[a["mot_g"][k]], slots[a["mot_gd"][k]], slots[a["mot_f"][k]]
+            self.rate_force(tape, gn, s.y[lam])
+            target = f if kind == lib.PS_MOTION_V else s.y[w] if kind == lib.PS_MOTION_A else g.zero
+            self.res[lam] = g.sub(gd, target)
+            if kind == lib.PS_MOTION_A:
+                self.res[w] = g.sub(s.yp[w], f)
+
+    # the iteration matrix ---------------------------------------------------------------
+    def _jacobian(self):
+        """(row, col, node) of dF/dy + cj dF/dyp, sorted by column then row."""
+        s, g = self.s, self.s.g
+        kind = {v: ("y", i) for i, v in enumerate(s.y)}
+        kind.update({v: ("yp", i) for i, v in enumerate(s.yp)})
+        entries = {}
+        for row, r in enumerate(self.res):
+            for v in sorted(g.deps[r]):
+                if v == s.time:
+                    continue
+                which, col = kind[v]
+                d = g.diff(r, v)
+                if which == "yp":
+                    d = g.mul(g.cj, d)
+                if d == g.zero:
+                    continue
+                key = (col, row)
+                entries[key] = g.add(entries[key], d) if key in entries else d
+        return [(row, col, node) for (col, row), node in sorted(entries.items())]
