@@ -313,9 +313,8 @@ class Model:
         return run_model(self, progress=progress, overrides=options)
 
     def _kernel(self, conservative=False, kind=None):
-        """The compiled kernel of this model, built on first use and reused by every run
-        (a second one without damping for MKEAM). kind: "auto", "generated" or "tapes"
-        (None: ``PYSOLVER_KERNEL``, else "auto"; see Options.kernel)."""
+        """The compiled kernel, built on first use and reused by every run (one without damping
+        for MKEAM); kind as Options.kernel (None: ``PYSOLVER_KERNEL``, else "auto")."""
         if self._compiled is None:
             self._compiled = {}
         if kind is None:
