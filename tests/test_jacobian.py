@@ -15,9 +15,12 @@ def _path(decks, scene):
     return scene if not isinstance(scene, str) else decks / scene
 
 
+@pytest.mark.parametrize("kind", ["generated", "tapes"])
 @pytest.mark.parametrize("scene", SCENES, ids=lambda s: str(s).split("/")[-1])
-def test_jacobian_matches_central_differences(decks, scene):
-    kernel = pysolver.load(_path(decks, scene))._kernel()
+def test_jacobian_matches_central_differences(decks, scene, kind):
+    """On both kernels: the generated C (symbolic derivatives) and the tapes (hyper-duals)."""
+    kernel = pysolver.load(_path(decks, scene))._kernel(kind=kind)
+    assert kernel.codegen["kernel"] == kind
     y0 = kernel.layout.initial_state()
     rng = np.random.default_rng(42)
     for trial in range(4):
@@ -34,14 +37,15 @@ def test_jacobian_matches_central_differences(decks, scene):
             np.abs(J - Jfd).max() / scale
 
 
-def test_jacobian_has_no_entries_outside_the_coupling():
+@pytest.mark.parametrize("kind", ["generated", "tapes"])
+def test_jacobian_has_no_entries_outside_the_coupling(kind):
     """Bodies that no force couples have an exactly zero off-diagonal block."""
     deck = """<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
       <Reference_Marker id="2" body_id="2" pos_z="1"/><Reference_Marker id="3" body_id="3" pos_x="1"/>
       <Body_Point id="2" cg_id="2" mass="1"/><Body_Point id="3" cg_id="3" mass="1"/>
       <Force_Penalty id="1" expr="DZ(2) - 1" penalty="10" penalty1="1"/>
       </Model></MotionSolve>"""
-    k = pysolver.loads(deck)._kernel()
+    k = pysolver.loads(deck)._kernel(kind=kind)
     J = k.jacobian_array(0.0, np.arange(12.0), np.ones(12), 2.0)
     assert np.all(J[:6, 6:] == 0) and np.all(J[6:, :6] == 0)
 

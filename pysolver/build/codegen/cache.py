@@ -1,7 +1,9 @@
 """Compile generated C into a shared library, cached on disk by a hash of what made it.
 
-The key hashes the source, the compiler command and flags and the compiler's version, so a
-changed kernel header or compiler never reuses a stale library. Each entry is the library and a
+The key hashes what the source is a function of (the scene's compiled arrays and the generator's
+own code, :func:`pysolver.build.codegen.key`), the compiler command and flags, the compiler's
+version and the kernel header, so a changed generator, header or compiler never reuses a stale
+library, and a warm load neither generates nor compiles. Each entry is the library and a
 digest of its bytes written after a complete build; an entry whose library does not match its
 digest (a crash mid-write, a truncated copy) is rebuilt, never loaded. Writes go through a
 temporary file and an atomic rename, so concurrent processes building the same deck are safe.
@@ -72,8 +74,17 @@ def _digest(path):
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
-def build(source, include):
+def build(scene_key, make_source, include):
     """Return (path of the compiled library, seconds spent compiling: 0.0 on a cache hit).
+
+    Parameters
+    ----------
+    scene_key : str
+        Everything the generated source is a function of (see :func:`pysolver.build.codegen.key`).
+    make_source : callable
+        Returns the C source; called only on a cache miss.
+    include : str
+        The folder of pysolver.h.
 
     Raises
     ------
@@ -82,7 +93,7 @@ def build(source, include):
     """
     import time
     cmd = tuple(compiler())
-    key = hashlib.sha256("\0".join((source, " ".join(cmd), " ".join(FLAGS), _version(cmd),
+    key = hashlib.sha256("\0".join((scene_key, " ".join(cmd), " ".join(FLAGS), _version(cmd),
                                     _header(include))).encode()).hexdigest()[:32]
     folder = cache_dir()
     lib, stamp = folder / f"{key}.so", folder / f"{key}.sha256"
@@ -91,6 +102,7 @@ def build(source, include):
             return lib, 0.0
     except OSError:
         pass
+    source = make_source()
     start = time.perf_counter()
     folder.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=folder, prefix=".build-") as tmp:

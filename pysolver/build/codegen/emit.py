@@ -112,7 +112,7 @@ class Emitter:
             if node is None:                 # a NULL request channel
                 current.append((lhs, None, []))
                 continue
-            new = [n for n in g.needed([node]) if n not in done and _is_temp(g.op[n])]
+            new = [n for n in g.needed([node], done) if _is_temp(g.op[n])]
             if current and size + len(new) > CHUNK:
                 chunks.append(current)
                 current, done, size = [], set(), 0

@@ -32,13 +32,15 @@ class Scene:
     ----------
     kernel : pysolver.build.kernel.Kernel
         The compiled scene (its arrays and sweep parameters).
+    limit : int, optional
+        Most graph nodes (:class:`~.sym.Unsupported` beyond it).
     """
 
-    def __init__(self, kernel):
+    def __init__(self, kernel, limit=None):
         self.a = a = kernel.arrays
         if a["nuser"]:
             raise Unsupported("a user subroutine called from the kernel")
-        self.g = Graph()
+        self.g = Graph(limit)
         self.params = set(kernel.params.values())
         self.ny = int(a["ny"])
         self.cf = float(a["force_scale"])

@@ -44,7 +44,8 @@ class Graph:
     sweep parameter in the model's arrays) and ``sv`` (a stored Sensor_Evaluate value).
     """
 
-    def __init__(self):
+    def __init__(self, limit=None):
+        self.limit = limit    # most nodes (None: no limit); Unsupported beyond it
         self.op = []          # node -> operation name
         self.args = []        # node -> operand tuple (node ids, or literals for leaves)
         self.deps = []        # node -> frozenset of the variable nodes it depends on
@@ -60,6 +61,9 @@ class Graph:
         got = self._ids.get(key)
         if got is None:
             got = len(self.op)
+            if self.limit is not None and got >= self.limit:
+                raise Unsupported(f"the deck is too large to generate (more than {self.limit} "
+                                  "expression nodes)")
             self.op.append(op)
             self.args.append(args)
             self.deps.append(deps)
@@ -275,13 +279,14 @@ class Graph:
         """[d a / d v for v in variables]."""
         return [self.diff(a, v) for v in variables]
 
-    def needed(self, roots):
-        """The nodes the roots depend on, ascending (a topological order)."""
+    def needed(self, roots, known=()):
+        """The nodes the roots depend on, ascending (a topological order), not descending into
+        the `known` nodes (those already computed, whose own inputs are then computed too)."""
         seen = set()
         stack = list(roots)
         while stack:
             n = stack.pop()
-            if n in seen:
+            if n in seen or n in known:
                 continue
             seen.add(n)
             op = self.op[n]
