@@ -72,6 +72,30 @@ def test_chain_scaling(benchmark, n):
                                 linsolver=res.meta["options"]["linsolver"])
 
 
+@pytest.fixture(scope="module")
+def seed3_c_curve():
+    """Seed example 3's reference answer and plain C IDA's error-time curve (kernels.py)."""
+    import kernels
+    model = pysolver.load(ROOT / "decks" / "particle_between_lines.xml")
+    ref = model.run(integr_tol=1e-12).request(1)[:, :2]
+    return model, ref, kernels.c_curve(ref, 5)
+
+
+@pytest.mark.parametrize("kernel", ["generated", "tapes"])
+@pytest.mark.parametrize("tol", [1e-4, 1e-6, 1e-8])
+def test_seed3_against_plain_c(benchmark, seed3_c_curve, tol, kernel):
+    """Seed example 3 on each kernel; extra_info holds the error and the ratio to plain C IDA
+    at the same error (benchmarks/kernels.py has the whole sweep, median and worst)."""
+    import kernels
+    model, ref, (errs, secs) = seed3_c_curve
+    res = benchmark(model.run, integr_tol=tol, kernel=kernel)
+    assert res.success and res.meta["kernel"] == kernel
+    err = float(abs(res.request(1)[:, :2] - ref).max())
+    c_sec, inside = kernels.at_equal_error(err, errs, secs)
+    benchmark.extra_info.update(error=err, c_seconds_at_error=c_sec, inside_c_range=inside,
+                                ratio_to_c=benchmark.stats.stats.min / c_sec)
+
+
 # at 1e9 IDA's own step control fails its error test almost every step (minutes per run)
 @pytest.mark.parametrize("penalty,control", [(1e8, "pysolver"), (1e8, "IDA as shipped"),
                                              (1e9, "pysolver"), (1e10, "pysolver")])
