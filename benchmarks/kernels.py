@@ -7,6 +7,8 @@
    ratio per tolerance, its median and worst, for the generated kernel and for the tapes.
 2. Before / after: the oscillator, the rigid body, the stiff penalty pendulum and the seed decks,
    each run with ``kernel="tapes"`` and with the generated kernel (time ratio, same answers).
+3. The particle bed (53 and 195 particles) through the C driver's sparse path, on each kernel,
+   against scikit-sundae's Python callbacks: time per step, steps, answers.
 
 Run: ``python benchmarks/kernels.py [--repeat 7]`` (OPENBLAS_NUM_THREADS=1 for steady times).
 """
@@ -113,12 +115,44 @@ def before_after(repeat):
     return rows
 
 
+def bed(sizes=((11, 5), (20, 10))):
+    """The LoadControl particle bed (decks/loadcontrol_bed.py, unilateral contacts between
+    particles and with the floor): the C driver's sparse path (SuperLU_MT) on each kernel
+    against scikit-sundae's Python callbacks (SciPy's SuperLU); time per step, steps, and the
+    largest difference of the final state from the first configuration."""
+    import time
+    text = (ROOT / "decks" / "loadcontrol_bed.py").read_text()
+    configs = [("C sparse, generated", dict(backend="c", kernel="generated")),
+               ("C sparse, tapes", dict(backend="c", kernel="tapes")),
+               ("scikit-sundae, generated", dict(backend="sksundae", kernel="generated"))]
+    print("\nParticle bed: C driver's sparse path against scikit-sundae's callbacks")
+    print(f"{'particles':>9} {'states':>6} {'path':>26} {'kernel':>9} {'steps':>6} "
+          f"{'us/step':>8} {'s':>6} {'max |dy| end':>12}")
+    rows = []
+    for nx, nz in sizes:
+        model = pysolver.loads(text.replace("NX, NZ = 11, 5", f"NX, NZ = {nx}, {nz}"), fmt="py")
+        first = None
+        for label, over in configs:
+            model.run(**over)                       # warm: compile and cache outside the timing
+            t0 = time.perf_counter()
+            res = model.run(**over)
+            sec = time.perf_counter() - t0
+            first = res.y[-1] if first is None else first
+            dy = np.abs(res.y[-1] - first).max()
+            rows.append((nx * nz - nz // 2, label, res.stats["steps"], sec))
+            print(f"{nx * nz - nz // 2:9d} {len(first):6d} {label:>26} {res.meta['kernel']:>9} "
+                  f"{res.stats['steps']:6d} {1e6 * sec / res.stats['steps']:8.1f} {sec:6.2f} "
+                  f"{dy:12.1e}")
+    return rows
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=7)
     args = parser.parse_args()
     seed3_equal_error(args.repeat)
     before_after(args.repeat)
+    bed()
 
 
 if __name__ == "__main__":

@@ -17,11 +17,10 @@ import re
 import tempfile
 import time
 
-from usersubs import best
-
 import pysolver
 
 from scenes import chain_deck
+from usersubs import best
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DECKS = ["particle_between_lines", "particle_above_line", "catenary_bead", "torque_free_spin",

@@ -25,6 +25,7 @@ import numpy as np
 
 import pysolver
 
+import kernels
 from scenes import OSCILLATOR as DECK
 from scenes import PENDULUM, C, G, K, M
 from scenes import oscillator_exact as exact
@@ -331,6 +332,8 @@ def main():
     oscillator_exudyn(args.repeat)
     seed_decks(args.repeat)
     seed3_plain_c(seed3_comparators(args.repeat), args.repeat)
+    kernels.seed3_equal_error(args.repeat)
+    kernels.before_after(args.repeat)
     rigid_body(args.repeat)
     stiff_pendulum(args.repeat)
     write_report(args.out)
