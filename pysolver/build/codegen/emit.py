@@ -44,6 +44,15 @@ static inline double psg_step(int shape, int k, double x, double x0, double h0, 
 """
 
 
+#: C text of each named operation over its operands' C text.
+_FORMAT = {
+    "add": "{0} + {1}", "sub": "{0} - {1}", "mul": "{0} * {1}", "div": "{0} / {1}",
+    "neg": "-{0}", "sgn": "({0} >= 0.0 ? 1.0 : -1.0)", "ge": "{0} >= {1} ? {2} : {3}",
+    "if3": "{0} < 0.0 ? {1} : ({0} == 0.0 ? {2} : {3})", "atan2": "atan2({0}, {1})",
+    "pow": "pow({0}, {1})",
+}
+
+
 def literal(v):
     """A C double literal that reads back as exactly v."""
     if v == "nan" or v != v:
@@ -80,23 +89,11 @@ class Emitter:
         return f"t{local[n]}"
 
     def expr(self, n, local):
-        g, r = self.g, self.ref
-        op, args = g.op[n], g.args[n]
-        a = [r(x, local) for x in args] if op != "sgn" else [r(args[0], local)]
-        if op in ("add", "sub", "mul", "div"):
-            return f"{a[0]} {dict(add='+', sub='-', mul='*', div='/')[op]} {a[1]}"
-        if op == "neg":
-            return f"-{a[0]}"
-        if op == "sgn":
-            return f"({a[0]} >= 0.0 ? 1.0 : -1.0)"
-        if op == "ge":
-            return f"{a[0]} >= {a[1]} ? {a[2]} : {a[3]}"
-        if op == "if3":
-            return f"{a[0]} < 0.0 ? {a[1]} : ({a[0]} == 0.0 ? {a[2]} : {a[3]})"
-        if op == "atan2":
-            return f"atan2({a[0]}, {a[1]})"
-        if op == "pow":
-            return f"pow({a[0]}, {a[1]})"
+        """The C expression computing node n from its operands."""
+        op, args = self.g.op[n], self.g.args[n]
+        a = [self.ref(x, local) for x in args]
+        if isinstance(op, str):
+            return _FORMAT[op].format(*a)
         if op[0] == "fn":
             return f"{UNARY_C[op[1]]}({a[0]})"
         if op[0] == "step":
