@@ -69,7 +69,7 @@ def key(kernel):
 
 def source(kernel, limit=None):
     """The generated C source of a compiled kernel (raises Unsupported)."""
-    return generate(Assembly(Scene(kernel, limit)))
+    return generate(Assembly(Scene(kernel.arrays, kernel.params.values(), limit)))
 
 
 def attach(kernel, lib, ffi):

@@ -6,25 +6,34 @@ from ..bindings import lib
 class Assembly:
     """Symbolic residual rows, Jacobian triplets, sensor values and outputs.
 
+    Parameters
+    ----------
+    scene : Scene
+    bodies, elements : bool, optional
+        Whether the rows take the bodies' kinematic and inertia terms, and the elements' forces
+        and motion constraints (:mod:`~.looped` assembles them one body or element at a time).
+
     Attributes
     ----------
     res : list of int
-        Residual row nodes.
+        Residual row nodes (the contributions to them, for part of a scene).
     trip : list of (row, col, node)
         Structural nonzeros of the iteration matrix, column-major and sorted.
     sensors, outputs : list of int or None
         Sensor expression nodes; request channel nodes (None: a NULL channel).
     """
 
-    def __init__(self, scene):
+    def __init__(self, scene, bodies=True, elements=True):
         self.s = scene
         g, a = scene.g, scene.a
         self.res = [g.zero] * scene.ny
-        self._inertia()
-        self._penalties()
-        self._scalar_forces()
-        self._vector_forces()
-        self._motions()
+        if bodies:
+            self._inertia()
+        if elements:
+            self._penalties()
+            self._scalar_forces()
+            self._vector_forces()
+            self._motions()
         self.trip = self._jacobian()
         self.sensors = [scene.tape(int(t))[int(s)]
                         for t, s in zip(a["sensor_tape"][:a["nsensor"]],
@@ -47,7 +56,7 @@ class Assembly:
             mass = s.par("body_mass", b)
             for i in range(3):
                 self.res[qa + i] = g.sub(yp[qa + i], y[ua + i])
-                self.res[ua + i] = g.mul(mass, g.sub(yp[ua + i], s.par("gravity", i)))
+                self.res[ua + i] = g.mul(mass, g.sub(yp[ua + i], s.par("gravity", 0, i)))
             if not kb["rigid"]:
                 continue
             e, w = kb["e"], kb["wb"]
@@ -58,7 +67,7 @@ class Assembly:
                 for k in range(3):
                     row = g.sub(row, g.mul(g.mul(g.const(0.5), G[r][k]), w[k]))
                 self.res[qa + 3 + r] = row
-            Im = [s.par("body_inertia", 9 * b + k) for k in range(9)]
+            Im = [s.par("body_inertia", b, k) for k in range(9)]
             wd = yp[ua + 3:ua + 6]
             Iw, Iwd = s.mat_vec(Im, w), s.mat_vec(Im, wd)
             for i in range(3):

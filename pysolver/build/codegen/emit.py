@@ -63,35 +63,39 @@ def literal(v):
     return f"({text})" if text.startswith("-") else text
 
 
-class Emitter:
-    """Writes the generated C of one :class:`~.assemble.Assembly`."""
+#: Doubles per object in the model arrays a ``par`` leaf reads (1 unless listed).
+_STRIDE = {"marker_pos": 3, "body_inertia": 9}
 
-    def __init__(self, graph):
-        self.g = graph
+
+def plain_leaf(op, arg):
+    """The C text of a run-time leaf of a whole scene's graph (y, yp, par, sv)."""
+    if op == "par":
+        array, obj, comp = arg
+        return f"m->{array}[{_STRIDE.get(array, 1) * obj + comp}]"
+    return f"{op}[{arg}]"
+
+
+class Emitter:
+    """Writes generated C: functions over graph nodes, index tables and the psGen table."""
+
+    def __init__(self):
         self.parts = [_PRELUDE]
 
-    def ref(self, n, local):
+    def ref(self, g, n, local, leaf):
         """The C text of node n inside a function whose temporaries are `local`."""
-        g = self.g
         op, args = g.op[n], g.args[n]
         if op == "const":
             return literal(args[0])
-        if op in ("y", "yp"):
-            return f"{op}[{args[0]}]"
-        if op == "t":
-            return "t"
-        if op == "cj":
-            return "cj"
-        if op == "par":
-            return args[0]
-        if op == "sv":
-            return f"sv[{args[0]}]"
+        if op in ("t", "cj"):
+            return op
+        if op in ("y", "yp", "par", "sv"):
+            return leaf(op, args[0])
         return f"t{local[n]}"
 
-    def expr(self, n, local):
+    def expr(self, g, n, local, leaf):
         """The C expression computing node n from its operands."""
-        op, args = self.g.op[n], self.g.args[n]
-        a = [self.ref(x, local) for x in args]
+        op, args = g.op[n], g.args[n]
+        a = [self.ref(g, x, local, leaf) for x in args]
         if isinstance(op, str):
             return _FORMAT[op].format(*a)
         if op[0] == "fn":
@@ -100,10 +104,12 @@ class Emitter:
             return f"psg_step({op[1]}, {op[2]}, {', '.join(a)})"
         raise AssertionError(op)
 
-    def function(self, name, targets):
-        """Emit `name` computing every (C lvalue, node) of targets, in chunks; the entry point
-        has the signature _ARGS."""
-        g = self.g
+    def function(self, g, name, targets, leaf=plain_leaf, indexed=False, assign="="):
+        """Emit `name` computing every (C lvalue, node) of targets over graph g, in chunks.
+
+        The entry point has the signature _ARGS, followed by ``const int* I`` (the instance's
+        index table, read by `leaf`) when `indexed`; each target is stored with `assign`.
+        """
         chunks, current, done, size = [], [], set(), 0
         for lhs, node in targets:
             if node is None:                 # a NULL request channel
@@ -118,24 +124,26 @@ class Emitter:
             done.update(new)
             size += len(new)
         chunks.append(current)
+        args, call = (_ARGS + ", const int* I", ", I") if indexed else (_ARGS, "")
         for k, chunk in enumerate(chunks):
-            lines = [f"static void {name}_{k}({_ARGS}) {{",
+            lines = [f"static void {name}_{k}({args}) {{",
                      "  (void)m; (void)sv; (void)t; (void)y; (void)yp; (void)cj; (void)out;"]
             local = {}
             for lhs, node, new in chunk:
                 for n in new:
                     local[n] = len(local)
-                    lines.append(f"  const double t{local[n]} = {self.expr(n, local)};")
-                value = "NAN" if node is None else self.ref(node, local)
-                lines.append(f"  {lhs} = {value};")
+                    lines.append(f"  const double t{local[n]} = {self.expr(g, n, local, leaf)};")
+                value = "NAN" if node is None else self.ref(g, node, local, leaf)
+                lines.append(f"  {lhs} {assign} {value};")
             lines.append("}")
             self.parts.append("\n".join(lines) + "\n")
-        calls = "\n".join(f"  {name}_{k}(m, sv, t, y, yp, cj, out);" for k in range(len(chunks)))
-        self.parts.append(f"static void {name}({_ARGS}) {{\n{calls}\n}}\n")
+        calls = "\n".join(f"  {name}_{k}(m, sv, t, y, yp, cj, out{call});"
+                          for k in range(len(chunks)))
+        self.parts.append(f"static void {name}({args}) {{\n{calls}\n}}\n")
 
     def table(self, ny, trip, nsensor, nout):
-        rows = ", ".join(str(r) for r, _, _ in trip) or "0"
-        cols = ", ".join(str(c) for _, c, _ in trip) or "0"
+        rows = ", ".join(str(r) for r, _ in trip) or "0"
+        cols = ", ".join(str(c) for _, c in trip) or "0"
         self.parts.append(
             f"static const int psg_trow[] = {{{rows}}};\n"
             f"static const int psg_tcol[] = {{{cols}}};\n"
@@ -152,11 +160,16 @@ def _is_temp(op):
 
 
 def generate(asm):
-    """The C source of an :class:`~.assemble.Assembly`."""
-    em = Emitter(asm.s.g)
-    em.function("psg_residual", [(f"out[{i}]", n) for i, n in enumerate(asm.res)])
-    em.function("psg_jacobian", [(f"out[{k}]", n) for k, (_, _, n) in enumerate(asm.trip)])
-    em.function("psg_sensors", [(f"out[{k}]", n) for k, n in enumerate(asm.sensors)])
-    em.function("psg_outputs", [(f"out[{k}]", n) for k, n in enumerate(asm.outputs)])
-    em.table(asm.s.ny, asm.trip, len(asm.sensors), len(asm.outputs))
+    """The C source of an :class:`~.assemble.Assembly` of a whole scene."""
+    em, g = Emitter(), asm.s.g
+    em.function(g, "psg_residual", [(f"out[{i}]", n) for i, n in enumerate(asm.res)])
+    em.function(g, "psg_jacobian", [(f"out[{k}]", n) for k, (_, _, n) in enumerate(asm.trip)])
+    requests(em, asm)
+    em.table(asm.s.ny, [(r, c) for r, c, _ in asm.trip], len(asm.sensors), len(asm.outputs))
     return em.source()
+
+
+def requests(em, asm):
+    """Emit psg_sensors and psg_outputs: the sensor expressions and request channels."""
+    em.function(asm.s.g, "psg_sensors", [(f"out[{k}]", n) for k, n in enumerate(asm.sensors)])
+    em.function(asm.s.g, "psg_outputs", [(f"out[{k}]", n) for k, n in enumerate(asm.outputs)])

@@ -30,18 +30,22 @@ class Scene:
 
     Parameters
     ----------
-    kernel : pysolver.build.kernel.Kernel
-        The compiled scene (its arrays and sweep parameters).
+    arrays : dict
+        The compiled scene's arrays (a kernel's, or one element's renumbered by
+        :mod:`~.looped`).
+    params : set of int
+        The constants read at run time (``m->consts[k]``) rather than folded in: the sweep
+        parameters' slots.
     limit : int, optional
         Most graph nodes (:class:`~.sym.Unsupported` beyond it).
     """
 
-    def __init__(self, kernel, limit=None):
-        self.a = a = kernel.arrays
+    def __init__(self, arrays, params=(), limit=None):
+        self.a = a = arrays
         if a["nuser"]:
             raise Unsupported("a user subroutine called from the kernel")
         self.g = Graph(limit)
-        self.params = set(kernel.params.values())
+        self.params = set(params)
         self.ny = int(a["ny"])
         self.cf = float(a["force_scale"])
         self._bodies = {}
@@ -52,8 +56,9 @@ class Scene:
         self.yp = [g.var("yp", i) for i in range(self.ny)]
 
     # numbers ----------------------------------------------------------------------------
-    def par(self, array, i):
-        return self.g.leaf("par", f"m->{array}[{i}]")
+    def par(self, array, obj, comp=0):
+        """Component `comp` of object `obj` in the model array `array`, read at run time."""
+        return self.g.leaf("par", (array, obj, comp))
 
     def const(self, k):
         if k in self.params:
@@ -113,18 +118,18 @@ class Scene:
     def offset(self, kb, mk):
         """A s: the marker's body-fixed offset rotated to global."""
         g, A = self.g, kb["A"]
-        s = [self.par("marker_pos", 3 * mk + i) for i in range(3)]
+        s = [self.par("marker_pos", mk, i) for i in range(3)]
         return [g.add(g.add(g.mul(s[0], A[3 * i]), g.mul(s[1], A[3 * i + 1])),
                       g.mul(s[2], A[3 * i + 2])) for i in range(3)]
 
     def pos(self, tape, mk, slot):
         g = self.g
         if self.on_ground(mk, slot):
-            return [g.zero] * 3 if mk < 0 else [self.par("marker_pos", 3 * mk + i)
+            return [g.zero] * 3 if mk < 0 else [self.par("marker_pos", mk, i)
                                                  for i in range(3)]
         kb = self.body(self.slot_body(tape, slot))
         if self.on_point(mk):
-            return [g.add(kb["r"][i], self.par("marker_pos", 3 * mk + i)) for i in range(3)]
+            return [g.add(kb["r"][i], self.par("marker_pos", mk, i)) for i in range(3)]
         return g.vadd(kb["r"], self.offset(kb, mk))
 
     def axes(self, tape, mk, slot):

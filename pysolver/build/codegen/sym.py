@@ -40,8 +40,9 @@ class Graph:
     """Hash-consed scalar expression nodes.
 
     Leaves: ``const`` (a number), ``y`` / ``yp`` (a state entry or its rate), ``t`` (time),
-    ``cj`` (the iteration matrix's coefficient), ``par`` (a C expression read at run time: a
-    sweep parameter in the model's arrays) and ``sv`` (a stored Sensor_Evaluate value).
+    ``cj`` (the iteration matrix's coefficient), ``par`` (a number read at run time from the
+    model's arrays, as (array, object, component): a sweep parameter) and ``sv`` (a stored
+    Sensor_Evaluate value).
     """
 
     def __init__(self, limit=None):
@@ -87,7 +88,8 @@ class Graph:
         return node
 
     def leaf(self, kind, value):
-        """A run-time number with no derivative: ``par`` (C text) or ``sv`` (index)."""
+        """A run-time number with no derivative: ``par`` ((array, object, component)) or ``sv``
+        (index)."""
         return self._node(kind, (value,), frozenset())
 
     def value(self, a):
