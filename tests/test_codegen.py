@@ -12,6 +12,7 @@ import pysolver
 from pysolver.build import codegen
 
 from helpers import DECKS, ROOT, TEST_DECKS
+from scenes import chain_deck
 
 ALL_DECKS = sorted(DECKS.glob("*.xml")) + sorted(DECKS.glob("*.py")) + \
     sorted(TEST_DECKS.glob("*.xml"))
@@ -44,14 +45,28 @@ def cache(tmp_path, monkeypatch):
     return tmp_path / "kernels"
 
 
+@pytest.fixture(params=["straight", "looped"])
+def form(request, monkeypatch):
+    """Generate every deck as straight-line C (a small deck's form), or as looped C (a large
+    deck's)."""
+    monkeypatch.setattr(codegen, "STRAIGHT", 0 if request.param == "looped" else 10 ** 9)
+    return request.param
+
+
 @pytest.mark.parametrize("path", ALL_DECKS, ids=lambda p: p.name)
-def test_generated_and_tape_kernels_agree(path):
+def test_generated_and_tape_kernels_agree(path, form):
     """Residual, iteration matrix, sensor expressions and request channels agree to rounding
-    at random states, for every deck (all element types and expression functions)."""
+    at random states, for every deck (all element types and expression functions), in both
+    forms of generated C."""
     model = pysolver.load(path)
     gen, tape = model._kernel(kind="generated"), model._kernel(kind="tapes")
     assert gen.codegen["kernel"] == "generated", gen.codegen
     assert tape.codegen["kernel"] == "tapes"
+    assert codegen.is_looped(gen) == (form == "looped")
+    _agree(gen, tape)
+
+
+def _agree(gen, tape):
     rng = np.random.default_rng(7)
     y0 = gen.layout.initial_state()
     for _ in range(4):
@@ -156,3 +171,21 @@ def test_the_generated_source_is_split_into_bounded_functions(monkeypatch):
     assert len(bodies) > 5
     for body in bodies:
         assert body.count("const double t") <= 40 or body.count("  out[") == 1
+
+
+def test_a_large_deck_is_looped_in_code_independent_of_its_size():
+    """A chain is generated as one function per shape of body or link, looped over tables:
+    ten times the links give the same functions (so the same compile work, bar the tables),
+    and the kernel agrees with the tapes."""
+    small, large = (pysolver.loads(chain_deck(n))._kernel(kind="tapes") for n in (80, 800))
+    assert codegen.is_looped(small) and codegen.is_looped(large)
+    functions = [re.findall(r"static void (psg_\w+)\(", codegen.source(k)) for k in (small, large)]
+    assert functions[0] == functions[1]
+    assert len([f for f in functions[0] if re.fullmatch(r"psg_r\d+", f)]) == 3  # body, 2 links
+    model = pysolver.loads(chain_deck(800, end_time=0.05))
+    gen, tape = model._kernel(kind="generated"), model._kernel(kind="tapes")
+    assert gen.codegen["kernel"] == "generated", gen.codegen
+    _agree(gen, tape)
+    a, b = model.run(), model.run(kernel="tapes")
+    assert a.success and b.success and a.stats["steps"] == b.stats["steps"]
+    assert np.max(np.abs(a.y - b.y)) < 1e-9

@@ -15,6 +15,7 @@ import time
 import numpy as np
 
 from ...headers import get_include
+from . import looped
 from .assemble import Assembly
 from .cache import NoCompiler, build
 from .emit import generate
@@ -24,11 +25,18 @@ from .sym import Unsupported
 __all__ = ["attach", "key", "source", "NoCompiler", "Unsupported", "LIMIT"]
 
 #: Most expression nodes of a generated kernel. Straight-line C compiles at about 7 s per 50 000
-#: nodes (gcc -O2), so this caps a cold compile near half a minute; larger scenes run the tapes.
+#: nodes (gcc -O2), so this caps a cold compile near half a minute; a looped scene (below) over
+#: it has that many nodes in its distinct templates, and runs the tapes.
 LIMIT = 200_000
 
+#: Scenes of more (estimated) nodes are generated looped (:mod:`.looped`: one function per
+#: distinct shape of body or element, run over its instances), in time independent of their
+#: number; smaller ones straight-line, with kinematics shared between elements and every
+#: constant folded in.
+STRAIGHT = 20_000
+
 #: Expression nodes per tape instruction and state of a typical scene (the chain: 32), for
-#: refusing a scene clearly over :data:`LIMIT` before generating any of it.
+#: choosing between straight-line and looped C before generating any of it.
 _NODES_PER_ITEM = 30
 
 #: Arrays the generated code reads at run time (``m->...``), so their values are not in the key:
@@ -45,10 +53,18 @@ def _generator_digest():
     return h.hexdigest()
 
 
+def is_looped(kernel):
+    """Whether `kernel`'s C is generated looped (see :data:`STRAIGHT`)."""
+    a = kernel.arrays
+    return _NODES_PER_ITEM * (int(np.sum(a["tape_len"])) + int(a["ny"])) > STRAIGHT
+
+
 def key(kernel):
     """Everything the generated source of `kernel` is a function of, as a hex digest: its
-    compiled arrays (sweep parameters by slot, not value) and the generator's own code."""
+    compiled arrays (sweep parameters by slot, not value), the generator's own code and
+    whether the C is looped."""
     h = hashlib.sha256(_generator_digest().encode())
+    h.update(b"looped" if is_looped(kernel) else b"straight")
     slots = sorted(kernel.params.values())
     h.update(repr(slots).encode())
     for name in sorted(kernel.arrays):
@@ -69,6 +85,8 @@ def key(kernel):
 
 def source(kernel, limit=None):
     """The generated C source of a compiled kernel (raises Unsupported)."""
+    if is_looped(kernel):
+        return looped.generate(kernel, limit)
     return generate(Assembly(Scene(kernel.arrays, kernel.params.values(), limit)))
 
 
@@ -85,15 +103,11 @@ def attach(kernel, lib, ffi):
     a = kernel.arrays
     if a["nuser"]:
         return {"kernel": "tapes", "why": "not generated: a user subroutine called from the kernel"}
-    size = _NODES_PER_ITEM * (int(np.sum(a["tape_len"])) + int(a["ny"]))
-    if size > LIMIT:
-        return {"kernel": "tapes", "why": f"not generated: the deck is too large (about {size} "
-                                          f"expression nodes, more than {LIMIT})"}
     spent = []
 
     def make():
         t0 = time.perf_counter()
-        text = source(kernel, 2 * LIMIT)
+        text = source(kernel, LIMIT)
         spent.append(time.perf_counter() - t0)
         return text
 

@@ -1,0 +1,253 @@
+"""Generated C for large scenes: one C function per distinct shape of body or element, looped
+over that shape's instances through an index table.
+
+Straight-line C (:mod:`.emit`) costs compile time in proportion to the scene, and a chain of
+5000 links is 5000 copies of one link. Here each body and each element is renumbered from zero
+(its bodies, states, markers, constants and sensor values, in order of first use) into a scene
+of its own. Elements whose renumbered scenes are equal share a template, built and
+differentiated once (:class:`~.scene.Scene`, :class:`~.assemble.Assembly`) and run in a loop
+over a table of each instance's global indices: its states (rows and columns), bodies, markers,
+constants, sensor values and the positions of its iteration-matrix entries, which it adds
+into. Every constant is read at run time (``m->consts[I[k]]``), so elements that differ only in
+their numbers share a template. Sensors and request channels stay straight-line (a scene has
+few of them).
+"""
+import numpy as np
+
+from ..bindings import lib
+from .assemble import Assembly
+from .emit import _STRIDE, Emitter, requests
+from .scene import OP, Scene
+from .sym import Unsupported
+
+_W = lib.PS_INSTR_WIDTH
+
+# operands of a tape instruction that name markers, constants, states and sensor values
+_MARKERS = {OP["MEASURE"]: (2, 3, 4, 5), OP["AXDOT"]: (1, 3)}
+_CONSTS = {OP["CONST"]: (1,), OP["STEPC"]: (2, 3, 4, 5)}
+
+#: The arrays of an element-free scene, to which a part adds its own.
+_NO_ELEMENTS = {"npen": 0, "nsf": 0, "nvf": 0, "nmotion": 0, "nsensor": 0, "nout": 0,
+                "sensor_tape": [], "sensor_slot": [], "out_tape": [], "out_slot": []}
+
+
+class Part:
+    """One body or element of a scene renumbered from zero.
+
+    Attributes
+    ----------
+    arrays : dict
+        Its scene of its own, in the arrays :class:`~.scene.Scene` reads.
+    tables : list of list of int
+        The global index of each of its states, bodies, markers, constants and sensor values.
+    """
+
+    def __init__(self, a):
+        self.a = a
+        self.tables = [[], [], [], [], []]
+        self._ids = {}, {}
+        self.qadr, self.uadr, self.mbody, self.code, self.ntbody = [], [], [], [], 0
+
+    def state(self, i):
+        """The renumbered index of global state i (negative: none)."""
+        if i < 0:
+            return i
+        got = self._ids[0].get(i)
+        if got is None:
+            got = self._ids[0][i] = len(self.tables[0])
+            self.tables[0].append(i)
+        return got
+
+    def body(self, b):
+        """The renumbered index of global body b, its coordinates added to the states."""
+        if b < 0:
+            return -1
+        got = self._ids[1].get(b)
+        if got is None:
+            a = self.a
+            got = self._ids[1][b] = len(self.tables[1])
+            self.tables[1].append(b)
+            nq, nu = (7, 6) if a["body_type"][b] == lib.PS_BODY_RIGID else (3, 3)
+            for adr, n, out in ((a["body_qadr"][b], nq, self.qadr), (a["body_uadr"][b], nu,
+                                                                     self.uadr)):
+                first = len(self.tables[0])
+                if any(self.state(int(adr) + i) != first + i for i in range(n)):
+                    raise Unsupported("a state entry of a body read before the body")
+                out.append(first)
+        return got
+
+    def marker(self, mk):
+        """A renumbered marker (one per use: equal uses need not be the same marker)."""
+        if mk < 0:
+            return -1
+        self.tables[2].append(mk)
+        self.mbody.append(self.body(int(self.a["marker_body"][mk])))
+        return len(self.tables[2]) - 1
+
+    def const(self, k):
+        self.tables[3].append(k)
+        return len(self.tables[3]) - 1
+
+    def tape(self, t):
+        """Renumber tape t, its bodies first (they become bodies 0, 1, ...)."""
+        a = self.a
+        adr, n = int(a["tape_body_adr"][t]), int(a["tape_nbody"][t])
+        for b in a["tbody_body"][adr:adr + n]:
+            self.body(int(b))
+        if self.tables[1] != [int(b) for b in a["tbody_body"][adr:adr + n]]:
+            raise AssertionError("a tape renumbered after another")
+        self.ntbody = n
+        start, length = int(a["tape_code_adr"][t]), int(a["tape_len"][t])
+        code = a["code"][start * _W:(start + length) * _W].tolist()
+        for i in range(0, len(code), _W):
+            op = code[i]
+            for j in _MARKERS.get(op, ()):
+                code[i + j] = self.marker(code[i + j])
+            for j in _CONSTS.get(op, ()):
+                code[i + j] = self.const(code[i + j])
+            if op == OP["STATE"]:
+                code[i + 1] = self.state(code[i + 1])
+            elif op == OP["SENVAL"]:
+                self.tables[4].append(code[i + 1])
+                code[i + 1] = len(self.tables[4]) - 1
+            elif op == OP["USER"]:
+                raise Unsupported("a user subroutine called from the kernel")
+        self.code = code
+        return 0
+
+    def finish(self, **element):
+        """Set :attr:`arrays` to the part's own scene with `element` in it; return the key
+        that parts of one template share."""
+        a = self.a
+        rot = a["marker_rot"]
+        self.element = bool(element)
+        self.arrays = m = dict(_NO_ELEMENTS)
+        m.update(
+            nuser=0, ny=len(self.tables[0]), force_scale=a["force_scale"],
+            nbody=len(self.tables[1]), body_qadr=self.qadr, body_uadr=self.uadr,
+            body_type=[int(a["body_type"][b]) for b in self.tables[1]],
+            marker_body=self.mbody,
+            marker_rot=[v for mk in self.tables[2] for v in rot[9 * mk:9 * mk + 9].tolist()],
+            consts=[0.0] * len(self.tables[3]), code=self.code, tape_code_adr=[0],
+            tape_len=[len(self.code) // _W], tape_body_adr=[0], tape_nbody=[self.ntbody],
+            tbody_body=list(range(self.ntbody)))
+        m.update(element)
+        return repr(sorted(m.items()))
+
+
+def parts(a):
+    """Every body and element of the scene with arrays `a`, as :class:`Part` objects."""
+    out = []
+    for b in range(int(a["nbody"])):
+        p = Part(a)
+        p.body(b)
+        out.append((p, p.finish()))
+    for k in range(int(a["npen"])):
+        p = Part(a)
+        out.append((p, p.finish(npen=1, pen_tape=[p.tape(int(a["pen_tape"][k]))],
+                                pen_g=[int(a["pen_g"][k])], pen_f=[int(a["pen_f"][k])])))
+    for k in range(int(a["nsf"])):
+        p = Part(a)
+        tape = p.tape(int(a["sf_tape"][k]))
+        out.append((p, p.finish(nsf=1, sf_tape=[tape], sf_f=[int(a["sf_f"][k])],
+                                sf_torque=[int(a["sf_torque"][k])],
+                                sf_i=[p.marker(int(a["sf_i"][k]))],
+                                sf_j=[p.marker(int(a["sf_j"][k]))])))
+    for k in range(int(a["nvf"])):
+        p = Part(a)
+        tape = p.tape(int(a["vf_tape"][k]))
+        out.append((p, p.finish(
+            nvf=1, vf_tape=[tape], vf_f=[int(v) for v in a["vf_f"][3 * k:3 * k + 3]],
+            vf_r=[p.marker(int(a["vf_r"][k]))], vf_sr=[int(a["vf_sr"][k])],
+            vf_i=[p.marker(int(a["vf_i"][k]))], vf_si=[int(a["vf_si"][k])],
+            vf_sj=[int(a["vf_sj"][k])])))
+    for k in range(int(a["nmotion"])):
+        p = Part(a)
+        tape = p.tape(int(a["mot_tape"][k]))
+        out.append((p, p.finish(
+            nmotion=1, mot_tape=[tape], mot_lam=[p.state(int(a["mot_lam"][k]))],
+            mot_w=[p.state(int(a["mot_w"][k]))], mot_kind=[int(a["mot_kind"][k])],
+            mot_g=[int(a["mot_g"][k])], mot_gd=[int(a["mot_gd"][k])],
+            mot_f=[int(a["mot_f"][k])])))
+    return out
+
+
+class Template:
+    """The generated code of one shape of part, and the index table of its instances."""
+
+    def __init__(self, first, limit):
+        self.scene = s = Scene(first.arrays, range(len(first.tables[3])), limit)
+        self.asm = Assembly(s, bodies=not first.element, elements=first.element)
+        self.widths = [len(t) for t in first.tables]
+        self.rows = []
+
+    def leaf(self, op, arg):
+        """C text of a run-time leaf, through the instance's index table I."""
+        nq, nb, nm, nc, _ = self.widths
+        if op in ("y", "yp"):
+            return f"{op}[I[{arg}]]"
+        if op == "sv":
+            return f"sv[I[{nq + nb + nm + nc + arg}]]"
+        array, obj, comp = arg
+        if array == "gravity":
+            return f"m->gravity[{comp}]"
+        base = {"body_mass": nq, "body_inertia": nq, "marker_pos": nq + nb,
+                "consts": nq + nb + nm}[array] + obj
+        stride = _STRIDE.get(array, 1)
+        index = f"I[{base}]" if stride == 1 else f"{stride} * I[{base}] + {comp}"
+        return f"m->{array}[{index}]"
+
+
+def generate(kernel, limit=None):
+    """The looped C source of a compiled kernel (raises Unsupported past `limit` nodes)."""
+    a = kernel.arrays
+    if a["nuser"]:
+        raise Unsupported("a user subroutine called from the kernel")
+    reqs = Assembly(Scene(a, kernel.params.values(), limit), bodies=False, elements=False)
+    used = len(reqs.s.g.op)
+    templates = {}
+    for part, key in parts(a):
+        tpl = templates.get(key)
+        if tpl is None:
+            tpl = templates[key] = Template(part, None if limit is None else limit - used)
+            used += len(tpl.scene.g.op)
+        tpl.rows.append([i for table in part.tables for i in table])
+    templates = list(templates.values())
+    ny = int(a["ny"])
+    trip, positions = _pattern(templates, ny)
+    em = Emitter()
+    for k, (tpl, pos) in enumerate(zip(templates, positions)):
+        g, base = tpl.scene.g, sum(tpl.widths)
+        em.function(g, f"psg_r{k}", [(f"out[I[{r}]]", n) for r, n in enumerate(tpl.asm.res)
+                                     if n != g.zero], tpl.leaf, indexed=True, assign="+=")
+        em.function(g, f"psg_j{k}", [(f"out[I[{base + i}]]", n)
+                                     for i, (_, _, n) in enumerate(tpl.asm.trip)],
+                    tpl.leaf, indexed=True, assign="+=")
+        table = np.hstack([np.array(tpl.rows, dtype=np.int64).reshape(len(tpl.rows), -1), pos])
+        rows = ",\n".join("{" + ", ".join(map(str, row)) + "}" for row in table.tolist())
+        em.parts.append(f"static const int psg_i{k}[{table.shape[0]}][{table.shape[1]}] = "
+                        f"{{\n{rows}}};\n")
+    for name, size, fn in (("psg_residual", ny, "psg_r"), ("psg_jacobian", len(trip), "psg_j")):
+        loops = "\n".join(f"  for (int k = 0; k < {len(tpl.rows)}; k++) "
+                          f"{fn}{i}(m, sv, t, y, yp, cj, out, psg_i{i}[k]);"
+                          for i, tpl in enumerate(templates))
+        em.parts.append(f"static void {name}(const psModel* m, const double* sv, double t, "
+                        f"const double* y, const double* yp, double cj, double* out) {{\n"
+                        f"  for (int i = 0; i < {size}; i++) out[i] = 0.0;\n{loops}\n}}\n")
+    requests(em, reqs)
+    em.table(ny, trip, len(reqs.sensors), len(reqs.outputs))
+    return em.source()
+
+
+def _pattern(templates, ny):
+    """The scene's iteration-matrix pattern as sorted (row, col) pairs (column-major), and for
+    each template an (instances x entries) array of the positions its entries add into."""
+    keys = []
+    for tpl in templates:
+        q = np.array(tpl.rows, dtype=np.int64)[:, :tpl.widths[0]]
+        r = np.array([e[0] for e in tpl.asm.trip], dtype=np.int64)
+        c = np.array([e[1] for e in tpl.asm.trip], dtype=np.int64)
+        keys.append(q[:, c] * ny + q[:, r])
+    every = np.unique(np.concatenate([k.ravel() for k in keys])) if keys else np.zeros(0, int)
+    trip = [(int(k % ny), int(k // ny)) for k in every]
+    return trip, [np.searchsorted(every, k) for k in keys]
