@@ -368,19 +368,57 @@ int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret,
   return flag;
 }
 
-int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, double* y_out,
-                   double* yp_out, double* req_out, int* nreached, double* tret, int* rootsfound) {
-  int n = s->m->ny, flag = 0;
+/* Write the request channels of output rows k0..k1-1. */
+static void row_outputs(psIDA* s, int k0, int k1, const double* tout, double* y_out,
+                        double* yp_out, double* req_out) {
+  int n = s->m->ny;
+  if (s->m->nout <= 0) return;
+  for (int k = k0; k < k1; k++)
+    ps_outputs(s->m, s->d, tout[k], y_out + (long)k * n, yp_out + (long)k * n,
+               req_out + (long)k * s->m->nout);
+}
+
+int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fresh,
+                   double* y_out, double* yp_out, double* req_out, int* nreached, double* tret,
+                   int* rootsfound) {
+  int n = s->m->ny, flag = 0, k = 0;
   *nreached = 0;
-  for (int k = 0; k < nout; k++) {
+  if (fresh && nout > 0) {
+    /* the first step of a (re)start, taken into row 0 */
+    flag = ps_ida_solve(s, tstop, tstop, 1, tret, y_out, yp_out, rootsfound);
+    if (flag < 0 || flag == 2) return flag;
+    double tn = *tret;
+    int m = 0;
+    while (m < nout && tout[m] <= tn) m++;
+    /* an output time at the step's end is the step itself; earlier ones are interpolated */
+    int last = m > 0 && tout[m - 1] == tn ? m - 1 : m;
+    if (last < m && last > 0) {
+      memcpy(y_out + (long)last * n, y_out, sizeof(double) * (size_t)n);
+      memcpy(yp_out + (long)last * n, yp_out, sizeof(double) * (size_t)n);
+    }
+    for (k = 0; k < last; k++) {
+      flag = ps_ida_solve(s, tout[k], tstop, 0, tret, y_out + (long)k * n,
+                          yp_out + (long)k * n, rootsfound);
+      if (flag < 0) return flag;
+    }
+    row_outputs(s, 0, m, tout, y_out, yp_out, req_out);
+    *nreached = k = m;
+    *tret = tn;
+  }
+  for (; k < nout; k++) {
     flag = ps_ida_solve(s, tout[k], tstop, 0, tret, y_out + (long)k * n, yp_out + (long)k * n,
                         rootsfound);
     if (flag < 0 || flag == 2) return flag;
-    if (s->m->nout > 0)
-      ps_outputs(s->m, s->d, *tret, y_out + (long)k * n, yp_out + (long)k * n,
-                 req_out + (long)k * s->m->nout);
+    row_outputs(s, k, k + 1, tout, y_out, yp_out, req_out);
     *nreached = k + 1;
   }
+  return flag;
+}
+
+int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0) {
+  if (!s->mem || s->limited_at || s->sparse) return 1;
+  int flag = ps_ida_reinit(s, t0, y0, yp0);
+  memset(s->acc, 0, sizeof(s->acc));
   return flag;
 }
 

@@ -381,9 +381,20 @@ int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret,
 
 /* Advance through the nout output times, writing states (nout x ny) and request outputs
  * (nout x m->nout); stops early on a root (flag 2, rootsfound filled, tret the root time) or a
- * failure (< 0). *nreached is the number of outputs written. Returns the last IDA flag. */
-int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, double* y_out,
-                   double* yp_out, double* req_out, int* nreached, double* tret, int* rootsfound);
+ * failure (< 0). *nreached is the number of outputs written. With fresh (right after a
+ * (re)start) the first call is one internal step toward tstop, so that IDA sizes the first step
+ * from the stop rather than from the first output time; the output times it passes are
+ * interpolated. Returns the last IDA flag. */
+int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fresh,
+                   double* y_out, double* yp_out, double* req_out, int* nreached, double* tret,
+                   int* rootsfound);
+
+/* Start a new run of the integration set up by ps_ida_init at (t0, y0, yp0), keeping its IDA
+ * object and linear solver: IDA's state and the counters of ps_ida_stats start from zero.
+ * Returns 1 when the object cannot be reused as it is (never set up, its step-growth limit
+ * switched on by ps_ida_tune's auto_eta, or a sparse solver, whose factorization is kept
+ * between runs): call ps_ida_init instead; else IDA's flag. */
+int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
 
 /* IDA's counters over the whole run, restarts included: steps, residual evaluations, Jacobian
  * evaluations, error-test failures, nonlinear convergence failures, root-function evaluations,

@@ -162,9 +162,9 @@ class CIDA:
         nt, n, nout = len(times), self.k.ny, max(self.k.arrays["nout"], 1)
         Y, YP, REQ = np.zeros((nt, n)), np.zeros((nt, n)), np.zeros((nt, nout))
         reached = ffi.new("int *")
-        flag = lib.ps_ida_outputs(self.s, fb("double[]", times), nt, tstop, fb("double[]", Y),
-                                  fb("double[]", YP), fb("double[]", REQ), reached, self.tret,
-                                  ffi.cast("int *", fb(self.roots)))
+        flag = lib.ps_ida_outputs(self.s, fb("double[]", times), nt, tstop, 0,
+                                  fb("double[]", Y), fb("double[]", YP), fb("double[]", REQ),
+                                  reached, self.tret, ffi.cast("int *", fb(self.roots)))
         k = reached[0]
         # row k holds the state IDA stopped at (a root, or its last point) when k < nt
         j = k if k < nt else nt - 1

@@ -8,6 +8,7 @@ from ..build.bindings import lib
 from ..results import Result
 from . import nonfinite
 from .driver import Run
+from .fast import fast_run
 
 
 def run_model(model, progress=None, overrides=None, actors=()):
@@ -21,11 +22,17 @@ def run_model(model, progress=None, overrides=None, actors=()):
     options, used, static, labels = _settings(model, overrides)
     kind = options.resolved_kernel()
     kernel = model._kernel(kind=kind)
+    gen = kernel.codegen
+    log = [f"kernel: the tapes run ({gen['why']})"] if gen["kernel"] == "tapes" and \
+        kind != "tapes" else []
+    fast = fast_run(model, kernel, options, progress, actors)
+    if fast is not None:
+        res = fast.run(t_start, used, static, labels, log)
+        if res is not None:
+            return res
     kernel.reset_counters()
     run = Run(model, kernel, options, progress)
-    gen = kernel.codegen
-    if gen["kernel"] == "tapes" and kind != "tapes":
-        run.log.append(f"kernel: the tapes run ({gen['why']})")
+    run.log.extend(log)
     for actor in actors:
         run.add_actor(actor)
     t_run = time.perf_counter()

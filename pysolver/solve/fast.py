@@ -1,0 +1,150 @@
+"""The fast path of :meth:`pysolver.Model.run`: a run that is nothing but IDA through print
+times, with almost no Python.
+
+A scene without sensors, load controls, motions or user subroutines called from the kernel,
+integrated by IDA from C and run without a progress bar, needs none of the driver's machinery
+(:mod:`.driver`): its run is the initial conditions, then one C call per Simulate command
+(``ps_ida_outputs``) that integrates through all of the command's print times into arrays
+allocated once for the whole run. What does not change between runs of the same model and
+options is built once and kept on the kernel: the print times, the row count and the IDA object
+with its linear solver (started again with ``ps_ida_rerun``, not rebuilt).
+
+A run that does not finish cleanly (an IDA failure, too many steps, a non-finite value) is run
+again on the general path, which reports it in its own words: the fast path has no side effects
+to undo, and a scene that runs cleanly, the common case in a batch study, pays nothing for the
+general path's generality. The two give the same rows to the last bit (tests/test_fast.py).
+"""
+import sys
+import threading
+import time
+
+import numpy as np
+
+from .._version import __version__
+from ..build.bindings import ffi, lib
+from ..build.kernel import UserFailure
+from ..results import Result
+from . import integrator, nonfinite
+from .outputs import Grid, over_budget
+
+#: Whether runs may take the fast path (tests switch it off to compare with the general path).
+ENABLED = True
+
+
+def fast_run(model, kernel, options, progress, actors):
+    """The kept :class:`FastRun` of `model` under `options`, or None when the run needs the
+    general driver."""
+    if not ENABLED or actors or progress or (progress is None and sys.stderr.isatty()):
+        return None
+    cache = kernel.__dict__.setdefault("_fast", {})
+    key = id(options)
+    if key not in cache:
+        cache.clear()                       # one entry: the options object is kept alive
+        plan = integrator.cached_plan(kernel, options)
+        ok = (plan.use_c and not model.sensors and not model.controls and
+              not kernel.arrays["nuser"] and not kernel.layout.lam and
+              all(cmd.analysis == "TRANSIENT" for cmd in model.commands))
+        cache[key] = (options, FastRun(model, kernel, options, plan) if ok else None)
+    return cache[key][1]
+
+
+class FastRun:
+    """Everything a clean run of one model under one set of options needs, built once."""
+
+    def __init__(self, model, kernel, options, plan):
+        self.model, self.k, self.options, self.plan = model, kernel, options, plan
+        self.solver = integrator.make(kernel, options, plan, (
+            options.h_max or 0.0, options.h_min or 0.0, options.h0_max or 0.0))
+        # the print times of each command (those of outputs.Grid, bit for bit)
+        self.commands, t = [], 0.0
+        for cmd in model.commands:
+            grid = Grid(t, cmd.end_time, cmd.print_interval)
+            times = np.append(t + cmd.print_interval * np.arange(1, grid.n + 1, dtype=float),
+                              cmd.end_time)
+            self.commands.append((cmd, times, t))
+            t = cmd.end_time
+        self.times = np.concatenate([[0.0]] + [times for _, times, _ in self.commands])
+        self.nout = max(int(kernel.arrays["nout"]), 1)
+        self.fb = ffi.from_buffer
+        self.reached, self.tret = ffi.new("int *"), ffi.new("double *")
+        self.roots = ffi.new("int[1]")
+
+    def run(self, t_start, used, static, labels, log):
+        """Run the model; returns its Result, or None when the general path must run it."""
+        k, d, fb, opts = self.k, self.k.d, self.fb, self.options
+        k.reset_counters()
+        n, ny = len(self.times), k.ny
+        if any(over_budget(t, cmd, ny, len(k.channels)) for cmd, _, t in self.commands):
+            return None
+        main = threading.current_thread() is threading.main_thread()
+        if main:
+            lib.ps_interrupt_arm()
+        try:
+            # the initial state (sweep cases change it) and a consistent yp
+            t0, y0 = 0.0, k.layout.initial_state()
+            d.last_t = t0
+            d.bad_kind = 0
+            try:
+                yp0 = k.consistent_yp(t0, y0)
+            except UserFailure:
+                return None
+            if d.bad_kind or not np.isfinite(yp0).all():
+                return None
+            T, Y, YP = self.times.copy(), np.empty((n, ny)), np.empty((n, ny))
+            REQ = np.empty((n, self.nout))
+            Y[0], YP[0], REQ[0, :len(k.channels)] = y0, yp0, k.outputs(t0, y0, yp0)
+            t_run = time.perf_counter()
+            row, fresh, status = 1, True, 0
+            start = self.solver
+            if lib.ps_ida_rerun(start.s, t0, fb("double[]", y0), fb("double[]", yp0)) != 0:
+                start.started = False
+                start.init_step(t0, y0, yp0)
+            for cmd, times, _ in self.commands:
+                steps = d.ntimes - d.nfail
+                flag = lib.ps_ida_outputs(
+                    start.s, fb("double[]", times), len(times), cmd.end_time, fresh,
+                    fb("double[]", Y[row:]), fb("double[]", YP[row:]), fb("double[]", REQ[row:]),
+                    self.reached, self.tret, self.roots)
+                row += self.reached[0]
+                fresh = False
+                if lib.ps_interrupted():
+                    status = -600
+                    break
+                if flag < 0 or self.reached[0] < len(times) or d.user_error or \
+                        d.ntimes - d.nfail - steps > opts.max_num_steps:
+                    return None
+        finally:
+            if main:
+                lib.ps_interrupt_disarm()
+        t_end = time.perf_counter()
+        return self.result(T[:row], Y[:row], YP[:row], REQ[:row, :len(k.channels)], status,
+                           (t_start, t_run, t_end), used, static, labels, log)
+
+    def result(self, T, Y, YP, REQ, status, times, used, static, labels, log):
+        """The Result of a run that reached row len(T) (status 0, or -600 interrupted)."""
+        k, model = self.k, self.model
+        c, ida = k.counters, self.solver.counters()
+        stats = {"steps": int(k.d.ntimes - k.d.nfail), "nres": c["nres"], "njac": c["njac"],
+                 "nfail": c["nfail"], "outputs": len(T), "nroots": c["nroots"], "nevents": 0,
+                 "nrearms": 0, "nrestarts": 0, "ida_nfev": ida["nfev"],
+                 "ida_njev": ida["njev"], "netf": ida["netf"], "ncfn": ida["ncfn"],
+                 "growth_limited_at": ida["growth_limited_at"]}
+        t_start, t_run, t_end = times
+        gen = k.codegen
+        timing = {"setup": t_run - t_start, "integrate": t_end - t_run, "total": t_end - t_start,
+                  "generate": gen.pop("generate_unreported", 0.0),
+                  "compile": gen.pop("compile_unreported", 0.0)}
+        used = dict(used, linsolver=self.plan.linsolver, backend="c")
+        meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
+                "options": used, "ny": k.ny, "stepping": "normal", "static": dict(static),
+                "usersubs": dict(model.usersub_paths), "kernel": gen["kernel"]}
+        log = log + nonfinite.channels(model, k, T, REQ)
+        if status:
+            message = f"interrupted at t = {T[-1]:.6g}"
+        else:
+            message = "The simulation finished."
+        return Result(t=T, y=Y, yp=YP, outputs=REQ, channels=k.channels,
+                      state_names=k.layout.names, success=not status, status=status,
+                      message=message, stats=stats, timing=timing, meta=meta, labels=labels,
+                      log=log, controllers={})
+
