@@ -1,0 +1,102 @@
+"""The fast path of a run (pysolver.solve.fast) against the general driver it stands in for:
+the same rows to the last bit, the same counters and messages, on every deck it takes; the
+general path for every run it does not take, or does not finish cleanly."""
+import numpy as np
+import pytest
+
+import pysolver
+from pysolver.solve import fast
+
+from helpers import DECKS, TEST_DECKS
+
+FAST_DECKS = ["catenary_bead.xml", "particle_above_line.xml", "particle_between_lines.xml",
+              "particle_between_lines_si.xml", "spinning_top.xml", "stiff_penalty_pendulum.xml",
+              "torque_free_spin.xml", "catenary_bead.py", "torque_free_spin.py"]
+
+TWO_COMMANDS = """<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+  <Reference_Marker id="2" body_id="2" pos_z="1"/>
+  <Body_Point id="2" cg_id="2" mass="1"/><Force_Gravity grav_z="-9.81"/>
+  <Force_Penalty id="1" expr="0.5 - DZ(2)" unilateral="TRUE" penalty="1e3" penalty1="5"/>
+  <Post_Request id="1" expr1="DZ(2)" expr2="PFORCE(1)"/>
+  <Param_Transient integr_tol="1e-6"/></Model>
+  <Simulate analysis_type="Transient" end_time="{end}" print_interval="0.05"/>
+  <Simulate analysis_type="Transient" end_time="0.9" print_interval="0.1"/></MotionSolve>"""
+
+_SAME_STATS = ("steps", "nres", "njac", "nfail", "outputs", "nroots", "nevents", "nrestarts",
+               "ida_nfev", "ida_njev", "netf", "ncfn", "growth_limited_at")
+
+
+def _takes_fast_path(model, **options):
+    from pysolver.solve.run import _settings
+    opts = _settings(model, options)[0]
+    return fast.fast_run(model, model._kernel(), opts, False, ()) is not None
+
+
+def _general(model, monkeypatch, **options):
+    with monkeypatch.context() as m:
+        m.setattr(fast, "ENABLED", False)
+        return model.run(progress=False, **options)
+
+
+def _same(a, b):
+    for name in ("t", "y", "yp", "_outputs"):
+        assert np.array_equal(getattr(a, name), getattr(b, name), equal_nan=True), name
+    assert (a.success, a.status, a.message) == (b.success, b.status, b.message)
+    assert {k: a.stats[k] for k in _SAME_STATS} == {k: b.stats[k] for k in _SAME_STATS}
+    assert a.meta == b.meta and a.log == b.log and a.events == b.events == []
+
+
+def _load(name):
+    path = DECKS / name if (DECKS / name).exists() else TEST_DECKS / name
+    return pysolver.load(path)
+
+
+@pytest.mark.parametrize("name", FAST_DECKS + ["all_functions.xml"])
+def test_fast_path_gives_the_general_paths_rows_to_the_bit(name, monkeypatch):
+    """Twice (the second run restarts the kept IDA object), and the same as the driver."""
+    model = _load(name)
+    assert _takes_fast_path(model)
+    first, second = model.run(progress=False), model.run(progress=False)
+    solver = model._kernel()._fast
+    ref = _general(model, monkeypatch)
+    _same(first, ref)
+    _same(second, ref)
+    assert model._kernel()._fast is solver              # nothing rebuilt between runs
+
+
+@pytest.mark.parametrize("end", ["0.5", "1e-9", "0.05"])
+def test_commands_and_first_steps_of_every_length(end, monkeypatch):
+    """Two Simulate commands, the first ending inside IDA's first step (1e-9: its first step is
+    cut at the end, which is the row), at its first print time, or after many."""
+    model = pysolver.loads(TWO_COMMANDS.format(end=end))
+    assert _takes_fast_path(model)
+    res = model.run(progress=False)
+    _same(res, _general(model, monkeypatch))
+    assert res.success and res.t[-1] == 0.9 and np.all(np.diff(res.t) > 0)
+
+
+def test_a_run_that_fails_is_reported_by_the_general_path(monkeypatch):
+    """Too many steps: the fast path gives the run up, the driver reports it, rows and all."""
+    model = _load("stiff_penalty_pendulum.xml")
+    res = model.run(progress=False, max_num_steps=50)
+    assert not res.success and res.status == -100 and "max_num_steps" in res.message
+    _same(res, _general(model, monkeypatch, max_num_steps=50))
+    ok = model.run(progress=False)                     # and the next clean run is fast again
+    assert ok.success and _takes_fast_path(model)
+
+
+@pytest.mark.parametrize("name, why", [("sensor_end_condition.xml", "sensors"),
+                                       ("loadcontrol_indenter.xml", "load control, motions"),
+                                       ("static_pendulum.xml", "a static command")])
+def test_runs_that_need_the_driver_take_it(name, why):
+    model = _load(name)
+    assert not _takes_fast_path(model), why
+    assert model.run(progress=False).success
+
+
+def test_a_progress_bar_or_actors_take_the_driver():
+    model = _load("particle_above_line.xml")
+    opts = model.transient
+    assert fast.fast_run(model, model._kernel(), opts, True, ()) is None
+    assert fast.fast_run(model, model._kernel(), opts, False, (object(),)) is None
+    assert fast.fast_run(model, model._kernel(), opts, False, ()) is not None
