@@ -189,3 +189,16 @@ def test_a_large_deck_is_looped_in_code_independent_of_its_size():
     a, b = model.run(), model.run(kernel="tapes")
     assert a.success and b.success and a.stats["steps"] == b.stats["steps"]
     assert np.max(np.abs(a.y - b.y)) < 1e-9
+
+
+@pytest.mark.parametrize("deck", ["static_pendulum.xml", "quasi_static_stack.xml"])
+def test_statics_run_on_the_kernel_the_run_asked_for(deck, decks):
+    """Static and quasi-static commands (MKEAM's undamped kernel too) use the run's kernel
+    kind: a run with kernel="tapes" builds no generated kernel, and finds the same equilibria."""
+    model = pysolver.load(decks / deck)
+    tapes = model.run(kernel="tapes")
+    assert tapes.success and all(is_tapes for _, is_tapes in model._compiled)
+    gen = model.run()
+    assert gen.success and gen.meta["kernel"] == "generated"
+    assert len(tapes.statics) == len(gen.statics) > 0
+    assert np.max(np.abs(tapes.y - gen.y)) < 1e-8

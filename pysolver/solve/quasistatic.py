@@ -14,12 +14,12 @@ from .pyida import PyIDA
 from .statics import StaticProblem, _finish, fim_s, solve_static
 
 
-def quasi_static(model, t0, y0, times, params, tol):
+def quasi_static(model, t0, y0, times, params, tol, kind=None):
     """FIM_D: follow F(q, t) = 0 from (t0, y0) through `times` with IDA; FIM_S polishes the
     first and last points and restarts the integration wherever it fails.
 
     Returns (list of (t, y) at t0 and `times`, list of StaticResult)."""
-    kernel = model._kernel()
+    kernel = model._kernel(kind=kind)
     prob = StaticProblem(kernel)
     y, first = fim_s(prob, t0, y0, params)
     results = [_finish(prob, t0, y, params, first)]
@@ -93,7 +93,7 @@ class StaticFailure(Exception):
 def run_static(run, cmd):
     """A Static command of a run: one equilibrium at cmd.end_time, then an output row."""
     y, res = solve_static(run.model, cmd.end_time, run.y, run.model.static,
-                          run.options.integr_tol)
+                          run.options.integr_tol, run.options.resolved_kernel())
     run.statics.append(res)
     if not res.success:
         raise StaticFailure(f"static analysis at t = {cmd.end_time:g}: {res.message}")
@@ -107,7 +107,7 @@ def run_quasi_static(run, cmd):
     times = print_times(run.t, cmd.end_time, cmd.print_interval)
     if params.method == "FIM_D":
         out, results = quasi_static(run.model, run.t, run.y, times, params,
-                                    run.options.integr_tol)
+                                    run.options.integr_tol, run.options.resolved_kernel())
         run.statics.extend(results)
         for tp, y in out:
             run.after_static(tp, y)
