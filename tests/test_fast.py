@@ -29,7 +29,7 @@ _SAME_STATS = ("steps", "nres", "njac", "nfail", "outputs", "nroots", "nevents",
 def _takes_fast_path(model, **options):
     from pysolver.solve.run import _settings
     opts = _settings(model, options)[0]
-    return fast.fast_run(model, model._kernel(), opts, False, ()) is not None
+    return fast.fast_run(model, model._kernel(), opts, ()) is not None
 
 
 def _general(model, monkeypatch, **options):
@@ -94,9 +94,11 @@ def test_runs_that_need_the_driver_take_it(name, why):
     assert model.run(progress=False).success
 
 
-def test_a_progress_bar_or_actors_take_the_driver():
+def test_actors_take_the_driver_and_a_progress_bar_does_not(capsys, monkeypatch):
     model = _load("particle_above_line.xml")
     opts = model.transient
-    assert fast.fast_run(model, model._kernel(), opts, True, ()) is None
-    assert fast.fast_run(model, model._kernel(), opts, False, (object(),)) is None
-    assert fast.fast_run(model, model._kernel(), opts, False, ()) is not None
+    assert fast.fast_run(model, model._kernel(), opts, (object(),)) is None
+    assert fast.fast_run(model, model._kernel(), opts, ()) is not None
+    res = model.run(progress=True)
+    assert "100.0%" in capsys.readouterr().err
+    _same(res, _general(model, monkeypatch))

@@ -2,19 +2,19 @@
 times, with almost no Python.
 
 A scene without sensors, load controls, motions or user subroutines called from the kernel,
-integrated by IDA from C and run without a progress bar, needs none of the driver's machinery
-(:mod:`.driver`): its run is the initial conditions, then one C call per Simulate command
-(``ps_ida_outputs``) that integrates through all of the command's print times into arrays
-allocated once for the whole run. What does not change between runs of the same model and
-options is built once and kept on the kernel: the print times, the row count and the IDA object
-with its linear solver (started again with ``ps_ida_rerun``, not rebuilt).
+integrated by IDA from C, needs none of the driver's machinery (:mod:`.driver`): its run is the
+initial conditions, then one C call per Simulate command (``ps_ida_outputs``) that integrates
+through the command's print times into arrays allocated once for the whole run (per
+:data:`~.outputs.Grid.BATCH` print times, as the driver, so that a progress bar moves). What
+does not change between runs of the same model and options is built once and kept on the
+kernel: the print times, the row count and the IDA object with its linear solver (started
+again with ``ps_ida_rerun``, not rebuilt).
 
 A run that does not finish cleanly (an IDA failure, too many steps, a non-finite value) is run
 again on the general path, which reports it in its own words: the fast path has no side effects
 to undo, and a scene that runs cleanly, the common case in a batch study, pays nothing for the
 general path's generality. The two give the same rows to the last bit (tests/test_fast.py).
 """
-import sys
 import threading
 import time
 
@@ -25,16 +25,16 @@ from ..build.bindings import ffi, lib
 from ..build.kernel import UserFailure
 from ..results import Result
 from . import integrator, nonfinite
-from .outputs import Grid, over_budget
+from .outputs import Grid, Progress, over_budget
 
 #: Whether runs may take the fast path (tests switch it off to compare with the general path).
 ENABLED = True
 
 
-def fast_run(model, kernel, options, progress, actors):
+def fast_run(model, kernel, options, actors):
     """The kept :class:`FastRun` of `model` under `options`, or None when the run needs the
     general driver."""
-    if not ENABLED or actors or progress or (progress is None and sys.stderr.isatty()):
+    if not ENABLED or actors:
         return None
     cache = kernel.__dict__.setdefault("_fast", {})
     key = id(options)
@@ -64,13 +64,17 @@ class FastRun:
             self.commands.append((cmd, times, t))
             t = cmd.end_time
         self.times = np.concatenate([[0.0]] + [times for _, times, _ in self.commands])
+        # the C calls: (command, its print times in batches)
+        self.calls = [(cmd, [times[i:i + Grid.BATCH] for i in range(0, len(times), Grid.BATCH)])
+                      for cmd, times, _ in self.commands]
         self.nout = max(int(kernel.arrays["nout"]), 1)
         self.fb = ffi.from_buffer
         self.reached, self.tret = ffi.new("int *"), ffi.new("double *")
         self.roots = ffi.new("int[1]")
 
-    def run(self, t_start, used, static, labels, log):
-        """Run the model; returns its Result, or None when the general path must run it."""
+    def run(self, t_start, used, static, labels, log, progress=None):
+        """Run the model; returns its Result, or None when the general path must run it.
+        `progress` as Model.run."""
         k, d, fb, opts = self.k, self.k.d, self.fb, self.options
         k.reset_counters()
         n, ny = len(self.times), k.ny
@@ -79,6 +83,7 @@ class FastRun:
         main = threading.current_thread() is threading.main_thread()
         if main:
             lib.ps_interrupt_arm()
+        bar, row, ran = Progress(0.0, self.times[-1], progress), 1, False
         try:
             # the initial state (sweep cases change it) and a consistent yp
             t0, y0 = 0.0, k.layout.initial_state()
@@ -94,28 +99,35 @@ class FastRun:
             REQ = np.empty((n, self.nout))
             Y[0], YP[0], REQ[0, :len(k.channels)] = y0, yp0, k.outputs(t0, y0, yp0)
             t_run = time.perf_counter()
-            row, fresh, status = 1, True, 0
+            fresh, status = True, 0
             start = self.solver
             if lib.ps_ida_rerun(start.s, t0, fb("double[]", y0), fb("double[]", yp0)) != 0:
                 start.started = False
                 start.init_step(t0, y0, yp0)
-            for cmd, times, _ in self.commands:
+            for cmd, batches in self.calls:
                 steps = d.ntimes - d.nfail
-                flag = lib.ps_ida_outputs(
-                    start.s, fb("double[]", times), len(times), cmd.end_time, fresh,
-                    fb("double[]", Y[row:]), fb("double[]", YP[row:]), fb("double[]", REQ[row:]),
-                    self.reached, self.tret, self.roots)
-                row += self.reached[0]
-                fresh = False
-                if lib.ps_interrupted():
-                    status = -600
+                for times in batches:
+                    flag = lib.ps_ida_outputs(
+                        start.s, fb("double[]", times), len(times), cmd.end_time, fresh,
+                        fb("double[]", Y[row:]), fb("double[]", YP[row:]),
+                        fb("double[]", REQ[row:]), self.reached, self.tret, self.roots)
+                    row += self.reached[0]
+                    fresh = False
+                    if lib.ps_interrupted():
+                        status = -600
+                        break
+                    if flag < 0 or self.reached[0] < len(times) or d.user_error or \
+                            d.ntimes - d.nfail - steps > opts.max_num_steps:
+                        return None
+                    bar.update(T[row - 1])
+                if status:
                     break
-                if flag < 0 or self.reached[0] < len(times) or d.user_error or \
-                        d.ntimes - d.nfail - steps > opts.max_num_steps:
-                    return None
+            ran = True
         finally:
             if main:
                 lib.ps_interrupt_disarm()
+            if ran or bar.shown:        # a run handed to the driver shows the driver's bar
+                bar.close(self.times[row - 1])
         t_end = time.perf_counter()
         return self.result(T[:row], Y[:row], YP[:row], REQ[:row, :len(k.channels)], status,
                            (t_start, t_run, t_end), used, static, labels, log)

@@ -25,9 +25,9 @@ def run_model(model, progress=None, overrides=None, actors=()):
     gen = kernel.codegen
     log = [f"kernel: the tapes run ({gen['why']})"] if gen["kernel"] == "tapes" and \
         kind != "tapes" else []
-    fast = fast_run(model, kernel, options, progress, actors)
+    fast = fast_run(model, kernel, options, actors)
     if fast is not None:
-        res = fast.run(t_start, used, static, labels, log)
+        res = fast.run(t_start, used, static, labels, log, progress)
         if res is not None:
             return res
     kernel.reset_counters()
