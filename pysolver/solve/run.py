@@ -1,4 +1,5 @@
-"""``Model.run``: options, one :class:`~.driver.Run`, and the :class:`~pysolver.Result`."""
+"""``Model.run``: options, the fast path (:mod:`.fast`) or one :class:`~.driver.Run`, and the
+:class:`~pysolver.Result`."""
 import dataclasses
 import threading
 import time
