@@ -173,16 +173,25 @@ def test_the_generated_source_is_split_into_bounded_functions(monkeypatch):
         assert body.count("const double t") <= 40 or body.count("  out[") == 1
 
 
+def _chain_with_requests(n, **kw):
+    """chain_deck(n) with a request on every body (its x and z)."""
+    reqs = "".join(f'<Post_Request id="{10 + i}" expr1="DX({1000 + i})" expr2="DZ({1000 + i})"/>'
+                   for i in range(n))
+    return chain_deck(n, **kw).replace("<Param_Transient", reqs + "<Param_Transient")
+
+
 def test_a_large_deck_is_looped_in_code_independent_of_its_size():
-    """A chain is generated as one function per shape of body or link, looped over tables:
-    ten times the links give the same functions (so the same compile work, bar the tables),
-    and the kernel agrees with the tapes."""
-    small, large = (pysolver.loads(chain_deck(n))._kernel(kind="tapes") for n in (80, 800))
+    """A chain with a request on every body is generated as one function per shape of body,
+    link and request, looped over tables: ten times the links give the same functions (so the
+    same compile work, bar the tables), and the kernel agrees with the tapes."""
+    small, large = (pysolver.loads(_chain_with_requests(n))._kernel(kind="tapes")
+                    for n in (80, 800))
     assert codegen.is_looped(small) and codegen.is_looped(large)
     functions = [re.findall(r"static void (psg_\w+)\(", codegen.source(k)) for k in (small, large)]
     assert functions[0] == functions[1]
     assert len([f for f in functions[0] if re.fullmatch(r"psg_r\d+", f)]) == 3  # body, 2 links
-    model = pysolver.loads(chain_deck(800, end_time=0.05))
+    assert len([f for f in functions[0] if re.fullmatch(r"psg_o\d+", f)]) == 2  # 2 kinds
+    model = pysolver.loads(_chain_with_requests(800, end_time=0.05))
     gen, tape = model._kernel(kind="generated"), model._kernel(kind="tapes")
     assert gen.codegen["kernel"] == "generated", gen.codegen
     _agree(gen, tape)
@@ -191,6 +200,8 @@ def test_a_large_deck_is_looped_in_code_independent_of_its_size():
     # inside the tolerance (1e-6)
     assert a.success and b.success and abs(a.stats["steps"] - b.stats["steps"]) <= 2
     assert np.max(np.abs(a.y[-1] - b.y[-1])) < 1e-8
+    assert np.max(np.abs(a.request(809)[-1] - b.request(809)[-1]), initial=0.0,
+                  where=~np.isnan(b.request(809)[-1])) < 1e-8
 
 
 @pytest.mark.parametrize("deck", ["static_pendulum.xml", "quasi_static_stack.xml"])

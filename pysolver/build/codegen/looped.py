@@ -9,14 +9,14 @@ differentiated once (:class:`~.scene.Scene`, :class:`~.assemble.Assembly`) and r
 over a table of each instance's global indices: its states (rows and columns), bodies, markers,
 constants, sensor values and the positions of its iteration-matrix entries, which it adds
 into. Every constant is read at run time (``m->consts[I[k]]``), so elements that differ only in
-their numbers share a template. Sensors and request channels stay straight-line (a scene has
-few of them).
+their numbers share a template. Sensor expressions and request channels are templates too, one
+part per tape they read, writing the sensors or channels in their table.
 """
 import numpy as np
 
 from ..bindings import lib
 from .assemble import Assembly
-from .emit import _STRIDE, Emitter, requests
+from .emit import _STRIDE, Emitter
 from .scene import OP, Scene
 from .sym import Unsupported
 
@@ -47,6 +47,7 @@ class Part:
         self.tables = [[], [], [], [], []]
         self._ids = {}, {}
         self.qadr, self.uadr, self.mbody, self.code, self.ntbody = [], [], [], [], 0
+        self.extra = []         # sensor or channel indices of a sensors' or requests' part
 
     def state(self, i):
         """The renumbered index of global state i (negative: none)."""
@@ -198,45 +199,81 @@ class Template:
         return f"m->{array}[{index}]"
 
 
+def channels(a):
+    """Parts for the sensor expressions and request channels, one per tape they read, with
+    ``extra`` the global sensor or channel index of each: (family, part, key) triples."""
+    out = []
+    for family, n, tapes, slots in (("o", a["nout"], a["out_tape"], a["out_slot"]),
+                                    ("s", a["nsensor"], a["sensor_tape"], a["sensor_slot"])):
+        by_tape = {}
+        for k in range(int(n)):
+            if tapes[k] >= 0:                # a NULL channel reads no tape
+                by_tape.setdefault(int(tapes[k]), []).append((k, int(slots[k])))
+        for t, chans in by_tape.items():
+            p = Part(a)
+            p.tape(t)
+            p.extra = [k for k, _ in chans]
+            fields = ({"nout": len(chans), "out_tape": [0] * len(chans),
+                       "out_slot": [sl for _, sl in chans]} if family == "o" else
+                      {"nsensor": len(chans), "sensor_tape": [0] * len(chans),
+                       "sensor_slot": [sl for _, sl in chans]})
+            out.append((family, p, family + p.finish(**fields)))
+    return out
+
+
 def generate(kernel, limit=None):
     """The looped C source of a compiled kernel (raises Unsupported past `limit` nodes)."""
     a = kernel.arrays
     if a["nuser"]:
         raise Unsupported("a user subroutine called from the kernel")
-    reqs = Assembly(Scene(a, kernel.params.values(), limit), bodies=False, elements=False)
-    used = len(reqs.s.g.op)
-    templates = {}
-    for part, key in parts(a):
-        tpl = templates.get(key)
+    # templates by family: r the residual and iteration matrix, o outputs, s sensors
+    families, used = {"r": {}, "o": {}, "s": {}}, 0
+    for family, part, key in [("r", p, k) for p, k in parts(a)] + channels(a):
+        tpl = families[family].get(key)
         if tpl is None:
-            tpl = templates[key] = Template(part, None if limit is None else limit - used)
+            tpl = families[family][key] = Template(part, None if limit is None else limit - used)
             used += len(tpl.scene.g.op)
-        tpl.rows.append([i for table in part.tables for i in table])
-    templates = list(templates.values())
+        tpl.rows.append([i for table in part.tables for i in table] + part.extra)
     ny = int(a["ny"])
-    trip, positions = _pattern(templates, ny)
+    res = list(families["r"].values())
+    trip, positions = _pattern(res, ny)
     em = Emitter()
-    for k, (tpl, pos) in enumerate(zip(templates, positions)):
+    for k, (tpl, pos) in enumerate(zip(res, positions)):
         g, base = tpl.scene.g, sum(tpl.widths)
         em.function(g, f"psg_r{k}", [(f"out[I[{r}]]", n) for r, n in enumerate(tpl.asm.res)
                                      if n != g.zero], tpl.leaf, indexed=True, assign="+=")
         em.function(g, f"psg_j{k}", [(f"out[I[{base + i}]]", n)
                                      for i, (_, _, n) in enumerate(tpl.asm.trip)],
                     tpl.leaf, indexed=True, assign="+=")
-        table = np.hstack([np.array(tpl.rows, dtype=np.int64).reshape(len(tpl.rows), -1), pos])
-        rows = ",\n".join("{" + ", ".join(map(str, row)) + "}" for row in table.tolist())
-        em.parts.append(f"static const int psg_i{k}[{table.shape[0]}][{table.shape[1]}] = "
-                        f"{{\n{rows}}};\n")
-    for name, size, fn in (("psg_residual", ny, "psg_r"), ("psg_jacobian", len(trip), "psg_j")):
+        _table(em, f"psg_ir{k}", np.hstack([np.array(tpl.rows, dtype=np.int64), pos]))
+    for family, attr in (("o", "outputs"), ("s", "sensors")):
+        for k, tpl in enumerate(families[family].values()):
+            base = sum(tpl.widths)
+            em.function(tpl.scene.g, f"psg_{family}{k}",
+                        [(f"out[I[{base + i}]]", n) for i, n in enumerate(getattr(tpl.asm, attr))],
+                        tpl.leaf, indexed=True)
+            _table(em, f"psg_i{family}{k}", np.array(tpl.rows, dtype=np.int64))
+    for name, family, fn, fill in (("psg_residual", "r", "r", f"{ny}, 0.0"),
+                                   ("psg_jacobian", "r", "j", f"{len(trip)}, 0.0"),
+                                   ("psg_outputs", "o", "o", f"{int(a['nout'])}, NAN"),
+                                   ("psg_sensors", "s", "s", "0, 0.0")):
+        size, value = fill.split(", ")
         loops = "\n".join(f"  for (int k = 0; k < {len(tpl.rows)}; k++) "
-                          f"{fn}{i}(m, sv, t, y, yp, cj, out, psg_i{i}[k]);"
-                          for i, tpl in enumerate(templates))
+                          f"psg_{fn}{i}(m, sv, t, y, yp, cj, out, psg_i{family}{i}[k]);"
+                          for i, tpl in enumerate(families[family].values()))
         em.parts.append(f"static void {name}(const psModel* m, const double* sv, double t, "
                         f"const double* y, const double* yp, double cj, double* out) {{\n"
-                        f"  for (int i = 0; i < {size}; i++) out[i] = 0.0;\n{loops}\n}}\n")
-    requests(em, reqs)
-    em.table(ny, trip, len(reqs.sensors), len(reqs.outputs))
+                        f"  (void)m; (void)sv; (void)t; (void)y; (void)yp; (void)cj;\n"
+                        f"  for (int i = 0; i < {size}; i++) out[i] = {value};\n{loops}\n}}\n")
+    em.table(ny, trip, int(a["nsensor"]), int(a["nout"]))
     return em.source()
+
+
+def _table(em, name, table):
+    """Emit an (instances x entries) index table as a static C array."""
+    rows = ",\n".join("{" + ", ".join(map(str, row)) + "}" for row in table.tolist())
+    em.parts.append(f"static const int {name}[{table.shape[0]}][{table.shape[1]}] = "
+                    f"{{\n{rows}}};\n")
 
 
 def _pattern(templates, ny):
