@@ -204,6 +204,22 @@ def test_a_large_deck_is_looped_in_code_independent_of_its_size():
                   where=~np.isnan(b.request(809)[-1])) < 1e-8
 
 
+def test_looped_decks_differing_only_in_constants_share_one_library(cache):
+    """Looped C reads every constant at run time: a chain whose links are 0.12 long instead of
+    0.1 (a constant in an expression, not a sweep parameter) loads the same library, and its
+    residual sees its own length (the link force at the initial state changes)."""
+    text = chain_deck(60)
+    short, long = (pysolver.loads(t) for t in (text, text.replace(") - 0.1", ") - 0.12")))
+    ks, kl = short._kernel(), long._kernel()
+    assert codegen.is_looped(ks) and ks.codegen["path"] == kl.codegen["path"]
+    assert kl.codegen["cached"]
+    y = ks.layout.initial_state()
+    yp = np.zeros_like(y)
+    _close(kl.residual_array(0.0, y, yp), long._kernel(kind="tapes").residual_array(0.0, y, yp),
+           "residual")
+    assert not np.allclose(kl.residual_array(0.0, y, yp), ks.residual_array(0.0, y, yp))
+
+
 @pytest.mark.parametrize("deck", ["static_pendulum.xml", "quasi_static_stack.xml"])
 def test_statics_run_on_the_kernel_the_run_asked_for(deck, decks):
     """Static and quasi-static commands (MKEAM's undamped kernel too) use the run's kernel

@@ -61,17 +61,20 @@ def is_looped(kernel):
 
 def key(kernel):
     """Everything the generated source of `kernel` is a function of, as a hex digest: its
-    compiled arrays (sweep parameters by slot, not value), the generator's own code and
-    whether the C is looped."""
+    compiled arrays (sweep parameters by slot, not value; no constants at all in looped C),
+    the generator's own code and whether the C is looped."""
     h = hashlib.sha256(_generator_digest().encode())
-    h.update(b"looped" if is_looped(kernel) else b"straight")
+    looped_c = is_looped(kernel)
+    h.update(b"looped" if looped_c else b"straight")
     slots = sorted(kernel.params.values())
     h.update(repr(slots).encode())
     for name in sorted(kernel.arrays):
         if name in _READ_AT_RUN_TIME:
             continue
         val = kernel.arrays[name]
-        if name == "consts" and slots:
+        if name == "consts" and looped_c:      # looped C reads every constant at run time
+            val = np.zeros_like(val)
+        elif name == "consts" and slots:
             val = val.copy()
             val[slots] = 0.0
         h.update(name.encode())
