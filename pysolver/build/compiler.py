@@ -75,14 +75,25 @@ class Layout:
         self.ny = off
 
     def initial_state(self):
+        """The state at t = 0 from the bodies' current initial conditions (a sweep case may
+        change them between runs)."""
         y = np.zeros(self.ny)
         for b, qa, ua in zip(self.bodies, self.qadr, self.uadr):
             y[qa:qa + 3] = b.pos
             y[ua:ua + 3] = b.vel
             if b.kind == "rigid":
-                y[qa + 3:qa + 7] = e_from_rot(b.rot)
+                y[qa + 3:qa + 7] = self._euler(b)
                 y[ua + 3:ua + 6] = b.omega
         return y
+
+    def _euler(self, b):
+        """Euler parameters of a body's initial rotation, kept while the rotation is the same
+        (e_from_rot is a quarter of a short run's Python)."""
+        key = np.asarray(b.rot, dtype=float).tobytes()
+        got = self.__dict__.setdefault("_euler_of", {}).get(b.id)
+        if got is None or got[0] != key:
+            got = self._euler_of[b.id] = (key, e_from_rot(b.rot))
+        return got[1]
 
 
 def _number(node):
