@@ -33,6 +33,31 @@ def chain_deck(n, penalty=1e4, penalty1=20.0, end_time=1.0, tol=1e-6):
             "</MotionSolve>\n")
 
 
+def rigid_chain_deck(n, end_time=0.05):
+    """A chain of `n` rigid bodies, each turned differently (3-1-3 angles that change along
+    the chain), joined end to end by three penalties each (DX, DY, DZ of the joint markers in
+    the previous body's end marker), the first to ground, under gravity (13 n states)."""
+    els = ['<Body_Rigid id="1" isground="TRUE"/>', '<Reference_Marker id="1" body_id="1"/>',
+           '<Force_Gravity grav_z="-9.81"/>']
+    for i in range(n):
+        b, cg = 100 + i, 1000 + 3 * i
+        els.append(f'<Reference_Marker id="{cg}" body_id="{b}" pos_x="{0.2 * i + 0.1}" '
+                   f'psi="{0.1 * i}" theta="0.2"/>')
+        els.append(f'<Reference_Marker id="{cg + 1}" body_id="{b}" pos_x="{0.2 * i}"/>')
+        els.append(f'<Reference_Marker id="{cg + 2}" body_id="{b}" pos_x="{0.2 * i + 0.2}"/>')
+        els.append(f'<Body_Rigid id="{b}" cg_id="{cg}" mass="0.5" inertia_xx="0.01" '
+                   'inertia_yy="0.02" inertia_zz="0.02"/>')
+        prev = 1 if i == 0 else cg - 1
+        for k, f in enumerate(("DX", "DY", "DZ")):
+            els.append(f'<Force_Penalty id="{10 * i + k + 1}" expr="{f}({cg + 1},{prev},{prev})" '
+                       'penalty="1e4" penalty1="20"/>')
+    last = 1000 + 3 * (n - 1)
+    els.append(f'<Post_Request id="1" expr1="WX({last})" expr2="AX({last})" expr3="DZ({last})"/>')
+    return ("<MotionSolve><Model>\n" + "\n".join(els) + "\n</Model>\n"
+            f'<Simulate analysis_type="Transient" end_time="{end_time}" print_interval="0.01"/>'
+            "\n</MotionSolve>\n")
+
+
 #: The stiff penalty pendulum of issue 5 (decks/stiff_penalty_pendulum.xml): 1 kg on a bilateral
 #: penalty rod (k = 1e8, c = 2e4, critical), released horizontally, 10 s, outputs every 0.01 s.
 PENDULUM = (DECKS / "stiff_penalty_pendulum.xml").read_text()

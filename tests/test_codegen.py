@@ -12,7 +12,7 @@ import pysolver
 from pysolver.build import codegen
 
 from helpers import DECKS, ROOT, TEST_DECKS
-from scenes import chain_deck
+from scenes import chain_deck, rigid_chain_deck
 
 ALL_DECKS = sorted(DECKS.glob("*.xml")) + sorted(DECKS.glob("*.py")) + \
     sorted(TEST_DECKS.glob("*.xml"))
@@ -202,6 +202,21 @@ def test_a_large_deck_is_looped_in_code_independent_of_its_size():
     assert np.max(np.abs(a.y[-1] - b.y[-1])) < 1e-8
     assert np.max(np.abs(a.request(809)[-1] - b.request(809)[-1]), initial=0.0,
                   where=~np.isnan(b.request(809)[-1])) < 1e-8
+
+
+def test_rigid_bodies_turned_differently_share_templates():
+    """A chain of rigid bodies whose markers differ in orientation from link to link: the
+    orientations are read at run time, so the links share templates (the same functions for
+    20 and 40 links) and the deck is generated, not left to the tapes; it agrees with them."""
+    small, large = (pysolver.loads(rigid_chain_deck(n))._kernel(kind="tapes") for n in (20, 40))
+    assert codegen.is_looped(small) and codegen.is_looped(large)
+    functions = [re.findall(r"static void (psg_\w+)\(", codegen.source(k, codegen.LIMIT))
+                 for k in (small, large)]
+    assert functions[0] == functions[1]
+    model = pysolver.loads(rigid_chain_deck(40))
+    gen, tape = model._kernel(kind="generated"), model._kernel(kind="tapes")
+    assert codegen.is_looped(gen) and gen.codegen["kernel"] == "generated", gen.codegen
+    _agree(gen, tape)
 
 
 def test_looped_decks_differing_only_in_constants_share_one_library(cache):

@@ -64,7 +64,7 @@ def literal(v):
 
 
 #: Doubles per object in the model arrays a ``par`` leaf reads (1 unless listed).
-_STRIDE = {"marker_pos": 3, "body_inertia": 9}
+_STRIDE = {"marker_pos": 3, "marker_rot": 9, "body_inertia": 9}
 
 
 def plain_leaf(op, arg):

@@ -8,7 +8,8 @@ of its own. Elements whose renumbered scenes are equal share a template, built a
 differentiated once (:class:`~.scene.Scene`, :class:`~.assemble.Assembly`) and run in a loop
 over a table of each instance's global indices: its states (rows and columns), bodies, markers,
 constants, sensor values and the positions of its iteration-matrix entries, which it adds
-into. Every constant is read at run time (``m->consts[I[k]]``), so elements that differ only in
+into. Every constant is read at run time (``m->consts[I[k]]``), and so are the markers'
+orientations in a template whose instances differ in them, so elements that differ only in
 their numbers share a template. Sensor expressions and request channels are templates too, one
 part per tape they read, writing the sensors or channels in their table.
 """
@@ -118,7 +119,7 @@ class Part:
 
     def finish(self, **element):
         """Set :attr:`arrays` to the part's own scene with `element` in it; return the key
-        that parts of one template share."""
+        that parts of one template share (all but the markers' rotations, :attr:`rot`)."""
         a = self.a
         rot = a["marker_rot"]
         self.element = bool(element)
@@ -133,7 +134,13 @@ class Part:
             tape_len=[len(self.code) // _W], tape_body_adr=[0], tape_nbody=[self.ntbody],
             tbody_body=list(range(self.ntbody)))
         m.update(element)
-        return repr(sorted(m.items()))
+        self.rot = tuple(m["marker_rot"])
+        return repr(sorted(item for item in m.items() if item[0] != "marker_rot"))
+
+    def row(self):
+        """The part's index table row: its global states, bodies, markers, constants, sensor
+        values, and sensors or channels."""
+        return [i for table in self.tables for i in table] + self.extra
 
 
 def parts(a):
@@ -176,11 +183,15 @@ def parts(a):
 class Template:
     """The generated code of one shape of part, and the index table of its instances."""
 
-    def __init__(self, first, limit):
-        self.scene = s = Scene(first.arrays, range(len(first.tables[3])), limit)
+    def __init__(self, members, limit):
+        first = members[0]
+        # markers' rotations are folded in when every instance has the same, else read
+        same = all(p.rot == first.rot for p in members)
+        self.scene = s = Scene(first.arrays, range(len(first.tables[3])), limit,
+                               rotations_at_run_time=not same)
         self.asm = Assembly(s, bodies=not first.element, elements=first.element)
         self.widths = [len(t) for t in first.tables]
-        self.rows = []
+        self.rows = [p.row() for p in members]
 
     def leaf(self, op, arg):
         """C text of a run-time leaf, through the instance's index table I."""
@@ -193,7 +204,7 @@ class Template:
         if array == "gravity":
             return f"m->gravity[{comp}]"
         base = {"body_mass": nq, "body_inertia": nq, "marker_pos": nq + nb,
-                "consts": nq + nb + nm}[array] + obj
+                "marker_rot": nq + nb, "consts": nq + nb + nm}[array] + obj
         stride = _STRIDE.get(array, 1)
         index = f"I[{base}]" if stride == 1 else f"{stride} * I[{base}] + {comp}"
         return f"m->{array}[{index}]"
@@ -226,14 +237,17 @@ def generate(kernel, limit=None):
     a = kernel.arrays
     if a["nuser"]:
         raise Unsupported("a user subroutine called from the kernel")
-    # templates by family: r the residual and iteration matrix, o outputs, s sensors
-    families, used = {"r": {}, "o": {}, "s": {}}, 0
+    # parts by family (r the residual and iteration matrix, o outputs, s sensors) and key
+    groups = {"r": {}, "o": {}, "s": {}}
     for family, part, key in [("r", p, k) for p, k in parts(a)] + channels(a):
-        tpl = families[family].get(key)
-        if tpl is None:
-            tpl = families[family][key] = Template(part, None if limit is None else limit - used)
+        groups[family].setdefault(key, []).append(part)
+    families, used = {}, 0
+    for family, by_key in groups.items():
+        families[family] = {}
+        for key, members in by_key.items():
+            tpl = Template(members, None if limit is None else limit - used)
+            families[family][key] = tpl
             used += len(tpl.scene.g.op)
-        tpl.rows.append([i for table in part.tables for i in table] + part.extra)
     ny = int(a["ny"])
     res = list(families["r"].values())
     trip, positions = _pattern(res, ny)

@@ -38,14 +38,18 @@ class Scene:
         parameters' slots.
     limit : int, optional
         Most graph nodes (:class:`~.sym.Unsupported` beyond it).
+    rotations_at_run_time : bool, optional
+        Read the markers' axes in their body frames at run time (``m->marker_rot``) rather
+        than fold them in (looped C, for parts whose markers differ only in orientation).
     """
 
-    def __init__(self, arrays, params=(), limit=None):
+    def __init__(self, arrays, params=(), limit=None, rotations_at_run_time=False):
         self.a = a = arrays
         if a["nuser"]:
             raise Unsupported("a user subroutine called from the kernel")
         self.g = Graph(limit)
         self.params = set(params)
+        self.rot_par = rotations_at_run_time
         self.ny = int(a["ny"])
         self.cf = float(a["force_scale"])
         self._bodies = {}
@@ -138,11 +142,17 @@ class Scene:
         if self.on_ground(mk, slot) or self.on_point(mk):
             if mk < 0:
                 return [g.one if i % 4 == 0 else g.zero for i in range(9)]
-            return [g.const(v) for v in self.a["marker_rot"][9 * mk:9 * mk + 9]]
+            return self.rotation(mk)
         A = self.body(self.slot_body(tape, slot))["A"]
-        R = self.a["marker_rot"][9 * mk:9 * mk + 9]
-        return [g.add(g.add(g.mul(g.const(R[j]), A[3 * i]), g.mul(g.const(R[3 + j]), A[3 * i + 1])),
-                      g.mul(g.const(R[6 + j]), A[3 * i + 2])) for i in range(3) for j in range(3)]
+        R = self.rotation(mk)
+        return [g.add(g.add(g.mul(R[j], A[3 * i]), g.mul(R[3 + j], A[3 * i + 1])),
+                      g.mul(R[6 + j], A[3 * i + 2])) for i in range(3) for j in range(3)]
+
+    def rotation(self, mk):
+        """The marker's axes in its body's frame (9, row-major), as numbers or run-time reads."""
+        if self.rot_par:
+            return [self.par("marker_rot", mk, j) for j in range(9)]
+        return [self.g.const(v) for v in self.a["marker_rot"][9 * mk:9 * mk + 9]]
 
     def vel(self, tape, mk, slot):
         g = self.g
