@@ -64,14 +64,14 @@ def literal(v):
 
 
 #: Doubles per object in the model arrays a ``par`` leaf reads (1 unless listed).
-_STRIDE = {"marker_pos": 3, "marker_rot": 9, "body_inertia": 9}
+STRIDE = {"marker_pos": 3, "marker_rot": 9, "body_inertia": 9}
 
 
 def plain_leaf(op, arg):
     """The C text of a run-time leaf of a whole scene's graph (y, yp, par, sv)."""
     if op == "par":
         array, obj, comp = arg
-        return f"m->{array}[{_STRIDE.get(array, 1) * obj + comp}]"
+        return f"m->{array}[{STRIDE.get(array, 1) * obj + comp}]"
     return f"{op}[{arg}]"
 
 

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..bindings import lib
 from .assemble import Assembly
-from .emit import _STRIDE, Emitter
+from .emit import STRIDE, Emitter
 from .scene import OP, Scene
 from .sym import Unsupported
 
@@ -205,7 +205,7 @@ class Template:
             return f"m->gravity[{comp}]"
         base = {"body_mass": nq, "body_inertia": nq, "marker_pos": nq + nb,
                 "marker_rot": nq + nb, "consts": nq + nb + nm}[array] + obj
-        stride = _STRIDE.get(array, 1)
+        stride = STRIDE.get(array, 1)
         index = f"I[{base}]" if stride == 1 else f"{stride} * I[{base}] + {comp}"
         return f"m->{array}[{index}]"
 
