@@ -20,11 +20,9 @@ import time
 
 import numpy as np
 
-from .._version import __version__
 from ..build.bindings import ffi, lib
 from ..build.kernel import UserFailure
-from ..results import Result
-from . import integrator, nonfinite
+from . import integrator, report
 from .outputs import Grid, Progress, over_budget
 
 #: Whether runs may take the fast path (tests switch it off to compare with the general path).
@@ -55,18 +53,18 @@ class FastRun:
         self.model, self.k, self.options, self.plan = model, kernel, options, plan
         self.solver = integrator.make(kernel, options, plan, (
             options.h_max or 0.0, options.h_min or 0.0, options.h0_max or 0.0))
-        # the print times of each command (those of outputs.Grid, bit for bit)
-        self.commands, t = [], 0.0
+        # each command, its start and its print times (those of outputs.Grid, bit for bit) in
+        # batches of one C call; every row's time
+        self.commands, t, rows = [], 0.0, [np.zeros(1)]
         for cmd in model.commands:
             grid = Grid(t, cmd.end_time, cmd.print_interval)
             times = np.append(t + cmd.print_interval * np.arange(1, grid.n + 1, dtype=float),
                               cmd.end_time)
-            self.commands.append((cmd, times, t))
+            batches = [times[i:i + Grid.BATCH] for i in range(0, len(times), Grid.BATCH)]
+            self.commands.append((cmd, t, batches))
+            rows.append(times)
             t = cmd.end_time
-        self.times = np.concatenate([[0.0]] + [times for _, times, _ in self.commands])
-        # the C calls: (command, its print times in batches)
-        self.calls = [(cmd, [times[i:i + Grid.BATCH] for i in range(0, len(times), Grid.BATCH)])
-                      for cmd, times, _ in self.commands]
+        self.times = np.concatenate(rows)
         self.nout = max(int(kernel.arrays["nout"]), 1)
         self.fb = ffi.from_buffer
         self.reached, self.tret = ffi.new("int *"), ffi.new("double *")
@@ -78,7 +76,7 @@ class FastRun:
         k, d, fb, opts = self.k, self.k.d, self.fb, self.options
         k.reset_counters()
         n, ny = len(self.times), k.ny
-        if any(over_budget(t, cmd, ny, len(k.channels)) for cmd, _, t in self.commands):
+        if any(over_budget(t, cmd, ny, len(k.channels)) for cmd, t, _ in self.commands):
             return None
         main = threading.current_thread() is threading.main_thread()
         if main:
@@ -100,15 +98,15 @@ class FastRun:
             Y[0], YP[0], REQ[0, :len(k.channels)] = y0, yp0, k.outputs(t0, y0, yp0)
             t_run = time.perf_counter()
             fresh, status = True, 0
-            start = self.solver
-            if lib.ps_ida_rerun(start.s, t0, fb("double[]", y0), fb("double[]", yp0)) != 0:
-                start.started = False
-                start.init_step(t0, y0, yp0)
-            for cmd, batches in self.calls:
+            ida = self.solver
+            if lib.ps_ida_rerun(ida.s, t0, fb("double[]", y0), fb("double[]", yp0)) != 0:
+                ida.started = False
+                ida.init_step(t0, y0, yp0)
+            for cmd, _, batches in self.commands:
                 steps = d.ntimes - d.nfail
                 for times in batches:
                     flag = lib.ps_ida_outputs(
-                        start.s, fb("double[]", times), len(times), cmd.end_time, fresh,
+                        ida.s, fb("double[]", times), len(times), cmd.end_time, fresh,
                         fb("double[]", Y[row:]), fb("double[]", YP[row:]),
                         fb("double[]", REQ[row:]), self.reached, self.tret, self.roots)
                     row += self.reached[0]
@@ -129,34 +127,14 @@ class FastRun:
             if ran or bar.shown:        # a run handed to the driver shows the driver's bar
                 bar.close(self.times[row - 1])
         t_end = time.perf_counter()
-        return self.result(T[:row], Y[:row], YP[:row], REQ[:row, :len(k.channels)], status,
-                           (t_start, t_run, t_end), used, static, labels, log)
+        return self.result((T[:row], Y[:row], YP[:row], REQ[:row, :len(k.channels)]), status,
+                           (t_start, t_run, t_end), (used, static, labels), log)
 
-    def result(self, T, Y, YP, REQ, status, times, used, static, labels, log):
-        """The Result of a run that reached row len(T) (status 0, or -600 interrupted)."""
-        k, model = self.k, self.model
-        c, ida = k.counters, self.solver.counters()
-        stats = {"steps": int(k.d.ntimes - k.d.nfail), "nres": c["nres"], "njac": c["njac"],
-                 "nfail": c["nfail"], "outputs": len(T), "nroots": c["nroots"], "nevents": 0,
-                 "nrearms": 0, "nrestarts": 0, "ida_nfev": ida["nfev"],
-                 "ida_njev": ida["njev"], "netf": ida["netf"], "ncfn": ida["ncfn"],
-                 "growth_limited_at": ida["growth_limited_at"]}
-        t_start, t_run, t_end = times
-        gen = k.codegen
-        timing = {"setup": t_run - t_start, "integrate": t_end - t_run, "total": t_end - t_start,
-                  "generate": gen.pop("generate_unreported", 0.0),
-                  "compile": gen.pop("compile_unreported", 0.0)}
-        used = dict(used, linsolver=self.plan.linsolver, backend="c")
-        meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
-                "options": used, "ny": k.ny, "stepping": "normal", "static": dict(static),
-                "usersubs": dict(model.usersub_paths), "kernel": gen["kernel"]}
-        log = log + nonfinite.channels(model, k, T, REQ)
-        if status:
-            message = f"interrupted at t = {T[-1]:.6g}"
-        else:
-            message = "The simulation finished."
-        return Result(t=T, y=Y, yp=YP, outputs=REQ, channels=k.channels,
-                      state_names=k.layout.names, success=not status, status=status,
-                      message=message, stats=stats, timing=timing, meta=meta, labels=labels,
-                      log=log, controllers={})
-
+    def result(self, rows, status, clock, settings, log):
+        """The Result of a run that reached len(rows[0]) rows (status 0, or -600 Ctrl-C)."""
+        k = self.k
+        message = f"interrupted at t = {rows[0][-1]:.6g}" if status else \
+            "The simulation finished."
+        return report.result(self.model, k, self.plan, settings, rows,
+                             (not status, status, message), clock, self.solver.counters(), log,
+                             steps=int(k.d.ntimes - k.d.nfail))

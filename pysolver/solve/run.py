@@ -4,10 +4,8 @@ import dataclasses
 import threading
 import time
 
-from .._version import __version__
 from ..build.bindings import lib
-from ..results import Result
-from . import nonfinite
+from . import report
 from .driver import Run
 from .fast import fast_run
 
@@ -36,7 +34,6 @@ def run_model(model, progress=None, overrides=None, actors=()):
     run.log.extend(log)
     for actor in actors:
         run.add_actor(actor)
-    t_run = time.perf_counter()
     # Ctrl-C (main thread only): the C kernel's handler ends the run at its next residual
     main = threading.current_thread() is threading.main_thread()
     if main:
@@ -48,35 +45,16 @@ def run_model(model, progress=None, overrides=None, actors=()):
             lib.ps_interrupt_disarm()
     t_end = time.perf_counter()
     ida, growth_limited_at = run.counters()
-    c = kernel.counters
-    stats = {"steps": run.steps(), "nres": c["nres"], "njac": c["njac"], "nfail": c["nfail"],
-             "outputs": len(run.printer.ts), "nroots": c["nroots"],
-             "nevents": len(run.events), "nrearms": run.sensors.nrearms,
-             "nrestarts": max(run.nstarts - 1, 0),
-             "ida_nfev": ida["nfev"], "ida_njev": ida["njev"],
-             "netf": ida["netf"] if run.plan.use_c else None,
-             "ncfn": ida["ncfn"] if run.plan.use_c else None,
-             "growth_limited_at": growth_limited_at}
-    setup = (t_run - t_start) + ((run.t_setup or t_end) - t_run)
-    timing = {"setup": setup, "integrate": (t_end - t_start) - setup, "total": t_end - t_start,
-              # the one-time cost of the generated kernel, on the run that built it
-              "generate": gen.pop("generate_unreported", 0.0),
-              "compile": gen.pop("compile_unreported", 0.0)}
-    used = dict(used, linsolver=run.plan.linsolver,
-                backend="c" if run.plan.use_c else "sksundae")
-    meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
-            "options": used, "ny": kernel.ny, "stepping": "onestep" if run.onestep else "normal",
-            "static": dict(static), "usersubs": dict(model.usersub_paths),
-            "kernel": gen["kernel"]}
+    ida["growth_limited_at"] = growth_limited_at
     pr = run.printer
-    ts, outputs = pr.ts.array(), pr.outs.array(len(kernel.channels))
-    run.log.extend(nonfinite.channels(model, kernel, ts, outputs))
-    return Result(t=ts, y=pr.ys.array(kernel.ny), yp=pr.yps.array(kernel.ny),
-                  outputs=outputs, channels=kernel.channels,
-                  state_names=kernel.layout.names, success=success, status=status,
-                  message=message, stats=stats, timing=timing, meta=meta, labels=labels,
-                  events=run.events, log=run.log, statics=run.statics,
-                  controllers={task.lc.id: task.records() for task in run.controls})
+    rows = (pr.ts.array(), pr.ys.array(kernel.ny), pr.yps.array(kernel.ny),
+            pr.outs.array(len(kernel.channels)))
+    return report.result(model, kernel, run.plan, (used, static, labels), rows,
+                         (success, status, message), (t_start, run.t_setup or t_end, t_end),
+                         ida, run.log, steps=run.steps(), nevents=len(run.events),
+                         nrearms=run.sensors.nrearms, nrestarts=max(run.nstarts - 1, 0),
+                         onestep=run.onestep, events=run.events, statics=run.statics,
+                         controllers={task.lc.id: task.records() for task in run.controls})
 
 
 def _settings(model, overrides):
