@@ -467,8 +467,16 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
    * means the last attempt failed. The driver sets last_t to the time of every (re)start,
    * so steps taken = ntimes - nfail. */
   if (t != d->last_t) {
-    if (t < d->last_t) d->nfail++;
-    d->ntimes++;
+    long ntimes = d->ntimes + 1, nfail = d->nfail + (t < d->last_t);
+    /* max_num_steps: the step this attempt would make is one too many (not recoverable) */
+    if (d->step_limit > 0 && ntimes - nfail > d->step_limit) {
+      d->steps_exceeded = 1;
+      d->user_error = 1;
+      snprintf(d->msg, sizeof(d->msg), "max_num_steps reached");
+      return PS_ERR_NONFINITE;
+    }
+    d->ntimes = ntimes;
+    d->nfail = nfail;
   }
   d->last_t = t;
   if (m->gen)

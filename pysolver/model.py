@@ -335,16 +335,18 @@ class Model:
             The deck has no moving body, or a Simulate command's outputs would not fit (naming
             its file and line).
         """
-        from .solve.outputs import over_budget
+        from .solve.outputs import command_rows, over_budget
         if not any(b.kind != "ground" for b in self.bodies.values()):
             raise DeckError("the deck has no moving body (a Body_Rigid that is not ground, or "
                             "a Body_Point): there is nothing to simulate",
                             file=self.source.file)
         kernel = self._kernel()
-        t = 0.0
+        t, rows = 0.0, 1
         for cmd in self.commands:
             if cmd.analysis == "TRANSIENT":
-                why = over_budget(t, cmd, kernel.ny, len(kernel.channels))
+                rows += command_rows(t, cmd.end_time, cmd.print_interval)
+                why = over_budget(rows, kernel.ny, len(kernel.channels),
+                                  f"the Simulate command ending at {cmd.end_time:g}")
                 if why:
                     raise DeckError(why, file=self.source.file, line=cmd.line,
                                     element="Simulate", attribute="print_interval")

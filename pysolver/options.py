@@ -25,11 +25,13 @@ NONLIN_CONV_COEF = 0.033
 #: Rules beyond the type: (test, text) per option; the text completes "must be ..." and
 #: "expected a value ...".
 _RULES = {
-    "integr_tol": (lambda v: v > 0, "> 0"),
+    # below 1e-14 rounding of the state is larger than the tolerance; above 1 nothing is controlled
+    "integr_tol": (lambda v: 1e-14 <= v <= 1, "in [1e-14, 1]"),
     "h_max": (lambda v: v > 0, "> 0"),
     "h_min": (lambda v: v >= 0, ">= 0"),
     "h0_max": (lambda v: v > 0, "> 0"),
-    "max_num_steps": (lambda v: v > 0, "> 0"),
+    "max_num_steps": (lambda v: v > 0 and v == int(v) and not isinstance(v, bool),
+                      "a whole number > 0"),
     "max_step_growth": (lambda v: v > 1, "> 1"),
     "nonlin_conv_coef": (lambda v: 0 < v < 1, "in (0, 1)"),
 }

@@ -280,6 +280,10 @@ typedef struct psData {
   int bad_partial;        /* 1 if it was a first partial of the element's value  */
   double bad_value;       /* the non-finite value itself                        */
   double* bad_y;          /* (ny x 1) the state at that evaluation              */
+  long step_limit;        /* > 0: a residual that would start step number
+                             step_limit + 1 (ntimes - nfail) ends the run, with
+                             steps_exceeded and user_error set; 0: no limit     */
+  int steps_exceeded;     /* 1 after step_limit stopped a run                   */
   char msg[256];          /* message of the last error                          */
 } psData;
 
@@ -292,7 +296,9 @@ enum {
 };
 
 /* Evaluate the DAE residual res = F(t, y, yp).
- * All arrays have length m->ny. Returns PS_OK, or PS_ERR_NONFINITE with a message in d->msg. */
+ * All arrays have length m->ny. Returns PS_OK, or PS_ERR_NONFINITE with a message in d->msg
+ * (a non-finite value, an interrupt, a user subroutine's error, or a step past
+ * d->step_limit). */
 int ps_residual(const psModel* m, psData* d, double t, const double* y, const double* yp,
                 double* res);
 

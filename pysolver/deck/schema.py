@@ -185,10 +185,10 @@ def convert(ctx, name, kind, raw):
         if val <= 0:
             raise ctx.error(f"got {val}; expected a positive integer", name)
         return val
-    if kind == "gain":               # a number, or AUTO (chosen by the controller)
+    if kind == "gain":               # a number >= 0, or AUTO (chosen by the controller)
         if str(raw).strip().upper() == "AUTO":
             return "auto"
-        kind = "float"
+        kind = "nonneg"
     if kind in ("float", "pos", "nonneg"):
         try:
             val = float(str(raw).strip().replace("d", "e").replace("D", "e")) \

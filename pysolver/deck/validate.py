@@ -22,7 +22,7 @@ from ..model import (
     Variable,
     VectorForce,
 )
-from ..options import DECK_NAMES, Options
+from ..options import DECK_NAMES, Options, rule_problem
 from . import units as un
 from . import usersubs
 from .bodies import add_bodies
@@ -47,6 +47,7 @@ def build_model(elements, source):
     markers_raw = {}
     bodies_raw = []
     later = []
+    once = {}
     sim_t = 0.0
     for tag, attrs, line, names in elements:
         canon = CANONICAL.get(tag.lower())
@@ -68,15 +69,18 @@ def build_model(elements, source):
             model.force_scale = un.force_scale(**model.units)
             model.has_units = True
         elif canon == "Force_Gravity":
-            model.gravity = np.array([a["grav_x"], a["grav_y"], a["grav_z"]])
+            _once(ctx, once, "Force_Gravity")
+            model.gravity = _gravity(ctx, a)
         elif canon == "Reference_Marker":
             markers_raw[a["id"]] = (ctx, a)
         elif canon in ("Body_Rigid", "Body_Point"):
             bodies_raw.append((ctx, a))
         elif canon == "Param_Static":
+            _once(ctx, once, "Param_Static")
             model.static = Static(**{k: a[k] for k in SCHEMA["Param_Static"] if k != "label"})
         elif canon == "Param_Transient":
-            model.transient = Options(**{k: a[k] for k in DECK_NAMES if a[k] is not None})
+            _once(ctx, once, "Param_Transient")
+            model.transient = _transient(ctx, a)
         elif canon == "Simulate":
             sim_t = _simulate(ctx, a, model, sim_t)
         elif canon == "Stop":
@@ -100,11 +104,79 @@ def build_model(elements, source):
     if not model.commands:
         model.commands.append(Simulate("TRANSIENT", 1.0, 0.01))
         model.default_command = True
+    _check_intervals(model)
     return model
+
+
+#: Largest magnitude of a gravity component, in any unit system (9.81 m/s^2 is 9.81e9 nm/s^2):
+#: past it forces and accelerations are beyond what the integrator can carry.
+MAX_GRAVITY = 1e20
+
+
+def _once(ctx, once, tag):
+    """A settings element given twice would silently let the later one win: refuse it."""
+    if tag in once:
+        raise ctx.error(f"a second <{tag}> (the first is on line {once[tag]}); give one")
+    once[tag] = ctx.line
+
+
+def _gravity(ctx, a):
+    for axis in "xyz":
+        val = a[f"grav_{axis}"]
+        if abs(val) > MAX_GRAVITY:
+            raise ctx.error(f"got {val:g}; expected |grav_{axis}| <= {MAX_GRAVITY:g} (in any "
+                            "unit system gravity is far smaller)", f"grav_{axis}")
+    return np.array([a["grav_x"], a["grav_y"], a["grav_z"]])
+
+
+def _transient(ctx, a):
+    """Param_Transient as Options, each value checked against its option's rule."""
+    given = {k: a[k] for k in DECK_NAMES if a[k] is not None}
+    for name, val in given.items():
+        problem = rule_problem(name, val)
+        if problem:
+            raise ctx.error(f"got {val:g}; expected {name} {problem}", name)
+    return Options(**given)
+
+
+def _check_intervals(model):
+    """A sensor's dt and a LoadControl's UpdateTime obey the rule of a print interval: at most
+    MAX_ROWS rows (updates) in one command."""
+    spans = [(c.end_time - t0) for c, t0 in zip(model.commands, _starts(model.commands))
+             if c.analysis == "TRANSIENT"]
+    longest = max(spans, default=0.0)
+    items = [("sensor", s.id, s.dt, "Sensor_Event", "dt") for s in model.sensors.values()
+             if s.dt is not None]
+    items += [("loadcontrol", c.id, c.update_time, "LoadControl", "updatetime")
+              for c in model.controls.values()]
+    for kind, eid, dt, tag, attr in items:
+        rows = longest / dt
+        if not rows < MAX_ROWS:
+            ctx = model._where[(kind, eid)]
+            what = "output rows" if kind == "sensor" else "controller updates"
+            raise ctx.error(f"{longest:g} s every {dt:g} s would be {rows:.3g} {what}; at "
+                            f"most {MAX_ROWS:.0e} per command", attr)
+
+
+def _starts(commands):
+    t = 0.0
+    for c in commands:
+        yield t
+        t = c.end_time
 
 
 #: Most output rows one Simulate command may ask for (a memory budget applies at run time).
 MAX_ROWS = 1e9
+
+#: Shortest transient command, relative to |end_time| and absolute (time units): IDA's first
+#: step is a fraction of the command and must stay far above rounding of the time and far
+#: from underflow (1e-300 fails in IDA).
+MIN_SPAN = 1e-12
+MIN_DURATION = 1e-30
+
+
+def given_span(a):
+    return "duration" if a["duration"] is not None else "end_time"
 
 
 def _simulate(ctx, a, model, t_prev):
@@ -137,6 +209,12 @@ def _simulate(ctx, a, model, t_prev):
         dt = (end - t_prev) / a["num_step"]
     else:
         dt = (end - t_prev) / 100.0
+    span = end - t_prev
+    shortest = max(MIN_SPAN * abs(end), MIN_DURATION)
+    if not span >= shortest:
+        raise ctx.error(f"the command lasts {span:g}; expected at least {shortest:g} "
+                        f"({MIN_SPAN:g} of |end_time|, and {MIN_DURATION:g}): IDA cannot "
+                        "take a first step in less", given_span(a))
     rows = (end - t_prev) / dt
     if not math.isfinite(end - t_prev) or not rows < MAX_ROWS:
         raise ctx.error(f"{end - t_prev:g} s every {dt:g} s would be {rows:.3g} output rows; "

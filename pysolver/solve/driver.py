@@ -20,9 +20,17 @@ from ..build.kernel import UserFailure
 from . import integrator, nonfinite, quasistatic
 from .actors import Actor, Flow
 from .loadcontrol import LoadControlTask, NonFinite
-from .outputs import Printer, Progress, over_budget
+from .outputs import Printer, Progress, command_rows, over_budget
 from .sensors import Chatter, Sensors
 from .step import ROOT_RETURN, TOO_MUCH_WORK
+
+
+def max_steps_message(limit, t):
+    """The message of a command stopped by max_num_steps at time t."""
+    return (f"max_num_steps = {limit} reached: the Simulate command took {limit} steps "
+            f"(IDA's converged steps, counted from the command's start) and stopped at "
+            f"t = {t:.6g}; raise max_num_steps (Param_Transient) or loosen the scene's "
+            "stiffest element")
 
 
 class Stop(Exception):
@@ -175,27 +183,50 @@ class Run:
             flow.update(actor.on_roots(self, step.roots[sl]))
         return self.apply(flow)
 
-    def check_output_budget(self, cmd):
-        """Stop before allocating when the command's output rows would pass the memory budget
-        (see outputs.over_budget)."""
-        why = over_budget(self.t, cmd, self.kernel.ny, len(self.kernel.channels))
+    def interrupted(self):
+        """The Stop of a Ctrl-C: the time is that of the last row kept (a batch may have run
+        past the driver's own time)."""
+        t = max(self.t, self.printer.ts.last) if self.printer.ts else self.t
+        return Stop(False, -600, f"interrupted at t = {t:.6g}")
+
+    def check_output_budget(self, end, dt, what):
+        """Stop before allocating when the rows kept so far and those of printing every dt to
+        end would pass the memory budget (see outputs.over_budget)."""
+        rows = len(self.printer.ts) + command_rows(self.t, end, dt)
+        why = over_budget(rows, self.kernel.ny, len(self.kernel.channels), what)
         if why:
             raise Stop(False, -500, why)
+
+    def set_print_interval(self, dt, what):
+        """A new print interval from now on (a sensor's dt action), within the budget."""
+        if self.printer.end is not None:
+            self.check_output_budget(self.printer.end, dt, f"{what} at t = {self.t:.6g}")
+        self.printer.set_interval(self.t, dt)
 
     # a transient command -------------------------------------------------------------
     def run_transient(self, cmd):
         printer = self.printer
-        self.check_output_budget(cmd)
+        self.check_output_budget(cmd.end_time, cmd.print_interval,
+                                 f"the Simulate command ending at {cmd.end_time:g}")
         # the schedule first: the first converged step's snapshot holds the command's interval
         printer.begin_command(self.t, cmd.end_time, cmd.print_interval)
         if self.need_start:
             self.start(self.first_step)
             self.first_step = None
-        start_steps = self.steps()
+        # max_num_steps counts the command's converged steps; the kernel ends the run at the
+        # attempt of one more (d.step_limit), on either integrator
+        self.kernel.d.step_limit = self.steps() + self.options.max_num_steps
+        try:
+            self.integrate_command(cmd)
+        finally:
+            self.kernel.d.step_limit = 0
+
+    def integrate_command(self, cmd):
+        printer = self.printer
         timed = [a for a in self.actors if a is not printer]
         while printer.pending:
             if lib.ps_interrupted():
-                raise Stop(False, -600, f"interrupted at t = {self.t:.6g}")
+                raise self.interrupted()
             if self.act_due(timed):
                 return
             self.kernel.d.bad_kind = 0        # a non-finite value names itself in C (below)
@@ -218,14 +249,12 @@ class Run:
             else:
                 step = self.solver.step(min(printer.pending[0], tstop), tstop)
             if lib.ps_interrupted():          # Ctrl-C: the rows so far are kept
-                raise Stop(False, -600, f"interrupted at t = {self.t:.6g}")
+                raise self.interrupted()
+            if self.kernel.d.steps_exceeded or step.status == TOO_MUCH_WORK:
+                t_end = self.kernel.d.last_t if self.kernel.d.steps_exceeded else step.t
+                raise Stop(False, -100, max_steps_message(self.options.max_num_steps, t_end))
             if self.kernel.d.user_error:      # a user subroutine reported an error
                 raise Stop(False, -400, f"{self.kernel.message} (t = {step.t:.6g})")
-            if step.status == TOO_MUCH_WORK or \
-                    self.steps() - start_steps > self.options.max_num_steps:
-                raise Stop(False, -100, f"more than max_num_steps = "
-                           f"{self.options.max_num_steps} steps in one Simulate command "
-                           f"(stopped at t = {step.t:.6g})")
             if not step.success:
                 why = nonfinite.describe(self.model, self.kernel)
                 if why:
@@ -293,6 +322,8 @@ class Run:
         except Stop as stop:
             return stop.success, stop.status, stop.message
         finally:
+            for task in self.controls:
+                self.log.extend(task.notes())
             self.bar.close(self.t)
         return True, 0, "The simulation finished."
 

@@ -76,8 +76,8 @@ class FastRun:
         k, d, fb, opts = self.k, self.k.d, self.fb, self.options
         k.reset_counters()
         n, ny = len(self.times), k.ny
-        if any(over_budget(t, cmd, ny, len(k.channels)) for cmd, t, _ in self.commands):
-            return None
+        if over_budget(n, ny, len(k.channels), "the run"):
+            return None                     # the driver stops at the command past the budget
         main = threading.current_thread() is threading.main_thread()
         if main:
             lib.ps_interrupt_arm()
@@ -103,7 +103,7 @@ class FastRun:
                 ida.started = False
                 ida.init_step(t0, y0, yp0)
             for cmd, _, batches in self.commands:
-                steps = d.ntimes - d.nfail
+                d.step_limit = d.ntimes - d.nfail + opts.max_num_steps    # as the driver
                 for times in batches:
                     flag = lib.ps_ida_outputs(
                         ida.s, fb("double[]", times), len(times), cmd.end_time, fresh,
@@ -114,14 +114,14 @@ class FastRun:
                     if lib.ps_interrupted():
                         status = -600
                         break
-                    if flag < 0 or self.reached[0] < len(times) or d.user_error or \
-                            d.ntimes - d.nfail - steps > opts.max_num_steps:
+                    if flag < 0 or self.reached[0] < len(times) or d.user_error:
                         return None
                     bar.update(T[row - 1])
                 if status:
                     break
             ran = True
         finally:
+            d.step_limit = 0
             if main:
                 lib.ps_interrupt_disarm()
             if ran or bar.shown:        # a run handed to the driver shows the driver's bar

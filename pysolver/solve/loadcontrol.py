@@ -71,6 +71,17 @@ class LoadControlTask(Actor):
         self.n += 1
         return Flow(restart=True)
 
+    def notes(self):
+        """Log lines on the run as a whole: a task whose velocity was clamped at MaxVelocity in
+        every update never controlled the load."""
+        log = self.law.log
+        if log and all(row[FIELDS.index("clamped")] for row in log):
+            return [f"LoadControl {self.lc.id}: the velocity was clamped at MaxVelocity = "
+                    f"{self.lc.max_velocity:g} in all {len(log)} updates, so the load never "
+                    "followed its target (raise MaxVelocity, or check direction, material and "
+                    "the sign of Load_Function)"]
+        return []
+
     def records(self):
         """The per-update log as {field: list}, fields as loadlaw.FIELDS."""
         cols = list(zip(*self.law.log)) if self.law.log else [()] * len(FIELDS)

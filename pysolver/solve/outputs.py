@@ -23,17 +23,22 @@ def print_times(t0, end, dt):
     return np.append(times, end)
 
 
-def over_budget(t0, cmd, ny, nchannels):
-    """The message when a transient command from t0 would write more output rows than the
-    memory budget (PYSOLVER_OUTPUT_BUDGET bytes, default 2 GiB) allows, else None."""
-    rows = (cmd.end_time - t0) / cmd.print_interval + 1
+def command_rows(t0, end, dt):
+    """How many output rows printing every dt from t0 to end writes (the end included)."""
+    return (end - t0) / dt + 1
+
+
+def over_budget(rows, ny, nchannels, what):
+    """The message when a run would hold `rows` output rows in all, more than the memory budget
+    (PYSOLVER_OUTPUT_BUDGET bytes, default 2 GiB) allows, else None. `what` names what asks
+    for them ("the Simulate command ending at 3", "Sensor_Event 2's dt = 1e-07 at t = 0.5")."""
     per_row = 8 * (2 * ny + max(nchannels, 1))
     budget = float(os.environ.get("PYSOLVER_OUTPUT_BUDGET", 2 ** 31))
     if rows * per_row <= budget:
         return None
-    return (f"the Simulate command ending at {cmd.end_time:g} would write {rows:.3g} output "
-            f"rows ({rows * per_row / 2 ** 30:.3g} GiB), more than the output budget of "
-            f"{budget / 2 ** 30:.3g} GiB; give a larger print_interval or set "
+    return (f"{what} would make the run write {rows:.3g} output rows "
+            f"({rows * per_row / 2 ** 30:.3g} GiB), more than the output budget of "
+            f"{budget / 2 ** 30:.3g} GiB; give a larger print interval or set "
             "PYSOLVER_OUTPUT_BUDGET (bytes)")
 
 
@@ -47,8 +52,11 @@ class Grid:
     def __init__(self, t0=0.0, end=0.0, dt=1.0, empty=False):
         self.t0, self.end, self.dt = t0, end, dt
         n = max(int(math.floor((end - t0) / dt + 1e-9)), 0)
-        # grid times within rounding of the end give way to the end itself
-        while n and t0 + dt * n >= end - 1e-12 * max(1.0, abs(end)):
+        # grid times within rounding of the end give way to the end itself (a step or two; the
+        # bound keeps a grid finer than the times' rounding, refused earlier, from looping)
+        for _ in range(4):
+            if not (n and t0 + dt * n >= end - 1e-12 * max(1.0, abs(end))):
+                break
             n -= 1
         self.n, self.k, self.end_left = n, 1, not empty
 

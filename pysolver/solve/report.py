@@ -2,7 +2,7 @@
 :mod:`.driver`): its statistics, timing and metadata are built here, once."""
 from .._version import __version__
 from ..results import Result
-from . import nonfinite
+from . import nonfinite, precision
 
 
 def result(model, kernel, plan, settings, rows, outcome, clock, ida, log, *, steps,
@@ -36,6 +36,10 @@ def result(model, kernel, plan, settings, rows, outcome, clock, ida, log, *, ste
     used, static, labels = settings
     t, y, yp, outputs = rows
     success, status, message = outcome
+    if success and len(t):
+        why = precision.check(model, kernel, t[-1], y[-1], yp[-1])
+        if why:
+            success, status, message = False, precision.STATUS, why
     t_start, t_setup, t_end = clock
     c, gen = kernel.counters, kernel.codegen
     stats = {"steps": steps, "nres": c["nres"], "njac": c["njac"], "nfail": c["nfail"],

@@ -194,7 +194,7 @@ class Sensors(Actor):
                 k_.senval[idx] = k_.evaluate(idx, run.t, run.y, run.yp)
                 flow.restart |= k_.forces_use_senval
             if se.dt is not None:
-                run.printer.set_interval(run.t, se.dt)
+                run.set_print_interval(se.dt, f"Sensor_Event {se.id}'s dt = {se.dt:g}")
             if se.stepsize is not None:
                 flow.update(Flow(first_step=se.stepsize))
             if se.hmax is not None:

@@ -15,7 +15,10 @@ _MESSAGES = {0: "Successful function return.", 1: "Reached specified tstop.",
              -8: "The residual function failed unrecoverably.",
              -9: "The residual function failed recoverably too many times.",
              -10: "The root function failed.",
-             -12: "The residual function failed at the first call."}
+             -12: "The residual function failed at the first call.",
+             -22: "IDA rejected its input (IDA_ILL_INPUT): a step bound, the time span or "
+                  "the state's scale is not usable (an h_max, h_min or h0_max out of "
+                  "proportion to the command, or initial rates that overflow)."}
 
 
 @dataclasses.dataclass

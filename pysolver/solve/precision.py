@@ -1,0 +1,82 @@
+"""Whether a run's answer is within what double precision can carry.
+
+A stiff element (a Force_Penalty of 1e15 on a bead of 1 kg) turns the rounding of the state
+into forces: a position known to one unit in the last place, u |q|, moves a force row by
+sum_j |dF_r/dy_j| u |y_j|. Where that is not small beside the forces the row carries (its
+mass times gravity or its acceleration, the penalties' own force on it and the net of its
+applied forces), the trajectory
+follows rounding, not physics: seed example 1 with penalty 1e15 ends 20 % off with every
+error test passed. IDA's tolerance cannot see this (the error is in the residual, not the
+step), so the check is made on the final state of a run that succeeded, and such a run is
+reported as failed (status -710) with the element and a coefficient that would work.
+
+The check reads the iteration matrix at cj = 0 once per run (no cost per step). It measures
+the translational rows of each moving body; a body with no force to compare with (no
+gravity, no acceleration, no applied force) is skipped.
+"""
+import math
+
+import numpy as np
+
+#: Rounding of a double (unit roundoff).
+UNIT = 2.0 ** -53
+
+#: Largest ratio of a row's rounding-driven force to the force it carries. On seed example 1
+#: the final position's error from rounding is about 10-25 times this ratio (penalty 1e13:
+#: ratio 8e-5; 1e14: 8e-4, 1.8 % off; 1e15: 7e-3, 20 % off), so 1e-5 keeps it near 1e-4.
+LIMIT = 1e-5
+
+#: The coefficient suggested is the one that gives this ratio (a factor of 10 inside LIMIT).
+SUGGEST = 1e-6
+
+STATUS = -710
+
+
+def check(model, kernel, t, y, yp):
+    """None, or the message of a run whose final state (t, y, yp) is past double precision."""
+    lay = kernel.layout
+    if not lay.bodies or not (model.penalties or model.sforces or model.vforces):
+        return None
+    if kernel.ny >= 300:
+        J0 = kernel.jacobian_csc_array(t, y, yp, 0.0).tocsr()
+        J0.data = np.abs(J0.data)
+    else:
+        J0 = np.abs(kernel.jacobian_array(t, y, yp, 0.0))
+    scale = np.abs(y)
+    scale[lay.algebraic] = 0.0            # reactions are not rounded positions
+    noise = J0 @ scale * UNIT
+    # the forces each row carries, in the residual's units: inertia and gravity, the penalties'
+    # force, and the net of every force but reactions (F at yp = 0 without them)
+    loads = kernel.m.force_scale * kernel.penalty_loads(t, y, yp) if model.penalties else \
+        np.zeros(kernel.ny)
+    free = np.array(y, dtype=float)
+    free[lay.algebraic] = 0.0
+    net = kernel.residual_array(t, free, np.zeros_like(free))
+    g = float(np.linalg.norm(model.gravity))
+    worst, where = 0.0, None
+    for b, ua in zip(lay.bodies, lay.uadr):
+        rows = slice(ua, ua + 3)
+        ref = b.mass * max(g, float(np.linalg.norm(yp[rows]))) + \
+            float(np.linalg.norm(loads[rows])) + float(np.linalg.norm(net[rows]))
+        if not ref > 0.0:
+            continue
+        ratio = float(np.max(noise[rows])) / ref
+        if ratio > worst:
+            worst, where = ratio, b
+    if where is None or not worst > LIMIT:
+        return None
+    return _message(model, worst, where, t)
+
+
+def _message(model, ratio, body, t):
+    what = (f"at t = {t:.6g} the rounding of the state moves the forces on body {body.id} by "
+            f"{ratio:.2g} of the forces it carries (more than {LIMIT:g}): the result follows "
+            "rounding, not the model")
+    if model.penalties:
+        pid, pen = max(model.penalties.items(), key=lambda kv: kv[1].penalty)
+        better = pen.penalty * SUGGEST / ratio
+        better = 10.0 ** math.floor(math.log10(better)) if better > 0 else 0.0
+        return (f"{what}; Force_Penalty {pid}'s penalty = {pen.penalty:g} is past what double "
+                f"precision can carry here: use penalty <= {better:.0e} (or make the "
+                "constraint exact)")
+    return f"{what}; lower the stiffness of the scene's stiffest force element"

@@ -1,0 +1,218 @@
+"""Limits a deck or a run cannot pass unnoticed (issue 22, items 4-7): a sensor's print interval
+under the same rules as print_interval, answers past double precision reported as failures,
+numbers IDA cannot use refused at load, max_num_steps counted and enforced as it runs, and a
+settings element given twice."""
+import math
+import os
+import re
+import signal
+import threading
+
+import numpy as np
+import pytest
+
+import pysolver
+from pysolver.solve.step import Step
+
+from helpers import DECKS
+
+BEAD = (DECKS / "catenary_bead.xml").read_text()
+DROP = (DECKS / "sensor_output_interval.xml").read_text()
+LOADCONTROL = (DECKS / "loadcontrol_indenter.xml").read_text()
+#: the exact x(3) of seed example 1 (a bead held exactly on the catenary)
+BEAD_X3 = -0.45469
+
+
+def _bead(penalty):
+    return pysolver.loads(BEAD.replace('penalty="1E4"', f'penalty="{penalty}"'))
+
+
+# item 4: a sensor's dt -----------------------------------------------------------------------
+def test_sensor_dt_too_fine_for_any_grid_is_a_deck_error():
+    """dt = 1e-300 looped forever in the output grid; it is refused at load, as the same
+    print_interval is."""
+    with pytest.raises(pysolver.DeckError, match=r"1\.3 s every 1e-300 s would be 1\.3e\+300 "
+                       r"output rows; at most 1e\+09") as info:
+        pysolver.loads(DROP.replace('dt="1e-2"', 'dt="1e-300"'))
+    assert info.value.element == "Sensor_Event" and info.value.attribute == "dt"
+    assert info.value.line == 14          # the line of the attribute
+
+
+def test_sensor_dt_past_the_output_budget_stops_the_run(monkeypatch):
+    """dt = 1e-7 after the sensor fires at t = 1.01 s would write 2.9e6 rows (about 100 MB):
+    under a 100 MB budget the run stops there with status -500, naming the sensor, having
+    written no row of the finer grid."""
+    monkeypatch.setenv("PYSOLVER_OUTPUT_BUDGET", str(100 * 2 ** 20))
+    res = pysolver.loads(DROP.replace('dt="1e-2"', 'dt="1e-7"')).run()
+    assert not res.success and res.status == -500
+    assert "Sensor_Event 200's dt = 1e-07 at t = 1.00964" in res.message
+    assert "output budget" in res.message
+    assert len(res.t) == 11 and res.t[-1] == 1.0       # the rows of the 0.1 s grid only
+    assert float(re.search(r"at t = (\S+) ", res.message).group(1)) == \
+        pytest.approx(math.sqrt(10 / 9.81), abs=1e-5)
+
+
+def test_sensor_dt_within_the_budget_runs():
+    res = pysolver.loads(DROP).run()
+    assert res.success and np.allclose(np.diff(res.t[-5:-1]), 0.01)
+
+
+# item 5: past double precision --------------------------------------------------------------
+@pytest.mark.parametrize("penalty", ["1E15", "1E100"])
+def test_a_penalty_past_double_precision_is_a_failed_run(penalty):
+    """Seed example 1 with penalty 1e15 ended at x(3) = -0.36389 (exact -0.45469) with
+    success=True, and at 1e100 the bead never moved: both are failures that name the element
+    and a penalty that works."""
+    res = _bead(penalty).run()
+    assert not res.success and res.status == -710
+    assert f"Force_Penalty 1's penalty = {float(penalty):g} is past what double precision " \
+           "can carry" in res.message
+    better = float(re.search(r"use penalty <= (\S+) ", res.message).group(1))
+    assert better == 1e11 if penalty == "1E15" else better < 1e20
+    assert len(res.t) == 301                      # the rows are kept
+
+
+def test_the_suggested_penalty_gives_the_right_answer():
+    res = _bead("1E11").run()
+    assert res.success, res.message
+    assert res.request(1)[-1, 0] == pytest.approx(BEAD_X3, abs=1e-3)
+
+
+@pytest.mark.parametrize("deck", sorted(p.name for p in DECKS.glob("*.xml")))
+def test_the_example_decks_are_within_double_precision(deck):
+    """No false alarm: every example deck (stiff penalties of 1e8 among them) passes."""
+    res = pysolver.load(DECKS / deck).run()
+    assert res.status != -710, res.message
+
+
+# item 6: numbers IDA cannot use --------------------------------------------------------------
+@pytest.mark.parametrize("old, new, attribute, match", [
+    ('grav_y="-9.81"', 'grav_y="-1e308"', "grav_y", r"got -1e\+308; expected \|grav_y\| <= 1e\+20"),
+    ('integr_tol="1e-6"', 'integr_tol="1e-300"', "integr_tol", r"in \[1e-14, 1\]"),
+    ('integr_tol="1e-6"', 'integr_tol="1e300"', "integr_tol", r"in \[1e-14, 1\]"),
+    ('end_time="3.0"', 'end_time="1e-320"', "end_time", r"lasts 9.99989e-321; expected at least 1e-30.*IDA cannot take a first"),
+])
+def test_numbers_ida_cannot_use_are_deck_errors(old, new, attribute, match):
+    """These failed at t = 0 with "IDA flag -22" (or ran with integr_tol 1e300)."""
+    text = BEAD.replace(old, new)
+    assert text != BEAD
+    with pytest.raises(pysolver.DeckError, match=match) as info:
+        pysolver.loads(text)
+    assert info.value.attribute == attribute
+
+
+def test_integr_tol_override_is_checked_too():
+    with pytest.raises(ValueError, match=r"integr_tol must be in \[1e-14, 1\]"):
+        _bead("1E4").run(integr_tol=1e300)
+
+
+@pytest.mark.parametrize("old, new, match", [
+    ('"UpdateTime">0.01', '"UpdateTime">1e-300', r"every 1e-300 s would be 3e\+300 controller "
+                                                 r"updates"),
+    ('"Kp">auto', '"Kp">-1', r"got -1; expected a value >= 0"),
+])
+def test_loadcontrol_numbers_are_checked_at_load(old, new, match):
+    text = LOADCONTROL.replace(old, new)
+    assert text != LOADCONTROL
+    with pytest.raises(pysolver.DeckError, match=match) as info:
+        pysolver.loads(text)
+    assert info.value.element == "LoadControl"
+
+
+def test_ida_flag_minus_22_is_worded():
+    assert "IDA rejected its input" in Step(0.0, None, None, -22).message
+
+
+def test_loadcontrol_pinned_at_max_velocity_says_so():
+    """A MaxVelocity far too small: every update is clamped, and the log says the load never
+    followed its target."""
+    text = re.sub(r'"MaxVelocity">[^<]*<', '"MaxVelocity">1e-6<', LOADCONTROL)
+    res = pysolver.loads(text).run()
+    n = len(res.controller(1)["time"])
+    assert n > 100 and all(res.controller(1)["clamped"])
+    line = [s for s in res.log if "clamped at MaxVelocity" in s]
+    assert line == [f"LoadControl 1: the velocity was clamped at MaxVelocity = 1e-06 in all "
+                    f"{n} updates, so the load never followed its target (raise MaxVelocity, "
+                    "or check direction, material and the sign of Load_Function)"]
+    assert not [s for s in pysolver.loads(LOADCONTROL).run().log if "clamped" in s]
+
+
+def test_ctrl_c_on_the_general_driver_names_the_time_of_the_last_row():
+    """A long run on the general driver (a sensor that never fires keeps it off the fast
+    path) interrupted mid-batch: the message's time is that of the last row kept (it said
+    "t = 1.2e-06" with rows to t = 3738)."""
+    text = (DECKS / "stiff_penalty_pendulum.xml").read_text()
+    text = re.sub(r'end_time="[^"]*"', 'end_time="100000.0"', text)
+    text = text.replace("<Param_Transient", '<Param_Transient max_num_steps="1e9"')
+    text = text.replace("<Post_Request", '<Sensor_Event id="1" expr="DY(10)" value="100" '
+                        'compare="GE" halt="TRUE"/>\n    <Post_Request')
+    model = pysolver.loads(text)
+    timer = threading.Timer(1.5, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        res = model.run()
+    finally:
+        timer.cancel()
+    assert res.status == -600 and res.meta["stepping"] == "normal"
+    assert len(res.t) > 10
+    assert res.message == f"interrupted at t = {res.t[-1]:.6g}"
+
+
+# item 7: max_num_steps and Param_Transient -----------------------------------------------------
+PENALTY_DECK = """<MotionSolve><Model>
+  <Body_Rigid id="1" isground="TRUE"/>
+  <Reference_Marker id="102" body_id="1"/>
+  <Reference_Marker id="202" body_id="2" pos_x="1"/>
+  <Body_Point id="2" cg_id="202" mass="1"/>
+  <Force_Gravity grav_y="-9.81"/>
+  <Force_Penalty id="1" expr="DM(202,102)-2" penalty="1e10" penalty1="0"/>
+  <Param_Transient integr_tol="1e-6" max_num_steps="1000"/>
+</Model>
+<Simulate analysis_type="Transient" end_time="5" print_interval="0.01"/>
+</MotionSolve>"""
+
+
+@pytest.mark.parametrize("backend", ["c", "sksundae"])
+def test_max_num_steps_stops_the_command_when_reached(backend):
+    """The penalty deck of the issue ran all 12 million steps before failing; now it stops at
+    the 1000th, on either integrator, and says what the limit counts."""
+    res = pysolver.loads(PENALTY_DECK).run(backend=backend)
+    assert not res.success and res.status == -100
+    assert res.stats["steps"] == 1000
+    assert res.message.startswith("max_num_steps = 1000 reached: the Simulate command took "
+                                  "1000 steps (IDA's converged steps, counted from the "
+                                  "command's start) and stopped at t = ")
+    t_stop = float(re.search(r"stopped at t = (\S+);", res.message).group(1))
+    assert 0 < t_stop < 5 and res.t[-1] <= t_stop
+
+
+def test_max_num_steps_counts_per_command():
+    """Two commands of 600 steps each under a limit of 1000 both finish."""
+    text = PENALTY_DECK.replace('end_time="5"', 'end_time="0.02"')
+    one = pysolver.loads(text).run(max_num_steps=10 ** 6)
+    per = one.stats["steps"]
+    assert 100 < per
+    two = pysolver.loads(text.replace(
+        "</MotionSolve>", '<Simulate analysis_type="Transient" end_time="0.04" '
+        'print_interval="0.01"/></MotionSolve>')).run(max_num_steps=int(1.5 * per))
+    assert two.success, two.message
+    assert two.stats["steps"] > int(1.5 * per)
+
+
+def test_max_num_steps_must_be_a_whole_number():
+    with pytest.raises(ValueError, match="max_num_steps must be a whole number > 0"):
+        pysolver.loads(PENALTY_DECK).run(max_num_steps=2.5)
+
+
+def test_two_param_transient_elements_are_a_deck_error():
+    text = PENALTY_DECK.replace("</Model>", '<Param_Transient integr_tol="1e-3"/></Model>')
+    with pytest.raises(pysolver.DeckError, match=r"a second <Param_Transient> \(the first is "
+                       r"on line 8\); give one") as info:
+        pysolver.loads(text)
+    assert info.value.line == 9
+
+
+def test_two_gravity_elements_are_a_deck_error():
+    text = PENALTY_DECK.replace("</Model>", '<Force_Gravity grav_z="-9.81"/></Model>')
+    with pytest.raises(pysolver.DeckError, match=r"a second <Force_Gravity>"):
+        pysolver.loads(text)
