@@ -121,3 +121,57 @@ int ps_write_csv(const char* path, const char* mode, const char* header, const d
   if (fclose(fh) != 0 && !err) err = errno ? errno : EIO;
   return err;
 }
+
+struct psStream {
+  FILE* fh;
+  const int* cols; /* (ncols) request channels written after the time */
+  int ncols;
+};
+
+psStream* ps_stream_open(const char* path, const char* header, const int* cols, int ncols,
+                         int* err) {
+  psStream* st = calloc(1, sizeof(*st));
+  *err = 0;
+  if (!st) {
+    *err = ENOMEM;
+    return NULL;
+  }
+  st->fh = fopen(path, "w");
+  if (!st->fh || fputs(header, st->fh) < 0 || fflush(st->fh) != 0) {
+    *err = errno ? errno : EIO;
+    if (st->fh) fclose(st->fh);
+    free(st);
+    return NULL;
+  }
+  st->cols = cols;
+  st->ncols = ncols;
+  return st;
+}
+
+int ps_stream_rows(psStream* st, const double* t, const double* req, long nrows, int nout,
+                   int flush) {
+  if (!st) return 0;
+  char buf[64];
+  for (long r = 0; r < nrows; r++) {
+    buf[format_double(t[r], buf)] = '\0';
+    if (fputs(buf, st->fh) < 0) return errno ? errno : EIO;
+    for (int c = 0; c < st->ncols; c++) {
+      buf[0] = ',';
+      buf[1 + format_double(req[r * nout + st->cols[c]], buf + 1)] = '\0';
+      if (fputs(buf, st->fh) < 0) return errno ? errno : EIO;
+    }
+    if (fputs("\r\n", st->fh) < 0) return errno ? errno : EIO;
+  }
+  return flush ? ps_stream_flush(st) : 0;
+}
+
+int ps_stream_flush(psStream* st) {
+  if (!st) return 0;
+  return fflush(st->fh) == 0 ? 0 : (errno ? errno : EIO);
+}
+
+void ps_stream_close(psStream* st) {
+  if (!st) return;
+  fclose(st->fh);
+  free(st);
+}

@@ -79,6 +79,7 @@ struct psIDA {
   double win_h[2];        /* smallest and largest step seen in the window           */
   long acc[6];            /* IDA's counters of the run before the last restart      */
   long limited_at;        /* step at which auto_eta was switched on (0: not)        */
+  psStream* stream;       /* where output rows are written as made (NULL: nowhere)  */
   char msg[256];          /* message of the last error                              */
 };
 
@@ -368,14 +369,21 @@ int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret,
   return flag;
 }
 
-/* Write the request channels of output rows k0..k1-1. */
+void ps_ida_set_stream(psIDA* s, psStream* st) { s->stream = st; }
+
+/* Write the request channels of output rows k0..k1-1 (and stream the rows). */
 static void row_outputs(psIDA* s, int k0, int k1, const double* tout, double* y_out,
                         double* yp_out, double* req_out) {
-  int n = s->m->ny;
-  if (s->m->nout <= 0) return;
-  for (int k = k0; k < k1; k++)
-    ps_outputs(s->m, s->d, tout[k], y_out + (long)k * n, yp_out + (long)k * n,
-               req_out + (long)k * s->m->nout);
+  int n = s->m->ny, nout = s->m->nout > 0 ? s->m->nout : 1;
+  if (s->m->nout > 0)
+    for (int k = k0; k < k1; k++)
+      ps_outputs(s->m, s->d, tout[k], y_out + (long)k * n, yp_out + (long)k * n,
+                 req_out + (long)k * s->m->nout);
+  /* a failed write ends the streaming, not the run: the rows are kept in memory */
+  if (s->stream && k1 > k0 &&
+      ps_stream_rows(s->stream, tout + k0, req_out + (long)k0 * nout, k1 - k0, nout,
+                     s->m->nuser > 0) != 0)
+    s->stream = NULL;
 }
 
 int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fresh,
@@ -408,10 +416,11 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
   for (; k < nout; k++) {
     flag = ps_ida_solve(s, tout[k], tstop, 0, tret, y_out + (long)k * n, yp_out + (long)k * n,
                         rootsfound);
-    if (flag < 0 || flag == 2) return flag;
+    if (flag < 0 || flag == 2) break;
     row_outputs(s, k, k + 1, tout, y_out, yp_out, req_out);
     *nreached = k + 1;
   }
+  if (s->stream && ps_stream_flush(s->stream) != 0) s->stream = NULL;
   return flag;
 }
 

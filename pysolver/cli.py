@@ -1,5 +1,6 @@
 """Command line: ``pysolver run DECK [-o DIR]`` and ``pysolver check DECK``."""
 import argparse
+import csv
 import dataclasses
 import json
 import os
@@ -10,11 +11,17 @@ from .errors import DeckError
 
 
 def _run(args):
-    model = load(args.deck)
-    res = model.run(progress=None if not args.quiet else False)
+    model = load(args.deck, user_code=not args.no_user_code)
     out = args.output or os.path.splitext(os.path.basename(args.deck))[0] + "_out"
     os.makedirs(out, exist_ok=True)
-    csv_path = res.save(os.path.join(out, "requests.csv"))
+    # the rows go to the CSV as they are made (a crashing C subroutine loses none of them); it
+    # is written again only when a channel with an expression had no value at all (dropped)
+    csv_path = os.path.join(out, "requests.csv")
+    res = model.run(progress=None if not args.quiet else False, stream=csv_path)
+    with open(csv_path, newline="") as fh:
+        streamed = next(csv.reader(fh), None)
+    if streamed != res.columns()[0] or res.controller_ids:
+        res.save(csv_path)
     written = [csv_path] + [os.path.join(out, f"requests_controller{lid}.csv")
                             for lid in res.controller_ids]
     if not args.no_plot:
@@ -43,7 +50,7 @@ def _run(args):
 
 
 def _check(args):
-    model = load(args.deck)
+    model = load(args.deck, user_code=not args.no_user_code)
     model.check()
     print(model.summary())
     print("deck is valid")
@@ -59,9 +66,14 @@ def main(argv=None):
     run.add_argument("-o", "--output", help="output directory (default: DECKNAME_out)")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     run.add_argument("--no-plot", action="store_true", help="do not write requests.png")
-    run.set_defaults(func=_run)
-    check = sub.add_parser("check", help="validate a deck and list what it contains")
+    check = sub.add_parser("check", help="validate a deck and list what it contains (compiles "
+                           "it: runs its user subroutine scripts and loads its C libraries)")
     check.add_argument("deck")
+    for cmd in (run, check):
+        cmd.add_argument("--no-user-code", action="store_true",
+                         help="refuse a deck that runs code of its own (a .py deck, a user "
+                              "subroutine's script or C library)")
+    run.set_defaults(func=_run)
     check.set_defaults(func=_check)
     from .batch.cli import add_parser
     add_parser(sub)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import hashlib
+import os
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -243,6 +244,9 @@ class Source:
     file: str
     text: str
     fmt: str
+    #: False: the deck was loaded with ``user_code=False`` (no script or library it names may
+    #: run; the loader refuses any that it names)
+    user_code: bool = True
 
     @functools.cached_property
     def sha256(self):
@@ -283,7 +287,8 @@ class Model:
         self._where = {}          # (kind, id) -> location of the element, for errors
 
     # public API -------------------------------------------------------------------------
-    def run(self, progress: bool | None = None, **options) -> Result:
+    def run(self, progress: bool | None = None, stream: str | os.PathLike | None = None,
+            **options) -> Result:
         """Run the deck's commands in order and return a :class:`pysolver.Result`.
 
         Parameters
@@ -291,6 +296,11 @@ class Model:
         progress : bool or None, optional
             Show a progress bar on standard error. None (default) shows one only when standard
             error is a terminal and the run takes longer than one second.
+        stream : str or os.PathLike, optional
+            Write the output rows to this CSV file as they are made (time and every request
+            channel with an expression or a name, as :meth:`Result.save` writes them), each
+            flushed to the operating system, so a crash of the process (a C user
+            subroutine's) loses no row already made. It holds every row when the run returns.
         **options
             Override the deck's ``Param_Transient`` and choose the linear solver, Jacobian and
             backend for this run; every name, default and rule is documented once, in
@@ -310,7 +320,8 @@ class Model:
         from .solve import run_model  # the facade: solving comes after the model
         if not any(b.kind != "ground" for b in self.bodies.values()):
             self.check()                  # the DeckError saying there is nothing to run
-        return run_model(self, progress=progress, overrides=options)
+        return run_model(self, progress=progress, overrides=options,
+                         stream=None if stream is None else os.fspath(stream))
 
     def _kernel(self, conservative=False, kind=None):
         """The compiled kernel, built on first use and reused by every run (one without damping
@@ -413,10 +424,11 @@ class Model:
                 + sum(1 + (m.val_type == "A") for m in self.motions.values()))
 
     def __reduce__(self):
-        return (_rebuild, (self.source.file, self.source.text, self.source.fmt))
+        return (_rebuild, (self.source.file, self.source.text, self.source.fmt,
+                           self.source.user_code))
 
 
-def _rebuild(file, text, fmt):
+def _rebuild(file, text, fmt, user_code=True):
     from .deck.loader import loads
-    return loads(text, fmt=fmt, file=file)
+    return loads(text, fmt=fmt, file=file, user_code=user_code)
 

@@ -330,6 +330,9 @@ int ps_penalty_loads(const psModel* m, psData* d, double t, const double* y, con
  * (one integration object sharing them), freed by ps_ida_delete. */
 typedef struct psIDA psIDA;
 
+/* A CSV file written row by row while a run makes its rows (ps_stream_*). */
+typedef struct psStream psStream;
+
 /* Open the nine SUNDIALS 7 shared libraries whose paths are given in this order: core,
  * nvecserial, sunmatrixdense, sunlinsoldense, ida, sunmatrixband, sunlinsolband, and the
  * optional sunmatrixsparse and sunlinsolsuperlumt (NULL paths, or libraries that do not open,
@@ -350,6 +353,12 @@ psIDA* ps_ida_new(const psIDA* loaded);
 
 /* Free an integration object and its current integration. NULL is allowed. */
 void ps_ida_delete(psIDA* s);
+
+/* Write every output row ps_ida_outputs makes to st as soon as it is made (NULL: stop),
+ * flushed row by row when the model calls user subroutines (the code that may crash the
+ * process), else at the end of each ps_ida_outputs call. The stream is not owned: close it
+ * after the integration object no longer uses it. */
+void ps_ida_set_stream(psIDA* s, psStream* st);
 
 /* Return the message of the last failed ps_ida_init or ps_ida_tune ("" if none). */
 const char* ps_ida_message(const psIDA* s);
@@ -497,6 +506,24 @@ int ps_format_double(double f, char* out);
  * default dialect). Returns 0, or an errno value if the file could not be opened or written. */
 int ps_write_csv(const char* path, const char* mode, const char* header, const double* data,
                  long nrows, int ncols);
+
+/* Create the file at path, write header (a complete line) and return a stream writing the
+ * time and then the request channels cols (ncols entries; the array must outlive the stream)
+ * of each row, or NULL with an errno value in *err. */
+psStream* ps_stream_open(const char* path, const char* header, const int* cols, int ncols,
+                         int* err);
+
+/* Append nrows rows: the time t[r] and req[r * nout + cols[c]], formatted as ps_write_csv
+ * does, and with flush != 0 hand them to the operating system (a crash of the process then
+ * loses none). A NULL stream writes nothing. Returns 0 or an errno value. */
+int ps_stream_rows(psStream* st, const double* t, const double* req, long nrows, int nout,
+                   int flush);
+
+/* Hand the rows written so far to the operating system. Returns 0 or an errno value. */
+int ps_stream_flush(psStream* st);
+
+/* Close a stream (NULL is allowed). */
+void ps_stream_close(psStream* st);
 
 #ifdef __cplusplus
 }

@@ -15,7 +15,7 @@ from .validate import build_model
 from .xml_reader import read_elements
 
 
-def load(path: str | os.PathLike) -> Model:
+def load(path: str | os.PathLike, user_code: bool = True) -> Model:
     """Load and validate a deck.
 
     Parameters
@@ -23,6 +23,10 @@ def load(path: str | os.PathLike) -> Model:
     path : str or os.PathLike
         ``.xml`` (MotionSolve XML; data only, never executes code) or ``.py`` (a Python script
         of :mod:`pysolver.msolve` statements; it is executed).
+    user_code : bool, default True
+        False refuses a deck that would run code of its own: a ``.py`` deck, and any element
+        with a user subroutine (a Python script or a C library), each a DeckError naming it.
+        What runs when: docs/user-subroutines.md.
 
     Returns
     -------
@@ -42,7 +46,7 @@ def load(path: str | os.PathLike) -> Model:
     with open(path, "rb") as fh:
         raw = fh.read()
     fmt = "py" if path.lower().endswith(".py") else "xml"
-    return loads(_decode(raw, fmt, path), fmt=fmt, file=path)
+    return loads(_decode(raw, fmt, path), fmt=fmt, file=path, user_code=user_code)
 
 
 _XML_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*?encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
@@ -71,15 +75,28 @@ def _decode(raw, fmt, path):
                         file=path, line=line) from None
 
 
-def loads(text: str, fmt: str = "xml", file: str = "<string>") -> Model:
+def loads(text: str, fmt: str = "xml", file: str = "<string>",
+          user_code: bool = True) -> Model:
     """Load a deck from text; ``fmt`` is ``"xml"`` or ``"py"``. See :func:`load`."""
     if fmt == "xml":
         elements = read_elements(text, file)
     elif fmt == "py":
+        if not user_code:
+            raise DeckError("a Python deck is a program, and user_code=False refuses code "
+                            "(--no-user-code): write the deck as XML", file=file)
         elements = _run_python_deck(text, file)
     else:
         raise ValueError(f"unknown deck format {fmt!r}; expected 'xml' or 'py'")
-    return build_model(elements, Source(file, text, fmt))
+    return build_model(elements, Source(file, text, fmt, user_code))
+
+
+def _deck_line(file):
+    """The deck's own line in the traceback being handled (None when it is not in it)."""
+    line = None
+    for fr in traceback.extract_tb(sys.exc_info()[2]):
+        if fr.filename == file:
+            line = fr.lineno
+    return line
 
 
 def _run_python_deck(text, file):
@@ -95,12 +112,13 @@ def _run_python_deck(text, file):
         raise
     except SyntaxError as err:
         raise DeckError(f"Python syntax error: {err.msg}", file=file, line=err.lineno) from None
+    except SystemExit as err:   # the deck may not end the program that reads it
+        raise DeckError(f"the deck called sys.exit({err.code!r}); a deck script is read for "
+                        "its statements and must not exit", file=file,
+                        line=_deck_line(file)) from None
     except Exception as err:  # the deck's own error: report where it happened in the deck
-        line = None
-        for fr in traceback.extract_tb(sys.exc_info()[2]):
-            if fr.filename == file:
-                line = fr.lineno
-        raise DeckError(f"{type(err).__name__}: {err}", file=file, line=line) from None
+        raise DeckError(f"{type(err).__name__}: {err}", file=file,
+                        line=_deck_line(file)) from None
     finally:
         msolve._STATE.rec = prev
     return rec.elements

@@ -48,6 +48,11 @@ def from_attributes(model, ctx, a):
             raise ctx.error("is used only with type=\"USERSUB\"", given[0])
     if not wanted:
         return None
+    if not model.source.user_code:
+        where = next((k for k in ("script_name", "usrsub_dll_name", "usrsub_fnc_name")
+                      if a.get(k) is not None), "type")
+        raise ctx.error("a user subroutine runs code of the deck's, and user_code=False "
+                        "refuses it (--no-user-code)", where)
     name, args, _ = CONVENTIONS[ctx.tag]
     if a.get("interpreter") == "MATLAB":
         raise ctx.error("MATLAB user subroutines are not supported; write the routine in "
@@ -209,7 +214,7 @@ def python_routine(ctx, sub, model, traced=False):
             with open(sub.script, encoding="utf-8") as fh:
                 code = compile(fh.read(), sub.script, "exec")
             exec(code, namespace)
-        except Exception as err:  # the script's own error, at its line
+        except (Exception, SystemExit) as err:  # the script's own error, at its line
             raise ctx.error(f"script {sub.script} failed to run: {_where(err, sub.script)}",
                             "script_name") from None
         scripts[sub.script] = namespace
@@ -274,7 +279,7 @@ def _trace(ctx, sub, id, model):
         raise ctx.error(f"{sub.name}: {_where(err, file)}", sub.attribute) from None
     except DeckError:
         raise
-    except Exception as err:  # the routine's own error
+    except (Exception, SystemExit) as err:  # the routine's own error (sys.exit too)
         raise ctx.error(f"{sub.name} raised {_where(err, file)}", sub.attribute) from None
     deepest = max((ex.depth(t) for t in trees if t is not None), default=0)
     if deepest > ex.MAX_DEPTH:

@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from ..build.bindings import lib
+from ..build.bindings import ffi, lib
 from ..build.kernel import UserFailure
 from . import integrator, nonfinite, quasistatic
 from .actors import Actor, Flow
@@ -44,7 +44,7 @@ class Stop(Exception):
 class Run:
     """One run of a model: state, step bounds, integrator, actors, and what they recorded."""
 
-    def __init__(self, model, kernel, options, progress):
+    def __init__(self, model, kernel, options, progress, stream=None):
         self.model, self.kernel, self.options = model, kernel, options
         self.plan = integrator.cached_plan(kernel, options)
         self.hmax = options.h_max          # None: unbounded
@@ -52,6 +52,7 @@ class Run:
         self.events, self.log, self.statics = [], [], []
         self.bar = Progress(0.0, model.commands[-1].end_time, progress)
         self.printer = Printer(kernel, self.bar)
+        self.printer.stream = stream
         self.sensors = Sensors(model, kernel, self.log)
         self.printer.watchers = [self.sensors]
         self.controls = [LoadControlTask(kernel, model.controls[lid], k)
@@ -85,6 +86,9 @@ class Run:
             self.retire_solver()
             self.solver = integrator.make(self.kernel, self.options, self.plan, bounds)
             self.bounds = bounds
+            if self.printer.stream is not None and self.plan.use_c:
+                lib.ps_ida_set_stream(self.solver.s, self.printer.stream.st)
+                self.printer.c_streams = True
         self.nstarts += 1
         self.fresh = True
         self.need_start = False
@@ -96,6 +100,8 @@ class Run:
         """Keep the counters of an IDA object that is being replaced (or at the end)."""
         if self.solver is None:
             return
+        if self.printer.c_streams:
+            lib.ps_ida_set_stream(self.solver.s, ffi.NULL)
         c = self.solver.counters()
         if c["growth_limited_at"] and self.growth_limited_at is None:
             self.growth_limited_at = self.retired["steps"] + c["growth_limited_at"]
@@ -232,6 +238,11 @@ class Run:
             self.kernel.d.bad_kind = 0        # a non-finite value names itself in C (below)
             # IDA stops exactly at the next instant an actor named (tstop), or the command's end
             tstop = min([cmd.end_time] + [a.next_time(self.t) for a in timed])
+            # rows no action can take back any more go to the stream before integrating on
+            if self.onestep:
+                printer.flush_stream(self.steps_seen[0][0], inclusive=False)
+            else:
+                printer.flush_stream(self.t, inclusive=True)
             # after a (re)start IDA sizes its first step from the distance to the requested
             # time; asking for the stop keeps that choice independent of print times
             if self.onestep or self.fresh:
@@ -324,6 +335,7 @@ class Run:
         finally:
             for task in self.controls:
                 self.log.extend(task.notes())
+            self.printer.flush_stream(np.inf, inclusive=True)
             self.bar.close(self.t)
         return True, 0, "The simulation finished."
 

@@ -70,9 +70,9 @@ class FastRun:
         self.reached, self.tret = ffi.new("int *"), ffi.new("double *")
         self.roots = ffi.new("int[1]")
 
-    def run(self, t_start, used, static, labels, log, progress=None):
+    def run(self, t_start, used, static, labels, log, progress=None, stream=None):
         """Run the model; returns its Result, or None when the general path must run it.
-        `progress` as Model.run."""
+        `progress` as Model.run; `stream` an outputs.Stream the rows are written to."""
         k, d, fb, opts = self.k, self.k.d, self.fb, self.options
         k.reset_counters()
         n, ny = len(self.times), k.ny
@@ -99,6 +99,9 @@ class FastRun:
             t_run = time.perf_counter()
             fresh, status = True, 0
             ida = self.solver
+            if stream is not None:
+                stream.rows(T[:1], REQ[:1])
+                lib.ps_ida_set_stream(ida.s, stream.st)
             if lib.ps_ida_rerun(ida.s, t0, fb("double[]", y0), fb("double[]", yp0)) != 0:
                 ida.started = False
                 ida.init_step(t0, y0, yp0)
@@ -122,6 +125,7 @@ class FastRun:
             ran = True
         finally:
             d.step_limit = 0
+            lib.ps_ida_set_stream(self.solver.s, ffi.NULL)
             if main:
                 lib.ps_interrupt_disarm()
             if ran or bar.shown:        # a run handed to the driver shows the driver's bar

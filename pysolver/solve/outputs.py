@@ -5,6 +5,8 @@ each print time of the current Simulate command. Its instants change nothing, so
 may hand a whole run of them to the integrator in one call (:meth:`Printer.times_before`,
 :meth:`Printer.take`), which the C driver runs without returning to Python.
 """
+import csv
+import io
 import math
 import os
 import sys
@@ -12,6 +14,7 @@ import time
 
 import numpy as np
 
+from ..build.bindings import ffi, lib
 from .actors import Actor
 
 
@@ -40,6 +43,53 @@ def over_budget(rows, ny, nchannels, what):
             f"({rows * per_row / 2 ** 30:.3g} GiB), more than the output budget of "
             f"{budget / 2 ** 30:.3g} GiB; give a larger print interval or set "
             "PYSOLVER_OUTPUT_BUDGET (bytes)")
+
+
+class Stream:
+    """A CSV file of the run's rows written as they are made (``Model.run(stream=path)``): the
+    time and every request channel with an expression or a label, as Result.save writes them.
+    Rows from the C driver's batches are written by C as they are made, each handed to the
+    operating system at once when the kernel calls user subroutines (a crash of one loses no
+    row already made), else at the end of each batch; rows the Python driver makes are
+    written, and flushed, once nothing can take them back."""
+
+    def __init__(self, path, kernel, labels):
+        names, cols = ["time"], []
+        for col, (rid, k) in sorted(enumerate(kernel.channels), key=lambda c: tuple(c[1])):
+            if col in set(kernel.defined_channels.tolist()) or labels.get((rid, k)):
+                names.append(labels.get((rid, k)) or f"REQ{rid}.{k + 1}")
+                cols.append(col)
+        self.path, self.cols = os.fsencode(path), np.array(cols, dtype=np.int32)
+        header = io.StringIO()
+        csv.writer(header).writerow(names)
+        self.header = header.getvalue().encode()
+        self.nout = max(int(kernel.arrays["nout"]), 1)
+        self.st = None
+        self.reset()
+
+    def reset(self):
+        """Start the file again (a run handed from the fast path to the driver)."""
+        self.close()
+        err = ffi.new("int *")
+        self.st = lib.ps_stream_open(self.path, self.header,
+                                     ffi.cast("int *", ffi.from_buffer(self.cols)),
+                                     len(self.cols), err)
+        if self.st == ffi.NULL:
+            raise OSError(err[0], os.strerror(err[0]), os.fsdecode(self.path))
+
+    def rows(self, t, req):
+        """Append rows: times (k,) and request rows (k, channels)."""
+        t = np.ascontiguousarray(t, dtype=float)
+        req = np.ascontiguousarray(np.asarray(req, dtype=float).reshape(len(t), -1))
+        if req.shape[1] < self.nout:
+            req = np.ascontiguousarray(np.pad(req, ((0, 0), (0, self.nout - req.shape[1]))))
+        lib.ps_stream_rows(self.st, ffi.from_buffer("double[]", t),
+                           ffi.from_buffer("double[]", req), len(t), self.nout, 1)
+
+    def close(self):
+        if self.st is not None:
+            lib.ps_stream_close(self.st)
+            self.st = None
 
 
 class Grid:
@@ -119,6 +169,16 @@ class Rows:
     def last(self):
         return self.parts[-1][-1]
 
+    def since(self, k0):
+        """Rows k0 .. n-1 as one array (the blocks they are in, joined)."""
+        parts, n = [], self.n
+        for block in reversed(self.parts):
+            if n <= k0:
+                break
+            parts.append(block[max(k0 - (n - len(block)), 0):])
+            n -= len(block)
+        return np.concatenate(parts[::-1]) if parts else np.zeros((0,))
+
     def pop(self):
         last = self.parts[-1]
         if len(last) > 1:
@@ -192,6 +252,9 @@ class Printer(Actor):
         self.end = None
         self.pending = Grid(empty=True)
         self.watchers = []        # actors with on_output, told of every row written
+        self.stream = None        # a Stream the rows are written to as they are made
+        self.streamed = 0         # rows written to it
+        self.c_streams = False    # whether the integrator writes its batches' rows itself
 
     # the schedule --------------------------------------------------------------------
     def begin_command(self, t, end, dt):
@@ -229,6 +292,10 @@ class Printer(Actor):
             self.ys.extend(Y)
             self.yps.extend(YP)
             self.outs.extend(REQ)
+            if self.stream is not None:
+                if not self.c_streams:
+                    self.stream.rows(times, REQ)
+                self.streamed = len(self.ts)
             self.bar.update(times[-1])
 
     # rows ----------------------------------------------------------------------------
@@ -257,6 +324,16 @@ class Printer(Actor):
             at = step if tp == step.t else solver.step(tp, tstop)
             self.emit(tp, at.y, at.yp)
 
+    def flush_stream(self, t_safe, inclusive):
+        """Write the rows not yet streamed up to t_safe (rows no action can take back)."""
+        if self.stream is None or self.streamed >= len(self.ts):
+            return
+        times = self.ts.since(self.streamed)
+        n = int(np.searchsorted(times, t_safe, side="right" if inclusive else "left"))
+        if n:
+            self.stream.rows(times[:n], self.outs.since(self.streamed)[:n])
+            self.streamed += n
+
     def _reactions(self, t, y, yp):
         """Motion reactions of a row from its force balance, not IDA's interpolant of them
         (an algebraic state, outside its error test)."""
@@ -276,5 +353,6 @@ class Printer(Actor):
         self.dt = dt
         while self.ts and self.ts.last > t:
             self._drop_last()
+        self.streamed = min(self.streamed, len(self.ts))
         last = self.ts.last if self.ts else t
         self.pending = Grid(last, self.end, self.dt)

@@ -8,14 +8,16 @@ from ..build.bindings import lib
 from . import report
 from .driver import Run
 from .fast import fast_run
+from .outputs import Stream
 
 
-def run_model(model, progress=None, overrides=None, actors=()):
+def run_model(model, progress=None, overrides=None, actors=(), stream=None):
     """Run every command of `model`; see :meth:`pysolver.Model.run`.
 
     `overrides` maps option names to values for this run (see Options). `actors` are further
     :class:`~.actors.Actor` objects that act at their own times (tools and tests; the deck's own
-    actors, such as its sensors, are always there).
+    actors, such as its sensors, are always there). `stream`, a path, gets the rows as CSV as
+    they are made (:class:`~.outputs.Stream`).
     """
     t_start = time.perf_counter()
     options, used, static, labels = _settings(model, overrides)
@@ -24,13 +26,25 @@ def run_model(model, progress=None, overrides=None, actors=()):
     gen = kernel.codegen
     log = [f"kernel: the tapes run ({gen['why']})"] if gen["kernel"] == "tapes" and \
         kind != "tapes" else []
-    fast = fast_run(model, kernel, options, actors)
-    if fast is not None:
-        res = fast.run(t_start, used, static, labels, log, progress)
-        if res is not None:
-            return res
+    sink = Stream(stream, kernel, labels) if stream is not None else None
+    try:
+        fast = fast_run(model, kernel, options, actors)
+        if fast is not None:
+            res = fast.run(t_start, used, static, labels, log, progress, sink)
+            if res is not None:
+                return res
+            if sink is not None:
+                sink.reset()                # the driver writes the rows again
+        return _driver_run(model, kernel, options, progress, actors, sink, t_start,
+                           (used, static, labels), log)
+    finally:
+        if sink is not None:
+            sink.close()
+
+
+def _driver_run(model, kernel, options, progress, actors, sink, t_start, settings, log):
     kernel.reset_counters()
-    run = Run(model, kernel, options, progress)
+    run = Run(model, kernel, options, progress, sink)
     run.log.extend(log)
     for actor in actors:
         run.add_actor(actor)
@@ -49,7 +63,7 @@ def run_model(model, progress=None, overrides=None, actors=()):
     pr = run.printer
     rows = (pr.ts.array(), pr.ys.array(kernel.ny), pr.yps.array(kernel.ny),
             pr.outs.array(len(kernel.channels)))
-    return report.result(model, kernel, run.plan, (used, static, labels), rows,
+    return report.result(model, kernel, run.plan, settings, rows,
                          (success, status, message), (t_start, run.t_setup or t_end, t_end),
                          ida, run.log, steps=run.steps(), nevents=len(run.events),
                          nrearms=run.sensors.nrearms, nrestarts=max(run.nstarts - 1, 0),
