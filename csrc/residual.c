@@ -496,6 +496,70 @@ int ps_penalty_loads(const psModel* m, psData* d, double t, const double* y, con
   return check_finite(m, d, t, y, yp, q, m->ny, 0, 0);
 }
 
+/* Unit roundoff of a double (2^-53). */
+#define PS_UNIT_ROUNDOFF 1.1102230246251565e-16
+
+double ps_precision(const psModel* m, psData* d, double t, const double* y,
+                    const double* yp, const int* trow, const int* tcol, int ntrip,
+                    double* work, int* body) {
+  int n = m->ny;
+  double *noise = work, *loads = work + n, *net = work + 2 * n, *free_y = work + 3 * n;
+  double *zero = work + 4 * n;
+  /* the counters and the step bookkeeping are the run's: this is not a step */
+  long nres = d->nres, njac = d->njac;
+  *body = -1;
+  /* dF/dy at the state (cj = 0), as the kernel's triplets */
+  if (m->gen) {
+    trow = m->gen->trow;
+    tcol = m->gen->tcol;
+    ntrip = m->gen->ntrip;
+    m->gen->jacobian(m, d->senval, t, y, yp, 0.0, d->trip);
+  } else {
+    Assembly as = {d->res, NULL, d->trip, NULL, NULL, 0, 1, 0.0, n};
+    assemble(m, d, t, y, yp, &as);
+  }
+  /* the state's rounding: reactions are not rounded positions */
+  for (int i = 0; i < n; i++) {
+    noise[i] = 0.0;
+    zero[i] = 0.0;
+    free_y[i] = y[i];
+  }
+  for (int k = 0; k < m->nmotion; k++) free_y[m->mot_lam[k]] = 0.0;
+  for (int k = 0; k < ntrip; k++)
+    noise[trow[k]] += fabs(d->trip[k]) * fabs(free_y[tcol[k]]) * PS_UNIT_ROUNDOFF;
+  /* the forces each row carries, in the residual's units: the penalties' force and the net
+   * of every force but reactions (the residual at yp = 0 without them) */
+  ps_penalty_loads(m, d, t, y, yp, loads);
+  if (m->gen)
+    m->gen->residual(m, d->senval, t, free_y, zero, 0.0, net);
+  else {
+    Assembly as = {net, NULL, NULL, NULL, NULL, 0, 0, 0.0, n};
+    assemble(m, d, t, free_y, zero, &as);
+  }
+  d->nres = nres;
+  d->njac = njac;
+  double g = sqrt(m->gravity[0] * m->gravity[0] + m->gravity[1] * m->gravity[1] +
+                  m->gravity[2] * m->gravity[2]);
+  double worst = 0.0;
+  for (int b = 0; b < m->nbody; b++) {
+    int u = m->body_uadr[b];
+    double a = 0.0, q = 0.0, f = 0.0, most = 0.0;
+    for (int c = 0; c < 3; c++) {
+      a += yp[u + c] * yp[u + c];
+      q += loads[u + c] * loads[u + c];
+      f += net[u + c] * net[u + c];
+      if (noise[u + c] > most) most = noise[u + c];
+    }
+    a = sqrt(a);
+    double ref = m->body_mass[b] * (a > g ? a : g) + m->force_scale * sqrt(q) + sqrt(f);
+    if (ref > 0.0 && most / ref > worst) {
+      worst = most / ref;
+      *body = b;
+    }
+  }
+  return worst;
+}
+
 int ps_jacobian(const psModel* m, psData* d, double t, const double* y, const double* yp,
                 double cj, double* jac) {
   Assembly as = {d->res, jac, NULL, NULL, NULL, 0, 1, cj, m->ny};

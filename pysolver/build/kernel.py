@@ -114,6 +114,7 @@ class Kernel:
         self._out = np.zeros(max(arrays["nout"], 1))
         self._sparse = None
         self._cyp = None                 # consistent_yp's work arrays, made on first use
+        self._precision_work = None      # ps_precision's work arrays, made on first use
         self.codegen = {"kernel": "tapes", "why": "kernel='tapes' asked for"}
         if kind != "tapes":
             self._generate()
@@ -197,6 +198,27 @@ class Kernel:
                              fb("double[]", np.ascontiguousarray(yp, float)),
                              fb("double[]", q))
         return q
+
+    def precision(self, t, y, yp):
+        """(ratio, body index or -1) of ps_precision at (t, y, yp): how far the rounding of the
+        state moves the force rows against the forces the bodies carry."""
+        if self._precision_work is None:
+            if self.codegen["kernel"] == "generated":
+                rows = cols = np.zeros(1, dtype=np.int32)
+            else:
+                self.sparsity()                # the tapes' triplet pattern, and room for it
+                rows, cols = self._triplets
+            work = np.zeros(5 * self.ny)
+            fb = ffi.from_buffer
+            self._precision_work = (ffi.cast("int *", fb(rows)), ffi.cast("int *", fb(cols)),
+                                    len(rows), fb("double[]", work), ffi.new("int *"),
+                                    (rows, cols, work))
+        rows, cols, ntrip, work, body, _ = self._precision_work
+        fb = ffi.from_buffer
+        ratio = lib.ps_precision(self.m, self.d, t, fb("double[]", np.ascontiguousarray(y, float)),
+                                 fb("double[]", np.ascontiguousarray(yp, float)), rows, cols,
+                                 ntrip, work, body)
+        return ratio, body[0]
 
     def control_target(self, k, t, y, yp):
         """The target load L(t) of LoadControl number k (in id order)."""
