@@ -466,9 +466,11 @@ int ps_sensor_status(const psModel* m, psData* d, double t, const double* y, con
                      int* holds, int* rearms);
 
 /* Open the generated library at path (RTLD_LOCAL; it stays open for the process's life) and
- * return its ps_gen_table, checked against m (version and sizes), or NULL with a message in msg
- * (msglen bytes). */
-const psGen* ps_gen_open(const char* path, const psModel* m, char* msg, int msglen);
+ * return its ps_gen_table, checked against its record of the scene it was generated for
+ * (ps_gen_scene, equal to scene) and against m (version and sizes), or NULL with a message in
+ * msg (msglen bytes), the library closed again. */
+const psGen* ps_gen_open(const char* path, const char* scene, const psModel* m, char* msg,
+                         int msglen);
 
 /* Open the shared library at path and return its function name, or NULL with a message in msg
  * (msglen bytes). The kernel's own symbols (c_sysfnc, c_sysary, c_errmes) are made global
