@@ -1,9 +1,6 @@
 """The validated scene: plain records of its elements, and the :class:`Model` that holds them.
-
-The deck readers (:mod:`pysolver.deck`) build a Model; the compiler (:mod:`pysolver.build`)
-lays it out for the C kernel; the solvers (:mod:`pysolver.solve`) run it. Records are plain
-data: no parsing, checking or numerics happen here. :meth:`Model.run` is the one facade onto
-the later stages and imports them when called, so this module imports no later stage.
+The deck readers (:mod:`pysolver.deck`) build it, :mod:`pysolver.build` lays it out for the
+C kernel, :mod:`pysolver.solve` runs it; :meth:`Model.run` imports those stages when called.
 """
 from __future__ import annotations
 
@@ -244,9 +241,7 @@ class Source:
     file: str
     text: str
     fmt: str
-    #: False: the deck was loaded with ``user_code=False`` (no script or library it names may
-    #: run; the loader refuses any that it names)
-    user_code: bool = True
+    user_code: bool = True      # False: loaded with user_code=False (it names no code to run)
 
     @functools.cached_property
     def sha256(self):
@@ -297,10 +292,8 @@ class Model:
             Show a progress bar on standard error. None (default) shows one only when standard
             error is a terminal and the run takes longer than one second.
         stream : str or os.PathLike, optional
-            Write the output rows to this CSV file as they are made (time and every request
-            channel with an expression or a name, as :meth:`Result.save` writes them), each
-            flushed to the operating system, so a crash of the process (a C user
-            subroutine's) loses no row already made. It holds every row when the run returns.
+            Write the rows to this CSV file (as :meth:`Result.save`) as they are made, so a
+            crash (a C user subroutine's) loses none; complete when the run returns.
         **options
             Override the deck's ``Param_Transient`` and choose the linear solver, Jacobian and
             backend for this run; every name, default and rule is documented once, in
@@ -386,27 +379,20 @@ class Model:
         for vf in self.vforces.values():
             lines.append(f"Force_Vector_TwoBody {vf.id} (I={vf.i} J={vf.j} in "
                          f"{vf.ref or 'global'}): ({', '.join(vf.texts)})")
-        for lc in self.controls.values():
-            lines.append(f"LoadControl {lc.id}: body {lc.body} along {'xyz'[lc.direction]}, "
-                         f"load {lc.load_text}, every {lc.update_time:g}")
-        for mo in self.motions.values():
-            if mo.id < 0:
-                continue                  # a LoadControl's own drive
-            lines.append(f"Motion_Marker {mo.id} ({mo.val_type} {mo.direction} I={mo.i} "
-                         f"J={mo.j}): {mo.text}")
-        for v in self.variables.values():
-            lines.append(f"Reference_Variable {v.id}: {v.text}")
-        for r in self.requests.values():
-            used = [t for t in r.texts if t]
-            lines.append(f"Post_Request {r.id}: {len(used)} channel(s)")
+        lines += [f"LoadControl {lc.id}: body {lc.body} along {'xyz'[lc.direction]}, load "
+                  f"{lc.load_text}, every {lc.update_time:g}" for lc in self.controls.values()]
+        lines += [f"Motion_Marker {mo.id} ({mo.val_type} {mo.direction} I={mo.i} J={mo.j}): "
+                  f"{mo.text}" for mo in self.motions.values() if mo.id > 0]  # not LoadControl's
+        lines += [f"Reference_Variable {v.id}: {v.text}" for v in self.variables.values()]
+        lines += [f"Post_Request {r.id}: {sum(1 for t in r.texts if t)} channel(s)"
+                  for r in self.requests.values()]
         for se in self.sensors.values():
             lines.append(f"Sensor_Event {se.id}: {se.text} {se.compare} {se.value:g} "
                          f"(error_tol {se.error_tol:g}) -> {', '.join(se.actions()) or 'log'}")
-        for ev in self.evaluates.values():
-            lines.append(f"Sensor_Evaluate {ev.id}: {ev.text}")
+        lines += [f"Sensor_Evaluate {ev.id}: {ev.text}" for ev in self.evaluates.values()]
         t = self.transient
-        lines.append(f"Param_Transient: integr_tol={t.integr_tol:g} h_max={t.h_max} "
-                     f"h_min={t.h_min:g} h0_max={t.h0_max}")
+        lines.append(f"Param_Transient: integr_tol={t.integr_tol:g} h_max={t.h_max} h_min="
+                     f"{t.h_min:g} h0_max={t.h0_max}")
         st = self.static
         if any(c.analysis != "TRANSIENT" for c in self.commands):
             lines.append(f"Param_Static: method={st.method} max_imbalance={st.max_imbalance:g} "
@@ -418,8 +404,7 @@ class Model:
         return "\n".join(lines)
 
     def num_states(self) -> int:
-        """Number of IDA states: 6 per point body, 13 per rigid body, per motion its reaction
-        (and an acceleration motion its driven velocity)."""
+        """IDA states: 6 per point body, 13 per rigid body, 1 per motion (2 for acceleration)."""
         return (sum({"point": 6, "rigid": 13}.get(b.kind, 0) for b in self.bodies.values())
                 + sum(1 + (m.val_type == "A") for m in self.motions.values()))
 

@@ -182,9 +182,11 @@ class Kernel:
         n = self.nsensor
         return self.sensor_f[:n].copy(), holds[:n].astype(bool), rearms[:n].astype(bool)
 
-    def evaluate(self, k, t, y, yp):
-        """Evaluate Sensor_Evaluate number k (in id order) at (t, y, yp)."""
-        tape, slot = self.evaluate_tapes[k]
+    def eval_tape(self, which, t, y, yp):
+        """Evaluate one expression tape at (t, y, yp) (order 0): ``which`` is
+        ``self.evaluate_tapes[k]`` (Sensor_Evaluate k in id order) or ``self.control_tapes[k]``
+        (LoadControl k's target load)."""
+        tape, slot = which
         return lib.ps_eval_tape(self.m, self.d, tape, slot, t,
                                 ffi.from_buffer("double[]", np.ascontiguousarray(y, float)),
                                 ffi.from_buffer("double[]", np.ascontiguousarray(yp, float)))
@@ -200,32 +202,19 @@ class Kernel:
         return q
 
     def precision(self, t, y, yp):
-        """(ratio, body index or -1) of ps_precision at (t, y, yp): how far the rounding of the
-        state moves the force rows against the forces the bodies carry."""
-        if self._precision_work is None:
-            if self.codegen["kernel"] == "generated":
-                rows = cols = np.zeros(1, dtype=np.int32)
-            else:
-                self.sparsity()                # the tapes' triplet pattern, and room for it
-                rows, cols = self._triplets
-            work = np.zeros(5 * self.ny)
-            fb = ffi.from_buffer
+        """(ratio, body index or -1) of ps_precision at (t, y, yp)."""
+        if self._precision_work is None:          # the tapes' triplet pattern, and room for it
+            rows, cols = (np.zeros(1, np.int32),) * 2 if self.codegen["kernel"] == \
+                "generated" else (self.sparsity(), self._triplets)[1]
+            keep, fb = (rows, cols, np.zeros(5 * self.ny)), ffi.from_buffer
             self._precision_work = (ffi.cast("int *", fb(rows)), ffi.cast("int *", fb(cols)),
-                                    len(rows), fb("double[]", work), ffi.new("int *"),
-                                    (rows, cols, work))
+                                    len(rows), fb("double[]", keep[2]), ffi.new("int *"), keep)
         rows, cols, ntrip, work, body, _ = self._precision_work
         fb = ffi.from_buffer
         ratio = lib.ps_precision(self.m, self.d, t, fb("double[]", np.ascontiguousarray(y, float)),
                                  fb("double[]", np.ascontiguousarray(yp, float)), rows, cols,
                                  ntrip, work, body)
         return ratio, body[0]
-
-    def control_target(self, k, t, y, yp):
-        """The target load L(t) of LoadControl number k (in id order)."""
-        tape, slot = self.control_tapes[k]
-        return lib.ps_eval_tape(self.m, self.d, tape, slot, t,
-                                ffi.from_buffer("double[]", np.ascontiguousarray(y, float)),
-                                ffi.from_buffer("double[]", np.ascontiguousarray(yp, float)))
 
     def sparsity(self):
         """Return the iteration matrix's structure as a scipy CSC matrix (built once).
@@ -412,26 +401,18 @@ class Kernel:
             if rc != lib.PS_OK and self.d.user_error:
                 raise UserFailure(self.message)
             return yp if rc == lib.PS_OK else np.full(self.ny, np.nan)
-        if sparse:
-            from scipy.sparse.linalg import spsolve
+        from scipy.sparse.linalg import spsolve  # large scenes: the sparse path
         yp = np.zeros(self.ny)
         for _ in range(iters):
             r = self.residual_array(t, y, yp)
             if not np.isfinite(r).all():     # d.bad_kind says where
                 return np.full(self.ny, np.nan)
-            if sparse:
-                J1, J0 = self.jacobian_csc_array(t, y, yp, 1.0), \
-                    self.jacobian_csc_array(t, y, yp, 0.0)
-                finite = np.isfinite(J1.data).all() and np.isfinite(J0.data).all()
-            else:
-                J1, J0 = self.jacobian_array(t, y, yp, 1.0), self.jacobian_array(t, y, yp, 0.0)
-                finite = np.isfinite(J1).all() and np.isfinite(J0).all()
-            if not finite:
+            J1, J0 = self.jacobian_csc_array(t, y, yp, 1.0), \
+                self.jacobian_csc_array(t, y, yp, 0.0)
+            if not (np.isfinite(J1.data).all() and np.isfinite(J0.data).all()):
                 return np.full(self.ny, np.nan)
-            try:
-                dyp = (spsolve((J1 - J0).tocsc(), -r) if sparse
-                       else np.linalg.solve(J1 - J0, -r))
-            except np.linalg.LinAlgError:          # singular dF/dyp: the caller says so
+            dyp = spsolve((J1 - J0).tocsc(), -r)
+            if not np.isfinite(dyp).all():         # singular dF/dyp: the caller says so
                 return np.full(self.ny, np.nan)
             yp += dyp
             if np.max(np.abs(dyp)) <= 1e-14 * (1 + np.max(np.abs(yp))):

@@ -145,11 +145,10 @@ def _check_intervals(model):
     spans = [(c.end_time - t0) for c, t0 in zip(model.commands, _starts(model.commands))
              if c.analysis == "TRANSIENT"]
     longest = max(spans, default=0.0)
-    items = [("sensor", s.id, s.dt, "Sensor_Event", "dt") for s in model.sensors.values()
-             if s.dt is not None]
-    items += [("loadcontrol", c.id, c.update_time, "LoadControl", "updatetime")
+    items = [("sensor", s.id, s.dt, "dt") for s in model.sensors.values() if s.dt is not None]
+    items += [("loadcontrol", c.id, c.update_time, "updatetime")
               for c in model.controls.values()]
-    for kind, eid, dt, tag, attr in items:
+    for kind, eid, dt, attr in items:
         rows = longest / dt
         if not rows < MAX_ROWS:
             ctx = model._where[(kind, eid)]

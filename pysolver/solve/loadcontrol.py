@@ -57,7 +57,7 @@ class LoadControlTask(Actor):
             load = float(k.penalty_loads(t, run.y, run.yp)[self.u])
         else:
             load = -float(k.reactions(t, run.y, run.yp)[self.lam])
-        target = k.control_target(self.k, t, run.y, run.yp)
+        target = k.eval_tape(k.control_tapes[self.k], t, run.y, run.yp)
         for what, value in (("measured load", load), ("target load", target)):
             if not math.isfinite(value):
                 raise NonFinite(f"LoadControl {self.lc.id}: the {what} is {value} at t = "

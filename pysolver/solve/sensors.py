@@ -191,7 +191,7 @@ class Sensors(Actor):
                     flow.restart = True
             if se.evaluate_id is not None:
                 idx = self.eidx[se.evaluate_id]
-                k_.senval[idx] = k_.evaluate(idx, run.t, run.y, run.yp)
+                k_.senval[idx] = k_.eval_tape(k_.evaluate_tapes[idx], run.t, run.y, run.yp)
                 flow.restart |= k_.forces_use_senval
             if se.dt is not None:
                 run.set_print_interval(se.dt, f"Sensor_Event {se.id}'s dt = {se.dt:g}")
