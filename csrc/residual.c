@@ -637,13 +637,13 @@ int ps_roots(const psModel* m, psData* d, double t, const double* y, const doubl
     }
   for (int k = 0; k < m->nsensor; k++) {
     double f = d->sensor_f[k], v = m->sensor_value[k], tol = m->sensor_tol[k];
-    int armed = d->sensor_armed[k];
+    int watching = d->sensor_armed[k];
     switch (m->sensor_compare[k]) {
-      case PS_CMP_GE: g[k] = armed ? f - v : (v - tol) - f; break;
-      case PS_CMP_LT: g[k] = armed ? v - f : f - (v + tol); break;
+      case PS_CMP_GE: g[k] = watching ? f - v : (v - tol) - f; break;
+      case PS_CMP_LT: g[k] = watching ? v - f : f - (v + tol); break;
       default: {
         double side = d->sensor_side[k];
-        g[k] = armed ? side * (v + side * tol - f) : fabs(f - v) - 2.0 * tol;
+        g[k] = watching ? side * (v + side * tol - f) : fabs(f - v) - 2.0 * tol;
         break;
       }
     }

@@ -11,7 +11,7 @@ import numpy as np
 
 from .outputs import print_times
 from .pyida import PyIDA
-from .statics import StaticProblem, _finish, fim_s, solve_static
+from .statics import StaticProblem, finished, fim_s, solve_static
 
 
 def quasi_static(model, t0, y0, times, params, tol, kind=None):
@@ -22,7 +22,7 @@ def quasi_static(model, t0, y0, times, params, tol, kind=None):
     kernel = model._kernel(kind=kind)
     prob = StaticProblem(kernel)
     y, first = fim_s(prob, t0, y0, params)
-    results = [_finish(prob, t0, y, params, first)]
+    results = [finished(prob, t0, y, params, first)]
     if not first.success:
         return [], results
     lay = kernel.layout
@@ -71,7 +71,7 @@ def quasi_static(model, t0, y0, times, params, tol, kind=None):
         if not sol.success:
             # FIM_S from the last good point to this output, then integrate on from there
             yy, r = fim_s(prob, tp, embed(q), params)
-            results.append(_finish(prob, tp, yy, params, r))
+            results.append(finished(prob, tp, yy, params, r))
             if not r.success:
                 return out, results
             q = yy[prob.qcols].copy()
@@ -80,7 +80,7 @@ def quasi_static(model, t0, y0, times, params, tol, kind=None):
             q = np.array(sol.y)
         if i == len(times) - 1:
             yy, r = fim_s(prob, tp, embed(q), params)
-            results.append(_finish(prob, tp, yy, params, r))
+            results.append(finished(prob, tp, yy, params, r))
             q = yy[prob.qcols].copy()
         out.append((tp, embed(q)))
     return out, results
@@ -118,7 +118,7 @@ def run_quasi_static(run, cmd):
     y = run.y
     for tp in [run.t] + list(times):
         y, res = fim_s(prob, tp, y, params)
-        run.statics.append(_finish(prob, tp, y, params, res))
+        run.statics.append(finished(prob, tp, y, params, res))
         if not res.success:
             raise StaticFailure(f"quasi-static analysis at t = {tp:g}: {res.message}")
         run.after_static(tp, y)

@@ -307,17 +307,19 @@ def solve_static(model, t, y, params, tol, kind=None):
         y1, r1 = mkeam(StaticProblem(model._kernel(conservative=True, kind=kind)), t, y, params,
                        tol)
         if not r1.success:
-            return y1, _finish(prob, t, y1, params, r1)
+            return y1, finished(prob, t, y1, params, r1)
         y2, r2 = fim_s(prob, t, y1, params)
         r2.method = "MKEAM+FIM_S"
         r2.iterations = r1.iterations
         r2.message = r1.message + "; " + r2.message
-        return y2, _finish(prob, t, y2, params, r2)
+        return y2, finished(prob, t, y2, params, r2)
     y1, r1 = fim_s(prob, t, y, params)
-    return y1, _finish(prob, t, y1, params, r1)
+    return y1, finished(prob, t, y1, params, r1)
 
 
-def _finish(prob, t, y, params, res):
+def finished(prob, t, y, params, res):
+    """The equilibrium record `res` at (t, y) completed with its compliance and coordinates
+    (every static and quasi-static result goes through here)."""
     res.compliance = compliance(prob, t, y, params)
     res.coordinates = prob.names
     return res
