@@ -42,7 +42,8 @@ typedef struct {
 
 static __thread UserCtx* current = NULL;
 
-/* The expression-language functions c_sysfnc answers, in code order. */
+/* The expression-language functions c_sysfnc answers, in code order: those of
+ * pysolver/catalogue.py with c_sysfnc (tests/test_catalogue.py checks the two agree). */
 enum { F_DX, F_DY, F_DZ, F_DM, F_VX, F_VY, F_VZ, F_VM, F_VR, F_ACCX, F_ACCY, F_ACCZ, F_WX, F_WY,
        F_WZ, F_AX, F_AY, F_AZ, F_VARVAL, F_PFORCE, F_SFORCE, F_SENVAL, F_COUNT };
 static const char* const FUNCTIONS[F_COUNT] = {

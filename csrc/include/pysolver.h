@@ -31,7 +31,8 @@ extern "C" {
 #define PS_INSTR_WIDTH 10
 #define PS_TMP_TOTAL 100   /* scratch hyper-duals in psData.tmp */
 
-/* Tape opcodes. Operands a0..a8 follow the op; "slot" means an earlier instruction's result. */
+/* Tape opcodes. Operands a0..a8 follow the op; "slot" means an earlier instruction's result.
+ * Each is declared in pysolver/catalogue.py too (tests/test_catalogue.py checks they agree). */
 enum psOp {
   PS_OP_CONST = 0,   /* a0: index into consts */
   PS_OP_TIME,        /* simulation time */
@@ -62,7 +63,7 @@ enum psOp {
   PS_OP_COUNT
 };
 
-/* Marker measures. */
+/* Marker measures, in the order of pysolver/catalogue.py (tests/test_catalogue.py). */
 enum psMeasure {
   PS_M_DX = 0, PS_M_DY, PS_M_DZ, PS_M_DM,
   PS_M_VX, PS_M_VY, PS_M_VZ, PS_M_VM, PS_M_VR,

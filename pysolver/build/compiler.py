@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 
+from .. import catalogue
 from ..deck import motions
 from ..deck.expr import CONSTANTS
 from ..errors import DeckError
@@ -21,20 +22,11 @@ from ..rotations import e_from_rot
 from .bindings import lib
 
 W = lib.PS_INSTR_WIDTH
-_MEASURE = {name: getattr(lib, f"PS_M_{name}") for name in
-            ("DX", "DY", "DZ", "DM", "VX", "VY", "VZ", "VM", "VR", "ACCX", "ACCY", "ACCZ",
-             "WX", "WY", "WZ", "AX", "AY", "AZ")}
-_VEL = {"VX", "VY", "VZ", "VM", "VR", "WX", "WY", "WZ"}
-_ACC = {"ACCX", "ACCY", "ACCZ"}
-_UNARY = {n: getattr(lib, f"PS_OP_{n}") for n in
-          ("ABS", "ACOS", "ASIN", "ATAN", "COS", "COSH", "SIN", "SINH", "TAN", "TANH", "EXP",
-           "LOG", "LOG10", "SQRT", "AINT", "ANINT")}
-_BINARY = {n: getattr(lib, f"PS_OP_{n}") for n in ("ATAN2", "MOD", "MAX", "MIN", "SIGN", "DIM")}
-_ARITH = {"+": lib.PS_OP_ADD, "-": lib.PS_OP_SUB, "*": lib.PS_OP_MUL, "/": lib.PS_OP_DIV,
-          "**": lib.PS_OP_POW}
+# the catalogue's C enum names as the extension's values
+_C = {name: getattr(lib, name) for name in catalogue.OPCODES + catalogue.MEASURE_CODES}
+_ARITH = {op: _C[f.c] for op, f in catalogue.ARITHMETIC.items() if op != "neg"}
 # constant folding of arithmetic (Python floats follow the same IEEE rules as the kernel)
-_FOLD = {lib.PS_OP_ADD: lambda a, b: a + b, lib.PS_OP_SUB: lambda a, b: a - b,
-         lib.PS_OP_MUL: lambda a, b: a * b, lib.PS_OP_NEG: lambda a: -a}
+_FOLD = {_C[f.c]: f.py for f in catalogue.ARITHMETIC.values() if f.fold}
 
 
 def _key_ids(key):
@@ -173,7 +165,7 @@ class _Tape:
         parameters): one instruction."""
         idx = [self.c.param_index(*v) if isinstance(v, tuple) else self.c.const_index(float(v))
                for v in (x0, h0, x1, h1)]
-        return self.emit(lib.PS_OP_STEPC, x, *idx, ("STEP", "STEP5", "HAVSIN").index(kind))
+        return self.emit(lib.PS_OP_STEPC, x, *idx, catalogue.STEP_SHAPES.index(kind))
 
     def step(self, x, x0, h0, x1, h1, kind="STEP"):
         bounds = [self.value(s) for s in (x0, h0, x1, h1)]
@@ -257,7 +249,8 @@ class Compiler:
         if tag == "bin":
             return tape.op(_ARITH[node[1]], self.lower(tape, node[2]), self.lower(tape, node[3]))
         name, args = node[1], node[2]
-        if name in _MEASURE:
+        f = catalogue.FUNCTIONS[name]
+        if f.kind == "measure":
             return self.measure(tape, name, [int(a[1]) for a in args])
         if name == "VARVAL":
             vid = int(args[0][1])
@@ -276,19 +269,12 @@ class Compiler:
             tape.uses_senval = True
             return tape.emit(lib.PS_OP_SENVAL, self.eidx[int(args[0][1])])
         slots = [self.lower(tape, a) for a in args]
-        if name in _UNARY:
-            return tape.op(_UNARY[name], *slots)
-        if name in _BINARY:
-            return tape.op(_BINARY[name], *slots)
-        if name in ("STEP", "STEP5", "HAVSIN"):
+        if f.kind == "step":
             return tape.step(*slots, kind=name)
-        if name == "IF":
-            return tape.emit(lib.PS_OP_IF, *slots)
-        if name == "IMPACT":
-            return self.impact(tape, *slots)
-        if name == "BISTOP":
-            return self.bistop(tape, *slots)
-        raise AssertionError(name)
+        if f.c is not None:               # one instruction: math functions, IF
+            return tape.op(_C[f.c], *slots)
+        # functions built from other instructions: IMPACT, BISTOP
+        return getattr(self, name.lower())(tape, *slots)
 
     def user_call(self, tape, k, channel, inputs):
         """A user subroutine on its declared inputs (csrc/usersub.c)."""
@@ -304,20 +290,22 @@ class Compiler:
         return tape.emit(lib.PS_OP_USER, k, adr, len(slots), channel, cache)
 
     def measure(self, tape, name, ids):
-        if self.conservative and (name in _VEL or name in _ACC):
+        f = catalogue.FUNCTIONS[name]
+        need_u = "velocities" in f.reads
+        need_a = "accelerations" in f.reads
+        if self.conservative and need_u:
             return tape.const(0.0)
-        need_u = name in _VEL or name in _ACC
-        need_a = name in _ACC
-        if name in ("VM", "VR"):    # VM(i, j, l), VR(i, j, l): no resolution marker
-            ids = ids[:2] + [0] * (2 - len(ids[:2])) + [0] + ids[2:3]
-        ids = ids + [0] * (4 - len(ids))
+        # the markers by role: i, j, k (the axes of the components), l (the frame of time
+        # derivatives); 0 is the global frame
+        roles = dict(zip(f.args, ids))
+        ids = [roles.get(r, 0) for r in "ijkl"]
         mk, sl = [], []
         for k, mid in enumerate(ids):
             u = need_u if k != 2 else False
             i, s = self.marker(tape, mid, u, need_a if k != 2 else False)
             mk.append(i)
             sl.append(s)
-        return tape.emit(lib.PS_OP_MEASURE, _MEASURE[name], *mk, *sl)
+        return tape.emit(lib.PS_OP_MEASURE, _C[f.c], *mk, *sl)
 
     def impact(self, t, x, xd, x1, k, e, cmax, d):
         """IMPACT: k (x1 - x)^e - STEP(x, x1 - d, cmax, x1, 0) xd, at least 0, for x < x1."""

@@ -17,34 +17,19 @@ done here too, so that a deck fails at load time and not during a run.
 import math
 import re
 
+from .. import catalogue
 from ..errors import ExpressionError
 
 #: Named constants.
-CONSTANTS = {"PI": 3.141592653589793, "DTOR": 3.141592653589793 / 180.0,
-             "RTOD": 180.0 / 3.141592653589793}
+CONSTANTS = {name: f.py() for name, f in catalogue.NAMES.items() if f.py is not None}
 
-#: Functions: name -> (minimum, maximum) number of arguments.
-MATH1 = ("ABS", "ACOS", "ASIN", "ATAN", "COS", "COSH", "SIN", "SINH", "TAN", "TANH", "EXP",
-         "LOG", "LOG10", "SQRT", "AINT", "ANINT")
-MATH2 = ("ATAN2", "MOD", "MAX", "MIN", "SIGN", "DIM")
-MEASURES = {
-    "DX": (1, 3), "DY": (1, 3), "DZ": (1, 3), "DM": (1, 2),
-    "VX": (1, 4), "VY": (1, 4), "VZ": (1, 4), "VM": (1, 3), "VR": (1, 3),
-    "ACCX": (1, 4), "ACCY": (1, 4), "ACCZ": (1, 4),
-    "WX": (1, 3), "WY": (1, 3), "WZ": (1, 3),
-    "AX": (1, 2), "AY": (1, 2), "AZ": (1, 2),
-}
-FUNCTIONS = {
-    **{f: (1, 1) for f in MATH1},
-    **{f: (2, 2) for f in MATH2},
-    **MEASURES,
-    "STEP": (5, 5), "STEP5": (5, 5), "HAVSIN": (5, 5), "IMPACT": (7, 7), "BISTOP": (8, 8),
-    "IF": (4, 4), "VARVAL": (1, 1), "PFORCE": (1, 1), "SFORCE": (4, 4), "SENVAL": (1, 1),
-    "MOTION": (1, 4),
-}
-#: Functions whose arguments are element ids (integer literals).
-ID_ARGS = {**{m: "marker" for m in MEASURES}, "VARVAL": "variable", "PFORCE": "penalty",
-           "SFORCE": "sforce", "SENVAL": "evaluate", "MOTION": "motion"}
+#: Functions (pysolver/catalogue.py): name -> (minimum, maximum) number of arguments.
+MATH1 = tuple(f.name for f in catalogue.of_kind("math1"))
+MATH2 = tuple(f.name for f in catalogue.of_kind("math2"))
+MEASURES = {f.name: f.arity for f in catalogue.of_kind("measure")}
+FUNCTIONS = {name: f.arity for name, f in catalogue.FUNCTIONS.items()}
+#: Functions whose arguments are element ids (integer literals): the kind of the first.
+ID_ARGS = {name: f.ids[0] for name, f in catalogue.FUNCTIONS.items() if f.ids}
 
 _TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eEdD][+-]?\d+)?|\.\d+(?:[eEdD][+-]?\d+)?)"
                     r"|([A-Za-z_][A-Za-z_0-9]*)|(\*\*|[-+*/(),:]))")
@@ -204,24 +189,16 @@ def parse(text):
 
 
 def _fn(name):
-    """NumPy's version of a math function of the language, for constant arguments."""
-    import numpy as np
-    sign = lambda a, b: np.abs(a) * (1.0 if b >= 0 else -1.0)  # noqa: E731
-    table = {"ABS": np.abs, "ACOS": np.arccos, "ASIN": np.arcsin, "ATAN": np.arctan,
-             "COS": np.cos, "COSH": np.cosh, "SIN": np.sin, "SINH": np.sinh, "TAN": np.tan,
-             "TANH": np.tanh, "EXP": np.exp, "LOG": np.log, "LOG10": np.log10,
-             "SQRT": np.sqrt, "AINT": np.trunc, "ANINT": lambda x: np.sign(x) *
-             np.floor(np.abs(x) + 0.5), "ATAN2": np.arctan2, "MOD": np.fmod,
-             "MAX": np.maximum, "MIN": np.minimum, "SIGN": sign,
-             "DIM": lambda a, b: np.maximum(a - b, 0.0)}
-    return table.get(name)
+    """The value of a math function of the language on constant arguments (NumPy's rules)."""
+    f = catalogue.FUNCTIONS.get(name)
+    return f.py if f is not None and f.kind in ("math1", "math2") else None
 
 
 def _constant_parts(tree):
     """ExpressionError when a part of the tree that depends on nothing (numbers, constants
     and math functions of them) evaluates to infinity or NaN: 1/0, 10**400, LOG(-1), ..."""
     import numpy as np
-    ops = {"+": np.add, "-": np.subtract, "*": np.multiply, "/": np.divide, "**": np.power}
+    ops = {op: f.py for op, f in catalogue.ARITHMETIC.items()}
     values = {}
     order, stack = [], [tree]
     while stack:                        # post-order without recursion
@@ -361,14 +338,8 @@ def references(tree, out=None):
     for node in nodes(tree):
         if node[0] != "call" or node[1] not in ID_ARGS:
             continue
-        name, args = node[1], node[2]
-        kind = ID_ARGS[name]
-        if name in ("SFORCE", "MOTION"):
-            out.setdefault(kind, set()).add(int(args[0][1]))
-            if len(args) == 4 and int(args[3][1]):
-                out.setdefault("marker", set()).add(int(args[3][1]))
-        else:
-            for a in args:
-                if int(a[1]) != 0 or kind != "marker":
-                    out.setdefault(kind, set()).add(int(a[1]))
+        for a, kind in zip(node[2], catalogue.FUNCTIONS[node[1]].ids):
+            # marker 0 is the global frame; any other id names an element
+            if kind is not None and (int(a[1]) != 0 or kind != "marker"):
+                out.setdefault(kind, set()).add(int(a[1]))
     return out

@@ -1,6 +1,7 @@
 """Checks of the references between elements: every id an expression names exists, no
 cycles of VARVAL, PFORCE and SFORCE references, and penalty constraints g(q, t) use
 displacement measures only."""
+from .. import catalogue
 from . import expr as ex
 
 
@@ -65,8 +66,8 @@ class _Cycle(Exception):
     pass
 
 
-_DYNAMIC = {"VX", "VY", "VZ", "VM", "VR", "ACCX", "ACCY", "ACCZ", "WX", "WY", "WZ", "PFORCE",
-            "SFORCE", "MOTION"}
+#: Functions that read velocities, accelerations or forces (not a function of q and t).
+_DYNAMIC = {name for name, f in catalogue.FUNCTIONS.items() if f.reads & catalogue.DYNAMIC}
 
 
 def _dynamic(model, node, stack):

@@ -18,6 +18,7 @@ paths cannot be traced: :class:`Untraceable` says where and why.
 import math
 import threading
 
+from .. import catalogue
 from ..errors import DeckError, ExpressionError
 from . import expr as ex
 
@@ -223,18 +224,16 @@ class _MathShim:
 
 
 SHIM = _MathShim()
-for _name, _expr_name, _arity in [
-        ("sin", "SIN", 1), ("cos", "COS", 1), ("tan", "TAN", 1), ("asin", "ASIN", 1),
-        ("acos", "ACOS", 1), ("atan", "ATAN", 1), ("atan2", "ATAN2", 2), ("sinh", "SINH", 1),
-        ("cosh", "COSH", 1), ("tanh", "TANH", 1), ("exp", "EXP", 1), ("log10", "LOG10", 1),
-        ("sqrt", "SQRT", 1), ("fabs", "ABS", 1), ("fmod", "MOD", 2), ("copysign", "SIGN", 2)]:
-    setattr(SHIM, _name, _math_function(getattr(math, _name), _expr_name, _arity))
+# the catalogue's math-module stand-ins; then math.log with its optional base, math.hypot of any
+# number of arguments and math.pow as **
+_NAMES = [f.math for f in catalogue.TABLE if f.math] + ["hypot", "pow"]
+for _f in catalogue.TABLE:
+    if _f.math:
+        setattr(SHIM, _f.math, _math_function(getattr(math, _f.math), _f.name, _f.arity[1]))
 SHIM.log = _log
 SHIM.hypot = _hypot
 SHIM.pow = lambda x, y: x ** y
-_REPLACED = {getattr(math, n): getattr(SHIM, n) for n in
-             ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh", "exp",
-              "log10", "sqrt", "fabs", "fmod", "copysign", "log", "hypot", "pow")}
+_REPLACED = {getattr(math, n): getattr(SHIM, n) for n in _NAMES}
 
 
 def shim_globals(namespace):
@@ -255,8 +254,9 @@ def shim_globals(namespace):
 # py_sysfnc and py_sysary: what a routine reads
 
 #: SYSARY arrays (Adams/MotionSolve): name -> the SYSFNC functions of its entries.
-SYSARY = {"TDISP": ("DX", "DY", "DZ"), "TVEL": ("VX", "VY", "VZ"), "RVEL": ("WX", "WY", "WZ"),
-          "VEL": ("VX", "VY", "VZ", "WX", "WY", "WZ"), "TACC": ("ACCX", "ACCY", "ACCZ")}
+SYSARY = catalogue.SYSARY
+#: What py_sysfnc reads.
+SYSFNC = frozenset(f.name for f in catalogue.TABLE if f.py_sysfnc)
 
 
 def _ids(fnc, ids):
@@ -272,9 +272,9 @@ def _ids(fnc, ids):
 def measure(fnc, ids):
     """The traced value of one SYSFNC function (e.g. "DZ", [10, 1])."""
     name = str(fnc).upper()
-    if name not in ex.ID_ARGS:
+    if name not in SYSFNC:
         raise SysfncError(f"unknown function {fnc!r}; py_sysfnc reads "
-                          f"{', '.join(sorted(ex.ID_ARGS))}")
+                          f"{', '.join(sorted(SYSFNC))}")
     node = ("call", name, [("num", float(i)) for i in _ids(name, ids)], 0)
     try:
         ex._check(node)

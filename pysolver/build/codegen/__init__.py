@@ -74,7 +74,8 @@ _TEMP = re.compile(r"\bt(\d+)\b")
 def _generator_digest():
     here = pathlib.Path(__file__).parent
     h = hashlib.sha256()
-    for path in sorted(here.glob("*.py")):
+    # the generator's modules and the catalogue they read (opcodes, C function names)
+    for path in sorted(here.glob("*.py")) + [here.parent.parent / "catalogue.py"]:
         h.update(path.read_bytes())
     return h.hexdigest()
 

@@ -7,18 +7,15 @@ step, over :class:`~.sym.Graph` nodes instead of hyper-dual numbers. Body kinema
 once per body and shared by every element (the tapes recompute them per element); derivatives
 are taken symbolically, so each entry carries only the directions it depends on.
 """
+from ... import catalogue
 from ..bindings import lib
 from .sym import Graph, Unsupported
 
-_UNARY_OPS = {
-    "PS_OP_ABS": "abs", "PS_OP_ACOS": "acos", "PS_OP_ASIN": "asin", "PS_OP_ATAN": "atan",
-    "PS_OP_COS": "cos", "PS_OP_COSH": "cosh", "PS_OP_SIN": "sin", "PS_OP_SINH": "sinh",
-    "PS_OP_TAN": "tan", "PS_OP_TANH": "tanh", "PS_OP_EXP": "exp", "PS_OP_LOG": "log",
-    "PS_OP_LOG10": "log10", "PS_OP_SQRT": "sqrt", "PS_OP_AINT": "aint", "PS_OP_ANINT": "anint",
-}
-UNARY = {getattr(lib, k): v for k, v in _UNARY_OPS.items()}
-OP = {k[6:]: getattr(lib, k) for k in dir(lib) if k.startswith("PS_OP_")}
-M = {k[5:]: getattr(lib, k) for k in dir(lib) if k.startswith("PS_M_")}
+# the catalogue's opcodes and measures by short name ("SIN", "DX"), and the one-argument
+# functions as :class:`~.sym.Graph` functions
+OP = {c[len("PS_OP_"):]: getattr(lib, c) for c in catalogue.OPCODES}
+M = {c[len("PS_M_"):]: getattr(lib, c) for c in catalogue.MEASURE_CODES}
+UNARY = {getattr(lib, f.c): f.name.lower() for f in catalogue.of_kind("math1")}
 
 # e' = 1/2 G(e) w_body: G's entries as (index of e, sign), csrc/tape.c ps_rate_coeff
 _GIDX = ((1, 2, 3), (0, 3, 2), (3, 0, 1), (2, 1, 0))

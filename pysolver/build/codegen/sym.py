@@ -9,26 +9,29 @@ non-smooth functions differentiate by branch, STEP-family functions carry their 
 """
 import math
 
-#: Unary functions: C name, and d f(x) / dx as a function of (graph, x, f(x)).
+from ... import catalogue
+
+#: One-argument functions (the catalogue's math1, lower case): d f(x) / dx as a function of
+#: (graph, x, f(x)); None for a zero derivative.
 _UNARY = {
-    "sin": ("sin", lambda g, x, f: g.fn("cos", x)),
-    "cos": ("cos", lambda g, x, f: g.neg(g.fn("sin", x))),
-    "tan": ("tan", lambda g, x, f: g.add(g.const(1.0), g.mul(f, f))),
-    "exp": ("exp", lambda g, x, f: f),
-    "log": ("log", lambda g, x, f: g.div(g.const(1.0), x)),
-    "log10": ("log10", lambda g, x, f: g.div(g.const(1.0), g.mul(x, g.const(math.log(10))))),
-    "sqrt": ("sqrt", lambda g, x, f: g.div(g.const(0.5), f)),
-    "asin": ("asin", lambda g, x, f: g.div(g.const(1.0), g.fn("sqrt", g.sub(
-        g.const(1.0), g.mul(x, x))))),
-    "acos": ("acos", lambda g, x, f: g.div(g.const(-1.0), g.fn("sqrt", g.sub(
-        g.const(1.0), g.mul(x, x))))),
-    "atan": ("atan", lambda g, x, f: g.div(g.const(1.0), g.add(g.const(1.0), g.mul(x, x)))),
-    "sinh": ("sinh", lambda g, x, f: g.fn("cosh", x)),
-    "cosh": ("cosh", lambda g, x, f: g.fn("sinh", x)),
-    "tanh": ("tanh", lambda g, x, f: g.sub(g.const(1.0), g.mul(f, f))),
-    "abs": ("fabs", lambda g, x, f: g.sgn(x)),
-    "aint": ("trunc", None),
-    "anint": ("round", None),
+    "sin": lambda g, x, f: g.fn("cos", x),
+    "cos": lambda g, x, f: g.neg(g.fn("sin", x)),
+    "tan": lambda g, x, f: g.add(g.const(1.0), g.mul(f, f)),
+    "exp": lambda g, x, f: f,
+    "log": lambda g, x, f: g.div(g.const(1.0), x),
+    "log10": lambda g, x, f: g.div(g.const(1.0), g.mul(x, g.const(math.log(10)))),
+    "sqrt": lambda g, x, f: g.div(g.const(0.5), f),
+    "asin": lambda g, x, f: g.div(g.const(1.0), g.fn("sqrt", g.sub(
+        g.const(1.0), g.mul(x, x)))),
+    "acos": lambda g, x, f: g.div(g.const(-1.0), g.fn("sqrt", g.sub(
+        g.const(1.0), g.mul(x, x)))),
+    "atan": lambda g, x, f: g.div(g.const(1.0), g.add(g.const(1.0), g.mul(x, x))),
+    "sinh": lambda g, x, f: g.fn("cosh", x),
+    "cosh": lambda g, x, f: g.fn("sinh", x),
+    "tanh": lambda g, x, f: g.sub(g.const(1.0), g.mul(f, f)),
+    "abs": lambda g, x, f: g.sgn(x),
+    "aint": None,
+    "anint": None,
 }
 
 
@@ -263,7 +266,7 @@ class Graph:
             f1 = self.mul(y, self.pow(x, self.sub(y, self.one)))
             return self.add(self.mul(f1, dx), self.mul(self.mul(a, self.fn("log", x)), dy))
         if isinstance(op, tuple) and op[0] == "fn":
-            rule = _UNARY[op[1]][1]
+            rule = _UNARY[op[1]]
             x = args[0]
             if rule is None:
                 return self.zero
@@ -298,4 +301,5 @@ class Graph:
         return sorted(seen)
 
 
-UNARY_C = {name: c for name, (c, _) in _UNARY.items()}
+#: One-argument functions: the C function generated code calls.
+UNARY_C = {f.name.lower(): f.libm for f in catalogue.of_kind("math1")}

@@ -1,0 +1,305 @@
+"""The expression language's operations and functions, each declared once.
+
+One :class:`Function` record per name a deck may write (``TIME``, ``+``, ``SIN``, ``DX``,
+``STEP``, ``SFORCE``, ...) and per tape instruction no deck writes (``const``, ``gdot``, ...).
+Everything else reads this table: the parser's names, arities and id arguments
+(``deck/expr.py``), which functions read velocities (``deck/references.py``), the tracer's
+``math`` stand-ins and ``py_sysfnc`` names (``deck/tracer.py``), the compiler's lowering and
+tape basis (``build/compiler.py``), the generated C's tables (``build/codegen``) and the
+function table of docs/deck-language.md (``python -m pysolver.catalogue``). C cannot read it:
+tests/test_catalogue.py checks that ``csrc/include/pysolver.h``'s ``PS_OP_*`` and ``PS_M_*``
+enums and ``csrc/usersub.c``'s c_sysfnc table agree with it.
+"""
+import operator
+import re
+import sys
+from dataclasses import dataclass
+from typing import Callable, Optional
+
+import numpy as np
+
+#: What a function reads besides its arguments.
+READS = ("time", "positions", "velocities", "accelerations", "forces", "variables", "stored")
+#: Reads that make an expression more than a function of positions and time (a penalty
+#: constraint's g may not have them).
+DYNAMIC = frozenset({"velocities", "accelerations", "forces"})
+#: Kinds of record.
+KINDS = ("name", "arithmetic", "math1", "math2", "step", "special", "measure", "internal")
+
+
+@dataclass(frozen=True)
+class Function:
+    """One operation or function of the expression language.
+
+    Attributes
+    ----------
+    name : str
+        As a deck writes it (``"SIN"``, ``"DX"``, ``"+"``; ``"neg"`` for unary minus; lower
+        case for internal instructions).
+    kind : str
+        One of :data:`KINDS`.
+    args : tuple of str
+        Argument names (a measure's marker roles i, j, k, l); the most it takes.
+    c : str or None
+        The C enum value it lowers to (``"PS_OP_SIN"``, ``"PS_M_DX"``); None when it is
+        lowered to other operations (IMPACT) or is a number (PI).
+    doc : str
+        One line for the documentation's function table.
+    required : int or None
+        The fewest arguments (None: all of `args`).
+    reads : frozenset of str
+        What it reads besides its arguments (:data:`READS`).
+    ids : tuple
+        Per argument, the kind of element whose id it is (``"marker"``, ``"variable"``, ...),
+        or None for a number.
+    py : callable or None
+        Its value on floats with C's IEEE rules when given NumPy float64 numbers (infinity or
+        NaN rather than an exception), for the constant checks at load; a named number's
+        takes no argument and returns it.
+    fold : bool
+        The compiler folds it on constant Python floats (exact and never raising).
+    math : str or None
+        The ``math`` module function a traced Python routine calls for it.
+    libm : str or None
+        The C library function generated C calls for it (one-argument functions).
+    py_sysfnc, c_sysfnc : bool
+        A user subroutine reads it through ``py_sysfnc`` / ``c_sysfnc`` (by this name).
+    """
+
+    name: str
+    kind: str
+    args: tuple
+    c: Optional[str]
+    doc: str
+    required: Optional[int] = None
+    reads: frozenset = frozenset()
+    ids: tuple = ()
+    py: Optional[Callable] = None
+    fold: bool = False
+    math: Optional[str] = None
+    libm: Optional[str] = None
+    py_sysfnc: bool = False
+    c_sysfnc: bool = False
+
+    @property
+    def arity(self):
+        """(fewest, most) arguments."""
+        return (len(self.args) if self.required is None else self.required, len(self.args))
+
+    @property
+    def usage(self):
+        """How a deck writes it: ``DX(i[, j[, k]])``, ``a + b``, ``TIME``."""
+        if self.kind == "name":
+            return self.name
+        if self.kind == "arithmetic":
+            return "-a" if self.name == "neg" else f"a {self.name} b"
+        if self.name == "IF":
+            return "IF(e1: e2, e3, e4)"
+        lo, hi = self.arity
+        tail = "".join(f"[, {a}" for a in self.args[lo:]) + "]" * (hi - lo)
+        return f"{self.name}({', '.join(self.args[:lo])}{tail})"
+
+
+def _math1(name, py, libm, doc, math_name=None):
+    return Function(name, "math1", ("x",), f"PS_OP_{name}", doc, py=py, libm=libm,
+                    math=math_name)
+
+
+def _math2(name, args, py, doc, math_name=None):
+    return Function(name, "math2", args, f"PS_OP_{name}", doc, py=py, math=math_name)
+
+
+def _step(name, doc):
+    return Function(name, "step", ("x", "x0", "h0", "x1", "h1"), "PS_OP_STEPC", doc)
+
+
+_POS = frozenset({"positions"})
+_VEL = frozenset({"positions", "velocities"})
+_ACC = frozenset({"positions", "velocities", "accelerations"})
+
+
+def _measure(name, args, reads, doc):
+    """A measure of markers: every argument a marker id (0 or omitted: the global frame)."""
+    return Function(name, "measure", tuple(args), f"PS_M_{name}", doc, required=1, reads=reads,
+                    ids=("marker",) * len(args), py_sysfnc=True, c_sysfnc=True)
+
+
+def _element(name, kind, doc, reads, c=None):
+    """A value of one element, named by its id."""
+    return Function(name, "special", ("id",), c, doc, reads=frozenset({reads}), ids=(kind,),
+                    py_sysfnc=True, c_sysfnc=True)
+
+
+def _internal(name, doc):
+    return Function(name, "internal", (), f"PS_OP_{name.upper()}", doc)
+
+
+_PI = 3.141592653589793
+_FORCE_ARGS = ("id", "jflag", "comp", "rm")
+
+#: Every operation and function, in the order of the documentation's table.
+TABLE = (
+    # names
+    Function("TIME", "name", (), "PS_OP_TIME", "simulation time", reads=frozenset({"time"})),
+    Function("PI", "name", (), None, "pi", py=lambda: _PI),
+    Function("DTOR", "name", (), None, "pi / 180: degrees to radians", py=lambda: _PI / 180.0),
+    Function("RTOD", "name", (), None, "180 / pi: radians to degrees", py=lambda: 180.0 / _PI),
+    # arithmetic (FORTRAN precedence: -2**2 = -4, ** right-associative)
+    Function("+", "arithmetic", ("a", "b"), "PS_OP_ADD", "sum", py=operator.add, fold=True),
+    Function("-", "arithmetic", ("a", "b"), "PS_OP_SUB", "difference", py=operator.sub,
+             fold=True),
+    Function("*", "arithmetic", ("a", "b"), "PS_OP_MUL", "product", py=operator.mul, fold=True),
+    Function("/", "arithmetic", ("a", "b"), "PS_OP_DIV", "quotient", py=operator.truediv),
+    Function("**", "arithmetic", ("a", "b"), "PS_OP_POW",
+             "a to the power b (right-associative, binds tighter than unary minus)",
+             py=operator.pow),
+    Function("neg", "arithmetic", ("a",), "PS_OP_NEG", "negation", py=operator.neg, fold=True),
+    # functions of one number
+    _math1("ABS", np.abs, "fabs", "absolute value", "fabs"),
+    _math1("ACOS", np.arccos, "acos", "arc cosine (radians)", "acos"),
+    _math1("ASIN", np.arcsin, "asin", "arc sine (radians)", "asin"),
+    _math1("ATAN", np.arctan, "atan", "arc tangent (radians)", "atan"),
+    _math1("COS", np.cos, "cos", "cosine", "cos"),
+    _math1("COSH", np.cosh, "cosh", "hyperbolic cosine", "cosh"),
+    _math1("SIN", np.sin, "sin", "sine", "sin"),
+    _math1("SINH", np.sinh, "sinh", "hyperbolic sine", "sinh"),
+    _math1("TAN", np.tan, "tan", "tangent", "tan"),
+    _math1("TANH", np.tanh, "tanh", "hyperbolic tangent", "tanh"),
+    _math1("EXP", np.exp, "exp", "e to the power x", "exp"),
+    _math1("LOG", np.log, "log", "natural logarithm", "log"),
+    _math1("LOG10", np.log10, "log10", "base-10 logarithm", "log10"),
+    _math1("SQRT", np.sqrt, "sqrt", "square root", "sqrt"),
+    _math1("AINT", np.trunc, "trunc", "x truncated toward zero (zero derivative)"),
+    _math1("ANINT", lambda x: np.sign(x) * np.floor(np.abs(x) + 0.5), "round",
+           "x rounded to the nearest whole number, halves away from zero (zero derivative)"),
+    # functions of two numbers
+    _math2("ATAN2", ("y", "x"), np.arctan2, "angle of the point (x, y), in (-pi, pi]", "atan2"),
+    _math2("MOD", ("a", "b"), np.fmod, "a - b AINT(a / b): the remainder, with a's sign",
+           "fmod"),
+    _math2("MAX", ("a", "b"), np.maximum, "the larger (a when equal)"),
+    _math2("MIN", ("a", "b"), np.minimum, "the smaller (a when equal)"),
+    _math2("SIGN", ("a", "b"), lambda a, b: np.abs(a) * (1.0 if b >= 0 else -1.0),
+           "|a| with the sign of b (b = 0 counts as positive)", "copysign"),
+    _math2("DIM", ("a", "b"), lambda a, b: np.maximum(a - b, 0.0), "max(a - b, 0)"),
+    # STEP family, in the order of PS_OP_STEPC's shape code
+    _step("STEP", "h0 + (h1 - h0) D^2 (3 - 2 D), D = (x - x0) / (x1 - x0) clamped to [0, 1]"),
+    _step("STEP5", "as STEP with D^3 (10 - 15 D + 6 D^2): smooth second derivative"),
+    _step("HAVSIN", "as STEP with (1 - cos(pi D)) / 2"),
+    Function("IF", "special", ("e1", "e2", "e3", "e4"), "PS_OP_IF",
+             "e2 where e1 < 0, e3 where e1 = 0, e4 where e1 > 0"),
+    Function("IMPACT", "special", ("x", "dx", "x1", "k", "e", "cmax", "d"), None,
+             "contact where x < x1: max(0, k (x1 - x)^e - STEP(x, x1 - d, cmax, x1, 0) dx)"),
+    Function("BISTOP", "special", ("x", "dx", "x1", "x2", "k", "e", "cmax", "d"), None,
+             "IMPACT-like walls at x1 (pushing up) and x2 (pushing down)"),
+    # measures, in the order of enum psMeasure; marker roles: i from j, components in k's
+    # axes, time derivatives in l's frame
+    _measure("DX", "ijk", _POS, "x of the displacement of i from j, in k's axes"),
+    _measure("DY", "ijk", _POS, "y of the displacement of i from j, in k's axes"),
+    _measure("DZ", "ijk", _POS, "z of the displacement of i from j, in k's axes"),
+    _measure("DM", "ij", _POS, "distance from j to i"),
+    _measure("VX", "ijkl", _VEL, "x of the velocity of i relative to j, in k's axes, seen "
+             "from l's frame"),
+    _measure("VY", "ijkl", _VEL, "y of the velocity of i relative to j, in k's axes, seen "
+             "from l's frame"),
+    _measure("VZ", "ijkl", _VEL, "z of the velocity of i relative to j, in k's axes, seen "
+             "from l's frame"),
+    _measure("VM", "ijl", _VEL, "magnitude of the velocity of i relative to j, seen from l's "
+             "frame"),
+    _measure("VR", "ijl", _VEL, "radial velocity: the rate of DM(i, j), seen from l's frame"),
+    _measure("ACCX", "ijkl", _ACC, "x of the acceleration of i relative to j, in k's axes, "
+             "seen from l's frame"),
+    _measure("ACCY", "ijkl", _ACC, "y of the acceleration of i relative to j, in k's axes, "
+             "seen from l's frame"),
+    _measure("ACCZ", "ijkl", _ACC, "z of the acceleration of i relative to j, in k's axes, "
+             "seen from l's frame"),
+    _measure("WX", "ijk", _VEL, "x of the angular velocity of i relative to j, in k's axes"),
+    _measure("WY", "ijk", _VEL, "y of the angular velocity of i relative to j, in k's axes"),
+    _measure("WZ", "ijk", _VEL, "z of the angular velocity of i relative to j, in k's axes"),
+    _measure("AX", "ij", _POS, "angle of i's axes about j's x axis"),
+    _measure("AY", "ij", _POS, "angle of i's axes about j's y axis"),
+    _measure("AZ", "ij", _POS, "angle of i's axes about j's z axis"),
+    # values of other elements, named by id
+    _element("VARVAL", "variable", "the value of Reference_Variable id", "variables"),
+    _element("PFORCE", "penalty", "the scalar force -p g - p1 g' of Force_Penalty id",
+             "forces"),
+    Function("SFORCE", "special", _FORCE_ARGS, None,
+             "force of Force_Scalar_TwoBody id: comp 1 |force|, 2-4 force in rm's axes, "
+             "5 |torque|, 6-8 torque; on I (jflag 0) or J (1)", reads=frozenset({"forces"}),
+             ids=("sforce", None, None, "marker"), py_sysfnc=True, c_sysfnc=True),
+    _element("SENVAL", "evaluate", "the value Sensor_Evaluate id stored when its sensor last "
+             "fired (0 before)", "stored", c="PS_OP_SENVAL"),
+    Function("MOTION", "special", _FORCE_ARGS, None,
+             "reaction of Motion_Marker id along its axis; with 4 arguments a component as "
+             "SFORCE's", required=1, reads=frozenset({"forces"}),
+             ids=("motion", None, None, "marker"), py_sysfnc=True),
+    # tape instructions no deck writes
+    _internal("const", "a number of the model (consts[a0])"),
+    _internal("clamp01", "min(max(x, 0), 1): the STEP family's ramp"),
+    _internal("measure", "a measure (a0, a PS_M_* value) of markers a1..a4"),
+    _internal("gdot", "total time derivative of a displacement expression (g')"),
+    _internal("axdot", "dot product of two markers' axes"),
+    _internal("user", "a user subroutine the kernel calls"),
+    _internal("state", "a state entry read with its derivative (a motion's reaction)"),
+)
+
+#: Callable functions of the deck language by name (not names, arithmetic or instructions).
+FUNCTIONS = {f.name: f for f in TABLE if f.kind not in ("name", "arithmetic", "internal")}
+#: Names (TIME and the named numbers) by name.
+NAMES = {f.name: f for f in TABLE if f.kind == "name"}
+#: Arithmetic by its symbol (``neg``: unary minus).
+ARITHMETIC = {f.name: f for f in TABLE if f.kind == "arithmetic"}
+#: The STEP family in the order of PS_OP_STEPC's shape code (0 STEP, 1 STEP5, 2 HAVSIN).
+STEP_SHAPES = tuple(f.name for f in TABLE if f.kind == "step")
+#: The C enum values the table names: opcodes, then measures, each in table order.
+OPCODES = tuple(dict.fromkeys(f.c for f in TABLE if f.c and f.c.startswith("PS_OP_")))
+MEASURE_CODES = tuple(f.c for f in TABLE if f.c and f.c.startswith("PS_M_"))
+#: What c_sysfnc answers, in its function-code order (csrc/usersub.c FUNCTIONS).
+C_SYSFNC = tuple(f.name for f in TABLE if f.c_sysfnc)
+
+#: SYSARY arrays (Adams/MotionSolve): name -> the SYSFNC functions of its entries
+#: (csrc/usersub.c ARRAYS).
+SYSARY = {"TDISP": ("DX", "DY", "DZ"), "TVEL": ("VX", "VY", "VZ"), "RVEL": ("WX", "WY", "WZ"),
+          "VEL": ("VX", "VY", "VZ", "WX", "WY", "WZ"), "TACC": ("ACCX", "ACCY", "ACCZ")}
+
+
+def of_kind(*kinds):
+    """The records of the given kinds, in table order."""
+    return tuple(f for f in TABLE if f.kind in kinds)
+
+
+# the documentation's function table -----------------------------------------------------------
+#: Lines around the generated table in docs/deck-language.md.
+TABLE_BEGIN = "<!-- functions: generated by python -m pysolver.catalogue docs/deck-language.md -->"
+TABLE_END = "<!-- end of functions -->"
+
+
+def markdown():
+    """The Markdown table of every name, operation and function a deck may write."""
+    def cell(text):
+        return text.replace("|", "\\|")
+    lines = ["| expression | reads | gives |", "|---|---|---|"]
+    for f in TABLE:
+        if f.kind != "internal":
+            reads = ", ".join(r for r in READS if r in f.reads)
+            lines.append(f"| `{cell(f.usage)}` | {reads} | {cell(f.doc)} |")
+    return "\n".join(lines) + "\n"
+
+
+def splice(text):
+    """`text` (a Markdown page) with the part between TABLE_BEGIN and TABLE_END replaced by
+    :func:`markdown`."""
+    pattern = re.compile(re.escape(TABLE_BEGIN) + r"\n.*?" + re.escape(TABLE_END), re.S)
+    if not pattern.search(text):
+        raise ValueError("the page has no generated function table")
+    return pattern.sub(lambda _: f"{TABLE_BEGIN}\n{markdown()}{TABLE_END}", text)
+
+
+if __name__ == "__main__":
+    # python -m pysolver.catalogue [page.md]: print the table, or rewrite it in the page
+    if len(sys.argv) > 1:
+        with open(sys.argv[1]) as fh:
+            page = fh.read()
+        with open(sys.argv[1], "w") as fh:
+            fh.write(splice(page))
+    else:
+        sys.stdout.write(markdown())

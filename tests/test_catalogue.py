@@ -1,0 +1,137 @@
+"""The catalogue of operations and functions (pysolver/catalogue.py) agrees with what cannot
+read it: the C enums of csrc/include/pysolver.h and the c_sysfnc tables of csrc/usersub.c, in
+both directions and in order; and the documentation's function table is the one it generates."""
+import ast
+import math
+import re
+
+import pytest
+
+from pysolver import catalogue
+from pysolver.build.bindings import lib
+from pysolver.build.codegen import sym
+
+from helpers import ROOT, TEST_DECKS
+
+HEADER = (ROOT / "csrc" / "include" / "pysolver.h").read_text()
+USERSUB = (ROOT / "csrc" / "usersub.c").read_text()
+
+
+def _c_code(text):
+    """C source without its comments."""
+    return re.sub(r"/\*.*?\*/|//[^\n]*", "", text, flags=re.S)
+
+
+def _enum(name):
+    """The enumerators of C enum `name` in pysolver.h, in order, with their values (a value
+    may be given for the first only)."""
+    body = re.search(r"enum\s+" + name + r"\s*\{(.*?)\}", _c_code(HEADER), re.S).group(1)
+    items = [item.strip() for item in body.split(",") if item.strip()]
+    names = []
+    for k, item in enumerate(items):
+        enumerator, _, value = (part.strip() for part in item.partition("="))
+        assert not value or (k == 0 and value == "0"), f"{name}: {item} sets its own value"
+        names.append(enumerator)
+    return names
+
+
+@pytest.mark.parametrize("enum, prefix, declared", [
+    ("psOp", "PS_OP_", catalogue.OPCODES), ("psMeasure", "PS_M_", catalogue.MEASURE_CODES)])
+def test_the_c_enums_are_the_catalogues(enum, prefix, declared):
+    names = _enum(enum)
+    assert names[-1] == f"{prefix}COUNT"
+    values = names[:-1]
+    assert all(n.startswith(prefix) for n in values)
+    missing = set(values) - set(declared)
+    assert not missing, f"{enum} values the catalogue does not declare: {sorted(missing)}"
+    unknown = set(declared) - set(values)
+    assert not unknown, f"catalogue C names {enum} does not have: {sorted(unknown)}"
+    assert len(declared) == len(set(declared)) == len(values)
+    for k, n in enumerate(names):
+        assert getattr(lib, n) == k, f"{n} is {getattr(lib, n)} in the extension, {k} in the header"
+    if enum == "psMeasure":     # the kernels read ranges of measures (kind >= PS_M_WX, ...)
+        assert list(declared) == values
+
+
+def test_every_opcode_has_one_record_but_stepc():
+    """Each opcode is one record's, but PS_OP_STEPC the STEP family's (one shape each)."""
+    owners = {}
+    for f in catalogue.TABLE:
+        if f.c is not None:
+            owners.setdefault(f.c, []).append(f.name)
+    shared = {c: names for c, names in owners.items() if len(names) > 1}
+    assert shared == {"PS_OP_STEPC": list(catalogue.STEP_SHAPES)}
+    assert catalogue.STEP_SHAPES == ("STEP", "STEP5", "HAVSIN")
+
+
+def _c_strings(pattern, text):
+    return re.findall(r'"([^"]*)"', re.search(pattern, text, re.S).group(1))
+
+
+def test_c_sysfnc_answers_the_catalogues_functions_in_order():
+    code = _c_code(USERSUB)
+    table = _c_strings(r"FUNCTIONS\[F_COUNT\]\s*=\s*\{(.*?)\};", code)
+    assert table == list(catalogue.C_SYSFNC)
+    codes = re.search(r"enum\s*\{\s*(F_DX.*?)\}", code, re.S).group(1)
+    assert [c.strip() for c in codes.split(",")] == [f"F_{n}" for n in catalogue.C_SYSFNC] + \
+        ["F_COUNT"]
+    for k, name in enumerate(catalogue.C_SYSFNC):
+        assert lib.ps_user_fn_code(name.encode()) == k
+    assert lib.ps_user_fn_code(b"MOTION") == -1
+    # what c_sysfnc reads, py_sysfnc reads too
+    assert set(catalogue.C_SYSFNC) <= {f.name for f in catalogue.TABLE if f.py_sysfnc}
+
+
+def test_c_sysary_arrays_are_the_catalogues():
+    code = _c_code(USERSUB)
+    body = re.search(r"ARRAYS\[\]\s*=\s*\{(.*?)\};", code, re.S).group(1)
+    arrays = {}
+    for name, parts, n in re.findall(r'\{"(\w+)",\s*\{([^}]*)\},\s*(\d+)\}', body):
+        arrays[name] = tuple(p.strip()[2:] for p in parts.split(","))
+        assert len(arrays[name]) == int(n), name
+    assert arrays == catalogue.SYSARY
+
+
+def test_the_catalogue_reads_no_stage():
+    """Records and shared vocabulary: it may import errors, never deck, build or solve."""
+    tree = ast.parse((ROOT / "pysolver" / "catalogue.py").read_text())
+    internal = {node.module or "" for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)
+                and (node.level or (node.module or "").startswith("pysolver"))}
+    assert internal <= {"errors", "pysolver.errors"}
+
+
+def test_records_are_well_formed():
+    names = [f.name for f in catalogue.TABLE]
+    assert len(names) == len(set(names))
+    for f in catalogue.TABLE:
+        assert f.kind in catalogue.KINDS, f.name
+        assert f.reads <= set(catalogue.READS), f.name
+        assert f.doc and "\n" not in f.doc, f.name
+        lo, hi = f.arity
+        assert 0 <= lo <= hi == len(f.args), f.name
+        assert not f.ids or len(f.ids) == len(f.args), f.name
+        assert f.math is None or callable(getattr(math, f.math)), f.name
+        if f.kind in ("math1", "math2", "arithmetic"):
+            assert f.py is not None and f.c is not None, f.name
+        if f.kind == "measure":
+            assert set(f.args) <= set("ijkl") and f.ids == ("marker",) * hi, f.name
+        if f.py_sysfnc or f.c_sysfnc:
+            assert f.ids, f.name
+    # the generated C knows every one-argument function: a C name and a derivative rule
+    math1 = {f.name.lower() for f in catalogue.of_kind("math1")}
+    assert set(sym._UNARY) == math1
+    assert all(sym.UNARY_C[n] for n in math1)
+
+
+def test_the_jacobian_deck_uses_every_function():
+    """tests/decks/all_functions.xml (test_jacobian.py) calls every function (SENVAL and
+    MOTION need sensors and motions: test_sensors.py and test_motions.py check them)."""
+    text = (TEST_DECKS / "all_functions.xml").read_text().upper()
+    used = set(re.findall(r"\b([A-Z][A-Z0-9]*)\s*\(", text))
+    assert set(catalogue.FUNCTIONS) - used == {"SENVAL", "MOTION"}
+
+
+def test_the_docs_function_table_is_generated():
+    page = (ROOT / "docs" / "deck-language.md").read_text()
+    assert catalogue.splice(page) == page, \
+        "regenerate it: python -m pysolver.catalogue docs/deck-language.md"
