@@ -57,9 +57,7 @@ class FastRun:
         # batches of one C call; every row's time
         self.commands, t, rows = [], 0.0, [np.zeros(1)]
         for cmd in model.commands:
-            grid = Grid(t, cmd.end_time, cmd.print_interval)
-            times = np.append(t + cmd.print_interval * np.arange(1, grid.n + 1, dtype=float),
-                              cmd.end_time)
+            times = Grid(t, cmd.end_time, cmd.print_interval).all()
             batches = [times[i:i + Grid.BATCH] for i in range(0, len(times), Grid.BATCH)]
             self.commands.append((cmd, t, batches))
             rows.append(times)

@@ -19,11 +19,8 @@ from .actors import Actor
 
 
 def print_times(t0, end, dt):
-    """Output times after t0 every dt, ending with end itself."""
-    n = max(int(math.floor((end - t0) / dt + 1e-9)), 0)
-    times = t0 + dt * np.arange(1, n + 1)
-    times = times[times < end - 1e-12 * max(1.0, abs(end))]
-    return np.append(times, end)
+    """Output times after t0 every dt, ending with end itself (those of :class:`Grid`)."""
+    return Grid(t0, end, dt).all()
 
 
 def command_rows(t0, end, dt):
@@ -109,6 +106,10 @@ class Grid:
                 break
             n -= 1
         self.n, self.k, self.end_left = n, 1, not empty
+
+    def all(self):
+        """Every time of the grid, the end included (an array)."""
+        return np.append(self.t0 + self.dt * np.arange(1, self.n + 1, dtype=float), self.end)
 
     def __bool__(self):
         return self.k <= self.n or self.end_left
