@@ -11,7 +11,7 @@ import numpy as np
 
 from .outputs import print_times
 from .pyida import PyIDA
-from .statics import StaticProblem, finished, fim_s, solve_static
+from .statics import StaticProblem, fim_s, finished, solve_static
 
 
 def quasi_static(model, t0, y0, times, params, tol, kind=None):
