@@ -8,8 +8,9 @@ solvers. Names, defaults, rules and documentation live here and nowhere else; ``
 from __future__ import annotations
 
 import dataclasses
-import os
 from typing import Optional
+
+from . import settings
 
 #: With ``linsolver="auto"``, scenes with at least this many states use a sparse or band solver.
 SPARSE_THRESHOLD = 300
@@ -119,14 +120,14 @@ class Options:
 
     def resolved_backend(self) -> str:
         """The backend asked for: the option, else ``PYSOLVER_BACKEND``, else "auto"."""
-        backend = self.backend or os.environ.get("PYSOLVER_BACKEND", "auto")
+        backend = self.backend or settings.backend() or "auto"
         if backend not in _CHOICES["backend"]:
             raise ValueError(f"backend must be 'auto', 'c' or 'sksundae', not {backend!r}")
         return backend
 
     def resolved_kernel(self) -> str:
         """The kernel asked for: the option, else ``PYSOLVER_KERNEL``, else "auto"."""
-        kind = self.kernel or os.environ.get("PYSOLVER_KERNEL", "auto")
+        kind = self.kernel or settings.kernel() or "auto"
         if kind not in _CHOICES["kernel"]:
             raise ValueError(f"kernel must be 'auto', 'generated' or 'tapes', not {kind!r}")
         return kind

@@ -6,10 +6,11 @@ where the checkout's ``pysolver`` folder shadows the installed package) the kern
 place on first import, once, under a file lock; an installed package never builds anything.
 """
 import fcntl
-import os
 import pathlib
 import subprocess
 import sys
+
+from .. import settings
 
 _PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 _BUILDER = _PACKAGE / "_build_ffi.py"
@@ -39,7 +40,7 @@ try:
     from .._kernel import ffi, lib  # noqa: F401
 except ImportError as err:
     if not (_BUILDER.exists() and (_PACKAGE.parent / "csrc").is_dir()) or \
-            os.environ.get("PYSOLVER_NO_INPLACE_BUILD"):
+            settings.no_inplace_build():
         raise ImportError("pysolver's C kernel is not built: install with 'pip install .' "
                           "(or run 'python pysolver/_build_ffi.py --inplace' in a checkout)"
                           ) from err

@@ -14,6 +14,7 @@ import sys
 import traceback
 import types
 
+from .. import settings
 from ..errors import DeckError, ExpressionError
 from ..model import UserSub
 from . import elfsyms, tracer
@@ -102,8 +103,7 @@ def find_file(ctx, given, deck_file, attribute):
     if not os.path.isabs(given):
         if deck_file and not deck_file.startswith("<"):
             candidates.append(os.path.join(os.path.dirname(os.path.abspath(deck_file)), given))
-        candidates += [os.path.join(d, given) for d in
-                       os.environ.get("PYSOLVER_USERSUB_DIR", "").split(os.pathsep) if d]
+        candidates += [os.path.join(d, given) for d in settings.usersub_dirs()]
     for path in candidates:
         if os.path.isfile(path):
             return os.path.abspath(path)

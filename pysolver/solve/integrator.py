@@ -19,8 +19,8 @@ The interface (duck-typed):
     wrapper does not report them) and growth_limited_at.
 """
 import dataclasses
-import os
 
+from .. import settings
 from ..options import AUTO_STEP_GROWTH, NONLIN_CONV_COEF, SPARSE_THRESHOLD
 from . import cida
 from .pyida import PyIDA
@@ -41,7 +41,7 @@ class Plan:
 def cached_plan(kernel, options):
     """:func:`plan`, kept on the kernel for the next run with the same options object and
     PYSOLVER_BACKEND (runs of one model reuse their options; see solve.run)."""
-    key = (id(options), os.environ.get("PYSOLVER_BACKEND"))
+    key = (id(options), settings.backend())
     cache = kernel.__dict__.setdefault("_plans", {})
     if key not in cache:
         cache.clear()                       # one entry: the options object is kept alive

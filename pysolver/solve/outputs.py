@@ -14,6 +14,7 @@ import time
 
 import numpy as np
 
+from .. import settings
 from ..build.bindings import ffi, lib
 from .actors import Actor
 
@@ -33,7 +34,7 @@ def over_budget(rows, ny, nchannels, what):
     (PYSOLVER_OUTPUT_BUDGET bytes, default 2 GiB) allows, else None. `what` names what asks
     for them ("the Simulate command ending at 3", "Sensor_Event 2's dt = 1e-07 at t = 0.5")."""
     per_row = 8 * (2 * ny + max(nchannels, 1))
-    budget = float(os.environ.get("PYSOLVER_OUTPUT_BUDGET", 2 ** 31))
+    budget = settings.output_budget()
     if rows * per_row <= budget:
         return None
     return (f"{what} would make the run write {rows:.3g} output rows "

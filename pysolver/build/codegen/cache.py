@@ -44,18 +44,20 @@ import signal
 import stat
 import struct
 import subprocess
-import sys
 import tempfile
 import time
+
+from ... import settings
 
 #: Flags for the generated code: no fast-math (results must match the tapes to rounding and
 #: keep IEEE NaN/inf semantics); -fno-math-errno lets sqrt inline.
 FLAGS = ("-O2", "-fno-math-errno", "-fPIC", "-shared")
 
 #: Seconds a compile may run before its process group is killed and the tapes run
-#: (``PYSOLVER_COMPILE_TIMEOUT`` overrides). The size cap (``codegen.COMPILE_LIMIT``) keeps the
-#: compile of accepted C near half a minute; this is the backstop for a compiler that hangs.
-TIMEOUT = 120.0
+#: (``PYSOLVER_COMPILE_TIMEOUT`` overrides, see pysolver.settings). The size cap
+#: (``codegen.COMPILE_LIMIT``) keeps the compile of accepted C near half a minute; this is the
+#: backstop for a compiler that hangs.
+TIMEOUT = settings.COMPILE_TIMEOUT
 
 #: Seconds ``CC --version`` may take (at most :data:`TIMEOUT`).
 VERSION_TIMEOUT = 10.0
@@ -96,38 +98,9 @@ class CacheUnusable(Fallback):
     """The kernel cache folder cannot be created or written."""
 
 
-def cache_dir():
-    """The directory holding compiled kernels (created on first use)."""
-    env = os.environ.get("PYSOLVER_CACHE_DIR")
-    if env:
-        return pathlib.Path(env)
-    home = pathlib.Path.home()
-    if sys.platform == "darwin":
-        base = home / "Library" / "Caches"
-    elif os.name == "nt":
-        base = pathlib.Path(os.environ.get("LOCALAPPDATA", home / "AppData" / "Local"))
-    else:
-        base = pathlib.Path(os.environ.get("XDG_CACHE_HOME") or home / ".cache")
-    return base / "pysolver" / "kernels"
-
-
-def timeout():
-    """Seconds a compile may take: ``PYSOLVER_COMPILE_TIMEOUT`` if set (a positive number),
-    else :data:`TIMEOUT`."""
-    env = os.environ.get("PYSOLVER_COMPILE_TIMEOUT")
-    if env:
-        try:
-            value = float(env)
-        except ValueError:
-            value = 0.0
-        if value > 0.0 and value == value:
-            return value
-    return float(TIMEOUT)
-
-
 def compiler():
     """The C compiler command: ``CC`` if set, else cc, gcc or clang from PATH."""
-    env = os.environ.get("CC")
+    env = settings.compiler_command()
     if env:
         try:
             cmd = shlex.split(env)
@@ -196,7 +169,8 @@ def _version(cmd):
     if got is None:
         name = " ".join(cmd)
         try:
-            code, out, err = run(list(cmd) + ["--version"], min(VERSION_TIMEOUT, timeout()))
+            code, out, err = run(list(cmd) + ["--version"],
+                                 min(VERSION_TIMEOUT, settings.compile_timeout()))
         except subprocess.TimeoutExpired as exc:
             got = NoCompiler(f"C compiler {name!r} does not run: '--version' did not answer "
                              f"in {exc.timeout:g} s")
@@ -361,13 +335,13 @@ def build(scene_key, make_source, include):
     full = hashlib.sha256("\0".join((scene_key, name, " ".join(FLAGS), _version(cmd),
                                      _header(include))).encode()).hexdigest()
     record, key = RECORD + full, full[:32]
-    folder = cache_dir()
+    folder = settings.cache_dir()
     lib, stamp = folder / f"{key}.so", folder / f"{key}.sha256"
     marker, kept = folder / f"{key}.failed", folder / f"{key}.c"
     why = _check_entry(lib, stamp, record)
     if why is None:
         return Built(lib, 0.0, record, None)
-    limit = timeout()
+    limit = settings.compile_timeout()
     failed = _read_failure(marker)
     if failed is not None:
         kind, seconds, message = failed
