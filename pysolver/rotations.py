@@ -1,7 +1,20 @@
-"""Rotation math shared by the deck reader and the compiler: 3-1-3 angles, Euler parameters."""
+"""Rotation math shared by the deck reader, the compiler and the solvers: 3-1-3 angles, Euler
+parameters and their rate matrix G(e)."""
 import math
 
 import numpy as np
+
+#: e' = 1/2 G(e) w for body-frame angular velocity w: entry (a, k) of G is
+#: G_SIGN[a][k] * e[G_INDEX[a][k]]. The kernel's C (csrc/tape.c, ps_rate_coeff) writes the same
+#: matrix; the generator (build/codegen/scene.py) reads this table.
+G_INDEX = ((1, 2, 3), (0, 3, 2), (3, 0, 1), (2, 1, 0))
+G_SIGN = ((-1, -1, -1), (1, -1, 1), (1, 1, -1), (-1, 1, 1))
+
+
+def G(e):
+    """The 4 x 3 matrix G(e) of e' = 1/2 G(e) w (w in the body frame)."""
+    return np.array([[sign * e[i] for i, sign in zip(index, signs)]
+                     for index, signs in zip(G_INDEX, G_SIGN)], dtype=float)
 
 
 def rot_313(psi, theta, phi):

@@ -14,6 +14,7 @@ state is made consistent in three steps, each the smallest change that does it:
 import numpy as np
 
 from ..options import SPARSE_THRESHOLD
+from ..rotations import G
 from .bindings import ffi, lib
 
 
@@ -131,7 +132,5 @@ def _move(lay, y, du):
         if b.kind != "rigid":
             continue
         e, w = y[qa + 3:qa + 7].copy(), du[ua + 3:ua + 6]
-        G = np.array([[-e[1], -e[2], -e[3]], [e[0], -e[3], e[2]], [e[3], e[0], -e[1]],
-                      [-e[2], e[1], e[0]]])
-        e += 0.5 * G @ w
+        e += 0.5 * G(e) @ w
         y[qa + 3:qa + 7] = e / np.linalg.norm(e)

@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from ..rotations import G
 from .pyida import PyIDA
 
 
@@ -100,9 +101,7 @@ class StaticProblem:
             N[r:r + 3, c:c + 3] = np.eye(3)
             if b.kind == "rigid":
                 qa = self.k.layout.qadr[self.k.layout.index[b.id]]
-                e0, e1, e2, e3 = y[qa + 3:qa + 7]
-                N[r + 3:r + 7, c + 3:c + 6] = 0.5 * np.array(
-                    [[-e1, -e2, -e3], [e0, -e3, e2], [e3, e0, -e1], [-e2, e1, e0]])
+                N[r + 3:r + 7, c + 3:c + 6] = 0.5 * G(y[qa + 3:qa + 7])
                 r, c = r + 7, c + 6
             else:
                 r, c = r + 3, c + 3

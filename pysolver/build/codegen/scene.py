@@ -8,6 +8,7 @@ once per body and shared by every element (the tapes recompute them per element)
 are taken symbolically, so each entry carries only the directions it depends on.
 """
 from ... import catalogue
+from ...rotations import G_INDEX, G_SIGN
 from ..bindings import lib
 from .sym import Graph, Unsupported
 
@@ -18,8 +19,7 @@ M = {c[len("PS_M_"):]: getattr(lib, c) for c in catalogue.MEASURE_CODES}
 UNARY = {getattr(lib, f.c): f.name.lower() for f in catalogue.of_kind("math1")}
 
 # e' = 1/2 G(e) w_body: G's entries as (index of e, sign), csrc/tape.c ps_rate_coeff
-_GIDX = ((1, 2, 3), (0, 3, 2), (3, 0, 1), (2, 1, 0))
-_GSGN = ((-1, -1, -1), (1, -1, 1), (1, 1, -1), (-1, 1, 1))
+_GIDX, _GSGN = G_INDEX, G_SIGN
 
 
 class Scene:
