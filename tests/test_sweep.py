@@ -97,7 +97,7 @@ def test_failures_get_their_status_and_the_others_finish(tmp_path):
     msgs = [r["message"] for r in sw.rows]
     assert "Force_Penalty/9/penalty" in msgs[1] and "unknown" not in msgs[0]
     assert "stopped after 5 s" in msgs[2] and "SIGSEGV" in msgs[3]
-    assert "expected a number" in msgs[5]
+    assert "got 'stiff'; expected a real number" in msgs[5]
     assert sw.result(1) is None and sw.result(6).success
 
 

@@ -1,5 +1,6 @@
 """Batch studies: many cases of one model, compiled once (:func:`pysolver.sweep`)."""
 from .design import grid, sample
-from .runner import Sweep, sweep
+from .runner import StorageError, Sweep, sweep
+from .table import Table
 
-__all__ = ["Sweep", "grid", "sample", "sweep"]
+__all__ = ["StorageError", "Sweep", "Table", "grid", "sample", "sweep"]

@@ -1,27 +1,112 @@
-"""One case of a sweep, run where the model lives (this process, a worker, a Dask worker)."""
+"""One case of a sweep, run where the model lives (a worker process, or this process with
+``processes=0``), and the key its row is stored under.
+
+A stored row is reused only while everything its result depends on is the same:
+:func:`fingerprint` hashes the deck's text, the content of every file it names (user
+subroutine scripts and C libraries), pysolver's version, the kernel and backend chosen by
+environment, and the outputs asked for; :func:`case_key` adds the case.
+"""
 import hashlib
 import json
+import marshal
 import math
+import numbers
+import os
+import threading
 import time
 
 import numpy as np
 
+from .. import settings
+from .._version import __version__
 from ..errors import DeckError
 
-
-def case_key(model, case):
-    """A hash of the deck and the case: the name of its result, for resuming a sweep."""
-    text = json.dumps({str(k): float(v) if _number(v) else str(v) for k, v in case.items()},
-                      sort_keys=True)
-    return hashlib.sha256((model.source.sha256 + text).encode()).hexdigest()[:20]
+#: Result.status of a run stopped by Ctrl-C (SIGINT): its case is not a result.
+INTERRUPTED = -600
 
 
-def _number(v):
+def referenced_files(model):
+    """Paths of the files a model's results depend on besides its deck: the scripts and C
+    libraries of its user subroutines, sorted."""
+    from ..deck.usersubs import elements
+    found = set()
+    for _, el in elements(model):
+        for path in (el.usersub.script, el.usersub.library):
+            if path:
+                found.add(os.path.abspath(path))
+    return sorted(found)
+
+
+def reusable(model):
+    """True when a worker that ran this model may run another deck next: an XML deck without
+    user subroutine files (a C library stays loaded, a script's imports stay imported)."""
+    return model.source.fmt == "xml" and not referenced_files(model)
+
+
+def fingerprint(model, outputs):
+    """A hash of everything a case's result and row depend on besides the case itself."""
+    h = hashlib.sha256()
+
+    def put(*parts):
+        for p in parts:
+            h.update(p if isinstance(p, bytes) else str(p).encode("utf-8", "surrogatepass"))
+            h.update(b"\0")
+
+    put("pysolver", __version__, model.source.fmt, model.source.sha256)
+    for path in referenced_files(model):
+        put("file", path, _file_digest(path))
+    put("kernel", settings.kernel() or "", "backend", settings.backend() or "")
+    for name in sorted(outputs or {}, key=str):
+        put("output", name, _spec_token(outputs[name]))
+    return h.hexdigest()
+
+
+def _file_digest(path):
+    h = hashlib.sha256()
     try:
-        float(v)
-        return True
-    except (TypeError, ValueError):
-        return False
+        with open(path, "rb") as fh:
+            for block in iter(lambda: fh.read(1 << 20), b""):
+                h.update(block)
+    except OSError as err:
+        return f"unreadable: {err.strerror}"
+    return h.hexdigest()
+
+
+def _spec_token(spec):
+    """An output spec as text: the spec itself, or a function by its name and code."""
+    if not callable(spec):
+        return "spec:" + str(spec)
+    fn = getattr(spec, "__func__", spec)
+    parts = [getattr(fn, "__module__", ""), getattr(fn, "__qualname__", repr(fn))]
+    code = getattr(fn, "__code__", None)
+    if code is not None:
+        parts.append(hashlib.sha256(marshal.dumps(code)).hexdigest())
+        parts.append(repr(getattr(fn, "__defaults__", None)))
+        for cell in getattr(fn, "__closure__", None) or ():
+            try:
+                parts.append(repr(cell.cell_contents))
+            except ValueError:
+                parts.append("<empty>")
+    return "function:" + "|".join(parts)
+
+
+def _canonical(v):
+    """A case value as JSON that tells a number from a flag or a text (True is not 1)."""
+    if type(v) is float and math.isfinite(v):
+        return v
+    if isinstance(v, (bool, np.bool_)):
+        return ["bool", bool(v)]
+    if isinstance(v, numbers.Real):
+        f = float(v)
+        return f if math.isfinite(f) else ["float", repr(f)]
+    return [type(v).__name__, str(v)]
+
+
+def case_key(fp, case):
+    """The name of a case's row and Result in a sweep's directory: a hash of the sweep's
+    :func:`fingerprint` and the case."""
+    text = json.dumps(sorted((str(k), _canonical(v)) for k, v in case.items()))
+    return hashlib.sha256((fp + text).encode()).hexdigest()[:24]
 
 
 class CaseRunner:
@@ -30,32 +115,62 @@ class CaseRunner:
     def __init__(self, model):
         self.model = model
         self._params = None
+        self._failed = None           # the DeckError compiling the model raised, kept
 
     def params(self):
+        if self._failed is not None:
+            raise self._failed
         if self._params is None:
             from ..build.params import Parameters
-            self._params = Parameters(self.model, self.model._kernel())
+            try:
+                self._params = Parameters(self.model, self.model._kernel())
+            except DeckError as err:
+                self._failed = err
+                raise
         return self._params
 
     def run(self, case, outputs):
         """Run one case: a row {status, message, wall, steps, outputs...} and the Result (or
-        None when the case did not run)."""
+        None when the case did not run). A run stopped by Ctrl-C is status ``interrupted``
+        (not a result: the caller stores nothing for it)."""
         t0 = time.perf_counter()
         try:
             options = self.params().apply(case)
             res = self.model.run(progress=False, **options)
         except DeckError as err:
             return _row("error", str(err), t0), None
-        except (ValueError, TypeError) as err:
+        except Exception as err:  # noqa: BLE001 - any exception is this case's error row
             return _row("error", f"{type(err).__name__}: {err}", t0), None
         finally:
             if self._params is not None:
                 self._params.reset()
+        if _interrupted(res):
+            return _row("interrupted", res.message, t0), None
         row = _row("ok" if res.success else "failed", res.message, t0)
         row["steps"] = res.stats["steps"]
         for name, spec in (outputs or {}).items():
-            row[name] = scalar(res, spec)
+            try:
+                row[name] = scalar(res, spec)
+            except Exception as err:  # noqa: BLE001 - a user's output function
+                return _row("error", f"output {name!r}: {type(err).__name__}: {err}", t0), None
         return row, res
+
+
+def _interrupted(res):
+    """The run was stopped by Ctrl-C: its status says so, or (a Ctrl-C while the initial
+    conditions are computed is reported as a failed user subroutine) the kernel's flag, which
+    a run arms in the main thread only."""
+    if res.status == INTERRUPTED:
+        return True
+    if threading.current_thread() is threading.main_thread():
+        global _lib
+        if _lib is None:
+            from ..build.bindings import lib as _lib
+        return bool(_lib.ps_interrupted())
+    return False
+
+
+_lib = None
 
 
 def _row(status, message, t0):
@@ -87,7 +202,9 @@ def scalar(res, spec):
 
 
 def check_outputs(model, outputs):
-    """Raise ValueError for an output spec the model cannot answer (before any case runs)."""
+    """Raise ValueError for an output spec the model cannot answer (before any case runs).
+    State names come from the state layout, without compiling the model: nothing here runs
+    a user subroutine."""
     names = None
     for name, spec in (outputs or {}).items():
         if callable(spec) or spec in ("first_event", "steps"):
@@ -98,11 +215,13 @@ def check_outputs(model, outputs):
                              "final, max, min, mean")
         if channel.startswith("request/"):
             parts = channel.split("/")
-            if len(parts) != 3 or int(parts[1]) not in model.requests or \
-                    not 1 <= int(parts[2]) <= 8:
+            if len(parts) != 3 or not all(p.isdigit() for p in parts[1:]) or \
+                    int(parts[1]) not in model.requests or not 1 <= int(parts[2]) <= 8:
                 raise ValueError(f"output {name!r}: no channel {channel!r}")
         else:
-            names = names or model._kernel().layout.names
+            if names is None:
+                from ..build.compiler import Layout
+                names = Layout(model).names
             if channel not in names:
                 raise ValueError(f"output {name!r}: no state {channel!r} (states: "
                                  f"{', '.join(names[:10])}, ...)")

@@ -3,8 +3,9 @@ import csv
 import os
 import sys
 
+from ..errors import DeckError
 from .design import grid, sample
-from .runner import sweep
+from .runner import STATUSES, StorageError, sweep
 
 
 def add_parser(sub):
@@ -28,6 +29,9 @@ def add_parser(sub):
     p.add_argument("-o", "--out", required=True, metavar="DIR",
                    help="directory: table.csv (and table.parquet with pyarrow), results/, "
                         "cases.jsonl; a second run into it skips the cases already done")
+    p.add_argument("--keep", default="ok", metavar="STATUS,...",
+                   help="statuses of stored cases to reuse (default: ok; the others run "
+                        f"again), or all; statuses: {', '.join(STATUSES)}")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
 
@@ -37,7 +41,7 @@ def _cases(args):
         if args.set or args.sample:
             raise SystemExit("pysolver: error: give --cases or --set, not both")
         with open(args.cases, newline="") as fh:
-            return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(fh)]
+            return [{k: _number(v) for k, v in row.items()} for row in csv.DictReader(fh)]
     values = {}
     for item in args.set:
         path, sep, rest = item.partition("=")
@@ -56,6 +60,14 @@ def _cases(args):
     return grid(values)
 
 
+def _number(text):
+    """A CSV cell as a number, or as given (the case's row then says why it is not one)."""
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return text
+
+
 def run(args):
     """Run the sweep the arguments describe; exit status 0 when every case ran (ok or
     failed), 1 when some did not."""
@@ -70,10 +82,23 @@ def run(args):
     if args.scheduler:
         from dask.distributed import Client
         client = Client(args.scheduler)
+    keep = "all" if args.keep == "all" else [s.strip() for s in args.keep.split(",") if s.strip()]
     try:
         sw = sweep(args.deck, cases, processes=args.processes, client=client,
                    timeout=args.timeout, outputs=outputs, directory=args.out,
-                   progress=False if args.quiet else None)
+                   progress=False if args.quiet else None, keep=keep)
+    except StorageError as err:
+        print(f"pysolver: error: {err}", file=sys.stderr)
+        return 2
+    except ValueError as err:
+        if isinstance(err, DeckError):
+            raise
+        print(f"pysolver: error: {err}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print(f"pysolver: interrupted; the cases finished so far are in {args.out} (run the "
+              "same command again to resume)", file=sys.stderr)
+        return 130
     finally:
         if client is not None:
             client.close()
@@ -85,16 +110,11 @@ def run(args):
 
 def _table(sw, out):
     path = os.path.join(out, "table.csv")
-    keys = list(dict.fromkeys(k for r in sw.rows for k in r))
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=keys)
-        w.writeheader()
-        for r in sw.rows:
-            w.writerow(r)
+    sw.table.to_csv(path)
     try:
-        sw.table.to_parquet(os.path.join(out, "table.parquet"))
+        sw.to_dataframe().to_parquet(os.path.join(out, "table.parquet"))
         path += ", table.parquet"
-    except ImportError:
+    except ImportError:                 # no pandas, or no parquet engine (pyarrow)
         pass
     sys.stdout.flush()
     return path

@@ -18,7 +18,9 @@ def grid(values):
     list of dict
     """
     paths = list(values)
-    lists = [list(np.atleast_1d(values[p]).tolist()) for p in paths]
+    # lists as given (a True among numbers stays True: the case's row says it is no number)
+    lists = [list(v) if isinstance(v, (list, tuple)) else np.atleast_1d(v).tolist()
+             for v in map(values.get, paths)]
     return [dict(zip(paths, combo)) for combo in itertools.product(*lists)]
 
 

@@ -1,162 +1,314 @@
 """Worker processes for sweeps.
 
-Each worker holds the model (it pickles as its deck text and compiles once per worker) and runs
-its cases in the order it gets them, with the next case already queued so that it never waits
-for the parent. The case a worker was running when it died, or when it passed the time limit,
-is therefore known (the oldest it has not answered): it becomes a row with status ``crashed``
-or ``timeout``, the worker is replaced, the cases queued behind it go to the others. Workers
-start by ``forkserver`` where the platform has it (never ``fork``: the parent may run
-threads), with one BLAS thread each (idle BLAS threads spin and would take the cores the
-workers need).
+Each worker is a fresh interpreter running :mod:`pysolver.batch.worker` (never a fork of this
+process and never a ``multiprocessing`` child: it does not import the main module, so a plain
+script needs no ``if __name__ == "__main__":``, and it can be started from a daemonic process
+such as a Dask worker's). It loads the model from its deck text and compiles it once, then
+runs its cases in the order it gets them, with the next case already queued so that it never
+waits for the parent. The case a worker was running when it died, or when it passed the time
+limit, is therefore known (the oldest it has not answered): it becomes a row with status
+``crashed`` or ``timeout``, the worker is replaced, the cases queued behind it go to the
+others. Workers run with one BLAS thread each (idle BLAS threads spin and would take the cores
+the workers need) and in a session of their own (Ctrl-C is the parent's to handle).
+
+Idle workers are kept for the next sweep of this process (starting one costs an interpreter
+and pysolver's imports, about a second): one that ran a deck with user subroutine files or a
+Python deck is given again only to a sweep of the same fingerprint (a C library stays loaded,
+a script's imports stay imported); the others to any sweep.
 """
+import atexit
 import collections
-import multiprocessing as mp
+import json
 import os
-import pathlib
-import pickle
 import signal
+import socket
+import subprocess
+import sys
+import threading
 import time
-from multiprocessing.connection import wait
-
-
-def _worker(conn, model):
-    from .case import CaseRunner
-    runner = CaseRunner(model)
-    while True:
-        msg = conn.recv()
-        if msg is None:
-            return
-        idx, case, outputs, store = msg
-        row, res = runner.run(case, outputs)
-        if store and res is not None:
-            save_result(res, store)
-        conn.send((idx, row))
-
-
-def save_result(res, path):
-    """Write a Result where a sweep keeps it (atomically: a crash leaves no half file)."""
-    tmp = f"{path}.{os.getpid()}.tmp"
-    with open(tmp, "wb") as fh:
-        pickle.dump(res, fh, protocol=pickle.HIGHEST_PROTOCOL)
-    os.replace(tmp, path)
-
+from multiprocessing.connection import Connection, wait
 
 _ONE_THREAD = {k: "1" for k in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS",
                                  "MKL_NUM_THREADS")}
 #: Cases each worker holds: the one it runs and the next.
 DEPTH = 2
+#: Seconds a worker may take to start, load and compile its model before the case it holds is
+#: stopped as ``timeout`` (when the sweep has a time limit; at least that limit).
+STARTUP = 300.0
+#: Workers in a row that die while loading the model before the cases not yet given to one
+#: are rows ``crashed`` without running.
+LOAD_DEATHS = 3
+#: Idle workers kept for later sweeps of this process.
+KEEP_IDLE = max(2, os.cpu_count() or 1)
+
+_BOOT = ("import json, sys; sys.path[:] = json.loads(sys.argv[1]); "
+         "from pysolver.batch.worker import main; main(int(sys.argv[2]), int(sys.argv[3]))")
 
 
-def _context():
-    methods = mp.get_all_start_methods()
-    if "forkserver" not in methods:
-        return mp.get_context("spawn")
-    ctx = mp.get_context("forkserver")
-    # workers fork from a server that has imported pysolver once: no import per worker. The
-    # server imports with the working folder first on its path: when that folder holds another
-    # pysolver (a source checkout beside an installed one) the workers import theirs instead.
-    here = pathlib.Path(__file__).resolve().parents[1]
-    shadow = pathlib.Path.cwd() / "pysolver"
-    if not shadow.exists() or shadow.resolve() == here:
-        ctx.set_forkserver_preload(["pysolver", "pysolver.solve.run", "pysolver.batch.case"])
-    return ctx
+class Worker:
+    """One worker process and the cases it holds."""
+
+    def __init__(self):
+        ours, theirs = socket.socketpair()
+        life_r, life_w = os.pipe()
+        try:
+            self.proc = subprocess.Popen(
+                [sys.executable, "-c", _BOOT, json.dumps(sys.path), str(theirs.fileno()),
+                 str(life_r)],
+                pass_fds=(theirs.fileno(), life_r), env=dict(os.environ, **_ONE_THREAD),
+                stdin=subprocess.DEVNULL, start_new_session=True)
+        except BaseException:
+            ours.close()
+            os.close(life_w)
+            raise
+        finally:
+            theirs.close()
+            os.close(life_r)
+        self.conn = Connection(ours.detach())
+        self.life = life_w
+        self.fp, self.ready, self.pure = None, False, True
+        self.jobs = collections.deque()
+        self.t0 = time.perf_counter()
+
+    def load(self, fp, blob, pure):
+        """Give the worker a model (nothing to send when it has this one)."""
+        self.pure = self.pure and pure
+        if self.fp == fp:
+            return
+        self.fp, self.ready, self.t0 = fp, False, time.perf_counter()
+        self.send(("model", fp, blob))
+
+    def send(self, msg):
+        try:
+            self.conn.send(msg)
+        except OSError:
+            pass                      # it died: the next check finds it and says how
+
+    def alive(self):
+        return self.proc.poll() is None
+
+    def stop(self, kill=False):
+        if kill:
+            self.proc.kill()
+        else:
+            self.send(None)
+        self.conn.close()
+        if self.life is not None:
+            os.close(self.life)
+            self.life = None
+        try:
+            self.proc.wait(0.5 if kill else 2.0)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait()
+
+    def death(self):
+        """Why the process ended."""
+        try:
+            code = self.proc.wait(5.0)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            code = self.proc.wait()
+        if code < 0:
+            try:
+                return f"killed by signal {signal.Signals(-code).name}"
+            except ValueError:
+                return f"killed by signal {-code}"
+        return f"exit code {code}"
+
+
+_IDLE = []
+_LOCK = threading.Lock()
+
+
+def _take(fp, pure, n):
+    """Up to n idle workers that may run the model `fp`: its own first."""
+    got = []
+    with _LOCK:
+        for w in list(_IDLE):
+            if not w.alive():
+                _IDLE.remove(w)
+                w.stop(kill=True)
+        for match in (lambda w: w.fp == fp, lambda w: pure and w.pure):
+            for w in list(_IDLE):
+                if len(got) < n and match(w):
+                    _IDLE.remove(w)
+                    got.append(w)
+    return got
+
+
+def _give_back(w):
+    with _LOCK:
+        _IDLE.append(w)
+        extra = _IDLE[:-KEEP_IDLE] if len(_IDLE) > KEEP_IDLE else []
+        del _IDLE[:len(extra)]
+    for old in extra:
+        old.stop()
+
+
+def _forget_in_child():
+    """A fork of this process: the idle workers are the parent's (not to use, not to stop)."""
+    global _LOCK
+    _LOCK = threading.Lock()
+    _IDLE.clear()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_in_child)
+
+
+@atexit.register
+def shutdown():
+    """Stop the idle workers (they also end by themselves when this process ends)."""
+    with _LOCK:
+        idle = list(_IDLE)
+        _IDLE.clear()
+    for w in idle:
+        w.stop()
 
 
 class Pool:
-    """`n` workers for `model`; :meth:`run` yields rows as cases finish."""
+    """`n` workers for one model; :meth:`run` yields rows as cases finish.
 
-    def __init__(self, model, n, timeout=None):
-        self.model, self.n, self.timeout = model, max(1, int(n)), timeout
-        self.ctx = _context()
+    Parameters
+    ----------
+    payload : tuple
+        (fingerprint, blob, pure): the model's :func:`~pysolver.batch.case.fingerprint`, the
+        pickle of (model, outputs) a worker loads, and whether a worker that ran it may run
+        other decks later (:func:`~pysolver.batch.case.reusable`).
+    n : int
+    timeout : float, optional
+        Seconds a case may run before its worker is killed.
+    """
+
+    def __init__(self, payload, n, timeout=None):
+        self.fp, self.blob, self.pure = payload
+        self.n, self.timeout = max(1, int(n)), timeout
         self.workers = []
+        self.load_deaths = 0              # workers in a row that died before they were ready
 
-    def _spawn(self):
-        parent, child = self.ctx.Pipe()
-        saved = {k: os.environ.get(k) for k in _ONE_THREAD}
-        os.environ.update(_ONE_THREAD)          # inherited by the process (and forkserver)
-        try:
-            proc = self.ctx.Process(target=_worker, args=(child, self.model), daemon=True)
-            proc.start()
-        finally:
-            for k, v in saved.items():
-                if v is None:
-                    os.environ.pop(k, None)
-                else:
-                    os.environ[k] = v
-        child.close()
-        return {"proc": proc, "conn": parent, "jobs": collections.deque(), "t0": 0.0}
+    def _new(self):
+        w = Worker()
+        w.load(self.fp, self.blob, self.pure)
+        return w
 
-    def run(self, jobs, outputs):
-        """Run jobs (index, case, store path or None); yield (index, row)."""
+    def run(self, jobs, want=False):
+        """Run jobs (index, case); yield (index, row, pickled Result or None). With `want`
+        the Result of each case that ran comes back too. A case stopped by Ctrl-C in its
+        worker raises KeyboardInterrupt here (and is not yielded)."""
         pending = collections.deque(jobs)
-        self.outputs = outputs
-        self.workers = [self._spawn() for _ in range(min(self.n, len(pending)))]
+        self.want = want
+        count = min(self.n, len(pending))
+        self.workers = _take(self.fp, self.pure, count)
+        for w in self.workers:
+            w.load(self.fp, self.blob, self.pure)
+        while len(self.workers) < count:
+            self.workers.append(self._new())
+        finished = False
         try:
-            while pending or any(w["jobs"] for w in self.workers):
-                for w in self.workers:
-                    while len(w["jobs"]) < DEPTH and pending:
+            while pending or any(w.jobs for w in self.workers):
+                for k, w in enumerate(self.workers):
+                    if pending and w.conn.closed:        # it died idle: a new one
+                        w = self.workers[k] = self._new()
+                    while len(w.jobs) < DEPTH and pending:
                         self._give(w, pending.popleft())
-                busy = [w for w in self.workers if w["jobs"]]
-                limit = None
-                if self.timeout is not None:
-                    limit = max(0.0, min(w["t0"] for w in busy) + self.timeout
-                                - time.perf_counter())
-                wait([w["conn"] for w in busy] + [w["proc"].sentinel for w in busy], limit)
+                busy = [w for w in self.workers if w.jobs]
+                limits = [self._limit(w) for w in busy]
+                limits = [x for x in limits if x is not None]
+                wait([w.conn for w in busy],
+                     max(0.0, min(limits) - time.perf_counter()) if limits else None)
                 for k in range(len(self.workers)):
                     yield from self._check(k, pending)
+            finished = True
         finally:
-            self.close()
+            self.close(finished)
+
+    def _limit(self, w):
+        """When the case worker w runs must end (perf_counter time), or None."""
+        if self.timeout is None:
+            return None
+        if w.ready:
+            return w.t0 + self.timeout
+        return w.t0 + max(self.timeout, STARTUP)
 
     def _give(self, w, job):
-        if not w["jobs"]:
-            w["t0"] = time.perf_counter()       # it starts now
-        w["jobs"].append(job)
-        idx, case, store = job
-        w["conn"].send((idx, case, self.outputs, store))
+        if not w.jobs and w.ready:
+            w.t0 = time.perf_counter()       # it starts now
+        w.jobs.append(job)
+        idx, case = job
+        w.send(("case", idx, case, self.want))
 
     def _check(self, k, pending):
         """Rows of worker k's finished cases; its running case's row if it died or ran out of
         time (the cases queued behind go back to the front of `pending`)."""
         w = self.workers[k]
-        while w["jobs"] and w["conn"].poll():
+        dead = False
+        while w.jobs:
             try:
-                got = w["conn"].recv()
+                if not w.conn.poll():
+                    break
+                got = w.conn.recv()
             except (EOFError, OSError):
+                dead = True
                 break
-            w["jobs"].popleft()
-            w["t0"] = time.perf_counter()       # the next one starts
-            yield got
-        if not w["jobs"]:
+            if got[0] == "ready":
+                if got[1] == w.fp:
+                    w.ready, w.t0 = True, time.perf_counter()
+                continue
+            w.jobs.popleft()
+            w.t0 = time.perf_counter()       # the next one starts
+            self.load_deaths = 0
+            idx, row, blob = got
+            if row["status"] == "interrupted":
+                raise KeyboardInterrupt(f"case {idx}: {row['message']}")
+            yield idx, row, blob
+        if not w.jobs:
+            if dead or not w.alive():
+                w.stop(kill=True)             # replaced when it is given a case
             return
-        elapsed = time.perf_counter() - w["t0"]
-        if not w["proc"].is_alive():
-            code = w["proc"].exitcode
-            why = (f"killed by signal {signal.Signals(-code).name}" if code and code < 0
-                   else f"exit code {code}")
+        now = time.perf_counter()
+        limit = self._limit(w)
+        why = None
+        if dead or not w.alive():
+            why = w.death()
             row = {"status": "crashed", "message": f"the worker process died ({why})",
-                   "wall": elapsed, "steps": None}
-        elif self.timeout is not None and elapsed > self.timeout:
-            w["proc"].kill()
-            row = {"status": "timeout", "message": f"stopped after {self.timeout:g} s",
-                   "wall": elapsed, "steps": None}
+                   "wall": now - w.t0, "steps": None}
+            self.load_deaths = 0 if w.ready else self.load_deaths + 1
+        elif limit is not None and now > limit:
+            w.proc.kill()
+            msg = f"stopped after {self.timeout:g} s" if w.ready else \
+                f"stopped: the worker did not load and compile the model within " \
+                f"{max(self.timeout, STARTUP):g} s"
+            row = {"status": "timeout", "message": msg, "wall": now - w.t0, "steps": None}
         else:
             return
-        w["proc"].join(1.0)
-        idx = w["jobs"].popleft()[0]
-        pending.extendleft(reversed(w["jobs"]))
-        self.workers[k] = self._spawn()
-        yield idx, row
+        w.stop(kill=True)
+        idx = w.jobs.popleft()[0]
+        pending.extendleft(reversed(w.jobs))
+        w.jobs.clear()
+        self.workers[k] = self._new()
+        yield idx, row, None
+        if why is not None and self.load_deaths >= LOAD_DEATHS:
+            # the model kills every worker that loads it: the other cases would too
+            msg = (f"not run: the worker process died while loading and compiling the model, "
+                   f"{self.load_deaths} times in a row (the last: {why})")
+            self.load_deaths = 0
+            while pending:
+                yield pending.popleft()[0], {"status": "crashed", "message": msg, "wall": 0.0,
+                                             "steps": None}, None
 
-    def close(self):
+    def close(self, finished=True):
+        """Keep healthy idle workers for later sweeps; stop the others (at once when the
+        sweep did not finish: their cases are not wanted)."""
         for w in self.workers:
-            try:
-                w["conn"].send(None)
-            except (OSError, ValueError):
-                pass
-        deadline = time.perf_counter() + 2.0
-        for w in self.workers:
-            w["proc"].join(max(0.0, deadline - time.perf_counter()))
-            if w["proc"].is_alive():
-                w["proc"].kill()
-                w["proc"].join(1.0)
+            if finished and not w.jobs and w.alive():
+                _give_back(w)
+            else:
+                w.stop(kill=True)
         self.workers = []
+
+
+def run_chunk(payload, chunk, timeout, want):
+    """Cases on one worker of this process (a Dask task): a list of (index, row, Result
+    pickle or None)."""
+    return list(Pool(payload, 1, timeout).run(chunk, want))

@@ -1,22 +1,26 @@
 """``pysolver.sweep``: many cases of one model, compiled once, on all cores or a Dask cluster.
 
 The model is compiled once per worker; a case only changes numbers the kernel reads at run time
-(:mod:`pysolver.build.params`). Each finished case is written at once when a directory is
-given (a line of ``cases.jsonl`` and its Result as ``results/<key>.pkl``), so a sweep that is
-interrupted or killed loses nothing, and running it again into the same directory skips the
-cases whose key (a hash of deck and case) is already there.
+(:mod:`pysolver.build.params`). Cases run in worker processes (:mod:`.pool`), never in this
+one unless ``processes=0``: nothing here compiles the model or runs a user subroutine. Each
+finished case is written at once when a directory is given (:mod:`.store`), by this process,
+so a sweep that is interrupted or killed loses nothing; running it again into the same
+directory reuses the rows whose key (the deck, the files it names, pysolver's version, the
+outputs and the case: :func:`.case.fingerprint`) is there with status ``ok`` (``keep=``
+chooses), and runs the others.
 """
-import json
 import math
 import os
 import pickle
 import sys
 import time
 
-from .case import CaseRunner, case_key, check_outputs
-from .pool import Pool, save_result
+from .case import CaseRunner, case_key, check_outputs, fingerprint, reusable
+from .pool import Pool, run_chunk
+from .store import STATUSES, WITH_RESULT, StorageError, Store
+from .table import Table
 
-STATUSES = ("ok", "failed", "error", "crashed", "timeout")
+__all__ = ["STATUSES", "StorageError", "Sweep", "sweep"]
 
 
 class Sweep:
@@ -31,35 +35,48 @@ class Sweep:
         run into the same directory.
     """
 
-    def __init__(self, model, cases, rows, directory, keys):
+    def __init__(self, model, cases, rows, store, keys, payload, in_process):
         self.model, self.cases, self.rows = model, cases, rows
-        self.directory, self.keys = directory, keys
-        self._results = {}
+        self.directory, self.keys = store.directory, keys
+        self._store, self._payload, self._in_process = store, payload, in_process
+        self._results, self._runner = {}, None
 
     @property
     def table(self):
-        """The rows as a pandas DataFrame (``pip install pandas``)."""
-        import pandas as pd
-        return pd.DataFrame(self.rows).set_index("case")
+        """The rows as columns (:class:`pysolver.batch.table.Table`: name -> NumPy array,
+        printable), without pandas; :meth:`to_dataframe` for a pandas DataFrame."""
+        return Table(self.rows)
+
+    def to_dataframe(self):
+        """The rows as a pandas DataFrame indexed by case (``pip install pandas``)."""
+        return self.table.to_dataframe()
 
     def counts(self):
         """Number of cases per status."""
         return {s: sum(r["status"] == s for r in self.rows) for s in STATUSES}
 
     def result(self, i):
-        """The full Result of case i: from the sweep's directory when it kept one, else run
-        again here (cases are deterministic: the same numbers). None for a case that did not
-        run (error, crashed, timeout)."""
-        if self.rows[i]["status"] not in ("ok", "failed"):
+        """The full Result of case i: from the sweep's directory when it kept one (whole),
+        else run again in a worker process (in this process after ``processes=0``; cases are
+        deterministic: the same numbers). None for a case that did not run (error, crashed,
+        timeout)."""
+        if self.rows[i]["status"] not in WITH_RESULT:
             return None
+        if i in self._results:
+            return self._results[i]
         if self.directory:
-            path = os.path.join(self.directory, "results", f"{self.keys[i]}.pkl")
-            if os.path.exists(path):
-                with open(path, "rb") as fh:
-                    return pickle.load(fh)
-        if i not in self._results:
-            self._results[i] = CaseRunner(self.model).run(self.cases[i], {})[1]
-        return self._results[i]
+            res = self._store.load(self.keys[i])
+            if res is not None:
+                return res
+        if self._in_process:
+            if self._runner is None:
+                self._runner = CaseRunner(self.model)
+            res = self._runner.run(self.cases[i], {})[1]
+        else:
+            got = list(Pool(self._payload, 1).run([(i, self.cases[i])], want=True))
+            res = pickle.loads(got[0][2]) if got and got[0][2] is not None else None
+        self._results[i] = res
+        return res
 
     def __repr__(self):
         c = self.counts()
@@ -68,7 +85,7 @@ class Sweep:
 
 
 def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, outputs=None,
-          directory=None, progress=None):
+          directory=None, progress=None, keep=("ok",)):
     """Run every case of a model: one call for a whole parameter study.
 
     Parameters
@@ -77,144 +94,160 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
     cases : list of dict, pandas.DataFrame, or a design (:func:`pysolver.grid`,
         :func:`pysolver.sample`)
         Each case maps paths (``"Force_Penalty/1/penalty"``; see
-        :class:`pysolver.build.params.Parameters`) to numbers.
+        :class:`pysolver.build.params.Parameters`) to numbers, checked by the rules the
+        deck's own attribute has.
     processes : int, optional
         Worker processes (default: one per core); 0 runs the cases in this process (no crash
         isolation, no time limit).
     client : dask.distributed.Client, optional
-        Run the cases as tasks on this Dask cluster instead (the model travels once to each
-        worker); ``timeout`` is not enforced there.
+        Run the cases as tasks on this Dask cluster instead; each Dask worker runs them in a
+        worker process of its own, so crashes and ``timeout`` are handled as here.
     timeout : float, optional
         Seconds a case may run before its worker is killed (status ``timeout``).
     outputs : dict, optional
         Name -> scalar to record per case: ``"final:request/1/2"``, ``"max:body2.z"``,
-        ``"first_event"``, ``"steps"``, or a picklable function of the Result.
+        ``"first_event"``, ``"steps"``, or a function of the Result (sent to the workers by
+        cloudpickle when it is installed, else by reference: define it in a module).
     directory : str, optional
-        Write rows and Results there as cases finish, and skip cases already there.
+        Write rows and Results there as cases finish, and reuse the rows already there.
     progress : bool, optional
         A progress bar on standard error (default: when it is a terminal).
+    keep : str or sequence of str, default ("ok",)
+        Statuses of stored rows to reuse; the other stored cases run again (a ``timeout``
+        with a longer limit, say). ``"all"`` reuses every stored row.
 
     Returns
     -------
     Sweep
+
+    Raises
+    ------
+    StorageError
+        The directory cannot be written (read-only, a full disk, ``results`` a file): the
+        sweep stops, the cases stored so far are kept.
+    KeyboardInterrupt
+        Ctrl-C: the sweep stops; the cases running then are not stored.
     """
     from .. import Model, load
     model = deck_or_model if isinstance(deck_or_model, Model) else load(deck_or_model)
     cases = _as_cases(cases)
     outputs = dict(outputs or {})
     check_outputs(model, outputs)
-    keys = [case_key(model, c) for c in cases]
+    keep = _keep(keep)
+    fp = fingerprint(model, outputs)
+    keys = [case_key(fp, c) for c in cases]
+    in_process = processes == 0 and client is None
+    payload = None if in_process else (fp, _blob(model, outputs), reusable(model))
+    store = Store(directory)
     rows = [None] * len(cases)
-    store = _Store(directory)
     for i, key in enumerate(keys):
-        if key in store.done:
-            rows[i] = dict(store.done[key], case=i, resumed=True)
-    todo = [(i, cases[i], store.path(keys[i])) for i in range(len(cases)) if rows[i] is None]
+        got = store.stored(key, keep)
+        if got is not None:
+            rows[i] = _row(i, cases[i], got, True)
+    todo = [(i, cases[i]) for i in range(len(cases)) if rows[i] is None]
     bar = _Bar(len(cases), len(cases) - len(todo), progress)
+    want = store.directory is not None
     if client is not None:
-        finished = _dask(client, model, todo, outputs)
-    elif processes == 0:
-        finished = _serial(model, todo, outputs)
+        finished = _dask(client, payload, todo, timeout, want)
+    elif in_process:
+        finished = _serial(model, todo, outputs, want)
     else:
-        finished = Pool(model, processes or os.cpu_count() or 1, timeout).run(todo, outputs)
-    for idx, row in finished:
-        row = {"case": idx, **{str(k): v for k, v in cases[idx].items()}, **row,
-               "resumed": False}
-        rows[idx] = row
-        store.add(keys[idx], row)
-        bar.step()
-    bar.close()
-    return Sweep(model, cases, rows, directory, keys)
+        finished = Pool(payload, processes or os.cpu_count() or 1, timeout).run(todo, want)
+    try:
+        for idx, row, blob in finished:
+            row = _row(idx, cases[idx], row, False)
+            store.add(keys[idx], row, blob)
+            rows[idx] = row
+            bar.step()
+    finally:
+        finished.close()                # workers of an unfinished sweep are stopped now
+        store.close()
+        bar.close()
+    return Sweep(model, cases, rows, store, keys, payload, in_process)
+
+
+def _row(idx, case, got, resumed):
+    inputs = {str(k): v for k, v in case.items()}
+    return {"case": idx, **inputs,
+            **{k: v for k, v in got.items() if k not in inputs and k not in ("case", "resumed")},
+            "resumed": resumed}
+
+
+def _keep(keep):
+    keep = STATUSES if keep == "all" else (keep,) if isinstance(keep, str) else tuple(keep)
+    bad = [k for k in keep if k not in STATUSES]
+    if bad:
+        raise ValueError(f"keep: unknown status {bad[0]!r}; expected 'all' or some of "
+                         f"{', '.join(STATUSES)}")
+    return keep
+
+
+def _blob(model, outputs):
+    """(model, outputs) as a worker loads them: the model as its deck text; functions among
+    the outputs by value with cloudpickle, else by reference."""
+    if any(callable(s) for s in outputs.values()):
+        try:
+            import cloudpickle
+        except ImportError:
+            for name, spec in outputs.items():
+                if callable(spec) and getattr(spec, "__module__", None) == "__main__":
+                    raise ValueError(f"output {name!r}: a function of the main script cannot "
+                                     "reach the worker processes; define it in a module, or "
+                                     "pip install cloudpickle") from None
+        else:
+            return cloudpickle.dumps((model, outputs), protocol=pickle.HIGHEST_PROTOCOL)
+    try:
+        return pickle.dumps((model, outputs), protocol=pickle.HIGHEST_PROTOCOL)
+    except (pickle.PicklingError, AttributeError, TypeError) as err:
+        raise ValueError(f"outputs: cannot send them to the worker processes ({err}); use "
+                         "spec strings or module-level functions") from None
 
 
 def _as_cases(cases):
     if hasattr(cases, "to_dict") and hasattr(cases, "columns"):      # a DataFrame
         return [dict(r) for r in cases.to_dict(orient="records")]
-    out = [dict(c) for c in cases]
-    return out
+    return [dict(c) for c in cases]
 
 
-def _serial(model, todo, outputs):
+def _serial(model, todo, outputs, want):
     runner = CaseRunner(model)
-    for idx, case, store in todo:
+    for idx, case in todo:
         row, res = runner.run(case, outputs)
-        if store and res is not None:
-            save_result(res, store)
-        yield idx, row
+        if row["status"] == "interrupted":
+            raise KeyboardInterrupt(f"case {idx}: {row['message']}")
+        blob = pickle.dumps(res, protocol=pickle.HIGHEST_PROTOCOL) \
+            if want and res is not None else None
+        yield idx, row, blob
 
 
-def _dask(client, model, todo, outputs):
+def _dask(client, payload, todo, timeout, want):
     """Cases as Dask tasks, a few dozen per task (a task costs the scheduler about a
-    millisecond); a task that fails (a worker lost) runs again case by case, so that only the
-    case that kills a worker is marked crashed."""
+    millisecond), each run by a worker process of the Dask worker (:func:`.pool.run_chunk`:
+    a crashing case is its row ``crashed``, the Dask worker lives on). A task that fails
+    anyway (a Dask worker lost) runs again case by case."""
     from dask.distributed import as_completed
-    remote = client.scatter(model, broadcast=True)
     nworkers = max(1, len(client.scheduler_info().get("workers", {})))
     size = max(1, min(50, len(todo) // (8 * nworkers)))
     chunks = [todo[i:i + size] for i in range(0, len(todo), size)]
-    futures = {client.submit(_dask_cases, remote, chunk, outputs, pure=False): chunk
+    futures = {client.submit(run_chunk, payload, chunk, timeout, want, pure=False): chunk
                for chunk in chunks}
-    for fut in as_completed(futures):
-        chunk = futures[fut]
-        try:
-            yield from fut.result()
-            continue
-        except Exception as err:  # noqa: BLE001 - a worker lost or the task failed there
-            if len(chunk) == 1:
-                kind = "crashed" if type(err).__name__ == "KilledWorker" else "error"
-                yield chunk[0][0], {"status": kind, "message": f"{type(err).__name__}: {err}",
-                                    "wall": math.nan, "steps": None}
+    try:
+        for fut in as_completed(futures):
+            chunk = futures[fut]
+            try:
+                got = fut.result()
+            except Exception as err:  # noqa: BLE001 - a Dask worker lost or the task failed
+                if len(chunk) == 1:
+                    kind = "crashed" if type(err).__name__ == "KilledWorker" else "error"
+                    yield chunk[0][0], {"status": kind,
+                                        "message": f"{type(err).__name__}: {err}",
+                                        "wall": math.nan, "steps": None}, None
+                else:
+                    yield from _dask(client, payload, chunk, timeout, want)
                 continue
-        yield from _dask(client, model, chunk, outputs)      # smaller chunks, down to one
-
-
-_RUNNERS = {}
-
-
-def _dask_cases(model, chunk, outputs):
-    """Cases on a Dask worker, with one compiled model per worker and deck."""
-    runner = _RUNNERS.get(model.source.sha256)
-    if runner is None:
-        runner = _RUNNERS[model.source.sha256] = CaseRunner(model)
-    out = []
-    for idx, case, store in chunk:
-        row, res = runner.run(case, outputs)
-        if store and res is not None:
-            save_result(res, store)
-        out.append((idx, row))
-    return out
-
-
-class _Store:
-    """A sweep's directory: rows in cases.jsonl, Results in results/."""
-
-    def __init__(self, directory):
-        self.directory = directory
-        self.done = {}
-        if not directory:
-            return
-        os.makedirs(os.path.join(directory, "results"), exist_ok=True)
-        self.file = os.path.join(directory, "cases.jsonl")
-        if os.path.exists(self.file):
-            with open(self.file) as fh:
-                for line in fh:
-                    try:
-                        rec = json.loads(line)
-                    except json.JSONDecodeError:
-                        continue          # a line cut by a crash: that case runs again
-                    self.done[rec.pop("key")] = rec
-
-    def path(self, key):
-        return os.path.join(self.directory, "results", f"{key}.pkl") if self.directory \
-            else None
-
-    def add(self, key, row):
-        if not self.directory:
-            return
-        rec = {k: v for k, v in row.items() if k not in ("case", "resumed")}
-        with open(self.file, "a") as fh:
-            fh.write(json.dumps({"key": key, **rec}) + "\n")
-            fh.flush()
+            yield from got
+    finally:
+        client.cancel([f for f in futures if not f.done()])
 
 
 class _Bar:

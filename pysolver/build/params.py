@@ -8,13 +8,21 @@ inertias, marker positions, gravity and sensor thresholds are entries of the ker
 initial velocities and positions make the initial state; Param_Transient and Param_Static
 settings are run options. :meth:`Parameters.apply` puts the deck's values back first, so cases
 never leak into each other. Paths are case-insensitive in the element and attribute names.
+
+A case's value obeys the rules the deck loader applies to the same attribute
+(:func:`check_value`: the attribute's kind in :data:`pysolver.deck.schema.SCHEMA`, converted
+by the loader's own :func:`pysolver.deck.schema.convert`, and for Param_Transient the option's
+rule in :mod:`pysolver.options`): a penalty of 0 or -1e4, a smoothing factor of 0, ``True`` as
+a number or a step count of 2.5 is the DeckError a deck with that value gets.
 """
 import dataclasses
 
 import numpy as np
 
+from ..deck import validate as _validate
+from ..deck.schema import SCHEMA, Ctx, convert
 from ..errors import DeckError
-from ..options import DECK_NAMES
+from ..options import DECK_NAMES, rule_problem
 
 _STATIC = ("max_ke_tol", "max_dq_tol", "max_num_iter", "max_imbalance", "max_error",
            "stability", "compliance_delta", "tlimit", "alimit")
@@ -23,8 +31,46 @@ _INERTIA = {"xx": (0, 0), "yy": (1, 1), "zz": (2, 2), "xy": (0, 1), "yz": (1, 2)
 
 def _error(path, msg):
     parts = str(path).split("/")
-    return DeckError(f"sweep parameter {path!r}: {msg}", element=parts[0] or None,
+    ident = int(parts[1]) if len(parts) == 3 and parts[1].isdigit() else None
+    return DeckError(f"sweep parameter {path!r}: {msg}", element=parts[0] or None, id=ident,
                      attribute=parts[-1] if len(parts) > 1 else None)
+
+
+#: The one attribute a case sets that has no attribute of its own in the deck: the number a
+#: Reference_Variable's expression is (any finite real, as a constant of an expression).
+_NOT_IN_SCHEMA = {("Reference_Variable", "value"): "float"}
+
+
+_KINDS = {}                     # path -> (element, attribute, kind, its Ctx), as looked up
+
+
+def check_value(path, value):
+    """`value` for the number `path` names (a canonical path of :meth:`Parameters.paths`),
+    converted and checked by the rules the deck loader applies to that attribute; DeckError
+    (its reason the loader's) when it breaks them."""
+    got = _KINDS.get(path)
+    if got is None:
+        parts = path.split("/")
+        tag, attr = parts[0], parts[-1]
+        kind = _NOT_IN_SCHEMA.get((tag, attr)) or SCHEMA[tag][attr][0]
+        got = _KINDS[path] = (tag, attr, kind, Ctx(None, tag, {}, None, {}))
+    tag, attr, kind, ctx = got
+    try:
+        v = convert(ctx, attr, kind, value)
+    except DeckError as err:
+        raise _error(path, err.reason) from None
+    if tag == "Param_Transient":
+        problem = rule_problem(attr, v)
+        if problem:
+            raise _error(path, f"got {v:g}; expected a value {problem}")
+    if tag == "Force_Gravity":
+        # the loader's element-level rule (deck/validate.py _gravity), until the deck exposes
+        # a per-attribute check both can call
+        cap = getattr(_validate, "MAX_GRAVITY", 1e20)
+        if abs(v) > cap:
+            raise _error(path, f"got {v:g}; expected |{attr}| <= {cap:g} (in any unit system "
+                         "gravity is far smaller)")
+    return v
 
 
 class Parameters:
@@ -82,20 +128,13 @@ class Parameters:
         options = {}
         for raw, value in case.items():
             path = self.canonical(raw)
-            try:
-                v = float(value)
-            except (TypeError, ValueError):
-                raise _error(raw, f"got {value!r}; expected a number") from None
-            if not np.isfinite(v):
-                raise _error(raw, f"got {value!r}; expected a finite number")
+            v = check_value(path, value)
             if path.startswith("Param_Transient/"):
                 options[path.split("/")[1]] = v
                 continue
             if path not in self._base:
                 self._base[path] = self._get(path)
             self._set(path, v)
-        if "max_num_steps" in options:
-            options["max_num_steps"] = int(options["max_num_steps"])
         return options
 
     def reset(self):
@@ -156,8 +195,6 @@ class Parameters:
         k = self.kernel
         row = k.layout.index[b.id]
         if attr == "mass":
-            if v <= 0:
-                raise _error(path, f"got {v:g}; expected a mass > 0")
             b.mass = v
             k.arrays["body_mass"][row] = v
         elif attr.startswith("inertia_"):
@@ -166,8 +203,8 @@ class Parameters:
             raw[i, j] = raw[j, i] = v
             ev = np.linalg.eigvalsh(raw)
             if ev.min() <= 0 or ev[2] > ev[0] + ev[1] + 1e-12 * ev[2]:
-                raise _error(path, "the inertia tensor must stay positive definite and satisfy "
-                             "the triangle inequality")
+                raise _error(path, "inertia tensor must be positive definite and satisfy the "
+                             "triangle inequality")
             b.inertia_im = raw
             b.inertia = b.im_rot @ raw @ b.im_rot.T
             k.arrays["body_inertia"][9 * row:9 * row + 9] = b.inertia.reshape(-1)
