@@ -95,14 +95,14 @@ def test_readme_user_subroutine_examples_run(tmp_path):
 
 
 def test_readme_batch_example_runs(tmp_path):
-    """The README's sweep example, as a script (worker processes re-import it), in a fresh
-    folder: every case ok, the directory written."""
+    """The README's sweep example, as a plain script (no main guard: workers never import
+    it), in a fresh folder: every case ok, the directory written."""
     import subprocess
     import sys
     text = (ROOT / "README.md").read_text().split("## Batch studies", 1)[1]
     script = re.search(r"```python\n(.*?)```", text, flags=re.S).group(1)
     script = script.replace('"decks/', f'"{ROOT}/decks/')
-    script += '    assert (sw.table["status"] == "ok").all() and res.success\n'
+    script += 'assert (sw.table["status"] == "ok").all() and res.success\n'
     (tmp_path / "study.py").write_text(script)
     env = dict(os.environ, PYTHONPATH=str(pathlib.Path(pysolver.__file__).parents[1]))
     out = subprocess.run([sys.executable, "study.py"], cwd=tmp_path, env=env,
