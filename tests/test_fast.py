@@ -76,7 +76,8 @@ def test_commands_and_first_steps_of_every_length(end, monkeypatch):
 
 
 def test_a_run_that_fails_is_reported_by_the_general_path(monkeypatch):
-    """Too many steps: the fast path gives the run up, the driver reports it, rows and all."""
+    """Too many steps: the batched path reports it in the general loop's words, rows and
+    all."""
     model = _load("stiff_penalty_pendulum.xml")
     res = model.run(progress=False, max_num_steps=50)
     assert not res.success and res.status == -100 and "max_num_steps" in res.message
@@ -115,3 +116,47 @@ def test_every_linear_solver_restarts_to_the_bit(linsolver, monkeypatch):
     assert ref.meta["options"]["linsolver"] == {"auto": "band"}.get(linsolver, linsolver)
     for res in runs:
         _same(res, ref)
+
+
+@pytest.mark.parametrize("mode", ["clean", "error"])
+def test_kernel_called_routines_take_the_batched_path(mode, monkeypatch, tmp_path):
+    """A Python routine that cannot be traced is called from the kernel: such runs take the
+    batched path, cleanly or ending in the routine's error (status -400 at t > 0.5), with the
+    general loop's rows, counters and message."""
+    script = tmp_path / "bead.py"
+    script.write_text(
+        "import math\n\n\ndef PFOSUB(id, time, par, npar, dflag, iflag):\n"
+        "    [x, e] = py_sysfnc('DX', [9])\n    [y, e] = py_sysfnc('DY', [9])\n"
+        "    if float(time) > par[1]:\n        py_errmes(1, 'past the end', id, 'STOP')\n"
+        "    return float(y) - math.cosh(float(x))\n")
+    text = (DECKS / "catenary_bead.xml").read_text().replace(
+        'type="EXPRESSION"\n                   expr="dy(9) - cosh(dx(9))"',
+        f'type="USERSUB" script_name="{script}" '
+        f'usrsub_param_string="USER(9, {0.5 if mode == "error" else 1e9})"')
+    model = pysolver.loads(text)
+    assert model.run(progress=False).meta["usersubs"] and _takes_fast_path(model)
+    res = model.run(progress=False)
+    _same(res, _general(model, monkeypatch))
+    assert res.success == (mode == "clean")
+    if mode == "error":
+        assert res.status == -400 and "past the end" in res.message and 0.4 < res.t[-1] <= 0.5
+
+
+def test_the_actors_decide_the_path(monkeypatch):
+    """The batched path is chosen from the deck's actors (Actor.instants), not a list of model
+    features: a printer that needs its rows one by one sends the run to the general loop."""
+    from pysolver.solve.outputs import Printer
+    model = _load("particle_above_line.xml")
+    assert _takes_fast_path(model)
+    monkeypatch.setattr(Printer, "instants", property(lambda self: True))
+    assert not _takes_fast_path(model, integr_tol=1e-4)     # a new options object: decided anew
+
+
+def test_the_kept_run_follows_pysolver_backend(monkeypatch):
+    """PYSOLVER_BACKEND changed between runs of one model: the second run uses it (the kept
+    fast path said backend: c before)."""
+    model = _load("particle_above_line.xml")
+    assert model.run(progress=False).meta["options"]["backend"] == "c"
+    monkeypatch.setenv("PYSOLVER_BACKEND", "sksundae")
+    res = model.run(progress=False)
+    assert res.success and res.meta["options"]["backend"] == "sksundae"

@@ -75,6 +75,15 @@ class Actor:
     needs_restore = False
     watching = False
 
+    @property
+    def instants(self):
+        """Whether the actor acts at instants of its own (roots, times, rows or a restore):
+        a run whose actors have none is the batched C path (outputs through print times in
+        one call per batch). Actors that act at times override this to say True."""
+        return bool(self.nroots) or self.needs_restore or \
+            type(self).on_output is not Actor.on_output or \
+            type(self).next_time is not Actor.next_time
+
     def start(self, run):
         """Act at the start of the run (e.g. conditions that already hold); returns a Flow."""
         return Flow()

@@ -22,7 +22,7 @@ from .actors import Actor, Flow
 from .loadcontrol import LoadControlTask, NonFinite
 from .outputs import Printer, Progress, command_rows, over_budget
 from .sensors import Chatter, Sensors
-from .step import ROOT_RETURN, TOO_MUCH_WORK
+from .step import ROOT_RETURN, TOO_MUCH_WORK, Step
 
 
 def max_steps_message(limit, t):
@@ -41,6 +41,53 @@ class Stop(Exception):
         self.success, self.status, self.message = success, status, message
 
 
+def deck_actors(model, kernel, log, bar):
+    """The actors a deck's own elements make: its sensors, its LoadControl tasks and the
+    printer (in the order they act at one instant). Whether any of them acts at instants of
+    its own decides whether a run can take the batched path (:mod:`.fast`)."""
+    sensors = Sensors(model, kernel, log)
+    printer = Printer(kernel, bar)
+    printer.watchers = [sensors]
+    controls = [LoadControlTask(kernel, model.controls[lid], k)
+                for k, lid in enumerate(sorted(model.controls))]
+    return sensors, controls, printer
+
+
+def start_state(model, kernel):
+    """(t0, y0, yp0) of a run: the bodies' initial state and rates consistent with it (Stop
+    when they cannot be had)."""
+    t0, y0 = 0.0, kernel.layout.initial_state()
+    kernel.d.last_t = t0
+    kernel.d.bad_kind = 0
+    try:
+        yp0 = kernel.consistent_yp(t0, y0)
+    except UserFailure as err:           # a user subroutine failed (or Ctrl-C came)
+        if lib.ps_interrupted():
+            raise Stop(False, -600, f"interrupted at t = {t0:.6g}") from None
+        raise Stop(False, -400, f"{err} (t = {t0:.6g})") from None
+    if kernel.d.bad_kind or not np.isfinite(yp0).all():
+        why = nonfinite.describe(model, kernel) or (
+            "the accelerations cannot be solved for: dF/dyp is singular or not "
+            "finite (a zero or huge mass, inertia or penalty1?)")
+        raise Stop(False, -700, f"initial conditions: {why}")
+    return t0, y0, yp0
+
+
+def failure(model, kernel, options, status, t):
+    """(status, message) of an integration that stopped with IDA's flag `status` at t: too
+    many steps, a user subroutine's error, a non-finite value, or IDA's own failure."""
+    d = kernel.d
+    if d.steps_exceeded or status == TOO_MUCH_WORK:
+        return -100, max_steps_message(options.max_num_steps, d.last_t if d.steps_exceeded
+                                       else t)
+    if d.user_error:
+        return -400, f"{kernel.message} (t = {t:.6g})"
+    why = nonfinite.describe(model, kernel)
+    if why:
+        return -700, f"IDA failed at t = {t:.6g} after a {why}"
+    return status, f"IDA failed at t = {t:.6g}: {Step(t, None, None, status).message}"
+
+
 class Run:
     """One run of a model: state, step bounds, integrator, actors, and what they recorded."""
 
@@ -51,12 +98,9 @@ class Run:
         self.hmin = options.h_min or 0.0
         self.events, self.log, self.statics = [], [], []
         self.bar = Progress(0.0, model.commands[-1].end_time, progress)
-        self.printer = Printer(kernel, self.bar)
+        self.sensors, self.controls, self.printer = deck_actors(model, kernel, self.log,
+                                                                self.bar)
         self.printer.stream = stream
-        self.sensors = Sensors(model, kernel, self.log)
-        self.printer.watchers = [self.sensors]
-        self.controls = [LoadControlTask(kernel, model.controls[lid], k)
-                         for k, lid in enumerate(sorted(model.controls))]
         self.actors = [self.sensors, *self.controls, self.printer]
         # each actor's slice of IDA's root flags, in the kernel's root order
         self.root_slices, off = [], 0
@@ -261,16 +305,10 @@ class Run:
                 step = self.solver.step(min(printer.pending[0], tstop), tstop)
             if lib.ps_interrupted():          # Ctrl-C: the rows so far are kept
                 raise self.interrupted()
-            if self.kernel.d.steps_exceeded or step.status == TOO_MUCH_WORK:
-                t_end = self.kernel.d.last_t if self.kernel.d.steps_exceeded else step.t
-                raise Stop(False, -100, max_steps_message(self.options.max_num_steps, t_end))
-            if self.kernel.d.user_error:      # a user subroutine reported an error
-                raise Stop(False, -400, f"{self.kernel.message} (t = {step.t:.6g})")
-            if not step.success:
-                why = nonfinite.describe(self.model, self.kernel)
-                if why:
-                    raise Stop(False, -700, f"IDA failed at t = {step.t:.6g} after a {why}")
-                raise Stop(False, step.status, f"IDA failed at t = {step.t:.6g}: {step.message}")
+            d = self.kernel.d
+            if not step.success or d.user_error or d.steps_exceeded:
+                raise Stop(False, *failure(self.model, self.kernel, self.options, step.status,
+                                           step.t))
             # outputs up to the point reached: the point itself, or IDA's interpolant
             t = step.t
             printer.emit_due(step, self.solver, tstop)
@@ -298,21 +336,13 @@ class Run:
         """Run every command; returns (success, status, message)."""
         k = self.kernel
         self.t = 0.0
-        self.y = k.layout.initial_state()
-        k.d.last_t = self.t
-        self.yp = np.zeros_like(self.y)
+        self.y = self.yp = np.zeros(k.ny)
         commands = {"TRANSIENT": self.run_transient,
                     "STATIC": lambda c: quasistatic.run_static(self, c),
                     "QUASI-STATIC": lambda c: quasistatic.run_quasi_static(self, c)}
         try:
             try:
-                k.d.bad_kind = 0
-                self.yp = k.consistent_yp(self.t, self.y)
-                if k.d.bad_kind or not np.isfinite(self.yp).all():
-                    why = nonfinite.describe(self.model, k) or (
-                        "the accelerations cannot be solved for: dF/dyp is singular or not "
-                        "finite (a zero or huge mass, inertia or penalty1?)")
-                    raise Stop(False, -700, f"initial conditions: {why}")
+                self.t, self.y, self.yp = start_state(self.model, k)
                 flow = Flow()
                 for actor in self.actors:
                     flow.update(actor.start(self))

@@ -1,28 +1,26 @@
-"""The fast path of :meth:`pysolver.Model.run`: a run that is nothing but IDA through print
-times, with almost no Python.
+"""The batched path of a run: IDA through print times, one C call per batch, with almost no
+Python.
 
-A scene without sensors, load controls, motions or user subroutines called from the kernel,
-integrated by IDA from C, needs none of the driver's machinery (:mod:`.driver`): its run is the
-initial conditions, then one C call per Simulate command (``ps_ida_outputs``) that integrates
-through the command's print times into arrays allocated once for the whole run (per
-:data:`~.outputs.Grid.BATCH` print times, as the driver, so that a progress bar moves). What
-does not change between runs of the same model and options is built once and kept on the
-kernel: the print times, the row count and the IDA object with its linear solver (started
-again with ``ps_ida_rerun``, not rebuilt).
-
-A run that does not finish cleanly (an IDA failure, too many steps, a non-finite value) is run
-again on the general path, which reports it in its own words: the fast path has no side effects
-to undo, and a scene that runs cleanly, the common case in a batch study, pays nothing for the
-general path's generality. The two give the same rows to the last bit (tests/test_fast.py).
+A run whose actors (:func:`.driver.deck_actors`: sensors, LoadControl tasks, the printer; a new
+kind of actor says it through :attr:`.actors.Actor.instants`) have no instants of their own,
+integrated by IDA from C, needs none of the general loop's machinery: it is the initial
+conditions (:func:`.driver.start_state`, shared with the general loop), then per Simulate
+command ``ps_ida_outputs`` calls through its print times (per :data:`~.outputs.Grid.BATCH`, so
+a progress bar moves) into arrays allocated once for the whole run. What does not change
+between runs of the same model, options and backend is built once and kept: the print times,
+the row count and the IDA object with its linear solver (started again with
+``ps_ida_rerun``). A failure is worded by :func:`.driver.failure`, as the general loop words
+it, and the two give the same rows, counters and messages to the last bit
+(tests/test_fast.py).
 """
-import threading
 import time
 
 import numpy as np
 
+from .. import settings
 from ..build.bindings import ffi, lib
-from ..build.kernel import UserFailure
 from . import integrator, report
+from .driver import Stop, deck_actors, failure, start_state
 from .outputs import Grid, Progress, over_budget
 
 #: Whether runs may take the fast path (tests switch it off to compare with the general path).
@@ -35,13 +33,15 @@ def fast_run(model, kernel, options, actors):
     if not ENABLED or actors:
         return None
     cache = kernel.__dict__.setdefault("_fast", {})
-    key = id(options)
+    key = (id(options), settings.backend())
     if key not in cache:
         cache.clear()                       # one entry: the options object is kept alive
         plan = integrator.cached_plan(kernel, options)
-        ok = (plan.use_c and not model.sensors and not model.controls and
-              not kernel.arrays["nuser"] and not kernel.layout.lam and
-              all(cmd.analysis == "TRANSIENT" for cmd in model.commands))
+        # the batched path: IDA from C, transient commands only, and no actor of the deck's
+        # acting at instants of its own (a new actor says so through Actor.instants)
+        actors = deck_actors(model, kernel, [], Progress(0.0, 1.0, False))
+        ok = (plan.use_c and all(cmd.analysis == "TRANSIENT" for cmd in model.commands)
+              and not any(a.instants for a in (actors[0], *actors[1], actors[2])))
         cache[key] = (options, FastRun(model, kernel, options, plan) if ok else None)
     return cache[key][1]
 
@@ -69,34 +69,24 @@ class FastRun:
         self.roots = ffi.new("int[1]")
 
     def run(self, t_start, used, static, labels, log, progress=None, stream=None):
-        """Run the model; returns its Result, or None when the general path must run it.
-        `progress` as Model.run; `stream` an outputs.Stream the rows are written to."""
+        """Run the model; returns its Result, or None when its outputs would pass the budget
+        (the general path stops at the command past it). `progress` as Model.run; `stream`
+        an outputs.Stream the rows are written to."""
         k, d, fb, opts = self.k, self.k.d, self.fb, self.options
         k.reset_counters()
         n, ny = len(self.times), k.ny
         if over_budget(n, ny, len(k.channels), "the run"):
-            return None                     # the driver stops at the command past the budget
-        main = threading.current_thread() is threading.main_thread()
-        if main:
-            lib.ps_interrupt_arm()
-        bar, row, ran = Progress(0.0, self.times[-1], progress), 1, False
+            return None
+        T, Y, YP = self.times.copy(), np.empty((n, ny)), np.empty((n, ny))
+        REQ = np.empty((n, self.nout))
+        bar, row, t_run = Progress(0.0, self.times[-1], progress), 0, None
+        status, message = 0, "The simulation finished."
+        ida = self.solver
         try:
-            # the initial state (sweep cases change it) and a consistent yp
-            t0, y0 = 0.0, k.layout.initial_state()
-            d.last_t = t0
-            d.bad_kind = 0
-            try:
-                yp0 = k.consistent_yp(t0, y0)
-            except UserFailure:
-                return None
-            if d.bad_kind or not np.isfinite(yp0).all():
-                return None
-            T, Y, YP = self.times.copy(), np.empty((n, ny)), np.empty((n, ny))
-            REQ = np.empty((n, self.nout))
+            # the initial state (sweep cases change it) and a consistent yp, as the driver
+            t0, y0, yp0 = start_state(self.model, k)
             Y[0], YP[0], REQ[0, :len(k.channels)] = y0, yp0, k.outputs(t0, y0, yp0)
-            t_run = time.perf_counter()
-            fresh, status = True, 0
-            ida = self.solver
+            row, t_run, fresh = 1, time.perf_counter(), True
             if stream is not None:
                 stream.rows(T[:1], REQ[:1])
                 lib.ps_ida_set_stream(ida.s, stream.st)
@@ -113,30 +103,18 @@ class FastRun:
                     row += self.reached[0]
                     fresh = False
                     if lib.ps_interrupted():
-                        status = -600
-                        break
-                    if flag < 0 or self.reached[0] < len(times) or d.user_error:
-                        return None
+                        raise Stop(False, -600, f"interrupted at t = {T[row - 1]:.6g}")
+                    if flag < 0 or d.user_error or d.steps_exceeded:
+                        raise Stop(False, *failure(self.model, k, opts, flag, self.tret[0]))
                     bar.update(T[row - 1])
-                if status:
-                    break
-            ran = True
+        except Stop as stop:
+            status, message = stop.status, stop.message
         finally:
             d.step_limit = 0
-            lib.ps_ida_set_stream(self.solver.s, ffi.NULL)
-            if main:
-                lib.ps_interrupt_disarm()
-            if ran or bar.shown:        # a run handed to the driver shows the driver's bar
-                bar.close(self.times[row - 1])
+            lib.ps_ida_set_stream(ida.s, ffi.NULL)
+            bar.close(T[max(row - 1, 0)])
         t_end = time.perf_counter()
-        return self.result((T[:row], Y[:row], YP[:row], REQ[:row, :len(k.channels)]), status,
-                           (t_start, t_run, t_end), (used, static, labels), log)
-
-    def result(self, rows, status, clock, settings, log):
-        """The Result of a run that reached len(rows[0]) rows (status 0, or -600 Ctrl-C)."""
-        k = self.k
-        message = f"interrupted at t = {rows[0][-1]:.6g}" if status else \
-            "The simulation finished."
-        return report.result(self.model, k, self.plan, settings, rows,
-                             (not status, status, message), clock, self.solver.counters(), log,
-                             steps=int(k.d.ntimes - k.d.nfail))
+        rows = (T[:row], Y[:row], YP[:row], REQ[:row, :len(k.channels)])
+        return report.result(self.model, k, self.plan, (used, static, labels), rows,
+                             (status == 0, status, message), (t_start, t_run or t_end, t_end),
+                             self.solver.counters(), log, steps=int(k.d.ntimes - k.d.nfail))

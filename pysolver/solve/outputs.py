@@ -258,6 +258,12 @@ class Printer(Actor):
         self.streamed = 0         # rows written to it
         self.c_streams = False    # whether the integrator writes its batches' rows itself
 
+    @property
+    def instants(self):
+        """Print times are what the batched path runs through; motion reactions need the
+        Python of every row (they are recomputed from the row's force balance)."""
+        return bool(self.kernel.layout.lam)
+
     # the schedule --------------------------------------------------------------------
     def begin_command(self, t, end, dt):
         """Print every dt from t to end (a new Simulate command)."""

@@ -1,5 +1,6 @@
 """``Model.run``: options, the fast path (:mod:`.fast`) or one :class:`~.driver.Run`, and the
 :class:`~pysolver.Result`."""
+import contextlib
 import dataclasses
 import threading
 import time
@@ -28,18 +29,30 @@ def run_model(model, progress=None, overrides=None, actors=(), stream=None):
         kind != "tapes" else []
     sink = Stream(stream, kernel, labels) if stream is not None else None
     try:
-        fast = fast_run(model, kernel, options, actors)
-        if fast is not None:
-            res = fast.run(t_start, used, static, labels, log, progress, sink)
-            if res is not None:
-                return res
-            if sink is not None:
-                sink.reset()                # the driver writes the rows again
-        return _driver_run(model, kernel, options, progress, actors, sink, t_start,
-                           (used, static, labels), log)
+        with _interrupts():
+            fast = fast_run(model, kernel, options, actors)
+            if fast is not None:
+                res = fast.run(t_start, used, static, labels, log, progress, sink)
+                if res is not None:
+                    return res
+            return _driver_run(model, kernel, options, progress, actors, sink, t_start,
+                               (used, static, labels), log)
     finally:
         if sink is not None:
             sink.close()
+
+
+@contextlib.contextmanager
+def _interrupts():
+    """Ctrl-C ends a run at its next residual (the C kernel's handler; main thread only)."""
+    main = threading.current_thread() is threading.main_thread()
+    if main:
+        lib.ps_interrupt_arm()
+    try:
+        yield
+    finally:
+        if main:
+            lib.ps_interrupt_disarm()
 
 
 def _driver_run(model, kernel, options, progress, actors, sink, t_start, settings, log):
@@ -48,15 +61,7 @@ def _driver_run(model, kernel, options, progress, actors, sink, t_start, setting
     run.log.extend(log)
     for actor in actors:
         run.add_actor(actor)
-    # Ctrl-C (main thread only): the C kernel's handler ends the run at its next residual
-    main = threading.current_thread() is threading.main_thread()
-    if main:
-        lib.ps_interrupt_arm()
-    try:
-        success, status, message = run.run()
-    finally:
-        if main:
-            lib.ps_interrupt_disarm()
+    success, status, message = run.run()
     t_end = time.perf_counter()
     ida, growth_limited_at = run.counters()
     ida["growth_limited_at"] = growth_limited_at

@@ -74,6 +74,12 @@ class Sensors(Actor):
         """True while a verbose sensor must see every output row."""
         return bool(self.verbose_active)
 
+    @property
+    def instants(self):
+        """Sensors act at roots of their expressions: any sensor makes a run leave the batched
+        path."""
+        return bool(self.sensors)
+
     # hooks ---------------------------------------------------------------------------
     def start(self, run):
         """Sensors whose condition already holds at the start fire at the start."""
