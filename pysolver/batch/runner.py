@@ -128,7 +128,8 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
     KeyboardInterrupt
         Ctrl-C: the sweep stops; the cases running then are not stored.
     """
-    from .. import Model, load
+    from ..deck.loader import load
+    from ..model import Model
     model = deck_or_model if isinstance(deck_or_model, Model) else load(deck_or_model)
     cases = _as_cases(cases)
     outputs = dict(outputs or {})
