@@ -19,10 +19,10 @@ import dataclasses
 
 import numpy as np
 
-from ..deck import validate as _validate
 from ..deck.schema import SCHEMA, Ctx, convert
+from ..deck.validate import value_rule
 from ..errors import DeckError
-from ..options import DECK_NAMES, rule_problem
+from ..options import DECK_NAMES
 
 _STATIC = ("max_ke_tol", "max_dq_tol", "max_num_iter", "max_imbalance", "max_error",
            "stability", "compliance_delta", "tlimit", "alimit")
@@ -59,17 +59,9 @@ def check_value(path, value):
         v = convert(ctx, attr, kind, value)
     except DeckError as err:
         raise _error(path, err.reason) from None
-    if tag == "Param_Transient":
-        problem = rule_problem(attr, v)
-        if problem:
-            raise _error(path, f"got {v:g}; expected a value {problem}")
-    if tag == "Force_Gravity":
-        # the loader's element-level rule (deck/validate.py _gravity), until the deck exposes
-        # a per-attribute check both can call
-        cap = getattr(_validate, "MAX_GRAVITY", 1e20)
-        if abs(v) > cap:
-            raise _error(path, f"got {v:g}; expected |{attr}| <= {cap:g} (in any unit system "
-                         "gravity is far smaller)")
+    problem = value_rule(tag, attr, v)        # the loader's rules beyond the kind
+    if problem:
+        raise _error(path, f"got {v:g}; {problem}")
     return v
 
 

@@ -120,12 +120,24 @@ def _once(ctx, once, tag):
     once[tag] = ctx.line
 
 
+def value_rule(tag, attr, value):
+    """The rule a number breaks beyond its attribute's kind (the text after "got ...; "), or
+    None: the one check of a value, whether it comes from a deck or a sweep case
+    (pysolver.build.params)."""
+    if tag == "Param_Transient":
+        problem = rule_problem(attr, value)
+        return f"expected a value {problem}" if problem else None
+    if tag == "Force_Gravity" and abs(value) > MAX_GRAVITY:
+        return (f"expected |{attr}| <= {MAX_GRAVITY:g} (in any unit system gravity is far "
+                "smaller)")
+    return None
+
+
 def _gravity(ctx, a):
-    for axis in "xyz":
-        val = a[f"grav_{axis}"]
-        if abs(val) > MAX_GRAVITY:
-            raise ctx.error(f"got {val:g}; expected |grav_{axis}| <= {MAX_GRAVITY:g} (in any "
-                            "unit system gravity is far smaller)", f"grav_{axis}")
+    for attr in ("grav_x", "grav_y", "grav_z"):
+        problem = value_rule("Force_Gravity", attr, a[attr])
+        if problem:
+            raise ctx.error(f"got {a[attr]:g}; {problem}", attr)
     return np.array([a["grav_x"], a["grav_y"], a["grav_z"]])
 
 
@@ -133,9 +145,9 @@ def _transient(ctx, a):
     """Param_Transient as Options, each value checked against its option's rule."""
     given = {k: a[k] for k in DECK_NAMES if a[k] is not None}
     for name, val in given.items():
-        problem = rule_problem(name, val)
+        problem = value_rule("Param_Transient", name, val)
         if problem:
-            raise ctx.error(f"got {val:g}; expected {name} {problem}", name)
+            raise ctx.error(f"got {val:g}; {problem}", name)
     return Options(**given)
 
 
