@@ -503,8 +503,7 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
                     const double* yp, const int* trow, const int* tcol, int ntrip,
                     double* work, int* body) {
   int n = m->ny;
-  double *noise = work, *loads = work + n, *net = work + 2 * n, *free_y = work + 3 * n;
-  double *zero = work + 4 * n;
+  double *noise = work, *net = work + n, *free_y = work + 2 * n, *zero = work + 3 * n;
   /* the counters and the step bookkeeping are the run's: this is not a step */
   long nres = d->nres, njac = d->njac;
   *body = -1;
@@ -527,9 +526,8 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
   for (int k = 0; k < m->nmotion; k++) free_y[m->mot_lam[k]] = 0.0;
   for (int k = 0; k < ntrip; k++)
     noise[trow[k]] += fabs(d->trip[k]) * fabs(free_y[tcol[k]]) * PS_UNIT_ROUNDOFF;
-  /* the forces each row carries, in the residual's units: the penalties' force and the net
-   * of every force but reactions (the residual at yp = 0 without them) */
-  ps_penalty_loads(m, d, t, y, yp, loads);
+  /* the forces each row carries, in the residual's units: the net of every force but
+   * reactions (the residual at yp = 0 without them) */
   if (m->gen)
     m->gen->residual(m, d->senval, t, free_y, zero, 0.0, net);
   else {
@@ -543,15 +541,14 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
   double worst = 0.0;
   for (int b = 0; b < m->nbody; b++) {
     int u = m->body_uadr[b];
-    double a = 0.0, q = 0.0, f = 0.0, most = 0.0;
+    double a = 0.0, f = 0.0, most = 0.0;
     for (int c = 0; c < 3; c++) {
       a += yp[u + c] * yp[u + c];
-      q += loads[u + c] * loads[u + c];
       f += net[u + c] * net[u + c];
       if (noise[u + c] > most) most = noise[u + c];
     }
     a = sqrt(a);
-    double ref = m->body_mass[b] * (a > g ? a : g) + m->force_scale * sqrt(q) + sqrt(f);
+    double ref = m->body_mass[b] * (a > g ? a : g) + sqrt(f);
     if (ref > 0.0 && most / ref > worst) {
       worst = most / ref;
       *body = b;

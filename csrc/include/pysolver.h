@@ -323,10 +323,10 @@ int ps_interrupted(void);
 /* How far rounding carries a result (pysolver/solve/precision.py): the largest ratio, over
  * the moving bodies, of the change the rounding of the state can make in a body's
  * translational force rows (sum over j of |dF_r/dy_j| u |y_j|, reactions left out) to the
- * forces the body carries (its mass times the larger of |gravity| and its acceleration, the
- * penalties' force and the net applied force without reactions). trow and tcol (ntrip
- * entries) are the kernel's Jacobian triplet pattern (ps_jacobian_pattern; ignored with a
- * generated library, which has its own); work holds 5 ny doubles. *body is the worst body's
+ * forces the body carries (its mass times the larger of |gravity| and its acceleration, and
+ * the net applied force without reactions). trow and tcol (ntrip entries) are the kernel's
+ * Jacobian triplet pattern (ps_jacobian_pattern; ignored with a generated library, which has
+ * its own); work holds 4 ny doubles. *body is the worst body's
  * index, or -1 when no body carries a force (the ratio is then 0; NaN when a value is not
  * finite). The run's call counters are left as they were. */
 double ps_precision(const psModel* m, psData* d, double t, const double* y,

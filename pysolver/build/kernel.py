@@ -206,7 +206,7 @@ class Kernel:
         if self._precision_work is None:          # the tapes' triplet pattern, and room for it
             rows, cols = (np.zeros(1, np.int32),) * 2 if self.codegen["kernel"] == \
                 "generated" else (self.sparsity(), self._triplets)[1]
-            keep, fb = (rows, cols, np.zeros(5 * self.ny)), ffi.from_buffer
+            keep, fb = (rows, cols, np.zeros(4 * self.ny)), ffi.from_buffer
             self._precision_work = (ffi.cast("int *", fb(rows)), ffi.cast("int *", fb(cols)),
                                     len(rows), fb("double[]", keep[2]), ffi.new("int *"), keep)
         rows, cols, ntrip, work, body, _ = self._precision_work

@@ -111,7 +111,8 @@ class FastRun:
             status, message = stop.status, stop.message
         finally:
             d.step_limit = 0
-            lib.ps_ida_set_stream(ida.s, ffi.NULL)
+            if stream is not None:
+                lib.ps_ida_set_stream(ida.s, ffi.NULL)
             bar.close(T[max(row - 1, 0)])
         t_end = time.perf_counter()
         rows = (T[:row], Y[:row], YP[:row], REQ[:row, :len(k.channels)])

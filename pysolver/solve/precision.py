@@ -3,15 +3,14 @@
 A stiff element (a Force_Penalty of 1e15 on a bead of 1 kg) turns the rounding of the state
 into forces: a position known to one unit in the last place, u |q|, moves a force row by
 sum_j |dF_r/dy_j| u |y_j|. Where that is not small beside the forces the row carries (its
-mass times gravity or its acceleration, the penalties' own force on it and the net of its
-applied forces), the trajectory
+mass times gravity or its acceleration, and the net of its applied forces), the trajectory
 follows rounding, not physics: seed example 1 with penalty 1e15 ends 20 % off with every
 error test passed. IDA's tolerance cannot see this (the error is in the residual, not the
 step), so the check is made on the final state of a run that succeeded, and such a run is
 reported as failed (status -710) with the element and a coefficient that would work.
 
-The check (``ps_precision`` in C: the iteration matrix at cj = 0, the penalties' loads and one
-residual, about a microsecond on the example decks) runs once per run, not per step. It
+The check (``ps_precision`` in C: the iteration matrix at cj = 0 and one residual, about a
+microsecond on the example decks) runs once per run, not per step. It
 measures the translational rows of each moving body; a body with no force to compare with
 (no gravity, no acceleration, no applied force) is skipped.
 """

@@ -1,6 +1,5 @@
 """``Model.run``: options, the fast path (:mod:`.fast`) or one :class:`~.driver.Run`, and the
 :class:`~pysolver.Result`."""
-import contextlib
 import dataclasses
 import threading
 import time
@@ -28,31 +27,23 @@ def run_model(model, progress=None, overrides=None, actors=(), stream=None):
     log = [f"kernel: the tapes run ({gen['why']})"] if gen["kernel"] == "tapes" and \
         kind != "tapes" else []
     sink = Stream(stream, kernel, labels) if stream is not None else None
-    try:
-        with _interrupts():
-            fast = fast_run(model, kernel, options, actors)
-            if fast is not None:
-                res = fast.run(t_start, used, static, labels, log, progress, sink)
-                if res is not None:
-                    return res
-            return _driver_run(model, kernel, options, progress, actors, sink, t_start,
-                               (used, static, labels), log)
-    finally:
-        if sink is not None:
-            sink.close()
-
-
-@contextlib.contextmanager
-def _interrupts():
-    """Ctrl-C ends a run at its next residual (the C kernel's handler; main thread only)."""
+    # Ctrl-C ends a run at its next residual (the C kernel's handler; main thread only)
     main = threading.current_thread() is threading.main_thread()
     if main:
         lib.ps_interrupt_arm()
     try:
-        yield
+        fast = fast_run(model, kernel, options, actors)
+        if fast is not None:
+            res = fast.run(t_start, used, static, labels, log, progress, sink)
+            if res is not None:
+                return res
+        return _driver_run(model, kernel, options, progress, actors, sink, t_start,
+                           (used, static, labels), log)
     finally:
         if main:
             lib.ps_interrupt_disarm()
+        if sink is not None:
+            sink.close()
 
 
 def _driver_run(model, kernel, options, progress, actors, sink, t_start, settings, log):
