@@ -41,9 +41,9 @@ def load_times(text, repeat):
         os.environ["PYSOLVER_CACHE_DIR"] = folder
         try:
             t0 = time.perf_counter()
-            kernel = pysolver.loads(text)._kernel()
+            kernel = pysolver.loads(text).compile().kernel
             cold = time.perf_counter() - t0
-            warm = best(lambda: pysolver.loads(text)._kernel(), repeat)
+            warm = best(lambda: pysolver.loads(text).compile().kernel, repeat)
         finally:
             del os.environ["PYSOLVER_CACHE_DIR"]
     return cold, warm, kernel.codegen

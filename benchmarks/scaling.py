@@ -23,7 +23,7 @@ def main(sizes):
     for n in sizes:
         t0 = time.perf_counter()
         model = pysolver.loads(chain_deck(n, end_time=0.2))
-        kernel = model._kernel()
+        kernel = model.compile().kernel
         t_compile = time.perf_counter() - t0
         res = model.run()
         assert res.success, res.message

@@ -29,7 +29,7 @@ def test_load_and_compile(benchmark, deck):
     """Parse, validate and compile a deck into its C kernel (no integration)."""
     def load():
         model = pysolver.load(ROOT / "decks" / f"{deck}.xml")
-        return model._kernel()
+        return model.compile().kernel
     kernel = benchmark(load)
     benchmark.extra_info["states"] = kernel.ny
 
@@ -61,12 +61,12 @@ def test_chain_scaling(benchmark, n):
 
     def load():
         model = pysolver.loads(text)
-        model._kernel()
+        model.compile()
         return model
     model = benchmark.pedantic(load, rounds=3, iterations=1)   # timed: load + compile
     res = model.run()
     assert res.success
-    benchmark.extra_info.update(res.stats, states=model._kernel().ny,
+    benchmark.extra_info.update(res.stats, states=model.compile().kernel.ny,
                                 integrate_s=res.timing["integrate"],
                                 ms_per_step=1e3 * res.timing["integrate"] / res.stats["steps"],
                                 linsolver=res.meta["options"]["linsolver"])

@@ -60,16 +60,16 @@ def call_cost(models, repeat):
     """One residual of the untraceable and C forms against the expression version's, each at a
     new time (the kernel reuses a routine's values at an unchanged state)."""
     print("\nCost of one routine call from the kernel (residual time difference / calls)")
-    y = models["expression"]._kernel().layout.initial_state()
+    y = models["expression"].compile().kernel.layout.initial_state()
     yp = np.zeros_like(y)
-    base = models["expression"]._kernel()
+    base = models["expression"].compile().kernel
     n = 2000
     times = [1e-3 * i / n for i in range(n)]
     t_ref = best(lambda: [base.residual_array(t, y, yp) for t in times], repeat) / n
     for form, calls in CALLS_PER_RESIDUAL.items():
         if form not in models:
             continue
-        k = models[form]._kernel()
+        k = models[form].compile().kernel
         t = best(lambda: [k.residual_array(t, y, yp) for t in times], repeat) / n
         print(f"{form:>12}: {(t - t_ref) / calls * 1e6:6.2f} us per call "
               f"(residual {t * 1e6:.1f} us, expression version {t_ref * 1e6:.1f} us)")

@@ -274,16 +274,15 @@ class Model:
         self.static = Static()
         self.commands = []
         self.has_units = False
-        self._compiled = None
+        self._compiled = {}       # CompiledModel by kind of kernel (compile)
         self.usersub_paths = {}   # element -> how its user subroutine runs (filled when compiled)
         self.user_routines = []   # routines the kernel calls (pysolver.build.usercalls)
         self._scripts = {}        # user subroutine scripts run so far: path -> namespace
-        self._run_settings = None  # the last run's options and their dicts (solve/run.py)
         self._where = {}          # (kind, id) -> location of the element, for errors
 
     # public API -------------------------------------------------------------------------
     def run(self, progress: bool | None = None, stream: str | os.PathLike | None = None,
-            **options) -> Result:
+            params: dict | None = None, **options) -> Result:
         """Run the deck's commands in order and return a :class:`pysolver.Result`.
 
         Parameters
@@ -294,40 +293,44 @@ class Model:
         stream : str or os.PathLike, optional
             Write the rows to this CSV file (as :meth:`Result.save`) as they are made, so a
             crash (a C user subroutine's) loses none; complete when the run returns.
+        params : dict, optional
+            Numbers for this run only, by the sweep's paths (``{"Body_Point/2/mass": 2.0}``);
+            no recompile; the next run has the deck's values. A bad one is a DeckError.
         **options
-            Override the deck's ``Param_Transient`` and choose the linear solver, Jacobian and
-            backend for this run; every name, default and rule is documented once, in
-            :class:`pysolver.options.Options`.
+            Override the deck's ``Param_Transient`` and choose the linear solver, Jacobian,
+            backend and kernel for this run (:class:`pysolver.options.Options`).
 
         Returns
         -------
         Result
-            ``success=False`` with a message when the integration fails; never raises for
-            that. Can be called repeatedly; each call starts from the deck's initial state.
+            ``success=False`` with a message when the integration fails (never raises for
+            that). Each call starts from the deck's initial state.
 
         Raises
         ------
         DeckError
-            The deck has no moving body: there is nothing to run.
+            The deck has no moving body, or `params` names no number of this model.
         """
-        from .solve import run_model  # the facade: solving comes after the model
         if not any(b.kind != "ground" for b in self.bodies.values()):
             self.check()                  # the DeckError saying there is nothing to run
-        return run_model(self, progress=progress, overrides=options,
-                         stream=None if stream is None else os.fspath(stream))
+        return self.compile(options.get("kernel")).run(
+            progress=progress, stream=None if stream is None else os.fspath(stream),
+            params=params, **options)
 
-    def _kernel(self, conservative=False, kind=None):
-        """The compiled kernel, built on first use and reused by every run (one without damping
-        for MKEAM); kind as Options.kernel (None: ``PYSOLVER_KERNEL``, else "auto")."""
-        if self._compiled is None:
-            self._compiled = {}
-        if kind is None:
-            kind = Options().resolved_kernel()
-        key = (conservative, kind == "tapes")
+    def compile(self, kernel: str | None = None):
+        """The :class:`~pysolver.solve.compiled.CompiledModel` for a kind of kernel (as the
+        ``kernel`` run option; None: ``PYSOLVER_KERNEL``, else auto), built once and kept."""
+        from .solve.compiled import CompiledModel  # the facade: compiling comes later
+        kind = Options(kernel=kernel).resolved_kernel()
+        key = kind == "tapes"
         if key not in self._compiled:
-            from .build import Kernel
-            self._compiled[key] = Kernel(self, conservative, kind)
+            self._compiled[key] = CompiledModel(self, kind)
         return self._compiled[key]
+
+    @property
+    def compiled_kernels(self) -> tuple:
+        """The kinds of kernel compile() has built for this model so far."""
+        return tuple(c.kind for c in self._compiled.values())
 
     def check(self):
         """Run every check a run makes before integrating: compile the kernel and check each
@@ -344,7 +347,7 @@ class Model:
             raise DeckError("the deck has no moving body (a Body_Rigid that is not ground, or "
                             "a Body_Point): there is nothing to simulate",
                             file=self.source.file)
-        kernel = self._kernel()
+        kernel = self.compile().kernel
         t, rows = 0.0, 1
         for cmd in self.commands:
             if cmd.analysis == "TRANSIENT":
@@ -359,10 +362,8 @@ class Model:
     def summary(self) -> str:
         """Return a short human-readable listing of what the deck contains."""
         lines = [f"deck: {self.source.file} ({self.source.fmt})"]
-        if self.has_units:
-            lines.append("units: " + " ".join(f"{k}={v}" for k, v in self.units.items()))
-        else:
-            lines.append("units: consistent (no Units element)")
+        lines.append("units: " + (" ".join(f"{k}={v}" for k, v in self.units.items())
+                                  if self.has_units else "consistent (no Units element)"))
         lines.append(f"gravity: {self.gravity.tolist()}")
         moving = [b for b in self.bodies.values() if b.kind != "ground"]
         lines.append(f"bodies: {len(moving)} moving "

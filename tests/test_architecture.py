@@ -71,8 +71,8 @@ def _all_imports(name, path):
 
 
 #: Imports inside functions that point to a later stage, and why. Model is the facade onto the
-#: later stages: run, check and compile import them when called, and unpickling loads the deck.
-LATER_STAGE_CALLS = {"model": {"deck.loader", "solve", "solve.outputs", "build"}}
+#: later stages: compile and check import them when called, and unpickling loads the deck.
+LATER_STAGE_CALLS = {"model": {"deck.loader", "solve.compiled", "solve.outputs"}}
 
 
 def _stage(module):

@@ -42,7 +42,7 @@ def test_band_solver_for_a_chain_matches_the_sparse_one():
     from the kernel's triplets; scikit-sundae's sparse solver gives the same solution."""
     from scenes import chain_deck
     model = pysolver.loads(chain_deck(60, end_time=0.1))
-    k = model._kernel()
+    k = model.compile().kernel
     mu, ml = k.bandwidths()
     assert 4 * (mu + ml + 1) <= k.ny
     band = model.run(backend="c", nonlin_conv_coef=0.33, max_step_growth=2)

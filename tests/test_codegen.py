@@ -59,7 +59,7 @@ def test_generated_and_tape_kernels_agree(path, form):
     at random states, for every deck (all element types and expression functions), in both
     forms of generated C."""
     model = pysolver.load(path)
-    gen, tape = model._kernel(kind="generated"), model._kernel(kind="tapes")
+    gen, tape = model.compile("generated").kernel, model.compile("tapes").kernel
     assert gen.codegen["kernel"] == "generated", gen.codegen
     assert tape.codegen["kernel"] == "tapes"
     assert codegen.is_looped(gen) == (form == "looped")
@@ -96,13 +96,13 @@ def test_runs_agree_and_say_which_kernel(decks):
 def test_warm_load_neither_generates_nor_compiles(cache):
     first = pysolver.loads(TINY.format(mass=1.0))
     res = first.run()
-    info = first._kernel().codegen
+    info = first.compile().kernel.codegen
     assert info["kernel"] == "generated" and not info["cached"]
     assert res.timing["compile"] > 0 and res.timing["generate"] > 0
     assert "compiled in" in res.summary()
     again = pysolver.loads(TINY.format(mass=1.0))
     res2 = again.run()
-    info2 = again._kernel().codegen
+    info2 = again.compile().kernel.codegen
     assert info2["cached"] and info2["compile"] == 0.0 and info2["generate"] == 0.0
     assert info2["path"] == info["path"]
     assert res2.timing["compile"] == 0.0 and "compiled in" not in res2.summary()
@@ -113,7 +113,7 @@ def test_values_read_at_run_time_share_one_library(cache):
     """A mass is read from the model's arrays, so decks that differ only there share one
     library, and each runs with its own mass: the momentum rows differ by dm (v' - g)."""
     light, heavy = (pysolver.loads(TINY.format(mass=m)) for m in (1.0, 3.0))
-    kl, kh = light._kernel(), heavy._kernel()
+    kl, kh = light.compile().kernel, heavy.compile().kernel
     assert kl.codegen["path"] == kh.codegen["path"] and kh.codegen["cached"]
     rng = np.random.default_rng(3)
     y = kl.layout.initial_state() + 0.1 * rng.normal(size=6)
@@ -126,16 +126,16 @@ def test_values_read_at_run_time_share_one_library(cache):
 def test_broken_cache_entry_is_rebuilt_not_loaded(cache, tmp_path):
     """An entry truncated after it was built (here by another process, which built it) does
     not match its digest: it is compiled again, never loaded."""
-    script = f"import pysolver; pysolver.loads({TINY.format(mass=1.0)!r})._kernel()"
+    script = f"import pysolver; pysolver.loads({TINY.format(mass=1.0)!r}).compile().kernel"
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     subprocess.run([sys.executable, "-c", script], env=env, cwd=tmp_path, check=True)
     (lib,) = cache.glob("*.so")
     lib.write_bytes(lib.read_bytes()[:100])
     model = pysolver.loads(TINY.format(mass=1.0))
-    info = model._kernel().codegen
+    info = model.compile().kernel.codegen
     assert info["kernel"] == "generated" and not info["cached"] and info["compile"] > 0
     assert model.run().success
-    assert pysolver.loads(TINY.format(mass=1.0))._kernel().codegen["cached"]
+    assert pysolver.loads(TINY.format(mass=1.0)).compile().kernel.codegen["cached"]
 
 
 def test_no_compiler_runs_the_tapes_with_one_log_line(cache, monkeypatch):
@@ -165,7 +165,7 @@ def test_the_generated_source_is_split_into_bounded_functions(monkeypatch):
     CHUNK temporaries, or computes one expression that alone needs more."""
     from pysolver.build.codegen import emit
     monkeypatch.setattr(emit, "CHUNK", 40)
-    kernel = pysolver.load(TEST_DECKS / "all_functions.xml")._kernel(kind="tapes")
+    kernel = pysolver.load(TEST_DECKS / "all_functions.xml").compile("tapes").kernel
     text = codegen.source(kernel)
     bodies = re.findall(r"static void psg_jacobian_\d+\(.*?\n}\n", text, re.S)
     assert len(bodies) > 5
@@ -184,7 +184,7 @@ def test_a_large_deck_is_looped_in_code_independent_of_its_size():
     """A chain with a request on every body is generated as one function per shape of body,
     link and request, looped over tables: ten times the links give the same functions (so the
     same compile work, bar the tables), and the kernel agrees with the tapes."""
-    small, large = (pysolver.loads(_chain_with_requests(n))._kernel(kind="tapes")
+    small, large = (pysolver.loads(_chain_with_requests(n)).compile("tapes").kernel
                     for n in (80, 800))
     assert codegen.is_looped(small) and codegen.is_looped(large)
     functions = [re.findall(r"static void (psg_\w+)\(", codegen.source(k)) for k in (small, large)]
@@ -192,7 +192,7 @@ def test_a_large_deck_is_looped_in_code_independent_of_its_size():
     assert len([f for f in functions[0] if re.fullmatch(r"psg_r\d+", f)]) == 3  # body, 2 links
     assert len([f for f in functions[0] if re.fullmatch(r"psg_o\d+", f)]) == 2  # 2 kinds
     model = pysolver.loads(_chain_with_requests(800, end_time=0.05))
-    gen, tape = model._kernel(kind="generated"), model._kernel(kind="tapes")
+    gen, tape = model.compile("generated").kernel, model.compile("tapes").kernel
     assert gen.codegen["kernel"] == "generated", gen.codegen
     _agree(gen, tape)
     a, b = model.run(), model.run(kernel="tapes")
@@ -208,13 +208,13 @@ def test_rigid_bodies_turned_differently_share_templates():
     """A chain of rigid bodies whose markers differ in orientation from link to link: the
     orientations are read at run time, so the links share templates (the same functions for
     20 and 40 links) and the deck is generated, not left to the tapes; it agrees with them."""
-    small, large = (pysolver.loads(rigid_chain_deck(n))._kernel(kind="tapes") for n in (20, 40))
+    small, large = (pysolver.loads(rigid_chain_deck(n)).compile("tapes").kernel for n in (20, 40))
     assert codegen.is_looped(small) and codegen.is_looped(large)
     functions = [re.findall(r"static void (psg_\w+)\(", codegen.source(k, codegen.LIMIT))
                  for k in (small, large)]
     assert functions[0] == functions[1]
     model = pysolver.loads(rigid_chain_deck(40))
-    gen, tape = model._kernel(kind="generated"), model._kernel(kind="tapes")
+    gen, tape = model.compile("generated").kernel, model.compile("tapes").kernel
     assert codegen.is_looped(gen) and gen.codegen["kernel"] == "generated", gen.codegen
     _agree(gen, tape)
 
@@ -225,12 +225,12 @@ def test_looped_decks_differing_only_in_constants_share_one_library(cache):
     residual sees its own length (the link force at the initial state changes)."""
     text = chain_deck(60)
     short, long = (pysolver.loads(t) for t in (text, text.replace(") - 0.1", ") - 0.12")))
-    ks, kl = short._kernel(), long._kernel()
+    ks, kl = short.compile().kernel, long.compile().kernel
     assert codegen.is_looped(ks) and ks.codegen["path"] == kl.codegen["path"]
     assert kl.codegen["cached"]
     y = ks.layout.initial_state()
     yp = np.zeros_like(y)
-    _close(kl.residual_array(0.0, y, yp), long._kernel(kind="tapes").residual_array(0.0, y, yp),
+    _close(kl.residual_array(0.0, y, yp), long.compile("tapes").kernel.residual_array(0.0, y, yp),
            "residual")
     assert not np.allclose(kl.residual_array(0.0, y, yp), ks.residual_array(0.0, y, yp))
 
@@ -241,7 +241,7 @@ def test_statics_run_on_the_kernel_the_run_asked_for(deck, decks):
     kind: a run with kernel="tapes" builds no generated kernel, and finds the same equilibria."""
     model = pysolver.load(decks / deck)
     tapes = model.run(kernel="tapes")
-    assert tapes.success and all(is_tapes for _, is_tapes in model._compiled)
+    assert tapes.success and model.compiled_kernels == ("tapes",)
     gen = model.run()
     assert gen.success and gen.meta["kernel"] == "generated"
     assert len(tapes.statics) == len(gen.statics) > 0

@@ -28,8 +28,8 @@ _SAME_STATS = ("steps", "nres", "njac", "nfail", "outputs", "nroots", "nevents",
 
 def _takes_fast_path(model, **options):
     from pysolver.solve.run import _settings
-    opts = _settings(model, options)[0]
-    return fast.fast_run(model, model._kernel(), opts, ()) is not None
+    opts = _settings(model.compile(), options)[0]
+    return fast.fast_run(model.compile(), opts, ()) is not None
 
 
 def _general(model, monkeypatch, **options):
@@ -57,11 +57,12 @@ def test_fast_path_gives_the_general_paths_rows_to_the_bit(name, monkeypatch):
     model = _load(name)
     assert _takes_fast_path(model)
     first, second = model.run(progress=False), model.run(progress=False)
-    solver = model._kernel()._fast
+    kept = [run for _, run in model.compile().batched.values()]
     ref = _general(model, monkeypatch)
     _same(first, ref)
     _same(second, ref)
-    assert model._kernel()._fast is solver              # nothing rebuilt between runs
+    assert len(kept) == 1 and kept[0] is not None
+    assert [run for _, run in model.compile().batched.values()] == kept   # nothing rebuilt
 
 
 @pytest.mark.parametrize("end", ["0.5", "1e-9", "0.05"])
@@ -98,8 +99,8 @@ def test_runs_that_need_the_driver_take_it(name, why):
 def test_actors_take_the_driver_and_a_progress_bar_does_not(capsys, monkeypatch):
     model = _load("particle_above_line.xml")
     opts = model.transient
-    assert fast.fast_run(model, model._kernel(), opts, (object(),)) is None
-    assert fast.fast_run(model, model._kernel(), opts, ()) is not None
+    assert fast.fast_run(model.compile(), opts, (object(),)) is None
+    assert fast.fast_run(model.compile(), opts, ()) is not None
     res = model.run(progress=True)
     assert "100.0%" in capsys.readouterr().err
     _same(res, _general(model, monkeypatch))

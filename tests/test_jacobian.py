@@ -19,7 +19,7 @@ def _path(decks, scene):
 @pytest.mark.parametrize("scene", SCENES, ids=lambda s: str(s).split("/")[-1])
 def test_jacobian_matches_central_differences(decks, scene, kind):
     """On both kernels: the generated C (symbolic derivatives) and the tapes (hyper-duals)."""
-    kernel = pysolver.load(_path(decks, scene))._kernel(kind=kind)
+    kernel = pysolver.load(_path(decks, scene)).compile(kind).kernel
     assert kernel.codegen["kernel"] == kind
     y0 = kernel.layout.initial_state()
     rng = np.random.default_rng(42)
@@ -45,7 +45,7 @@ def test_jacobian_has_no_entries_outside_the_coupling(kind):
       <Body_Point id="2" cg_id="2" mass="1"/><Body_Point id="3" cg_id="3" mass="1"/>
       <Force_Penalty id="1" expr="DZ(2) - 1" penalty="10" penalty1="1"/>
       </Model></MotionSolve>"""
-    k = pysolver.loads(deck)._kernel(kind=kind)
+    k = pysolver.loads(deck).compile(kind).kernel
     J = k.jacobian_array(0.0, np.arange(12.0), np.ones(12), 2.0)
     assert np.all(J[:6, 6:] == 0) and np.all(J[6:, :6] == 0)
 

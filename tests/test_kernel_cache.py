@@ -97,7 +97,7 @@ def _run_elsewhere(env_extra, mass=1.0, timeout=300):
         "import json, pysolver\n"
         f"m = pysolver.loads({DECK.format(mass=mass)!r})\n"
         "res = m.run()\n"
-        "info = {k: v for k, v in m._kernel().codegen.items() if isinstance(v, (str, bool, int,"
+        "info = {k: v for k, v in m.compile().kernel.codegen.items() if isinstance(v, (str, bool, int,"
         " float))}\n"
         "print(json.dumps({'info': info, 'log': res.log, 'success': bool(res.success),"
         " 'y': res.y[-1].tolist()}))\n")
@@ -164,7 +164,7 @@ def test_read_only_cache_with_an_entry_is_used(cache, tmp_path, monkeypatch):
         raise AssertionError("a cache hit wrote to the cache")
     monkeypatch.setattr(kcache.tempfile, "mkdtemp", refuse)
     model = pysolver.loads(DECK.format(mass=1.0))
-    info = model._kernel().codegen
+    info = model.compile().kernel.codegen
     assert info["kernel"] == "generated" and info["cached"] and info["path"] == str(lib)
 
 
@@ -173,11 +173,11 @@ def test_a_stamp_of_non_utf8_bytes_is_rebuilt_not_raised(cache):
     lib, stamp = _build_entry(cache)
     stamp.write_bytes(b"\xff\xfe\x80 not a digest \xc3\x28")
     model = pysolver.loads(DECK.format(mass=1.0))
-    info = model._kernel().codegen
+    info = model.compile().kernel.codegen
     assert info["kernel"] == "generated" and not info["cached"], info
     assert "its stamp is not a digest (non-ASCII bytes)" in info["rebuilt"]
     assert model.run().success
-    assert pysolver.loads(DECK.format(mass=1.0))._kernel().codegen["cached"]
+    assert pysolver.loads(DECK.format(mass=1.0)).compile().kernel.codegen["cached"]
 
 
 @pytest.mark.parametrize("cc, words", [
@@ -258,11 +258,11 @@ def test_the_compile_cost_grows_with_live_values_not_only_size():
     """The cost of one function of many values live at once (the SIN sum's Jacobian entry)
     outgrows its size: doubling the terms doubles the C but about quadruples the cost, which
     bounds gcc's time (quadratic there), unlike the graph's node count (LIMIT)."""
-    small, large = (codegen.source(pysolver.loads(sin_sum_deck(n))._kernel(kind="tapes"),
+    small, large = (codegen.source(pysolver.loads(sin_sum_deck(n)).compile("tapes").kernel,
                                    codegen.LIMIT) for n in (750, 1500))
     assert 1.8 < len(large) / len(small) < 2.2
     assert codegen.compile_cost(large) / codegen.compile_cost(small) > 3.0
-    kernel = pysolver.load(ROOT / "decks" / "spinning_top.xml")._kernel(kind="tapes")
+    kernel = pysolver.load(ROOT / "decks" / "spinning_top.xml").compile("tapes").kernel
     assert codegen.compile_cost(codegen.source(kernel)) < 2.0
 
 
@@ -308,14 +308,14 @@ def test_a_restamped_truncated_library_is_rebuilt_not_loaded(cache):
     assert got["success"] and got["info"]["kernel"] == "generated", got
     assert "its library is truncated" in got["info"]["rebuilt"], got["info"]
     assert lib.stat().st_size > len(data) // 2
-    assert pysolver.loads(DECK.format(mass=1.0))._kernel().codegen["cached"]
+    assert pysolver.loads(DECK.format(mass=1.0)).compile().kernel.codegen["cached"]
 
 
 @needs_gcc
 def test_another_scenes_library_stamped_under_this_key_is_rebuilt(cache, tapes_answer):
     """A valid library of another scene (another deck's) restamped under this deck's key is
     refused by its scene record, rebuilt, and the run gives this deck's numbers."""
-    other = pysolver.loads(sin_sum_deck(2))._kernel().codegen
+    other = pysolver.loads(sin_sum_deck(2)).compile().kernel.codegen
     assert other["kernel"] == "generated"
     lib, stamp = _build_entry(cache)
     os.remove(lib)
@@ -347,7 +347,7 @@ def test_the_loader_checks_the_scene_record_after_dlopen(cache):
     from pysolver.build.bindings import ffi
     from pysolver.build.bindings import lib as clib
     model = pysolver.loads(DECK.format(mass=1.0))
-    kernel = model._kernel()
+    kernel = model.compile().kernel
     path = kernel.codegen["path"]
     msg = ffi.new("char[]", 512)
     wrong = kcache.RECORD + "0" * 64
@@ -367,7 +367,7 @@ def test_generated_c_is_iso_c99(cache, monkeypatch, tapes_answer):
     res = model.run()
     assert res.meta["kernel"] == "generated", res.log
     assert not _kernel_lines(res)
-    assert "M_PI" not in codegen.source(model._kernel())
+    assert "M_PI" not in codegen.source(model.compile().kernel)
     assert np.max(np.abs(res.y - tapes_answer.y)) < 1e-9
 
 
@@ -406,7 +406,7 @@ def test_the_psgen_version_has_one_source():
     from pysolver.build.bindings import lib as clib
     from pysolver.headers import get_include
     assert not hasattr(emit, "VERSION")
-    kernel = pysolver.loads(DECK.format(mass=1.0))._kernel(kind="tapes")
+    kernel = pysolver.loads(DECK.format(mass=1.0)).compile("tapes").kernel
     text = codegen.source(kernel)
     assert re.search(r"ps_gen_table = \{\n  PS_GEN_VERSION, ", text)
     header = (pathlib.Path(get_include()) / "pysolver.h").read_text()

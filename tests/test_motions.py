@@ -105,7 +105,7 @@ def test_jacobian_with_reactions_matches_central_differences():
     columns included, against central differences of the residual at random states."""
     text = deck(RIGID, motion("B3", "D", "0.3*SIN(TIME)") + motion("Y", "A", "0.5", id=2),
                 SPRING.replace("DX(10)", "DX(10)+0.1*AZ(10,1)"))
-    k = pysolver.loads(text, fmt="py")._kernel()
+    k = pysolver.loads(text, fmt="py").compile().kernel
     rng = np.random.default_rng(11)
     for _ in range(3):
         y, yp = rng.normal(size=k.ny), rng.normal(size=k.ny)
@@ -172,7 +172,7 @@ def test_motion_measure_in_requests_and_forces():
     np.testing.assert_allclose(r2[:, 3], y * r2[:, 0], rtol=1e-9, atol=1e-12)
     assert np.all(r2[:, 4] == 0.0)
     np.testing.assert_allclose(y, 0.1 * 1000.0 * 0.5 * t ** 3 / (6 * 2.0), rtol=0, atol=1e-9)
-    k = pysolver.loads(text, fmt="py")._kernel()
+    k = pysolver.loads(text, fmt="py").compile().kernel
     rng = np.random.default_rng(2)
     y0, yp0 = rng.normal(size=k.ny), rng.normal(size=k.ny)
     J = k.jacobian_array(0.3, y0, yp0, 5.0)

@@ -12,7 +12,7 @@ from scenes import chain_deck  # noqa: E402
 @pytest.mark.parametrize("deck", [TEST_DECKS / "all_functions.xml", "chain"])
 def test_csc_matches_dense(deck):
     model = pysolver.loads(chain_deck(12)) if deck == "chain" else pysolver.load(deck)
-    k = model._kernel()
+    k = model.compile().kernel
     rng = np.random.default_rng(3)
     y = k.layout.initial_state() + 0.01 * rng.normal(size=k.ny)
     yp = rng.normal(size=k.ny)

@@ -57,7 +57,7 @@ def test_parameters_cover_the_model_and_reset():
     """Every listed path can be set and is put back by the next case; a case sets nothing
     else (the residual at a fixed state equals the deck's again)."""
     model = pysolver.load(DECK)
-    k = model._kernel()
+    k = model.compile().kernel
     P = Parameters(model, k)
     y = k.layout.initial_state()
     base = k.residual_array(0.1, y, np.zeros_like(y))

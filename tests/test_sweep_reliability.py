@@ -350,7 +350,7 @@ def test_every_sweep_path_has_the_decks_rule():
     """check_value knows every path a case may set (no path without a rule) and converts as
     the loader does: a whole number of steps in E notation is an int, "1D4" a number."""
     model = pysolver.load(DECKS / "particle_between_lines.xml")
-    params = Parameters(model, model._kernel())
+    params = Parameters(model, model.compile().kernel)
     for path in params.paths():
         try:
             check_value(path, 0.5)
@@ -404,7 +404,7 @@ def test_a_crashing_routine_never_runs_in_the_parent(tmp_path):
     model = pysolver.load(DECK)
     sw = pysolver.sweep(model, [{PEN: 2e4}], processes=1, outputs={"zmax": "max:body2.z"})
     assert sw.rows[0]["status"] == "ok" and sw.result(0).success
-    assert model._compiled is None
+    assert model.compiled_kernels == ()
 
 
 # 13 -----------------------------------------------------------------------------------------

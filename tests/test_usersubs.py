@@ -88,7 +88,7 @@ def test_traced_jacobian_is_exact(bead_script):
     differences, including the penalty's second-order term."""
     model = pysolver.loads(bead_xml(f'type="USERSUB" script_name="{bead_script}" '
                                     'usrsub_param_string="USER(9)"'))
-    k = model._kernel()
+    k = model.compile().kernel
     rng = np.random.default_rng(3)
     for _ in range(5):
         y = rng.normal(size=k.ny)
@@ -393,7 +393,7 @@ def _jacobian_like_the_expression(model, seed):
     """A differenced path's iteration matrix against the exact one of the expression version
     (1e-6 relative; measured 4e-8) and against central differences of its own residual (1e-5:
     those difference the routine's differenced partials once more)."""
-    k, exact = model._kernel(), pysolver.load(DECKS / "catenary_bead.xml")._kernel()
+    k, exact = model.compile().kernel, pysolver.load(DECKS / "catenary_bead.xml").compile().kernel
     rng = np.random.default_rng(seed)
     for _ in range(3):
         y, yp = rng.normal(size=k.ny), rng.normal(size=k.ny)
@@ -417,7 +417,7 @@ def test_jacobian_reuses_the_residuals_partials_only_at_the_same_state(tmp_path)
                                   "CALLS = []\n\n\ndef PFOSUB(id, time, par, npar, dflag, "
                                   "iflag):\n    CALLS.append(iflag)\n")
     model = pysolver.loads(_deck_with(tmp_path, counted))
-    k = model._kernel()
+    k = model.compile().kernel
     calls = next(iter(model._scripts.values()))["CALLS"]
     rng = np.random.default_rng(8)
     ya, ypa, yb, ypb = (rng.normal(size=k.ny) for _ in range(4))

@@ -78,7 +78,7 @@ def test_two_rigid_bodies_conserve_momentum_and_angular_momentum():
 
 
 def test_jacobian_matches_central_differences():
-    k = pysolver.loads(TWO, fmt="py")._kernel()
+    k = pysolver.loads(TWO, fmt="py").compile().kernel
     rng = np.random.default_rng(5)
     for _ in range(3):
         y, yp = rng.normal(size=k.ny), rng.normal(size=k.ny)

@@ -121,9 +121,8 @@ class CaseRunner:
         if self._failed is not None:
             raise self._failed
         if self._params is None:
-            from ..build.params import Parameters
             try:
-                self._params = Parameters(self.model, self.model._kernel())
+                self._params = self.model.compile().parameters
             except DeckError as err:
                 self._failed = err
                 raise

@@ -72,7 +72,7 @@ class Parameters:
     ----------
     model : pysolver.Model
     kernel : pysolver.build.kernel.Kernel
-        Its compiled kernel (``model._kernel()``).
+        Its compiled kernel (``model.compile().kernel``).
     """
 
     def __init__(self, model, kernel):

@@ -91,9 +91,8 @@ def failure(model, kernel, options, status, t):
 class Run:
     """One run of a model: state, step bounds, integrator, actors, and what they recorded."""
 
-    def __init__(self, model, kernel, options, progress, stream=None):
-        self.model, self.kernel, self.options = model, kernel, options
-        self.plan = integrator.cached_plan(kernel, options)
+    def __init__(self, model, kernel, options, plan, progress, stream=None):
+        self.model, self.kernel, self.options, self.plan = model, kernel, options, plan
         self.hmax = options.h_max          # None: unbounded
         self.hmin = options.h_min or 0.0
         self.events, self.log, self.statics = [], [], []

@@ -27,16 +27,17 @@ from .outputs import Grid, Progress, over_budget
 ENABLED = True
 
 
-def fast_run(model, kernel, options, actors):
-    """The kept :class:`FastRun` of `model` under `options`, or None when the run needs the
-    general driver."""
+def fast_run(compiled, options, actors):
+    """The kept :class:`FastRun` of a compiled model under `options`, or None when the run
+    needs the general driver."""
     if not ENABLED or actors:
         return None
-    cache = kernel.__dict__.setdefault("_fast", {})
+    cache = compiled.batched
     key = (id(options), settings.backend())
     if key not in cache:
         cache.clear()                       # one entry: the options object is kept alive
-        plan = integrator.cached_plan(kernel, options)
+        model, kernel = compiled.model, compiled.kernel
+        plan = integrator.cached_plan(compiled, options)
         # the batched path: IDA from C, transient commands only, and no actor of the deck's
         # acting at instants of its own (a new actor says so through Actor.instants)
         actors = deck_actors(model, kernel, [], Progress(0.0, 1.0, False))

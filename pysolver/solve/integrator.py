@@ -38,14 +38,14 @@ class Plan:
         return "band" if self.band else "sparse" if self.sparse else "dense"
 
 
-def cached_plan(kernel, options):
-    """:func:`plan`, kept on the kernel for the next run with the same options object and
-    PYSOLVER_BACKEND (runs of one model reuse their options; see solve.run)."""
+def cached_plan(compiled, options):
+    """:func:`plan` of a compiled model's kernel, kept on it for the next run with the same
+    options object and PYSOLVER_BACKEND (runs of one model reuse their options; solve.run)."""
     key = (id(options), settings.backend())
-    cache = kernel.__dict__.setdefault("_plans", {})
+    cache = compiled.plans
     if key not in cache:
         cache.clear()                       # one entry: the options object is kept alive
-        cache[key] = (options, plan(kernel, options))
+        cache[key] = (options, plan(compiled.kernel, options))
     return cache[key][1]
 
 

@@ -19,7 +19,7 @@ def quasi_static(model, t0, y0, times, params, tol, kind=None):
     first and last points and restarts the integration wherever it fails.
 
     Returns (list of (t, y) at t0 and `times`, list of StaticResult)."""
-    kernel = model._kernel(kind=kind)
+    kernel = model.compile(kind).kernel
     prob = StaticProblem(kernel)
     y, first = fim_s(prob, t0, y0, params)
     results = [finished(prob, t0, y, params, first)]

@@ -5,14 +5,15 @@ import threading
 import time
 
 from ..build.bindings import lib
-from . import report
+from . import integrator, report
 from .driver import Run
 from .fast import fast_run
 from .outputs import Stream
 
 
-def run_model(model, progress=None, overrides=None, actors=(), stream=None):
-    """Run every command of `model`; see :meth:`pysolver.Model.run`.
+def run_model(compiled, progress=None, overrides=None, actors=(), stream=None):
+    """Run every command of a compiled model (or of a Model: its default compilation, or the
+    one the ``kernel`` override asks for); see :meth:`pysolver.Model.run`.
 
     `overrides` maps option names to values for this run (see Options). `actors` are further
     :class:`~.actors.Actor` objects that act at their own times (tools and tests; the deck's own
@@ -20,9 +21,11 @@ def run_model(model, progress=None, overrides=None, actors=(), stream=None):
     they are made (:class:`~.outputs.Stream`).
     """
     t_start = time.perf_counter()
-    options, used, static, labels = _settings(model, overrides)
+    if not hasattr(compiled, "kernel"):          # a Model
+        compiled = compiled.compile((overrides or {}).get("kernel"))
+    kernel = compiled.kernel
+    options, used, static, labels = _settings(compiled, overrides)
     kind = options.resolved_kernel()
-    kernel = model._kernel(kind=kind)
     gen = kernel.codegen
     log = [f"kernel: the tapes run ({gen['why']})"] if gen["kernel"] == "tapes" and \
         kind != "tapes" else []
@@ -32,12 +35,12 @@ def run_model(model, progress=None, overrides=None, actors=(), stream=None):
     if main:
         lib.ps_interrupt_arm()
     try:
-        fast = fast_run(model, kernel, options, actors)
+        fast = fast_run(compiled, options, actors)
         if fast is not None:
             res = fast.run(t_start, used, static, labels, log, progress, sink)
             if res is not None:
                 return res
-        return _driver_run(model, kernel, options, progress, actors, sink, t_start,
+        return _driver_run(compiled, options, progress, actors, sink, t_start,
                            (used, static, labels), log)
     finally:
         if main:
@@ -46,9 +49,11 @@ def run_model(model, progress=None, overrides=None, actors=(), stream=None):
             sink.close()
 
 
-def _driver_run(model, kernel, options, progress, actors, sink, t_start, settings, log):
+def _driver_run(compiled, options, progress, actors, sink, t_start, settings, log):
+    model, kernel = compiled.model, compiled.kernel
     kernel.reset_counters()
-    run = Run(model, kernel, options, progress, sink)
+    run = Run(model, kernel, options, integrator.cached_plan(compiled, options), progress,
+              sink)
     run.log.extend(log)
     for actor in actors:
         run.add_actor(actor)
@@ -67,13 +72,14 @@ def _driver_run(model, kernel, options, progress, actors, sink, t_start, setting
                          controllers={task.lc.id: task.records() for task in run.controls})
 
 
-def _settings(model, overrides):
+def _settings(compiled, overrides):
     """(options, options as a dict, Param_Static as a dict, request labels) of a run, kept on
-    the model for the next run with the same deck settings and overrides (dataclasses.asdict
-    alone cost about a third of a short run's Python)."""
+    the compiled model for the next run with the same deck settings and overrides
+    (dataclasses.asdict alone cost about a third of a short run's Python)."""
+    model = compiled.model
     items = tuple(sorted((overrides or {}).items()))
     key = (id(model.transient), id(model.static), items)
-    cached = getattr(model, "_run_settings", None)
+    cached = compiled.run_settings
     try:
         if cached is not None and cached[0] == key:
             return cached[3:]
@@ -82,6 +88,7 @@ def _settings(model, overrides):
     options = model.transient.replace(**dict(items))
     labels = {(r.id, k): n for r in model.requests.values() for k, n in enumerate(r.names) if n}
     # the key's objects are kept alive with it, so their ids are not reused
-    model._run_settings = (key, model.transient, model.static, options,
-                           dataclasses.asdict(options), dataclasses.asdict(model.static), labels)
-    return model._run_settings[3:]
+    compiled.run_settings = (key, model.transient, model.static, options,
+                             dataclasses.asdict(options), dataclasses.asdict(model.static),
+                             labels)
+    return compiled.run_settings[3:]

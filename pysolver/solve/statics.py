@@ -301,10 +301,10 @@ def compliance(prob, t, y, params):
 def solve_static(model, t, y, params, tol, kind=None):
     """One static solve at time t from y with the deck's method, on the kernel of that `kind`
     (Options.kernel); returns (y, StaticResult)."""
-    prob = StaticProblem(model._kernel(kind=kind))
+    compiled = model.compile(kind)
+    prob = StaticProblem(compiled.kernel)
     if params.method == "MKEAM":
-        y1, r1 = mkeam(StaticProblem(model._kernel(conservative=True, kind=kind)), t, y, params,
-                       tol)
+        y1, r1 = mkeam(StaticProblem(compiled.conservative_kernel), t, y, params, tol)
         if not r1.success:
             return y1, finished(prob, t, y1, params, r1)
         y2, r2 = fim_s(prob, t, y1, params)

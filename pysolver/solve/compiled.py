@@ -1,0 +1,64 @@
+"""A Model compiled to run: :meth:`pysolver.Model.compile` returns one.
+
+The :class:`CompiledModel` owns what compiling made and what runs keep: the kernel (generated C
+or the tapes) with the user routines it calls, MKEAM's undamped twin (built on first use), the
+numbers a run may change without recompiling (:class:`~pysolver.build.params.Parameters`), and
+the caches of runs (their settings, integration plans, the batched path's IDA object). A Model
+holds one CompiledModel per kind of kernel; ``model.run(...)`` is ``model.compile().run(...)``.
+"""
+from ..build import Kernel
+from ..build.params import Parameters
+from .run import run_model
+
+
+class CompiledModel:
+    """A Model compiled for one kind of kernel.
+
+    Parameters
+    ----------
+    model : pysolver.Model
+    kind : {"auto", "generated", "tapes"}
+        Options.kernel, resolved (see :meth:`pysolver.options.Options.resolved_kernel`).
+
+    Attributes
+    ----------
+    model : pysolver.Model
+    kernel : pysolver.build.kernel.Kernel
+        The compiled scene bound to the C kernel.
+    """
+
+    def __init__(self, model, kind):
+        self.model, self.kind = model, kind
+        self.kernel = Kernel(model, False, kind)
+        self._conservative = None
+        self._parameters = None
+        # kept between runs: the last run's settings (solve.run), plans (solve.integrator)
+        # and batched runs (solve.fast), each keyed by what it depends on
+        self.run_settings = None
+        self.plans = {}
+        self.batched = {}
+
+    @property
+    def conservative_kernel(self):
+        """The kernel without velocity-dependent terms, for MKEAM (built on first use)."""
+        if self._conservative is None:
+            self._conservative = Kernel(self.model, True, self.kind)
+        return self._conservative
+
+    @property
+    def parameters(self):
+        """The numbers a run may change without recompiling (the sweep's paths)."""
+        if self._parameters is None:
+            self._parameters = Parameters(self.model, self.kernel)
+        return self._parameters
+
+    def run(self, progress=None, stream=None, params=None, **options):
+        """Run the model's commands; see :meth:`pysolver.Model.run`."""
+        if not params:
+            return run_model(self, progress=progress, overrides=options, stream=stream)
+        case_options = self.parameters.apply(params)
+        try:
+            return run_model(self, progress=progress, overrides={**case_options, **options},
+                             stream=stream)
+        finally:
+            self.parameters.reset()
