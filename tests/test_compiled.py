@@ -77,3 +77,39 @@ def test_a_compiled_model_runs_like_the_model():
     a, b = compiled.run(), model.run()
     assert np.array_equal(a.y, b.y) and a.message == b.message
     assert "Force_Penalty/1/penalty" in compiled.parameters.paths()
+
+
+def test_a_loaded_model_reads_only_and_says_how_to_change_a_number():
+    """Setting model.bodies[2].mass used to be taken silently and ignored by the next run
+    (the kernel was compiled); now every assignment to a loaded model is refused, saying how
+    to change a number for one run."""
+    model = pysolver.loads(SEED3)
+    plain = model.run()
+    for target, name, value in ((model.bodies[2], "mass", 2.0), (model, "gravity", None),
+                                (model.penalties[1], "penalty", 1.0)):
+        with pytest.raises(AttributeError, match=r"cannot set \w+\.\w+: a loaded Model is what "
+                           r"its deck says and does not change: give a number for one run "
+                           r"with model.run\(params="):
+            setattr(target, name, value)
+    with pytest.raises(ValueError, match="read-only"):
+        model.bodies[2].vel[0] = 5.0            # arrays too
+    with pytest.raises(ValueError, match="read-only"):
+        model.gravity[2] = 0.0
+    assert np.array_equal(model.run().y, plain.y)
+
+
+def test_compiling_leaves_the_loaded_model_as_it_was(tmp_path):
+    """User subroutines resolve into the compiled scene, not into the loaded model: its
+    Force_Penalty keeps expr None and its routine's text; the run reports how it ran."""
+    script = tmp_path / "bead.py"
+    script.write_text("import math\n\n\ndef PFOSUB(id, time, par, npar, dflag, iflag):\n"
+                      "    [x, e] = py_sysfnc('DX', [9])\n    [y, e] = py_sysfnc('DY', [9])\n"
+                      "    return y - math.cosh(x)\n")
+    text = (DECKS / "catenary_bead.xml").read_text().replace(
+        'type="EXPRESSION"\n                   expr="dy(9) - cosh(dx(9))"',
+        f'type="USERSUB" script_name="{script}" usrsub_param_string="USER(9)"')
+    model = pysolver.loads(text)
+    res = model.run()
+    assert res.success and "traced into the kernel" in res.meta["usersubs"]["Force_Penalty 1"]
+    assert model.penalties[1].expr is None and model.penalties[1].usersub.untraced is None
+    assert model.compile().model.penalties[1].expr is not None

@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 import pysolver
-from pysolver.build.params import Parameters
 
 from helpers import DECKS
 
@@ -57,8 +56,8 @@ def test_parameters_cover_the_model_and_reset():
     """Every listed path can be set and is put back by the next case; a case sets nothing
     else (the residual at a fixed state equals the deck's again)."""
     model = pysolver.load(DECK)
-    k = model.compile().kernel
-    P = Parameters(model, k)
+    compiled = model.compile()
+    k, P = compiled.kernel, compiled.parameters
     y = k.layout.initial_state()
     base = k.residual_array(0.1, y, np.zeros_like(y))
     P.apply({PEN: 3e4, "Body_Point/2/mass": 2.5, "Force_Gravity/grav_z": -1000.0})

@@ -25,7 +25,7 @@ import pytest
 
 import pysolver
 from pysolver.batch import StorageError, store
-from pysolver.build.params import Parameters, check_value
+from pysolver.build.params import check_value
 
 from helpers import DECKS
 
@@ -350,7 +350,7 @@ def test_every_sweep_path_has_the_decks_rule():
     """check_value knows every path a case may set (no path without a rule) and converts as
     the loader does: a whole number of steps in E notation is an int, "1D4" a number."""
     model = pysolver.load(DECKS / "particle_between_lines.xml")
-    params = Parameters(model, model.compile().kernel)
+    params = model.compile().parameters
     for path in params.paths():
         try:
             check_value(path, 0.5)

@@ -418,7 +418,7 @@ def test_jacobian_reuses_the_residuals_partials_only_at_the_same_state(tmp_path)
                                   "iflag):\n    CALLS.append(iflag)\n")
     model = pysolver.loads(_deck_with(tmp_path, counted))
     k = model.compile().kernel
-    calls = next(iter(model._scripts.values()))["CALLS"]
+    calls = next(iter(model.compile().model._scripts.values()))["CALLS"]
     rng = np.random.default_rng(8)
     ya, ypa, yb, ypb = (rng.normal(size=k.ny) for _ in range(4))
     k.reset_counters()

@@ -44,6 +44,13 @@ _NOT_IN_SCHEMA = {("Reference_Variable", "value"): "float"}
 _KINDS = {}                     # path -> (element, attribute, kind, its Ctx), as looked up
 
 
+def _assign(rec, **changes):
+    """Change numbers of a record of a compiled model's own scene (its working copy: the loaded
+    Model, whose records are read-only, never changes)."""
+    for name, v in changes.items():
+        object.__setattr__(rec, name, v)
+
+
 def check_value(path, value):
     """`value` for the number `path` names (a canonical path of :meth:`Parameters.paths`),
     converted and checked by the rules the deck loader applies to that attribute; DeckError
@@ -174,7 +181,7 @@ class Parameters:
             k.m.gravity = list(m.gravity)
         elif kind == "Sensor_Event":
             sid = int(key[0])
-            setattr(m.sensors[sid], key[1], v)
+            _assign(m.sensors[sid], **{key[1]: v})
             row = sorted(m.sensors).index(sid)
             k.arrays["sensor_value" if key[1] == "value" else "sensor_tol"][row] = v
         elif kind == "Param_Static":
@@ -187,7 +194,7 @@ class Parameters:
         k = self.kernel
         row = k.layout.index[b.id]
         if attr == "mass":
-            b.mass = v
+            _assign(b, mass=v)
             k.arrays["body_mass"][row] = v
         elif attr.startswith("inertia_"):
             i, j = _INERTIA[attr[8:]]
@@ -197,8 +204,7 @@ class Parameters:
             if ev.min() <= 0 or ev[2] > ev[0] + ev[1] + 1e-12 * ev[2]:
                 raise _error(path, "inertia tensor must be positive definite and satisfy the "
                              "triangle inequality")
-            b.inertia_im = raw
-            b.inertia = b.im_rot @ raw @ b.im_rot.T
+            _assign(b, inertia_im=raw, inertia=b.im_rot @ raw @ b.im_rot.T)
             k.arrays["body_inertia"][9 * row:9 * row + 9] = b.inertia.reshape(-1)
         else:
             vec = b.vel if attr.startswith("v_ic") else b.omega

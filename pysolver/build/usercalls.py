@@ -13,7 +13,7 @@ import threading
 
 from ..deck import expr as ex
 from ..deck import tracer
-from ..deck.usersubs import CONVENTIONS, elements
+from ..deck.usersubs import CONVENTIONS, elements, set_trees
 from ..errors import ExpressionError
 from .bindings import ffi, lib
 
@@ -56,11 +56,7 @@ def bind(model):
         inputs = [_key_tree(ctx, sub, key) for key in keys]
         nvalues = CONVENTIONS[ctx.tag][2]
         trees = [("user", k, chan, inputs) for chan in range(nvalues)]
-        if kind == "request":
-            el.exprs = trees
-            el.texts = [f"{sub.name} channel {c + 1}" for c in range(8)]
-        else:
-            el.expr = trees[0]
+        set_trees(model, kind, el, trees)
         model.usersub_paths[f"{ctx.tag} {el.id}"] = (
             f"{sub.describe()}: {how}, called from the kernel; its partials in "
             f"{', '.join(keys + ['TIME'])} by central differences")

@@ -9,6 +9,7 @@ kernel instead (:mod:`pysolver.build.usercalls`). Loading an XML deck therefore 
 code; running it executes its scripts and loads its libraries.
 """
 import ast
+import dataclasses
 import os
 import sys
 import traceback
@@ -151,15 +152,28 @@ def _check_script(ctx, path, routine, args):
 # ---------------------------------------------------------------------------------------------
 # compile time: trace every Python routine into the element's expression
 
+#: The Model tables of the elements a user subroutine may define, by kind.
+TABLES = {"penalty": "penalties", "sensor": "sensors", "evaluate": "evaluates",
+          "variable": "variables", "sforce": "sforces", "request": "requests"}
+
+
 def elements(model):
     """(kind, element) of every element defined by a user subroutine."""
-    tables = {"penalty": model.penalties, "sensor": model.sensors,
-              "evaluate": model.evaluates, "variable": model.variables,
-              "sforce": model.sforces, "request": model.requests}
-    for kind, table in tables.items():
-        for el in table.values():
+    for kind, name in TABLES.items():
+        for el in list(getattr(model, name).values()):
             if el.usersub is not None:
                 yield kind, el
+
+
+def set_trees(model, kind, el, trees):
+    """Put an element's expression trees from its user subroutine in the compiled scene
+    `model` (a Model's working copy: the loaded Model itself never changes)."""
+    if kind == "request":
+        texts = [f"{el.usersub.name} channel {k + 1}" for k in range(8)]
+        new = dataclasses.replace(el, exprs=list(trees), texts=texts)
+    else:
+        new = dataclasses.replace(el, expr=trees[0])
+    getattr(model, TABLES[kind])[el.id] = new
 
 
 def resolve(model):
@@ -182,11 +196,7 @@ def resolve(model):
         trees = _trace(ctx, el.usersub, el.id, model)
         if trees is None:
             continue                    # called from the kernel instead (build.usercalls)
-        if kind == "request":
-            el.exprs = trees
-            el.texts = [f"{el.usersub.name} channel {k + 1}" for k in range(8)]
-        else:
-            el.expr = trees[0]
+        set_trees(model, kind, el, trees)
         done.append((kind, el))
         model.usersub_paths[f"{ctx.tag} {el.id}"] = (
             f"{el.usersub.describe()}: traced into the kernel: "

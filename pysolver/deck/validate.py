@@ -105,6 +105,7 @@ def build_model(elements, source):
         model.commands.append(Simulate("TRANSIENT", 1.0, 0.01))
         model.default_command = True
     _check_intervals(model)
+    model._freeze()
     return model
 
 

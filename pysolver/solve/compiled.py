@@ -23,13 +23,17 @@ class CompiledModel:
     Attributes
     ----------
     model : pysolver.Model
+        The scene as compiled: a private copy of the loaded model, its user subroutines
+        resolved into expressions or kernel calls.
     kernel : pysolver.build.kernel.Kernel
         The compiled scene bound to the C kernel.
     """
 
     def __init__(self, model, kind):
-        self.model, self.kind = model, kind
-        self.kernel = Kernel(model, False, kind)
+        # the scene compiled and run: a private copy of the model (user subroutines resolve
+        # into it, parameters change it), the model itself never changes
+        self.model, self.kind = model._working_copy(), kind
+        self.kernel = Kernel(self.model, False, kind)
         self._conservative = None
         self._parameters = None
         # kept between runs: the last run's settings (solve.run), plans (solve.integrator)

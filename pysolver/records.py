@@ -1,0 +1,266 @@
+"""The records a Model holds: one frozen dataclass per element kind (Body, Marker, Penalty,
+Sensor, ...), read-only once loaded; an assignment says how a number is changed (``run(params=
+...)`` or the deck). :mod:`pysolver.model` re-exports them.
+"""
+import dataclasses
+import functools
+import hashlib
+
+import numpy as np
+
+#: Units of a deck without a ``Units`` element.
+UNIT_DEFAULTS = {"mass": "KILOGRAM", "length": "METER", "time": "SECOND", "force": "NEWTON"}
+
+#: What an assignment to a loaded model is told.
+READ_ONLY = ("a loaded Model is what its deck says and does not change: give a number for one "
+             "run with model.run(params={{'{example}': value}}) (every path: "
+             "model.compile().parameters.paths()), or edit the deck and load it again")
+
+
+def _read_only(self, name, value=None):
+    kind = type(self).__name__
+    example = "Body_Point/2/mass" if kind != "Model" else "Force_Gravity/grav_z"
+    raise AttributeError(f"cannot set {kind}.{name}: " + READ_ONLY.format(example=example))
+
+
+def record(cls):
+    """A frozen dataclass whose assignments say how a number is changed."""
+    cls = dataclasses.dataclass(frozen=True)(cls)
+    cls.__setattr__ = _read_only
+    cls.__delattr__ = _read_only
+    return cls
+
+
+@record
+class Marker:
+    id: int
+    body: int              # body id (ground id for ground markers)
+    pos: np.ndarray        # global position at t = 0
+    rot: np.ndarray        # global axes at t = 0 (columns x, y, z)
+    label: str = ""
+
+
+@record
+class Body:
+    id: int
+    kind: str              # "ground", "point" or "rigid"
+    mass: float = 0.0
+    inertia: np.ndarray = None   # body-frame inertia tensor (3 x 3)
+    pos: np.ndarray = None       # initial position of the body frame origin (the cg marker)
+    rot: np.ndarray = None       # initial body axes (columns)
+    vel: np.ndarray = None       # initial velocity, global
+    omega: np.ndarray = None     # initial angular velocity, body frame
+    label: str = ""
+    cg: int = None               # its centre-of-mass marker (the body frame)
+    im_rot: np.ndarray = None    # axes of the inertia marker in the body frame
+    inertia_im: np.ndarray = None    # inertia as the deck gives it, about the im axes
+
+
+@dataclasses.dataclass
+class UserSub:
+    """A user subroutine standing in for an element's expression (``type="USERSUB"``).
+
+    Until it is resolved into an expression tree (pysolver.deck.usersub, when the model is first
+    compiled) the element's ``expr`` is None.
+    """
+    name: str              # the conventional name: PFOSUB, SENSUB, SEVSUB, VARSUB, SFOSUB, REQSUB
+    routine: object        # function name in the script or library, or a Python callable
+    par: tuple             # the numbers of USER(p1, ..., pn)
+    script: str = None     # path of a Python script defining the routine
+    library: str = None    # path of a C shared library defining it
+    attribute: str = "usrsub_fnc_name"   # the deck attribute to name in errors
+    untraced: str = None   # why a Python routine could not be traced (it is called instead)
+
+    def describe(self):
+        """A short text for summaries and logs."""
+        where = self.script or self.library or "a Python callable"
+        name = self.routine if isinstance(self.routine, str) else \
+            getattr(self.routine, "__name__", "routine")
+        return f"USER({', '.join(f'{p:g}' for p in self.par)}) -> {name} ({where})"
+
+
+@record
+class Penalty:
+    id: int
+    expr: tuple
+    text: str
+    penalty: float
+    penalty1: float
+    unilateral: bool
+    smoothing: float
+    label: str = ""
+    usersub: UserSub = None
+
+
+@record
+class ScalarForce:
+    id: int
+    torque: bool
+    i: int
+    j: int
+    expr: tuple
+    text: str
+    label: str = ""
+    usersub: UserSub = None
+
+
+@record
+class VectorForce:
+    """Force_Vector_TwoBody: a force with components exprs (x, y, z of marker `ref`; None or 0:
+    global axes) on I's body at I, and its opposite on J's body at the same point (J is the
+    floating marker: only its body matters)."""
+    id: int
+    i: int
+    j: int
+    ref: int
+    exprs: list
+    texts: list
+    label: str = ""
+
+
+@record
+class Motion:
+    """Motion_Marker: the displacement (D), velocity (V) or acceleration (A) of marker I
+    relative to J along one axis of J (X, Y, Z: DX/DY/DZ(I, J, J)) or about it (B1, B2, B3:
+    AX/AY/AZ(I, J)) follows expr, a function of time."""
+    id: int
+    i: int
+    j: int
+    direction: str
+    val_type: str
+    expr: tuple
+    text: str
+    label: str = ""
+
+
+@record
+class LoadControl:
+    """The LoadControl task (seed 002): every update_time, the velocity of `body` along global
+    axis `direction` (0, 1, 2) is set so that the load on it follows `load_expr` (a function of
+    time). The body is driven by the velocity motion `motion` (a Motion in Model.motions whose
+    expression is the controller's output)."""
+    id: int
+    body: int
+    direction: int
+    velocity: float
+    max_velocity: float
+    load_expr: tuple
+    load_text: str
+    kp: object                  # a number or "auto"
+    ki: object
+    smooth: float
+    update_time: float
+    median_window: int
+    motion: int
+    load: str = "REACTION"      # or "CONTACT": the penalties' force on the body
+    label: str = ""
+
+
+@record
+class Variable:
+    id: int
+    expr: tuple
+    text: str
+    label: str = ""
+    usersub: UserSub = None
+
+
+@record
+class Request:
+    id: int
+    exprs: list            # 8 entries: parse tree or None
+    texts: list
+    names: list
+    label: str = ""
+    usersub: UserSub = None
+
+
+@record
+class Sensor:
+    """A Sensor_Event: watch ``expr`` against ``value`` and act when it fires."""
+    id: int
+    expr: tuple
+    text: str
+    value: float
+    compare: str           # "GE", "LT" or "EQ" (Adams' LE reads as LT)
+    error_tol: float
+    evaluate_id: int = None
+    dt: float = None
+    stepsize: float = None
+    zero_crossing: float = None
+    hmax: float = None
+    halt: bool = False
+    print: bool = False
+    restart: bool = False
+    verbose: bool = False
+    ret: bool = False
+    label: str = ""
+    usersub: UserSub = None
+
+    def actions(self):
+        """Names of the actions this sensor takes when it fires, in the order they run."""
+        names = []
+        for key in ("evaluate_id", "dt", "stepsize", "hmax", "zero_crossing"):
+            if getattr(self, key) is not None:
+                names.append(key)
+        for key in ("restart", "print", "verbose", "halt"):
+            if getattr(self, key):
+                names.append(key)
+        if self.ret:
+            names.append("return")
+        return names
+
+
+@record
+class Evaluate:
+    """A Sensor_Evaluate: stored when a parent sensor fires, read by SENVAL(id)."""
+    id: int
+    expr: tuple
+    text: str
+    label: str = ""
+    usersub: UserSub = None
+
+
+@record
+class Static:
+    """Settings of ``Param_Static`` (seed 004 defaults); see :mod:`pysolver.solve.statics`."""
+    method: str = "FIM_D"
+    max_ke_tol: float = 1e-5
+    max_dq_tol: float = 1e-3
+    max_num_iter: int = 100
+    max_imbalance: float = 1e-4
+    max_error: float = 1e-4
+    stability: float = 1e-10
+    compliance_delta: float = 1e-3
+    tlimit: float = 20.0               # pysolver extension: Adams' TLIMIT, length units
+    alimit: float = 0.17453292519943295  # pysolver extension: Adams' ALIMIT (10 deg), radians
+
+
+@record
+class Simulate:
+    analysis: str
+    end_time: float
+    print_interval: float
+    line: int = None
+
+
+@dataclasses.dataclass
+class Source:
+    """Where a deck came from, for error messages and result metadata."""
+    file: str
+    text: str
+    fmt: str
+    user_code: bool = True      # False: loaded with user_code=False (it names no code to run)
+
+    @functools.cached_property
+    def sha256(self):
+        return hashlib.sha256(self.text.encode()).hexdigest()
+
+
+def _copy(rec):
+    """A record with writable copies of its arrays (and of its user subroutine)."""
+    changes = {f.name: getattr(rec, f.name).copy() for f in dataclasses.fields(rec)
+               if isinstance(getattr(rec, f.name), np.ndarray)}
+    if getattr(rec, "usersub", None) is not None:
+        changes["usersub"] = dataclasses.replace(rec.usersub)
+    return dataclasses.replace(rec, **changes)
