@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .errors import DeckError
-from .options import Options
+from .options import Options, resolve_kernel
 from .records import (  # noqa: F401 - the records are the model's vocabulary
     READ_ONLY,
     UNIT_DEFAULTS,
@@ -86,6 +86,7 @@ class Model:
                     arr.flags.writeable = False
         for mk in self.markers.values():
             mk.pos.flags.writeable = mk.rot.flags.writeable = False
+        self._moving = any(b.kind != "ground" for b in self.bodies.values())
         self._frozen = True
 
     def _working_copy(self):
@@ -137,7 +138,9 @@ class Model:
         DeckError
             The deck has no moving body, or `params` names no number of this model.
         """
-        if not any(b.kind != "ground" for b in self.bodies.values()):
+        moving = self.__dict__.get("_moving")     # known once loaded
+        if not (moving if moving is not None else
+                any(b.kind != "ground" for b in self.bodies.values())):
             self.check()                  # the DeckError saying there is nothing to run
         return self.compile(options.get("kernel")).run(
             progress=progress, stream=None if stream is None else os.fspath(stream),
@@ -147,7 +150,7 @@ class Model:
         """The :class:`~pysolver.solve.compiled.CompiledModel` for a kind of kernel (as the
         ``kernel`` run option; None: ``PYSOLVER_KERNEL``, else auto), built once and kept."""
         from .solve.compiled import CompiledModel  # the facade: compiling comes later
-        kind = Options(kernel=kernel).resolved_kernel()
+        kind = resolve_kernel(kernel)
         key = kind == "tapes"
         if key not in self._compiled:
             self._compiled[key] = CompiledModel(self, kind)

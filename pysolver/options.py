@@ -127,15 +127,20 @@ class Options:
 
     def resolved_kernel(self) -> str:
         """The kernel asked for: the option, else ``PYSOLVER_KERNEL``, else "auto"."""
-        kind = self.kernel or settings.kernel() or "auto"
-        if kind not in _CHOICES["kernel"]:
-            raise ValueError(f"kernel must be 'auto', 'generated' or 'tapes', not {kind!r}")
-        return kind
+        return resolve_kernel(self.kernel)
 
 
 NAMES = tuple(f.name for f in dataclasses.fields(Options))
 #: The options a deck's Param_Transient sets.
 DECK_NAMES = NAMES[:7]
+
+
+def resolve_kernel(kind):
+    """The kernel option `kind` (None: ``PYSOLVER_KERNEL``, else "auto"), checked."""
+    kind = kind or settings.kernel() or "auto"
+    if kind not in _CHOICES["kernel"]:
+        raise ValueError(f"kernel must be 'auto', 'generated' or 'tapes', not {kind!r}")
+    return kind
 
 
 def rule_problem(name, value):

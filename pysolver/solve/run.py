@@ -25,7 +25,7 @@ def run_model(compiled, progress=None, overrides=None, actors=(), stream=None):
         compiled = compiled.compile((overrides or {}).get("kernel"))
     kernel = compiled.kernel
     options, used, static, labels = _settings(compiled, overrides)
-    kind = options.resolved_kernel()
+    kind = compiled.kind
     gen = kernel.codegen
     log = [f"kernel: the tapes run ({gen['why']})"] if gen["kernel"] == "tapes" and \
         kind != "tapes" else []
