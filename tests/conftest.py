@@ -1,5 +1,5 @@
 """Fixtures shared by the test suite (paths and helpers: helpers.py; scenes shared with the
-benchmarks: benchmarks/scenes.py, on the path through pyproject's ``pythonpath``)."""
+benchmarks: scenes.py)."""
 import pytest
 
 from helpers import DECKS

@@ -554,7 +554,7 @@ def test_c_library_errors(c_library, tmp_path):
 
 @pytest.mark.parametrize("form", ["script", "callable", "branchy", "untraceable", "c"])
 def test_two_lines_in_every_form(tmp_path, form):
-    """Seed example 3 with both penalties as user subroutines (benchmarks/scenes.py): traced
+    """Seed example 3 with both penalties as user subroutines (tests/scenes.py): traced
     forms give the expression version's answers and steps; the forms the kernel calls stay
     within 3x the expression version's own global error, in at most 1.2x its steps."""
     from scenes import lines_deck
