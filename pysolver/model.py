@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from . import catalogue
 from .errors import DeckError
 from .options import Options, resolve_kernel
 from .records import (  # noqa: F401 - the records are the model's vocabulary
@@ -51,17 +52,10 @@ class Model:
         self.units = dict(UNIT_DEFAULTS)
         self.force_scale = 1.0
         self.gravity = np.zeros(3)
-        self.markers = {}
-        self.bodies = {}
-        self.penalties = {}
-        self.sforces = {}
-        self.vforces = {}
-        self.motions = {}
-        self.controls = {}        # LoadControl tasks by id
-        self.variables = {}
-        self.requests = {}
-        self.sensors = {}
-        self.evaluates = {}
+        # the elements by id, one table per kind (catalogue.ELEMENTS: markers, bodies,
+        # penalties, sforces, vforces, motions, controls, variables, requests, sensors, ...)
+        for element in catalogue.ELEMENTS:
+            setattr(self, element.table, {})
         self.transient = Options()      # Param_Transient
         self.static = Static()
         self.commands = []
@@ -97,13 +91,11 @@ class Model:
         new.__dict__.update(self.__dict__)
         new.__dict__["_frozen"] = False
         new.gravity = self.gravity.copy()
-        new.bodies = {k: _copy(b) for k, b in self.bodies.items()}
-        new.markers = {k: _copy(m) for k, m in self.markers.items()}
-        for name in ("penalties", "sforces", "vforces", "motions", "controls", "variables",
-                     "requests", "sensors", "evaluates"):
-            table = getattr(self, name)
-            new.__dict__[name] = {k: _copy(el) if getattr(el, "usersub", None) is not None or
-                                  name == "sensors" else el for k, el in table.items()}
+        for element in catalogue.ELEMENTS:       # parameters change bodies, markers, sensors
+            own = element.table in ("bodies", "markers", "sensors")
+            new.__dict__[element.table] = {
+                k: _copy(el) if own or getattr(el, "usersub", None) is not None else el
+                for k, el in getattr(self, element.table).items()}
         new.usersub_paths, new.user_routines, new._scripts = {}, [], {}
         return new
 

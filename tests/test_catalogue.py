@@ -135,3 +135,23 @@ def test_the_docs_function_table_is_generated():
     page = (ROOT / "docs" / "deck-language.md").read_text()
     assert catalogue.splice(page) == page, \
         "regenerate it: python -m pysolver.catalogue docs/deck-language.md"
+
+
+def test_element_kinds_match_the_c_diagnosis_the_schema_and_the_statements():
+    """Every PS_BAD_* value of an element (csrc/include/pysolver.h) is one catalogue element's,
+    every catalogue tag is a schema element, and every statement a pysolver.msolve function."""
+    from pysolver.deck import msolve
+    from pysolver.deck.schema import SCHEMA
+    header = (ROOT / "csrc" / "include" / "pysolver.h").read_text()
+    bad = re.search(r"enum \{\s*PS_BAD_NONE = 0,([^}]*)\}", header).group(1)
+    element_bads = {n for n in re.findall(r"PS_BAD_\w+", bad)} - {
+        "PS_BAD_STATE", "PS_BAD_RATE", "PS_BAD_RESIDUAL", "PS_BAD_JACOBIAN"}
+    declared = [e.bad for e in catalogue.ELEMENTS if e.bad]
+    assert sorted(declared) == sorted(element_bads) and len(set(declared)) == len(declared)
+    assert all(isinstance(getattr(lib, name), int) for name in declared)
+    for e in catalogue.ELEMENTS:
+        assert all(tag in SCHEMA for tag in e.tags), e
+        assert callable(getattr(msolve, e.statement)), e
+    assert len({e.kind for e in catalogue.ELEMENTS}) == len({e.table for e in
+                                                              catalogue.ELEMENTS}) == \
+        len(catalogue.ELEMENTS)

@@ -7,6 +7,7 @@ and raises a :class:`~pysolver.DeckError` that names file, line, element, id and
 import math
 import re
 
+from .. import catalogue
 from ..errors import DeckError, ExpressionError
 from ..options import DECK_NAMES, rule_problem
 from . import expr as ex
@@ -120,11 +121,10 @@ SCHEMA = {
 }
 COMMANDS = ("Simulate", "Stop")
 CANONICAL = {name.lower(): name for name in SCHEMA}
-_ID_KIND = {"Reference_Marker": "marker", "Body_Rigid": "body", "Body_Point": "body",
-            "Force_Penalty": "penalty", "Force_Scalar_TwoBody": "sforce",
-            "Motion_Marker": "motion", "Force_Vector_TwoBody": "vforce",
-            "Reference_Variable": "variable", "Post_Request": "request",
-            "Sensor_Event": "sensor", "Sensor_Evaluate": "evaluate"}
+#: The id namespace of each element with a required id (the catalogue's kinds; a LoadControl's
+#: id is optional and its tasks are numbered by deck.tasks).
+_ID_KIND = {tag: e.kind for e in catalogue.ELEMENTS for tag in e.tags
+            if e.kind != "loadcontrol"}
 
 
 

@@ -15,24 +15,15 @@ import sys
 import traceback
 import types
 
-from .. import settings
+from .. import catalogue, settings
 from ..errors import DeckError, ExpressionError
 from ..model import UserSub
 from . import elfsyms, tracer
 from . import expr as ex
 
 #: Element -> (conventional routine name, its Python arguments, values it returns).
-CONVENTIONS = {
-    "Force_Penalty": ("PFOSUB", ("id", "time", "par", "npar", "dflag", "iflag"), 1),
-    "Sensor_Event": ("SENSUB", ("id", "time", "par", "npar", "iflag"), 1),
-    "Sensor_Evaluate": ("SEVSUB", ("id", "time", "par", "npar", "iflag"), 1),
-    "Reference_Variable": ("VARSUB", ("id", "time", "par", "npar", "dflag", "iflag"), 1),
-    "Force_Scalar_TwoBody": ("SFOSUB", ("id", "time", "par", "npar", "dflag", "iflag"), 1),
-    "Post_Request": ("REQSUB", ("id", "time", "par", "npar", "iflag"), 8),
-}
-_KIND = {"Force_Penalty": "penalty", "Sensor_Event": "sensor", "Sensor_Evaluate": "evaluate",
-         "Reference_Variable": "variable", "Force_Scalar_TwoBody": "sforce",
-         "Post_Request": "request"}
+CONVENTIONS = {e.tags[0]: e.usersub for e in catalogue.ELEMENTS if e.usersub}
+_KIND = {e.tags[0]: e.kind for e in catalogue.ELEMENTS if e.usersub}
 _ATTRS = ("usrsub_dll_name", "usrsub_fnc_name", "usrsub_param_string", "script_name",
           "interpreter")
 
@@ -153,8 +144,7 @@ def _check_script(ctx, path, routine, args):
 # compile time: trace every Python routine into the element's expression
 
 #: The Model tables of the elements a user subroutine may define, by kind.
-TABLES = {"penalty": "penalties", "sensor": "sensors", "evaluate": "evaluates",
-          "variable": "variables", "sforce": "sforces", "request": "requests"}
+TABLES = {e.kind: e.table for e in catalogue.ELEMENTS if e.usersub}
 
 
 def elements(model):

@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 
+from .. import catalogue
 from ..build.bindings import lib
 
 _SHOWN = 12        # state entries quoted in a message
@@ -13,11 +14,8 @@ def _elements(model):
     """bad_kind -> (element type name, elements in the kernel's order, expression texts)."""
     def texts(e):
         return [e.text] if hasattr(e, "text") else list(e.texts)
-    kinds = {lib.PS_BAD_PENALTY: ("Force_Penalty", model.penalties),
-             lib.PS_BAD_SFORCE: ("Force_Scalar_TwoBody", model.sforces),
-             lib.PS_BAD_VFORCE: ("Force_Vector_TwoBody", model.vforces),
-             lib.PS_BAD_MOTION: ("Motion_Marker", model.motions),
-             lib.PS_BAD_SENSOR: ("Sensor_Event", model.sensors)}
+    kinds = {getattr(lib, e.bad): (e.tags[0], getattr(model, e.table))
+             for e in catalogue.ELEMENTS if e.bad}
     return {k: (name, [table[i] for i in sorted(table)], texts) for k, (name, table) in
             kinds.items()}
 
