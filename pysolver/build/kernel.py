@@ -10,10 +10,6 @@ from .bindings import ffi, lib
 from .compiler import Compiler
 from .consistent import consistent, reactions
 
-_INT_FIELDS = ("ny", "nbody", "nmarker", "ntape", "npen", "nsf", "nout", "hd_stride",
-               "max_slots", "max_bslots", "nsensor", "nuser", "nusercache", "nmotion", "nvf")
-
-
 #: Trial times closer than this times |t| to a non-finite residual are at rounding level.
 ROUNDING = 1e-10
 
@@ -71,13 +67,13 @@ class Kernel:
         self.ntape = arrays["ntape"]
         self._keep = []
         m = ffi.new("psModel *")
+        # each compiled array or number into its psModel field of the same name (a new
+        # element's sizes need no list here: a whole number is an int field)
         for key, val in arrays.items():
-            if key in _INT_FIELDS:
+            if isinstance(val, (int, np.integer)) and not isinstance(val, bool):
                 setattr(m, key, int(val))
-            elif key == "gravity":
-                m.gravity = list(val)
-            elif key == "force_scale":
-                m.force_scale = float(val)
+            elif isinstance(val, float) or key == "gravity":
+                setattr(m, key, list(val) if key == "gravity" else float(val))
             elif key == "user_fn":
                 fns = ffi.new("void *[]", val or [ffi.NULL])
                 self._keep.append(fns)
