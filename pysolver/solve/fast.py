@@ -40,9 +40,9 @@ def fast_run(compiled, options, actors):
         plan = integrator.cached_plan(compiled, options)
         # the batched path: IDA from C, transient commands only, and no actor of the deck's
         # acting at instants of its own (a new actor says so through Actor.instants)
-        actors = deck_actors(model, kernel, [], Progress(0.0, 1.0, False))
+        sensors, controls, printer = deck_actors(model, kernel, [], Progress(0.0, 1.0, False))
         ok = (plan.use_c and all(cmd.analysis == "TRANSIENT" for cmd in model.commands)
-              and not any(a.instants for a in (actors[0], *actors[1], actors[2])))
+              and not any(a.instants for a in (sensors, *controls, printer)))
         cache[key] = (options, FastRun(model, kernel, options, plan) if ok else None)
     return cache[key][1]
 
