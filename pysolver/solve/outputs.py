@@ -52,9 +52,9 @@ class Stream:
     written, and flushed, once nothing can take them back."""
 
     def __init__(self, path, kernel, labels):
-        names, cols = ["time"], []
+        names, cols, defined = ["time"], [], set(kernel.defined_channels.tolist())
         for col, (rid, k) in sorted(enumerate(kernel.channels), key=lambda c: tuple(c[1])):
-            if col in set(kernel.defined_channels.tolist()) or labels.get((rid, k)):
+            if col in defined or labels.get((rid, k)):
                 names.append(labels.get((rid, k)) or f"REQ{rid}.{k + 1}")
                 cols.append(col)
         self.path, self.cols = os.fsencode(path), np.array(cols, dtype=np.int32)
@@ -62,12 +62,6 @@ class Stream:
         csv.writer(header).writerow(names)
         self.header = header.getvalue().encode()
         self.nout = max(int(kernel.arrays["nout"]), 1)
-        self.st = None
-        self.reset()
-
-    def reset(self):
-        """Start the file again (a run handed from the fast path to the driver)."""
-        self.close()
         err = ffi.new("int *")
         self.st = lib.ps_stream_open(self.path, self.header,
                                      ffi.cast("int *", ffi.from_buffer(self.cols)),
