@@ -1,4 +1,5 @@
-"""Command line: ``pysolver run DECK [-o DIR]`` and ``pysolver check DECK``."""
+"""The pysolver command: run a deck, check a deck, or sweep its parameters (pysolver run, check,
+sweep; pysolver COMMAND --help for each)."""
 import argparse
 import csv
 import dataclasses

@@ -59,7 +59,8 @@ def test_params_of_param_transient_are_run_options():
 
 
 @pytest.mark.parametrize("params, match", [
-    ({"Body_Point/7/mass": 1.0}, r"sweep parameter 'Body_Point/7/mass': no such number"),
+    ({"Body_Point/7/mass": 1.0}, r"sweep parameter .Body_Point/7/mass.: no Body_Point 7 in this "
+                                  r"model \(its Body_Points: 2\)"),
     ({"Force_Penalty/1/penalty": -1e4}, r"got -10000; expected a value > 0"),
     ({"Body_Point/2/mass": "heavy"}, r"got 'heavy'; expected a real number"),
 ])

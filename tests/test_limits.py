@@ -206,13 +206,14 @@ def test_max_num_steps_must_be_a_whole_number():
 
 def test_two_param_transient_elements_are_a_deck_error():
     text = PENALTY_DECK.replace("</Model>", '<Param_Transient integr_tol="1e-3"/></Model>')
-    with pytest.raises(pysolver.DeckError, match=r"a second <Param_Transient> \(the first is "
-                       r"on line 8\); give one") as info:
+    with pytest.raises(pysolver.DeckError, match=r"a second Param_Transient \(the first is "
+                       r"on line 8; in a Python deck INTEGRATOR, EQUILIBRIUM or ACCGRAV\); "
+                       r"give one") as info:
         pysolver.loads(text)
     assert info.value.line == 9
 
 
 def test_two_gravity_elements_are_a_deck_error():
     text = PENALTY_DECK.replace("</Model>", '<Force_Gravity grav_z="-9.81"/></Model>')
-    with pytest.raises(pysolver.DeckError, match=r"a second <Force_Gravity>"):
+    with pytest.raises(pysolver.DeckError, match=r"a second Force_Gravity"):
         pysolver.loads(text)

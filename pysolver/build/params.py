@@ -236,5 +236,9 @@ class Parameters:
             return ("the deck's penalty1 is 0, so the compiled model has no damping term to "
                     "change (a structural change: give the deck a nonzero penalty1)")
         near = [p for p in self._names.values() if p.lower().startswith(parts[0].lower() + "/")]
+        if len(parts) == 3 and not any(p.lower().startswith("/".join(parts[:2]).lower() + "/")
+                                       for p in near):
+            ids = sorted({p.split("/")[1] for p in near if len(p.split("/")) == 3})
+            return f"no {parts[0]} {parts[1]} in this model (its {parts[0]}s: {', '.join(ids)})"
         return ("no such number in this model (structural attributes such as ids, types and "
                 f"flags cannot change); this element's: {', '.join(near[:12])}")

@@ -44,7 +44,7 @@ def from_attributes(model, ctx, a):
     if not model.source.user_code:
         where = next((k for k in ("script_name", "usrsub_dll_name", "usrsub_fnc_name")
                       if a.get(k) is not None), "type")
-        raise ctx.error("a user subroutine runs code of the deck's, and user_code=False "
+        raise ctx.error("a user subroutine would run code the deck names, and user_code=False "
                         "refuses it (--no-user-code)", where)
     name, args, _ = CONVENTIONS[ctx.tag]
     if a.get("interpreter") == "MATLAB":

@@ -117,7 +117,8 @@ MAX_GRAVITY = 1e20
 def _once(ctx, once, tag):
     """A settings element given twice would silently let the later one win: refuse it."""
     if tag in once:
-        raise ctx.error(f"a second <{tag}> (the first is on line {once[tag]}); give one")
+        raise ctx.error(f"a second {tag} (the first is on line {once[tag]}; in a Python deck "
+                        "INTEGRATOR, EQUILIBRIUM or ACCGRAV); give one")
     once[tag] = ctx.line
 
 
