@@ -46,31 +46,27 @@ def test_a_deck_script_calling_sys_exit_is_a_deck_error(tmp_path):
                        r"is read for its statements and must not exit") as info:
         pysolver.load(deck)
     assert info.value.line == line
-    for cmd in ("run", "check"):
-        out = _cli([cmd, deck, "-o", tmp_path / "out", "--no-plot"][:4 if cmd == "run" else 2]
-                   + (["--no-plot"] if cmd == "run" else []), tmp_path)
-        assert out.returncode == 2, (cmd, out.stderr)
+    for args in (["run", deck, "-o", tmp_path / "out", "--no-plot"], ["check", deck]):
+        out = _cli(args, tmp_path)
+        assert out.returncode == 2, (args, out.stderr)
         assert out.stderr.startswith(f"pysolver: error: {deck}:{line}")
         assert "Traceback" not in out.stderr
     assert not (tmp_path / "out").exists()
 
 
-def test_sys_exit_in_a_traced_routine_is_a_deck_error(tmp_path):
-    """`sys.exit(4)` in a routine escaped model.run() as SystemExit."""
-    script = tmp_path / "bead.py"
-    script.write_text("import sys\n\n\ndef PFOSUB(id, time, par, npar, dflag, iflag):\n"
-                      "    sys.exit(4)\n")
-    model = pysolver.loads(_bead_with(f'script_name="{script}" usrsub_param_string="USER(9)"'))
-    with pytest.raises(pysolver.DeckError, match=r"PFOSUB raised SystemExit: 4 \(line 5\)"):
-        model.run()
-
-
-def test_sys_exit_at_a_scripts_top_level_is_a_deck_error(tmp_path):
-    script = tmp_path / "bead.py"
-    script.write_text("import sys\nsys.exit(3)\n\n\n"
-                      "def PFOSUB(id, time, par, npar, dflag, iflag):\n    return 0.0\n")
-    model = pysolver.loads(_bead_with(f'script_name="{script}" usrsub_param_string="USER(9)"'))
-    with pytest.raises(pysolver.DeckError, match=r"failed to run: SystemExit: 3 \(line 2\)"):
+@pytest.mark.parametrize("script, match", [
+    # in a traced routine: it escaped model.run() as SystemExit
+    ("import sys\n\n\ndef PFOSUB(id, time, par, npar, dflag, iflag):\n    sys.exit(4)\n",
+     r"PFOSUB raised SystemExit: 4 \(line 5\)"),
+    # at the script's top level, run at the first compile
+    ("import sys\nsys.exit(3)\n\n\ndef PFOSUB(id, time, par, npar, dflag, iflag):\n"
+     "    return 0.0\n", r"failed to run: SystemExit: 3 \(line 2\)"),
+])
+def test_sys_exit_in_a_routines_script_is_a_deck_error(tmp_path, script, match):
+    (tmp_path / "bead.py").write_text(script)
+    model = pysolver.loads(_bead_with(f'script_name="{tmp_path / "bead.py"}" '
+                                      'usrsub_param_string="USER(9)"'))
+    with pytest.raises(pysolver.DeckError, match=match):
         model.run()
 
 

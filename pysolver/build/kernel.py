@@ -199,17 +199,19 @@ class Kernel:
 
     def precision(self, t, y, yp):
         """(ratio, body index or -1) of ps_precision at (t, y, yp)."""
-        if self._precision_work is None:          # the tapes' triplet pattern, and room for it
-            rows, cols = (np.zeros(1, np.int32),) * 2 if self.codegen["kernel"] == \
-                "generated" else (self.sparsity(), self._triplets)[1]
-            keep, fb = (rows, cols, np.zeros(4 * self.ny)), ffi.from_buffer
-            self._precision_work = (ffi.cast("int *", fb(rows)), ffi.cast("int *", fb(cols)),
-                                    len(rows), fb("double[]", keep[2]), ffi.new("int *"), keep)
-        rows, cols, ntrip, work, body, _ = self._precision_work
+        if self._precision_work is None:
+            if self.codegen["kernel"] == "generated":
+                rows = cols = np.zeros(1, np.int32)     # the library has its own pattern
+            else:
+                self.sparsity()                         # the tapes' pattern, and room for it
+                rows, cols = self._triplets
+            self._precision_work = (rows, cols, np.zeros(4 * self.ny), ffi.new("int *"))
+        rows, cols, work, body = self._precision_work
         fb = ffi.from_buffer
         ratio = lib.ps_precision(self.m, self.d, t, fb("double[]", np.ascontiguousarray(y, float)),
-                                 fb("double[]", np.ascontiguousarray(yp, float)), rows, cols,
-                                 ntrip, work, body)
+                                 fb("double[]", np.ascontiguousarray(yp, float)),
+                                 ffi.cast("int *", fb(rows)), ffi.cast("int *", fb(cols)),
+                                 len(rows), fb("double[]", work), body)
         return ratio, body[0]
 
     def sparsity(self):
