@@ -297,13 +297,14 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   SET(s, CALL(s, IDASetLinearSolver)(s->mem, s->LS, s->A), "IDASetLinearSolver");
   SET(s, CALL(s, IDASetJacFn)(s->mem, jac_fn), "IDASetJacFn");
   SET(s, CALL(s, IDASetMaxNumSteps)(s->mem, mxsteps), "IDASetMaxNumSteps");
-  if (m->nmotion > 0) {
-    /* motion reactions are algebraic: out of the error test (IDA copies id) */
+  int nalg = 0;
+  for (int i = 0; i < n; i++) nalg += m->state_alg[i];
+  if (nalg > 0) {
+    /* reactions are algebraic: out of the error test (IDA copies id) */
     N_Vector id = CALL(s, N_VNew_Serial)(n, s->ctx);
     if (!id) return fail(s, "N_VNew_Serial", -1);
     double* v = CALL(s, N_VGetArrayPointer)(id);
-    for (int i = 0; i < n; i++) v[i] = 1.0;
-    for (int k = 0; k < m->nmotion; k++) v[m->mot_lam[k]] = 0.0;
+    for (int i = 0; i < n; i++) v[i] = m->state_alg[i] ? 0.0 : 1.0;
     int flag = CALL(s, IDASetId)(s->mem, id);
     CALL(s, N_VDestroy)(id);
     if (flag < 0) return fail(s, "IDASetId", flag);

@@ -10,66 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "internal.h"
-
-/* Scratch numbers for force assembly in d->tmp (PS_TMP_TAPE and up). */
-#define F_RI 64
-#define F_RJ 67
-#define F_REL 70
-#define F_LEN 73
-#define F_DIR 74
-#define F_VEC 77
-#define F_MOM 80
-#define F_P 83
-#define F_CR 86
-#define F_SC 89
-#define F_Q 91
-#define F_CI 92
-#define F_PT 93
-#define F_FV 96
-
-/* Where derivatives go: a dense row-major matrix, or a list of (row, col, value) triplets
- * whose order depends only on the model's structure (used for sparse CSC matrices). */
-typedef struct Assembly {
-  double* res;
-  double* jac;   /* dense (ny x ny), or NULL */
-  double* trip;  /* triplet values, or NULL */
-  int* trow;     /* triplet rows, or NULL (values only) */
-  int* tcol;     /* triplet columns, or NULL */
-  int k;         /* number of triplets written */
-  int deriv;     /* 1 when derivatives are wanted */
-  double cj;
-  int ny;
-} Assembly;
-
-/* Add v to the iteration matrix entry (row, col). */
-static void jadd(Assembly* as, int row, int col, double v) {
-  if (as->jac) {
-    as->jac[(long)row * as->ny + col] += v;
-    return;
-  }
-  if (as->trow) {
-    as->trow[as->k] = row;
-    as->tcol[as->k] = col;
-  }
-  if (as->trip) as->trip[as->k] = v;
-  as->k++;
-}
-
-/* Subtract force_scale * Q from residual row `row`, and its derivatives from the Jacobian. */
-static void scatter(const psModel* m, const psuHD* c, int tape, int row, const double* Q,
-                    Assembly* as) {
-  double cf = m->force_scale;
-  as->res[row] -= cf * Q[0];
-  if (!as->deriv) return;
-  int badr = m->tape_basis_adr[tape];
-  for (int j = 0; j < c->n; j++) {
-    int kind = m->basis_kind[badr + j];
-    if (kind == PS_BASIS_T) continue;
-    jadd(as, row, m->basis_idx[badr + j],
-         -cf * Q[1 + j] * (kind == PS_BASIS_YP ? as->cj : 1.0));
-  }
-}
+#include "assembly.h"
 
 /* Inertia, gravity and the kinematic rows q' - N(q) u of every body. */
 static void inertia_rows(const psModel* m, double t, const double* y, const double* yp,
@@ -129,198 +70,18 @@ static void inertia_rows(const psModel* m, double t, const double* y, const doub
   }
 }
 
-/* Generalized forces on the body in tape slot `slot` of a global force F at the global point P
- * (hyper-duals; F, P or Mo may be NULL) and a global moment Mo. */
-static void apply_at(const psModel* m, psData* d, const psuHD* c, int tape, int slot,
-                     const double* P, const double* F, const double* Mo, double sign,
-                     Assembly* as) {
-  if (slot < 0) return;
-  int s = c->stride;
-  int b = m->tbody_body[m->tape_body_adr[tape] + slot];
-  int ua = m->body_uadr[b];
-  double* Q = ps_tmp(m, d, F_Q);
-  for (int i = 0; i < 3; i++) {
-    if (F) {
-      psu_hd_lin(c, Q, sign, F + i * s, 0.0, NULL, 0.0);
-      scatter(m, c, tape, ua + i, Q, as);
-    }
-  }
-  if (m->body_type[b] != PS_BODY_RIGID) return;
-  /* moment about the body origin, resolved in the body frame: A^T (p x F + M) */
-  double* mom = ps_tmp(m, d, F_CR);
-  double* sc = ps_tmp(m, d, F_SC);
-  if (F) {
-    double* p = ps_tmp(m, d, F_P);
-    const double* r = ps_bc(m, d, slot, PS_BC_R);
-    for (int i = 0; i < 3; i++) psu_hd_lin(c, p + i * s, 1.0, P + i * s, -1.0, r + i * s, 0.0);
-    psu_hd_cross(c, mom, p, F, sc);
-  } else {
-    for (int i = 0; i < 3; i++) psu_hd_const(c, mom + i * s, 0.0);
-  }
-  if (Mo)
-    for (int i = 0; i < 3; i++) psu_hd_lin(c, mom + i * s, 1.0, mom + i * s, 1.0, Mo + i * s, 0.0);
-  const double* A = ps_bc(m, d, slot, PS_BC_A);
-  for (int k = 0; k < 3; k++) {
-    psu_hd_mul(c, Q, A + k * s, mom);
-    for (int r = 1; r < 3; r++) {
-      psu_hd_mul(c, sc, A + (3 * r + k) * s, mom + r * s);
-      psu_hd_lin(c, Q, 1.0, Q, 1.0, sc, 0.0);
-    }
-    psu_hd_lin(c, Q, sign, Q, 0.0, NULL, 0.0);
-    scatter(m, c, tape, ua + 3 + k, Q, as);
-  }
-}
-
-/* Generalized forces of a global force F at a marker and a global moment M on its body. */
-static void apply_load(const psModel* m, psData* d, const psuHD* c, int tape, int mk, int slot,
-                       const double* F, const double* Mo, double sign, Assembly* as) {
-  if (slot < 0 || m->marker_body[mk] < 0) return;
-  double* P = ps_tmp(m, d, F_PT);
-  if (F && m->body_type[m->tbody_body[m->tape_body_adr[tape] + slot]] == PS_BODY_RIGID)
-    ps_marker_pos(m, d, c, mk, slot, P);
-  apply_at(m, d, c, tape, slot, P, F, Mo, sign, as);
-}
-
-/* Add Q_i = F c_i, c_i = d(g')/du_i, for every free body the tape reads; when lam >= 0 (a
- * motion's reaction, F = lam) also the Jacobian column of lam. */
-static void rate_force(const psModel* m, psData* d, const psuHD* c, const double* g, int tape,
-                       const double* F, int lam, Assembly* as) {
-  double* ci = ps_tmp(m, d, F_CI);
-  double* Q = ps_tmp(m, d, F_Q);
-  double* sc = ps_tmp(m, d, F_SC);
-  int adr = m->tape_body_adr[tape];
-  for (int slot = 0; slot < m->tape_nbody[tape]; slot++) {
-    if (m->tbody_q[adr + slot] < 0) continue;
-    int b = m->tbody_body[adr + slot];
-    int nu = m->body_type[b] == PS_BODY_RIGID ? 6 : 3;
-    for (int i = 0; i < nu; i++) {
-      ps_rate_coeff(m, d, c, g, tape, slot, i, ci, sc);
-      psu_hd_mul(c, Q, F, ci);
-      scatter(m, c, tape, m->body_uadr[b] + i, Q, as);
-      if (lam >= 0 && as->deriv) jadd(as, m->body_uadr[b] + i, lam, -m->force_scale * ci[0]);
-    }
-  }
-}
-
-/* Force_Penalty: Q_i = F * d(g')/du_i with F = -p g - p1 g' (smoothed when unilateral). */
-static void penalty_forces(const psModel* m, psData* d, double t, const double* y,
-                           const double* yp, Assembly* as) {
-  for (int p = 0; p < m->npen; p++) {
-    int tape = m->pen_tape[p];
-    int order = as->deriv ? 2 : 1;
-    ps_tape_run(m, d, tape, order, !as->deriv, t, y, yp);
-    psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], order - 1, m->hd_stride};
-    rate_force(m, d, &c, ps_slot(m, d, m->pen_g[p]), tape, ps_slot(m, d, m->pen_f[p]), -1, as);
-  }
-}
-
-/* Force_Scalar_TwoBody: a force along the line from J to I, or a torque about z of J. */
-static void scalar_forces(const psModel* m, psData* d, double t, const double* y,
-                          const double* yp, Assembly* as) {
-  for (int k = 0; k < m->nsf; k++) {
-    int tape = m->sf_tape[k];
-    int order = as->deriv + m->tape_order[tape];
-    ps_tape_run(m, d, tape, order, !as->deriv, t, y, yp);
+/* The elements' contributions, in table order (only those of kind `only`, unless it is -1):
+ * each runs its tape, then its kind's contribution (csrc/elements/<kind>.c). */
+static void element_rows(const psModel* m, psData* d, double t, const double* y,
+                         const double* yp, Assembly* as, int only) {
+  for (int e = 0; e < m->nel; e++) {
+    int kind = m->el_kind[e], tape = m->el_tape[e];
+    if (only >= 0 && kind != only) continue;
+    const psElementKind* k = &ps_element_kinds[kind];
+    int base = m->tape_order[tape] > k->order ? m->tape_order[tape] : k->order;
+    ps_tape_run(m, d, tape, as->deriv + base, !as->deriv, t, y, yp);
     psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], as->deriv, m->hd_stride};
-    int s = c.stride;
-    const double* f = ps_slot(m, d, m->sf_f[k]);
-    int mi = m->sf_i[k], mj = m->sf_j[k];
-    /* body slots of I and J in this tape: the compiler puts them first */
-    int si = m->marker_body[mi] < 0 ? -1 : 0;
-    int sj = m->marker_body[mj] < 0 ? -1 : (m->marker_body[mi] < 0 ||
-                                             m->marker_body[mi] == m->marker_body[mj] ? 0 : 1);
-    double* vec = ps_tmp(m, d, F_VEC);
-    if (m->sf_torque[k]) {
-      double* X = ps_tmp(m, d, F_RI);
-      ps_marker_axes(m, d, &c, mj, sj, X);
-      for (int i = 0; i < 3; i++) psu_hd_mul(&c, vec + i * s, f, X + (3 * i + 2) * s);
-      apply_load(m, d, &c, tape, mi, si, NULL, vec, 1.0, as);
-      apply_load(m, d, &c, tape, mj, sj, NULL, vec, -1.0, as);
-    } else {
-      double* ri = ps_tmp(m, d, F_RI);
-      double* rj = ps_tmp(m, d, F_RJ);
-      double* rel = ps_tmp(m, d, F_REL);
-      double* len = ps_tmp(m, d, F_LEN);
-      ps_marker_pos(m, d, &c, mi, si, ri);
-      ps_marker_pos(m, d, &c, mj, sj, rj);
-      for (int i = 0; i < 3; i++) psu_hd_lin(&c, rel + i * s, 1.0, ri + i * s, -1.0, rj + i * s, 0.0);
-      psu_hd_dot(&c, len, rel, rel, ps_tmp(m, d, F_SC));
-      double L = sqrt(len[0]);
-      /* coincident markers: no direction, no force (derivatives still written as zeros) */
-      if (L == 0.0)
-        psu_hd_const(&c, len, 0.0);
-      else
-        psu_hd_unary(&c, len, len, 1.0 / L, -0.5 / (L * L * L), 0.0);
-      for (int i = 0; i < 3; i++) {
-        psu_hd_mul(&c, vec + i * s, rel + i * s, len);
-        psu_hd_mul(&c, vec + i * s, vec + i * s, f);
-      }
-      apply_load(m, d, &c, tape, mi, si, vec, NULL, 1.0, as);
-      apply_load(m, d, &c, tape, mj, sj, vec, NULL, -1.0, as);
-    }
-  }
-}
-
-/* Force_Vector_TwoBody: F = X f with X the reference marker's axes, on I's body at I and
- * opposite on J's body at the same point. */
-static void vector_forces(const psModel* m, psData* d, double t, const double* y,
-                          const double* yp, Assembly* as) {
-  for (int k = 0; k < m->nvf; k++) {
-    int tape = m->vf_tape[k];
-    ps_tape_run(m, d, tape, as->deriv + m->tape_order[tape], !as->deriv, t, y, yp);
-    psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], as->deriv, m->hd_stride};
-    int s = c.stride;
-    double* X = ps_tmp(m, d, F_RI);   /* 9 numbers: F_RI .. F_RI + 8 */
-    double* F = ps_tmp(m, d, F_FV);
-    double* sc = ps_tmp(m, d, F_SC);
-    ps_marker_axes(m, d, &c, m->vf_r[k], m->vf_sr[k], X);
-    for (int i = 0; i < 3; i++) {
-      psu_hd_const(&c, F + i * s, 0.0);
-      for (int j = 0; j < 3; j++) {
-        psu_hd_mul(&c, sc, X + (3 * i + j) * s, ps_slot(m, d, m->vf_f[3 * k + j]));
-        psu_hd_lin(&c, F + i * s, 1.0, F + i * s, 1.0, sc, 0.0);
-      }
-    }
-    int mi = m->vf_i[k], si = m->vf_si[k];
-    double* P = ps_tmp(m, d, F_PT);
-    ps_marker_pos(m, d, &c, mi, si, P);
-    apply_at(m, d, &c, tape, m->marker_body[mi] < 0 ? -1 : si, P, F, NULL, 1.0, as);
-    apply_at(m, d, &c, tape, m->vf_sj[k], P, F, NULL, -1.0, as);
-  }
-}
-
-/* Motion_Marker k: its reaction lam (a state, model force units) acts like a penalty force
- * F = lam, Q_i = lam c_i with c_i = d(g')/du_i; its own row holds g' to the target rate: 0 for
- * a displacement (g includes the expression), the expression for a velocity, and for an
- * acceleration the state w whose row integrates w' = expression. The row has no lam in it
- * (index 2): IDA leaves lam out of its error test. */
-static void motion_rows(const psModel* m, psData* d, double t, const double* y,
-                        const double* yp, Assembly* as) {
-  for (int k = 0; k < m->nmotion; k++) {
-    int tape = m->mot_tape[k], lam = m->mot_lam[k], w = m->mot_w[k], kind = m->mot_kind[k];
-    int order = as->deriv ? 2 : 1;
-    ps_tape_run(m, d, tape, order, !as->deriv, t, y, yp);
-    psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], order - 1, m->hd_stride};
-    const double* g = ps_slot(m, d, m->mot_g[k]);
-    const double* gd = ps_slot(m, d, m->mot_gd[k]);
-    const double* f = ps_slot(m, d, m->mot_f[k]);
-    double* L = ps_tmp(m, d, F_LEN);
-    psu_hd_const(&c, L, y[lam]);
-    rate_force(m, d, &c, g, tape, L, lam, as);
-    as->res[lam] = gd[0] - (kind == PS_MOTION_V ? f[0] : kind == PS_MOTION_A ? y[w] : 0.0);
-    if (as->deriv) {
-      int badr = m->tape_basis_adr[tape];
-      for (int j = 0; j < c.n; j++) {
-        int bk = m->basis_kind[badr + j];
-        if (bk == PS_BASIS_T) continue;
-        jadd(as, lam, m->basis_idx[badr + j], gd[1 + j] * (bk == PS_BASIS_YP ? as->cj : 1.0));
-      }
-      if (kind == PS_MOTION_A) jadd(as, lam, w, -1.0);
-    }
-    if (kind == PS_MOTION_A) {
-      as->res[w] = yp[w] - f[0];
-      if (as->deriv) jadd(as, w, w, as->cj);
-    }
+    k->assemble(m, d, &c, tape, m->el_int + m->el_adr[e], t, y, yp, as);
   }
 }
 
@@ -362,29 +123,13 @@ static void diagnose(const psModel* m, psData* d, double t, const double* y, con
     if (!isfinite(y[i]) && found_bad(d, PS_BAD_STATE, i, y[i])) return;
     if (!isfinite(yp[i]) && found_bad(d, PS_BAD_RATE, i, yp[i])) return;
   }
-  for (int p = 0; p < m->npen; p++) {
-    int tape = m->pen_tape[p], slots[2] = {m->pen_g[p], m->pen_f[p]};
-    ps_tape_run(m, d, tape, 1 + deriv, 1 - deriv, t, y, yp);
-    if (bad_slots(m, d, tape, deriv, slots, 2, &v) && found_bad(d, PS_BAD_PENALTY, p, v))
-      return;
-  }
-  for (int k = 0; k < m->nsf; k++) {
-    int tape = m->sf_tape[k];
-    ps_tape_run(m, d, tape, deriv + m->tape_order[tape], 1 - deriv, t, y, yp);
-    if (bad_slots(m, d, tape, deriv, &m->sf_f[k], 1, &v) && found_bad(d, PS_BAD_SFORCE, k, v))
-      return;
-  }
-  for (int k = 0; k < m->nvf; k++) {
-    int tape = m->vf_tape[k];
-    ps_tape_run(m, d, tape, deriv + m->tape_order[tape], 1 - deriv, t, y, yp);
-    if (bad_slots(m, d, tape, deriv, &m->vf_f[3 * k], 3, &v) &&
-        found_bad(d, PS_BAD_VFORCE, k, v))
-      return;
-  }
-  for (int k = 0; k < m->nmotion; k++) {
-    int tape = m->mot_tape[k], slots[2] = {m->mot_f[k], m->mot_gd[k]};
-    ps_tape_run(m, d, tape, 1 + deriv, 1 - deriv, t, y, yp);
-    if (bad_slots(m, d, tape, deriv, slots, 2, &v) && found_bad(d, PS_BAD_MOTION, k, v))
+  for (int e = 0; e < m->nel; e++) {
+    int tape = m->el_tape[e];
+    const psElementKind* k = &ps_element_kinds[m->el_kind[e]];
+    int base = m->tape_order[tape] > k->order ? m->tape_order[tape] : k->order;
+    ps_tape_run(m, d, tape, deriv + base, 1 - deriv, t, y, yp);
+    if (bad_slots(m, d, tape, deriv, m->el_int + m->el_adr[e], k->nvalue, &v) &&
+        found_bad(d, PS_BAD_ELEMENT, e, v))
       return;
   }
   found_bad(d, deriv ? PS_BAD_JACOBIAN : PS_BAD_RESIDUAL, -1, NAN);
@@ -415,10 +160,7 @@ static int assemble(const psModel* m, psData* d, double t, const double* y, cons
   if (as->jac) memset(as->jac, 0, sizeof(double) * (size_t)m->ny * (size_t)m->ny);
   as->k = 0;
   inertia_rows(m, t, y, yp, as);
-  penalty_forces(m, d, t, y, yp, as);
-  scalar_forces(m, d, t, y, yp, as);
-  vector_forces(m, d, t, y, yp, as);
-  motion_rows(m, d, t, y, yp, as);
+  element_rows(m, d, t, y, yp, as, -1);
   return PS_OK;
 }
 
@@ -490,7 +232,7 @@ int ps_penalty_loads(const psModel* m, psData* d, double t, const double* y, con
                      double* q) {
   Assembly as = {q, NULL, NULL, NULL, NULL, 0, 0, 0.0, m->ny};
   for (int i = 0; i < m->ny; i++) q[i] = 0.0;
-  penalty_forces(m, d, t, y, yp, &as);
+  element_rows(m, d, t, y, yp, &as, PS_EL_PENALTY);
   /* scatter subtracted force_scale * Q: give Q */
   for (int i = 0; i < m->ny; i++) q[i] /= -m->force_scale;
   return check_finite(m, d, t, y, yp, q, m->ny, 0, 0);
@@ -521,9 +263,8 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
   for (int i = 0; i < n; i++) {
     noise[i] = 0.0;
     zero[i] = 0.0;
-    free_y[i] = y[i];
+    free_y[i] = m->state_alg[i] ? 0.0 : y[i];
   }
-  for (int k = 0; k < m->nmotion; k++) free_y[m->mot_lam[k]] = 0.0;
   for (int k = 0; k < ntrip; k++)
     noise[trow[k]] += fabs(d->trip[k]) * fabs(free_y[tcol[k]]) * PS_UNIT_ROUNDOFF;
   /* the forces each row carries, in the residual's units: the net of every force but

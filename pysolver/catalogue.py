@@ -287,7 +287,21 @@ class Element:
         MotionSolve's calling convention.
     bad : str or None
         The ``psData.bad_kind`` value (``PS_BAD_*``) of a non-finite value in it, when the
-        kernel diagnoses its expressions; its records are in id order in the kernel.
+        kernel diagnoses its expressions outside the element table (sensors); its records are
+        in id order in the kernel.
+    c : str or None
+        Its kind (``PS_EL_*``) in the kernel's element table, when it contributes rows there
+        (csrc/elements/<kind>.c); a non-finite value in it is ``PS_BAD_ELEMENT``.
+    ints : tuple of str
+        Its ints in ``psModel.el_int``, in order, as ``name:role``; the role says what the
+        int is and how a part of looped C renumbers it: ``slot`` (a tape slot: the first
+        `values` are its values, checked by the diagnosis), ``flag`` (a number), ``marker``,
+        ``bslot`` (a body slot of its tape, -1 ground) or ``state`` (an index into y, -1
+        none).
+    values : int
+        How many leading `ints` are the slots of its values.
+    order : int
+        The least derivative order its tape runs at (1: its contribution reads rates of g).
     doc : str
     """
     tags: tuple
@@ -297,6 +311,14 @@ class Element:
     doc: str
     usersub: Optional[tuple] = None
     bad: Optional[str] = None
+    c: Optional[str] = None
+    ints: tuple = ()
+    values: int = 0
+    order: int = 0
+
+    def field(self, name):
+        """The position of int `name` in its layout."""
+        return [i.split(":")[0] for i in self.ints].index(name)
 
 
 _PLAIN = ("id", "time", "par", "npar", "iflag")
@@ -306,14 +328,19 @@ ELEMENTS = (
     Element(("Reference_Marker",), "marker", "markers", "MARKER", "a frame on a body"),
     Element(("Body_Rigid", "Body_Point"), "body", "bodies", "PART", "a rigid body or point mass"),
     Element(("Force_Penalty",), "penalty", "penalties", "PFORCE",
-            "a penalty constraint g(q, t) = 0 or >= 0", ("PFOSUB", _DFLAG, 1), "PS_BAD_PENALTY"),
+            "a penalty constraint g(q, t) = 0 or >= 0", ("PFOSUB", _DFLAG, 1),
+            c="PS_EL_PENALTY", ints=("g:slot", "f:slot"), values=2, order=1),
     Element(("Force_Scalar_TwoBody",), "sforce", "sforces", "SFORCE",
             "a force along the line of two markers, or a torque", ("SFOSUB", _DFLAG, 1),
-            "PS_BAD_SFORCE"),
+            c="PS_EL_SFORCE", ints=("f:slot", "torque:flag", "i:marker", "j:marker"), values=1),
     Element(("Force_Vector_TwoBody",), "vforce", "vforces", "VFORCE",
-            "a force by its components, between two bodies", None, "PS_BAD_VFORCE"),
+            "a force by its components, between two bodies", c="PS_EL_VFORCE",
+            ints=("fx:slot", "fy:slot", "fz:slot", "i:marker", "si:bslot", "sj:bslot",
+                  "r:marker", "sr:bslot"), values=3),
     Element(("Motion_Marker",), "motion", "motions", "MOTION",
-            "a driven displacement, velocity or acceleration", None, "PS_BAD_MOTION"),
+            "a driven displacement, velocity or acceleration", c="PS_EL_MOTION",
+            ints=("f:slot", "gd:slot", "g:slot", "kind:flag", "lam:state", "w:state"), values=2,
+            order=1),
     Element(("LoadControl",), "loadcontrol", "controls", "LOADCONTROL",
             "the LoadControl task (seed 002)"),
     Element(("Reference_Variable",), "variable", "variables", "VARIABLE",
@@ -328,6 +355,8 @@ ELEMENTS = (
 #: Element kinds by XML tag and by kind.
 ELEMENT_OF_TAG = {tag: e for e in ELEMENTS for tag in e.tags}
 ELEMENT_OF_KIND = {e.kind: e for e in ELEMENTS}
+#: The kinds of the kernel's element table, in the order of its PS_EL_* values.
+TABLE_KINDS = tuple(e for e in ELEMENTS if e.c)
 
 
 # the documentation's function table -----------------------------------------------------------

@@ -8,7 +8,7 @@ import re
 import pytest
 
 from pysolver import catalogue
-from pysolver.build.bindings import lib
+from pysolver.build.bindings import ffi, lib
 from pysolver.build.codegen import sym
 
 from helpers import ROOT, TEST_DECKS
@@ -145,7 +145,7 @@ def test_element_kinds_match_the_c_diagnosis_the_schema_and_the_statements():
     header = (ROOT / "csrc" / "include" / "pysolver.h").read_text()
     bad = re.search(r"enum \{\s*PS_BAD_NONE = 0,([^}]*)\}", header).group(1)
     element_bads = {n for n in re.findall(r"PS_BAD_\w+", bad)} - {
-        "PS_BAD_STATE", "PS_BAD_RATE", "PS_BAD_RESIDUAL", "PS_BAD_JACOBIAN"}
+        "PS_BAD_STATE", "PS_BAD_RATE", "PS_BAD_ELEMENT", "PS_BAD_RESIDUAL", "PS_BAD_JACOBIAN"}
     declared = [e.bad for e in catalogue.ELEMENTS if e.bad]
     assert sorted(declared) == sorted(element_bads) and len(set(declared)) == len(declared)
     assert all(isinstance(getattr(lib, name), int) for name in declared)
@@ -155,3 +155,21 @@ def test_element_kinds_match_the_c_diagnosis_the_schema_and_the_statements():
     assert len({e.kind for e in catalogue.ELEMENTS}) == len({e.table for e in
                                                               catalogue.ELEMENTS}) == \
         len(catalogue.ELEMENTS)
+
+
+def test_the_element_table_kinds_match_the_c_kinds_and_layouts():
+    """The PS_EL_* enum lists the catalogue's table kinds in order, each kind's layout in C
+    (ints, value slots, least order) is the catalogue's, and each has its contribution file."""
+    header = (ROOT / "csrc" / "include" / "pysolver.h").read_text()
+    enum = re.search(r"enum psElement \{([^}]*)\}", header).group(1)
+    names = re.findall(r"\b(PS_EL_\w+)", enum)
+    assert names == [e.c for e in catalogue.TABLE_KINDS] + ["PS_EL_COUNT"]
+    out = [ffi.new("int *") for _ in range(3)]
+    for e in catalogue.TABLE_KINDS:
+        assert lib.ps_element_layout(getattr(lib, e.c), *out) == lib.PS_OK
+        assert [v[0] for v in out] == [len(e.ints), e.values, e.order], e.kind
+        roles = [i.split(":")[1] for i in e.ints]
+        assert set(roles) <= {"slot", "flag", "marker", "bslot", "state"}, e.kind
+        assert roles[:e.values] == ["slot"] * e.values, e.kind
+        assert (ROOT / "csrc" / "elements" / f"{e.kind}.c").exists(), e.kind
+    assert lib.ps_element_layout(lib.PS_EL_COUNT, *out) == -1

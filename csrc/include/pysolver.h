@@ -73,6 +73,16 @@ enum psMeasure {
   PS_M_COUNT
 };
 
+/* Element kinds: what an entry of psModel's element table is (the contribution of each is
+ * csrc/elements/<kind>.c, its ints' layout declared in pysolver/catalogue.py). */
+enum psElement {
+  PS_EL_PENALTY = 0, /* Force_Penalty */
+  PS_EL_SFORCE,      /* Force_Scalar_TwoBody */
+  PS_EL_VFORCE,      /* Force_Vector_TwoBody */
+  PS_EL_MOTION,      /* Motion_Marker */
+  PS_EL_COUNT
+};
+
 /* Motion kinds: what follows the expression (csrc/residual.c). */
 #define PS_MOTION_D 0  /* the displacement: g = measure - expr, g' = 0           */
 #define PS_MOTION_V 1  /* the velocity: g' = expr                               */
@@ -134,8 +144,6 @@ typedef struct psModel {
   int nbody;              /* number of moving bodies (ground excluded)          */
   int nmarker;            /* number of markers                                  */
   int ntape;              /* number of expression tapes                         */
-  int npen;               /* number of Force_Penalty elements                   */
-  int nsf;                /* number of Force_Scalar_TwoBody elements            */
   int nout;               /* number of output channels (requests, flattened)    */
   int nsensor;            /* number of Sensor_Event elements                    */
   int hd_stride;          /* doubles per hyper-dual slot (largest tape, order 2) */
@@ -182,41 +190,16 @@ typedef struct psModel {
   int* tbody_w;           /* (ntbody x 1) 1 when a measure needs the global
                              angular velocity                                   */
 
-  /* Force_Penalty: tape outputs g (slot) and F (slot) */
-  int* pen_tape;          /* (npen x 1)                                         */
-  int* pen_g;             /* (npen x 1) slot of g in the tape                   */
-  int* pen_f;             /* (npen x 1) slot of the force magnitude F           */
-
-  /* Force_Scalar_TwoBody */
-  int* sf_tape;           /* (nsf x 1)                                          */
-  int* sf_f;              /* (nsf x 1) slot of the magnitude                    */
-  int* sf_torque;         /* (nsf x 1) 1 for a torque about z of J, 0 a force   */
-  int* sf_i;              /* (nsf x 1) I marker                                 */
-  int* sf_j;              /* (nsf x 1) J marker                                 */
-
-  /* Force_Vector_TwoBody: components (slots) in the axes of marker r, applied at marker I on
-   * its body and opposite on J's body at the same point */
-  int nvf;                /* number of vector forces                            */
-  int* vf_tape;           /* (nvf x 1)                                          */
-  int* vf_f;              /* (nvf x 3) slots of the x, y, z components          */
-  int* vf_i;              /* (nvf x 1) I marker                                 */
-  int* vf_si;             /* (nvf x 1) body slot of I in the tape (-1 ground)   */
-  int* vf_sj;             /* (nvf x 1) body slot of J's body (-1 ground)        */
-  int* vf_r;              /* (nvf x 1) reference marker (-1: global axes)       */
-  int* vf_sr;             /* (nvf x 1) its body slot (-1 ground)                */
-
-  /* Motion_Marker: a reaction lam (an algebraic state, model force units) applied like a
-   * penalty force F = lam, and a residual row holding the driven measure's rate g' to its
-   * target (residual.c, motion_rows) */
-  int nmotion;            /* number of motions                                  */
-  int* mot_tape;          /* (nmotion x 1)                                      */
-  int* mot_g;             /* (nmotion x 1) slot of g: the measure (D: less expr) */
-  int* mot_gd;            /* (nmotion x 1) slot of g'                           */
-  int* mot_f;             /* (nmotion x 1) slot of the expression               */
-  int* mot_kind;          /* (nmotion x 1) PS_MOTION_*                          */
-  int* mot_lam;           /* (nmotion x 1) index of lam in y                    */
-  int* mot_w;             /* (nmotion x 1) A: index in y of the driven velocity
-                             w, w' = expr; -1 otherwise                         */
+  /* the force elements and constraints, in the compiler's order: kind (PS_EL_*), the tape
+   * that computes its values, and its ints (el_adr: the first in el_int) in the layout of its
+   * kind (csrc/elements/<kind>.c and pysolver/catalogue.py) */
+  int nel;                /* number of elements                                 */
+  int* el_kind;           /* (nel x 1) PS_EL_*                                  */
+  int* el_tape;           /* (nel x 1)                                          */
+  int* el_adr;            /* (nel x 1) its first int in el_int                  */
+  int* el_int;            /* tape slots, flags, markers, body slots and states  */
+  int* state_alg;         /* (ny x 1) 1 for an algebraic state (a reaction),
+                             left out of IDA's error test                       */
 
   /* Sensor_Event: expression f in a tape slot, compared with value */
   int* sensor_tape;       /* (nsensor x 1)                                      */
@@ -275,7 +258,7 @@ typedef struct psData {
                              at the same state; zero it to forget               */
   int bad_kind;           /* what the last non-finite value was in (PS_BAD_*),
                              0 none; set only on that failure path               */
-  int bad_index;          /* which one: element index in id order, state index,
+  int bad_index;          /* which one: element table row, sensor, state index,
                              or residual row / Jacobian entry row * ny + column   */
   double bad_t;           /* the time of that evaluation                        */
   int bad_partial;        /* 1 if it was a first partial of the element's value  */
@@ -288,13 +271,18 @@ typedef struct psData {
   char msg[256];          /* message of the last error                          */
 } psData;
 
-/* Where a non-finite value was found (psData.bad_kind): the state or its rate, a Force_Penalty,
- * Force_Scalar_TwoBody, Force_Vector_TwoBody, Motion_Marker or Sensor_Event expression, or,
- * when no element's value is, a residual row or a Jacobian entry (a derivative overflowed). */
+/* Where a non-finite value was found (psData.bad_kind): the state or its rate, an element's
+ * values (bad_index its row in the element table), a Sensor_Event expression, or, when no
+ * element's value is, a residual row or a Jacobian entry (a derivative overflowed). */
 enum {
-  PS_BAD_NONE = 0, PS_BAD_STATE, PS_BAD_RATE, PS_BAD_PENALTY, PS_BAD_SFORCE, PS_BAD_VFORCE,
-  PS_BAD_MOTION, PS_BAD_SENSOR, PS_BAD_RESIDUAL, PS_BAD_JACOBIAN
+  PS_BAD_NONE = 0, PS_BAD_STATE, PS_BAD_RATE, PS_BAD_ELEMENT, PS_BAD_SENSOR, PS_BAD_RESIDUAL,
+  PS_BAD_JACOBIAN
 };
+
+/* The layout of element kind `kind` (PS_EL_*): its number of ints, how many leading ones are
+ * tape slots of its values, and the least derivative order its tape runs at. Returns PS_OK,
+ * or -1 for an unknown kind. */
+int ps_element_layout(int kind, int* nint, int* nvalue, int* order);
 
 /* Evaluate the DAE residual res = F(t, y, yp).
  * All arrays have length m->ny. Returns PS_OK, or PS_ERR_NONFINITE with a message in d->msg

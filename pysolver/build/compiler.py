@@ -450,6 +450,13 @@ class Compiler:
         return g, gd, f, {"D": lib.PS_MOTION_D, "V": lib.PS_MOTION_V, "A": lib.PS_MOTION_A}[
             mo.val_type]
 
+    def element(self, kind, eid, tape, *ints):
+        """Add an element of `kind` to the table: its tape and its ints in the catalogue's
+        layout."""
+        if len(ints) != len(catalogue.ELEMENT_OF_KIND[kind].ints):
+            raise AssertionError(f"{kind} {eid}: {len(ints)} ints for its layout")
+        self.elements.append((kind, eid, tape, tuple(int(v) for v in ints)))
+
     def new_tape(self):
         t = _Tape(self)
         self.tapes.append(t)
@@ -457,35 +464,34 @@ class Compiler:
 
     def compile(self):
         model = self.model
-        self.pen = []
+        #: the element table, in the kernel's order: (kind, id, tape, ints)
+        self.elements = []
         for pid in sorted(model.penalties):
             ti, t = self.new_tape()
-            g, f = self.penalty_force(t, pid)
-            self.pen.append((ti, g, f))
-        self.sf = []
+            self.element("penalty", pid, ti, *self.penalty_force(t, pid))
         for sid in sorted(model.sforces):
             sf = model.sforces[sid]
             ti, t = self.new_tape()
             self.marker(t, sf.i)          # I's body first, then J's: the kernel relies on it
             self.marker(t, sf.j)
             f = self.lower(t, sf.expr)
-            self.sf.append((ti, f, int(sf.torque), self.midx[sf.i], self.midx[sf.j]))
-        self.vf = []
+            self.element("sforce", sid, ti, f, int(sf.torque), self.midx[sf.i], self.midx[sf.j])
         for vid in sorted(model.vforces):
             vf = model.vforces[vid]
             ti, t = self.new_tape()
             mi, si = self.marker(t, vf.i)
             _, sj = self.marker(t, vf.j)
             mr, sr = self.marker(t, vf.ref)
-            self.vf.append((ti, [self.lower(t, e) for e in vf.exprs], mi, si, sj, mr, sr))
-        self.mot = []
+            self.element("vforce", vid, ti, *[self.lower(t, e) for e in vf.exprs], mi, si, sj,
+                         mr, sr)
         for k, mid in enumerate(self.layout.motion_ids):
             ti, t = self.new_tape()
-            self.mot.append((ti, *self.motion(t, model.motions[mid]), self.layout.lam[k],
-                             self.layout.rate[k]))
+            g, gd, f, kind = self.motion(t, model.motions[mid])
+            self.element("motion", mid, ti, f, gd, g, kind, self.layout.lam[k],
+                         self.layout.rate[k])
         # forces that read SENVAL need a restart with consistent yp when a value is stored
         self.forces_use_senval = any(self.tapes[t].uses_senval
-                                     for t, *_ in self.pen + self.sf + self.vf)
+                                     for kind, _, t, _ in self.elements if kind != "motion")
         self.sensor = []
         cmp = {"GE": lib.PS_CMP_GE, "LT": lib.PS_CMP_LT, "EQ": lib.PS_CMP_EQ}
         for sid in sorted(model.sensors):
@@ -575,7 +581,7 @@ class Compiler:
         inertia = [b.inertia if b.kind == "rigid" else np.zeros((3, 3)) for b in lay.bodies]
         return dict(
             ny=lay.ny, nbody=len(lay.bodies), nmarker=len(self.markers), ntape=len(self.tapes),
-            npen=len(self.pen), nsf=len(self.sf), nout=len(self.out),
+            nout=len(self.out),
             hd_stride=stride,
             max_slots=max(tlen, default=1) or 1, max_bslots=max(tnbody, default=1) or 1,
             gravity=list(model.gravity), force_scale=model.force_scale,
@@ -594,19 +600,12 @@ class Compiler:
             consts=f64(self.consts), basis_kind=i32(bkind), basis_idx=i32(bidx),
             tbody_body=i32(tb_body), tbody_q=i32(tb_q), tbody_u=i32(tb_u), tbody_a=i32(tb_a),
             tbody_w=i32(tb_w),
-            pen_tape=i32([p[0] for p in self.pen]), pen_g=i32([p[1] for p in self.pen]),
-            pen_f=i32([p[2] for p in self.pen]),
-            sf_tape=i32([s[0] for s in self.sf]), sf_f=i32([s[1] for s in self.sf]),
-            sf_torque=i32([s[2] for s in self.sf]), sf_i=i32([s[3] for s in self.sf]),
-            sf_j=i32([s[4] for s in self.sf]),
-            nvf=len(self.vf), vf_tape=i32([v[0] for v in self.vf]),
-            vf_f=i32([f for v in self.vf for f in v[1]]), vf_i=i32([v[2] for v in self.vf]),
-            vf_si=i32([v[3] for v in self.vf]), vf_sj=i32([v[4] for v in self.vf]),
-            vf_r=i32([v[5] for v in self.vf]), vf_sr=i32([v[6] for v in self.vf]),
-            nmotion=len(self.mot), mot_tape=i32([x[0] for x in self.mot]),
-            mot_g=i32([x[1] for x in self.mot]), mot_gd=i32([x[2] for x in self.mot]),
-            mot_f=i32([x[3] for x in self.mot]), mot_kind=i32([x[4] for x in self.mot]),
-            mot_lam=i32([x[5] for x in self.mot]), mot_w=i32([x[6] for x in self.mot]),
+            nel=len(self.elements),
+            el_kind=i32([getattr(lib, catalogue.ELEMENT_OF_KIND[k].c) for k, *_ in self.elements]),
+            el_tape=i32([t for _, _, t, _ in self.elements]),
+            el_adr=i32(np.cumsum([0] + [len(v) for *_, v in self.elements])[:-1]),
+            el_int=i32([i for *_, v in self.elements for i in v]),
+            state_alg=i32(np.isin(np.arange(lay.ny), lay.algebraic)),
             out_tape=i32([o[0] for o in self.out]), out_slot=i32([o[1] for o in self.out]),
             nsensor=len(self.sensor), sensor_tape=i32([x[0] for x in self.sensor]),
             sensor_slot=i32([x[1] for x in self.sensor]),

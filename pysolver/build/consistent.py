@@ -13,10 +13,12 @@ state is made consistent in three steps, each the smallest change that does it:
 """
 import numpy as np
 
+from ..catalogue import ELEMENT_OF_KIND
 from ..options import SPARSE_THRESHOLD
 from ..rotations import G
 from .bindings import ffi, lib
 
+MOTION = ELEMENT_OF_KIND["motion"]
 
 class _Jac:
     """The iteration matrix at cj, dense or (from SPARSE_THRESHOLD states) sparse, with the
@@ -46,7 +48,8 @@ def consistent(kernel, t, y, iters=8):
     u_idx = np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" else 6))
                             for b, ua in zip(lay.bodies, lay.uadr)]).astype(int)
     yp = np.zeros_like(y)
-    kinds = kernel.arrays["mot_kind"]
+    kinds = np.array([ints[MOTION.field("kind")] for kind, _, _, ints in kernel.elements
+                      if kind == "motion"])
     disp = np.nonzero(kinds == lib.PS_MOTION_D)[0]
     # 1. positions
     for _ in range(iters if len(disp) else 0):
@@ -119,9 +122,9 @@ def _motion_g(kernel, t, y):
     """The motions' g: the driven measure, less the expression for displacement motions."""
     fb = ffi.from_buffer
     yv, ypv = fb("double[]", np.ascontiguousarray(y)), fb("double[]", np.zeros_like(y))
-    a = kernel.arrays
-    return np.array([lib.ps_eval_tape(kernel.m, kernel.d, int(tape), int(slot), t, yv, ypv)
-                     for tape, slot in zip(a["mot_tape"], a["mot_g"])])
+    g = MOTION.field("g")
+    return np.array([lib.ps_eval_tape(kernel.m, kernel.d, tape, ints[g], t, yv, ypv)
+                     for kind, _, tape, ints in kernel.elements if kind == "motion"])
 
 
 def _move(lay, y, du):

@@ -62,6 +62,7 @@ class Kernel:
         self.params = comp.params               # sweep parameters: path -> slot in consts
         self.marker_index = dict(comp.midx)     # marker id -> its row in the marker arrays
         self.forces_use_senval = comp.forces_use_senval
+        self.elements = comp.elements           # the element table: (kind, id, tape, ints)
         self.nsensor = arrays["nsensor"]
         self.ny = arrays["ny"]
         self.ntape = arrays["ntape"]
@@ -383,7 +384,7 @@ class Kernel:
         expressions use accelerations). dF/dyp is the difference of the iteration matrix at
         cj = 1 and cj = 0; large scenes use the sparse path. With motions y is made consistent
         too, in place (pysolver.build.consistent)."""
-        if self.arrays["nmotion"]:
+        if self.layout.motion_ids:
             return consistent(self, t, y)
         sparse = self.ny >= SPARSE_THRESHOLD
         if not sparse:                     # in C: a residual, two Jacobians, LU, per step

@@ -10,14 +10,20 @@ from ..build.bindings import lib
 _SHOWN = 12        # state entries quoted in a message
 
 
-def _elements(model):
-    """bad_kind -> (element type name, elements in the kernel's order, expression texts)."""
-    def texts(e):
-        return [e.text] if hasattr(e, "text") else list(e.texts)
-    kinds = {getattr(lib, e.bad): (e.tags[0], getattr(model, e.table))
-             for e in catalogue.ELEMENTS if e.bad}
-    return {k: (name, [table[i] for i in sorted(table)], texts) for k, (name, table) in
-            kinds.items()}
+def _texts(e):
+    return [e.text] if hasattr(e, "text") else list(e.texts)
+
+
+def _element(model, kernel, kind, index):
+    """(type name, record) of the element a PS_BAD_* value and index name: a row of the
+    kernel's element table, or a record of a kind diagnosed on its own (sensors, by id)."""
+    if kind == lib.PS_BAD_ELEMENT:
+        name, eid, *_ = kernel.elements[index]
+        e = catalogue.ELEMENT_OF_KIND[name]
+        return e.tags[0], getattr(model, e.table)[eid]
+    e = next(e for e in catalogue.ELEMENTS if e.bad and getattr(lib, e.bad) == kind)
+    table = getattr(model, e.table)
+    return e.tags[0], table[sorted(table)[index]]
 
 
 def _state(names, y):
@@ -47,9 +53,8 @@ def describe(model, kernel):
         what = (f"the Jacobian, {entry} (a derivative of an expression is infinite, such as "
                 f"SQRT or ACOS at the end of its domain)")
     else:
-        name, elements, texts = _elements(model)[kind]
-        e = elements[index]
-        what = f"{name} {e.id}: " + "; ".join(texts(e))
+        name, e = _element(model, kernel, kind, index)
+        what = f"{name} {e.id}: " + "; ".join(_texts(e))
         if getattr(e, "usersub", None) is not None:
             what += f" (user subroutine {e.usersub.name})"
     number = "nan" if math.isnan(value) else f"{value:g}"

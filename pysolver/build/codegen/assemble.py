@@ -1,6 +1,10 @@
 """The residual F(t, y, yp), the iteration matrix dF/dy + cj dF/dyp, the sensor expressions
 and the request channels of a :class:`~.scene.Scene`, as graph nodes (csrc/residual.c)."""
+from ... import catalogue
 from ..bindings import lib
+
+#: The element table's kinds by their PS_EL_* value.
+KINDS = {getattr(lib, e.c): e for e in catalogue.TABLE_KINDS}
 
 
 class Assembly:
@@ -30,10 +34,12 @@ class Assembly:
         if bodies:
             self._inertia()
         if elements:
-            self._penalties()
-            self._scalar_forces()
-            self._vector_forces()
-            self._motions()
+            for e in range(int(a["nel"])):
+                kind = KINDS[int(a["el_kind"][e])]
+                adr = int(a["el_adr"][e])
+                ints = [int(v) for v in a["el_int"][adr:adr + len(kind.ints)]]
+                # one contribution per kind, as csrc/elements/<kind>.c
+                getattr(self, "_" + kind.kind)(int(a["el_tape"][e]), *ints)
         self.trip = self._jacobian()
         self.sensors = [scene.tape(int(t))[int(s)]
                         for t, s in zip(a["sensor_tape"][:a["nsensor"]],
@@ -82,12 +88,9 @@ class Assembly:
             for i in range(s.nu(b)):
                 self.scatter(ua + i, g.mul(F, s.rate_coeff(gnode, b, i)))
 
-    def _penalties(self):
-        a, s = self.s.a, self.s
-        for p in range(int(a["npen"])):
-            tape = int(a["pen_tape"][p])
-            slots = s.tape(tape)
-            self.rate_force(tape, slots[a["pen_g"][p]], slots[a["pen_f"][p]])
+    def _penalty(self, tape, g, f):
+        slots = self.s.tape(tape)
+        self.rate_force(tape, slots[g], slots[f])
 
     def apply_at(self, tape, slot, P, F, Mo, sign):
         """Generalized forces of a global force F at the global point P and a moment Mo."""
@@ -117,57 +120,48 @@ class Assembly:
         P = s.pos(tape, mk, slot) if F is not None and rigid else None
         self.apply_at(tape, slot, P, F, Mo, sign)
 
-    def _scalar_forces(self):
-        s, g, a = self.s, self.s.g, self.s.a
-        mb = a["marker_body"]
-        for k in range(int(a["nsf"])):
-            tape = int(a["sf_tape"][k])
-            f = s.tape(tape)[a["sf_f"][k]]
-            mi, mj = int(a["sf_i"][k]), int(a["sf_j"][k])
-            si = -1 if mb[mi] < 0 else 0
-            sj = -1 if mb[mj] < 0 else (0 if mb[mi] < 0 or mb[mi] == mb[mj] else 1)
-            if a["sf_torque"][k]:
-                X = s.axes(tape, mj, sj)
-                vec = [g.mul(f, X[3 * i + 2]) for i in range(3)]
-                self.apply_load(tape, mi, si, None, vec, 1.0)
-                self.apply_load(tape, mj, sj, None, vec, -1.0)
-                continue
-            rel = g.vsub(s.pos(tape, mi, si), s.pos(tape, mj, sj))
-            inv = s.norm(rel, lambda n2: g.div(g.one, g.fn("sqrt", n2)))
-            vec = [g.mul(g.mul(r, inv), f) for r in rel]
-            self.apply_load(tape, mi, si, vec, None, 1.0)
-            self.apply_load(tape, mj, sj, vec, None, -1.0)
+    def _sforce(self, tape, f, torque, mi, mj):
+        s, g = self.s, self.s.g
+        mb = s.a["marker_body"]
+        f = s.tape(tape)[f]
+        si = -1 if mb[mi] < 0 else 0
+        sj = -1 if mb[mj] < 0 else (0 if mb[mi] < 0 or mb[mi] == mb[mj] else 1)
+        if torque:
+            X = s.axes(tape, mj, sj)
+            vec = [g.mul(f, X[3 * i + 2]) for i in range(3)]
+            self.apply_load(tape, mi, si, None, vec, 1.0)
+            self.apply_load(tape, mj, sj, None, vec, -1.0)
+            return
+        rel = g.vsub(s.pos(tape, mi, si), s.pos(tape, mj, sj))
+        inv = s.norm(rel, lambda n2: g.div(g.one, g.fn("sqrt", n2)))
+        vec = [g.mul(g.mul(r, inv), f) for r in rel]
+        self.apply_load(tape, mi, si, vec, None, 1.0)
+        self.apply_load(tape, mj, sj, vec, None, -1.0)
 
-    def _vector_forces(self):
-        s, g, a = self.s, self.s.g, self.s.a
-        for k in range(int(a["nvf"])):
-            tape = int(a["vf_tape"][k])
-            slots = s.tape(tape)
-            f = [slots[a["vf_f"][3 * k + j]] for j in range(3)]
-            X = s.axes(tape, int(a["vf_r"][k]), int(a["vf_sr"][k]))
-            F = []
-            for i in range(3):
-                v = g.zero
-                for j in range(3):
-                    v = g.add(v, g.mul(X[3 * i + j], f[j]))
-                F.append(v)
-            mi, si = int(a["vf_i"][k]), int(a["vf_si"][k])
-            P = s.pos(tape, mi, si)
-            self.apply_at(tape, -1 if a["marker_body"][mi] < 0 else si, P, F, None, 1.0)
-            self.apply_at(tape, int(a["vf_sj"][k]), P, F, None, -1.0)
+    def _vforce(self, tape, fx, fy, fz, mi, si, sj, r, sr):
+        s, g = self.s, self.s.g
+        slots = s.tape(tape)
+        f = [slots[fx], slots[fy], slots[fz]]
+        X = s.axes(tape, r, sr)
+        F = []
+        for i in range(3):
+            v = g.zero
+            for j in range(3):
+                v = g.add(v, g.mul(X[3 * i + j], f[j]))
+            F.append(v)
+        P = s.pos(tape, mi, si)
+        self.apply_at(tape, -1 if s.a["marker_body"][mi] < 0 else si, P, F, None, 1.0)
+        self.apply_at(tape, sj, P, F, None, -1.0)
 
-    def _motions(self):
-        s, g, a = self.s, self.s.g, self.s.a
-        for k in range(int(a["nmotion"])):
-            tape, lam, w = int(a["mot_tape"][k]), int(a["mot_lam"][k]), int(a["mot_w"][k])
-            kind = int(a["mot_kind"][k])
-            slots = s.tape(tape)
-            gn, gd, f = slots[a["mot_g"][k]], slots[a["mot_gd"][k]], slots[a["mot_f"][k]]
-            self.rate_force(tape, gn, s.y[lam])
-            target = f if kind == lib.PS_MOTION_V else s.y[w] if kind == lib.PS_MOTION_A else g.zero
-            self.res[lam] = g.sub(gd, target)
-            if kind == lib.PS_MOTION_A:
-                self.res[w] = g.sub(s.yp[w], f)
+    def _motion(self, tape, f, gd, gn, kind, lam, w):
+        s, g = self.s, self.s.g
+        slots = s.tape(tape)
+        gn, gd, f = slots[gn], slots[gd], slots[f]
+        self.rate_force(tape, gn, s.y[lam])
+        target = f if kind == lib.PS_MOTION_V else s.y[w] if kind == lib.PS_MOTION_A else g.zero
+        self.res[lam] = g.sub(gd, target)
+        if kind == lib.PS_MOTION_A:
+            self.res[w] = g.sub(s.yp[w], f)
 
     # the iteration matrix ---------------------------------------------------------------
     def _jacobian(self):

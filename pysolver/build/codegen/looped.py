@@ -16,7 +16,7 @@ part per tape they read, writing the sensors or channels in their table.
 import numpy as np
 
 from ..bindings import lib
-from .assemble import Assembly
+from .assemble import KINDS, Assembly
 from .emit import STRIDE, Emitter
 from .scene import OP, Scene
 from .sym import Unsupported
@@ -28,7 +28,8 @@ _MARKERS = {OP["MEASURE"]: (2, 3, 4, 5), OP["AXDOT"]: (1, 3)}
 _CONSTS = {OP["CONST"]: (1,), OP["STEPC"]: (2, 3, 4, 5)}
 
 #: The arrays of an element-free scene, to which a part adds its own.
-_NO_ELEMENTS = {"npen": 0, "nsf": 0, "nvf": 0, "nmotion": 0, "nsensor": 0, "nout": 0,
+_NO_ELEMENTS = {"nel": 0, "el_kind": [], "el_tape": [], "el_adr": [], "el_int": [],
+                "nsensor": 0, "nout": 0,
                 "sensor_tape": [], "sensor_slot": [], "out_tape": [], "out_slot": []}
 
 
@@ -150,33 +151,17 @@ def parts(a):
         p = Part(a)
         p.body(b)
         out.append((p, p.finish()))
-    for k in range(int(a["npen"])):
+    for e in range(int(a["nel"])):
+        kind = KINDS[int(a["el_kind"][e])]
+        adr = int(a["el_adr"][e])
         p = Part(a)
-        out.append((p, p.finish(npen=1, pen_tape=[p.tape(int(a["pen_tape"][k]))],
-                                pen_g=[int(a["pen_g"][k])], pen_f=[int(a["pen_f"][k])])))
-    for k in range(int(a["nsf"])):
-        p = Part(a)
-        tape = p.tape(int(a["sf_tape"][k]))
-        out.append((p, p.finish(nsf=1, sf_tape=[tape], sf_f=[int(a["sf_f"][k])],
-                                sf_torque=[int(a["sf_torque"][k])],
-                                sf_i=[p.marker(int(a["sf_i"][k]))],
-                                sf_j=[p.marker(int(a["sf_j"][k]))])))
-    for k in range(int(a["nvf"])):
-        p = Part(a)
-        tape = p.tape(int(a["vf_tape"][k]))
-        out.append((p, p.finish(
-            nvf=1, vf_tape=[tape], vf_f=[int(v) for v in a["vf_f"][3 * k:3 * k + 3]],
-            vf_r=[p.marker(int(a["vf_r"][k]))], vf_sr=[int(a["vf_sr"][k])],
-            vf_i=[p.marker(int(a["vf_i"][k]))], vf_si=[int(a["vf_si"][k])],
-            vf_sj=[int(a["vf_sj"][k])])))
-    for k in range(int(a["nmotion"])):
-        p = Part(a)
-        tape = p.tape(int(a["mot_tape"][k]))
-        out.append((p, p.finish(
-            nmotion=1, mot_tape=[tape], mot_lam=[p.state(int(a["mot_lam"][k]))],
-            mot_w=[p.state(int(a["mot_w"][k]))], mot_kind=[int(a["mot_kind"][k])],
-            mot_g=[int(a["mot_g"][k])], mot_gd=[int(a["mot_gd"][k])],
-            mot_f=[int(a["mot_f"][k])])))
+        tape = p.tape(int(a["el_tape"][e]))
+        # markers and states renumbered into the part's own; slots, flags and body slots kept
+        renumber = {"marker": p.marker, "state": p.state}
+        ints = [renumber.get(field.split(":")[1], int)(int(v))
+                for field, v in zip(kind.ints, a["el_int"][adr:adr + len(kind.ints)])]
+        out.append((p, p.finish(nel=1, el_kind=[int(a["el_kind"][e])], el_tape=[tape],
+                                el_adr=[0], el_int=ints)))
     return out
 
 

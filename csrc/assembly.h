@@ -1,0 +1,98 @@
+/* The assembly pass shared by the residual (csrc/residual.c) and the element kinds'
+ * contributions (csrc/elements/<kind>.c): where rows and iteration-matrix entries go, and the
+ * generalized forces of loads on bodies. */
+#ifndef PYSOLVER_ASSEMBLY_H
+#define PYSOLVER_ASSEMBLY_H
+
+#include <stddef.h>
+
+#include "internal.h"
+
+/* Scratch numbers for force assembly in d->tmp (PS_TMP_TAPE and up). */
+#define F_RI 64
+#define F_RJ 67
+#define F_REL 70
+#define F_LEN 73
+#define F_DIR 74
+#define F_VEC 77
+#define F_MOM 80
+#define F_P 83
+#define F_CR 86
+#define F_SC 89
+#define F_Q 91
+#define F_CI 92
+#define F_PT 93
+#define F_FV 96
+
+/* Where derivatives go: a dense row-major matrix, or a list of (row, col, value) triplets
+ * whose order depends only on the model's structure (used for sparse CSC matrices). */
+typedef struct Assembly {
+  double* res;
+  double* jac;   /* dense (ny x ny), or NULL */
+  double* trip;  /* triplet values, or NULL */
+  int* trow;     /* triplet rows, or NULL (values only) */
+  int* tcol;     /* triplet columns, or NULL */
+  int k;         /* number of triplets written */
+  int deriv;     /* 1 when derivatives are wanted */
+  double cj;
+  int ny;
+} Assembly;
+
+/* Add v to the iteration matrix entry (row, col). */
+static inline void jadd(Assembly* as, int row, int col, double v) {
+  if (as->jac) {
+    as->jac[(long)row * as->ny + col] += v;
+    return;
+  }
+  if (as->trow) {
+    as->trow[as->k] = row;
+    as->tcol[as->k] = col;
+  }
+  if (as->trip) as->trip[as->k] = v;
+  as->k++;
+}
+
+/* Subtract force_scale * Q from residual row `row`, and its derivatives from the Jacobian. */
+static inline void ps_scatter(const psModel* m, const psuHD* c, int tape, int row,
+                              const double* Q, Assembly* as) {
+  double cf = m->force_scale;
+  as->res[row] -= cf * Q[0];
+  if (!as->deriv) return;
+  int badr = m->tape_basis_adr[tape];
+  for (int j = 0; j < c->n; j++) {
+    int kind = m->basis_kind[badr + j];
+    if (kind == PS_BASIS_T) continue;
+    jadd(as, row, m->basis_idx[badr + j],
+         -cf * Q[1 + j] * (kind == PS_BASIS_YP ? as->cj : 1.0));
+  }
+}
+
+/* Generalized forces on the body in tape slot `slot` (-1: none) of a global force F at the
+ * global point P and a global moment Mo (hyper-duals; F, P or Mo may be NULL), times sign. */
+void ps_apply_at(const psModel* m, psData* d, const psuHD* c, int tape, int slot,
+                 const double* P, const double* F, const double* Mo, double sign, Assembly* as);
+
+/* Generalized forces of a global force F at marker mk and a global moment Mo on its body. */
+void ps_apply_load(const psModel* m, psData* d, const psuHD* c, int tape, int mk, int slot,
+                   const double* F, const double* Mo, double sign, Assembly* as);
+
+/* Q_i = F c_i, c_i = d(g')/du_i, for every free body the tape reads; when lam >= 0 (a
+ * reaction, F = y[lam]) also the Jacobian column of lam. */
+void ps_rate_force(const psModel* m, psData* d, const psuHD* c, const double* g, int tape,
+                   const double* F, int lam, Assembly* as);
+
+/* One element kind: its contribution to the rows (csrc/elements/<kind>.c), given the element's
+ * ints I (its layout in pysolver/catalogue.py) after its tape has run, and how the kernel runs
+ * that tape and diagnoses it. */
+typedef struct psElementKind {
+  void (*assemble)(const psModel* m, psData* d, const psuHD* c, int tape, const int* I,
+                   double t, const double* y, const double* yp, Assembly* as);
+  int nint;     /* ints of its layout in el_int                                       */
+  int nvalue;   /* its leading ints that are tape slots of its values (diagnosis)      */
+  int order;    /* least derivative order of its tape's run (1: rates of g read)       */
+} psElementKind;
+
+/* The kinds, indexed by PS_EL_* (csrc/elements/table.c). */
+extern const psElementKind ps_element_kinds[PS_EL_COUNT];
+
+#endif

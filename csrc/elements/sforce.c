@@ -1,0 +1,46 @@
+/* Force_Scalar_TwoBody: a force of magnitude f along the line from J to I, or a torque f about
+ * z of J. Ints: f (slot), torque (0 or 1), I, J (markers). */
+#include <math.h>
+
+#include "../assembly.h"
+
+void ps_el_sforce(const psModel* m, psData* d, const psuHD* c, int tape, const int* I,
+                  double t, const double* y, const double* yp, Assembly* as) {
+  (void)t; (void)y; (void)yp;
+  int s = c->stride;
+  const double* f = ps_slot(m, d, I[0]);
+  int mi = I[2], mj = I[3];
+  /* body slots of I and J in this tape: the compiler puts them first */
+  int si = m->marker_body[mi] < 0 ? -1 : 0;
+  int sj = m->marker_body[mj] < 0 ? -1 : (m->marker_body[mi] < 0 ||
+                                           m->marker_body[mi] == m->marker_body[mj] ? 0 : 1);
+  double* vec = ps_tmp(m, d, F_VEC);
+  if (I[1]) {
+    double* X = ps_tmp(m, d, F_RI);
+    ps_marker_axes(m, d, c, mj, sj, X);
+    for (int i = 0; i < 3; i++) psu_hd_mul(c, vec + i * s, f, X + (3 * i + 2) * s);
+    ps_apply_load(m, d, c, tape, mi, si, NULL, vec, 1.0, as);
+    ps_apply_load(m, d, c, tape, mj, sj, NULL, vec, -1.0, as);
+    return;
+  }
+  double* ri = ps_tmp(m, d, F_RI);
+  double* rj = ps_tmp(m, d, F_RJ);
+  double* rel = ps_tmp(m, d, F_REL);
+  double* len = ps_tmp(m, d, F_LEN);
+  ps_marker_pos(m, d, c, mi, si, ri);
+  ps_marker_pos(m, d, c, mj, sj, rj);
+  for (int i = 0; i < 3; i++) psu_hd_lin(c, rel + i * s, 1.0, ri + i * s, -1.0, rj + i * s, 0.0);
+  psu_hd_dot(c, len, rel, rel, ps_tmp(m, d, F_SC));
+  double L = sqrt(len[0]);
+  /* coincident markers: no direction, no force (derivatives still written as zeros) */
+  if (L == 0.0)
+    psu_hd_const(c, len, 0.0);
+  else
+    psu_hd_unary(c, len, len, 1.0 / L, -0.5 / (L * L * L), 0.0);
+  for (int i = 0; i < 3; i++) {
+    psu_hd_mul(c, vec + i * s, rel + i * s, len);
+    psu_hd_mul(c, vec + i * s, vec + i * s, f);
+  }
+  ps_apply_load(m, d, c, tape, mi, si, vec, NULL, 1.0, as);
+  ps_apply_load(m, d, c, tape, mj, sj, vec, NULL, -1.0, as);
+}

@@ -1,0 +1,26 @@
+/* The element kinds (csrc/assembly.h), indexed by PS_EL_*; pysolver/catalogue.py declares the
+ * same layouts (tests/test_catalogue.py compares them through ps_element_layout). */
+#include "../assembly.h"
+
+#define KIND(name) void ps_el_##name(const psModel* m, psData* d, const psuHD* c, int tape, \
+                                     const int* I, double t, const double* y,             \
+                                     const double* yp, Assembly* as);
+KIND(penalty)
+KIND(sforce)
+KIND(vforce)
+KIND(motion)
+
+const psElementKind ps_element_kinds[PS_EL_COUNT] = {
+  [PS_EL_PENALTY] = {ps_el_penalty, 2, 2, 1},
+  [PS_EL_SFORCE] = {ps_el_sforce, 4, 1, 0},
+  [PS_EL_VFORCE] = {ps_el_vforce, 8, 3, 0},
+  [PS_EL_MOTION] = {ps_el_motion, 6, 2, 1},
+};
+
+int ps_element_layout(int kind, int* nint, int* nvalue, int* order) {
+  if (kind < 0 || kind >= PS_EL_COUNT) return -1;
+  *nint = ps_element_kinds[kind].nint;
+  *nvalue = ps_element_kinds[kind].nvalue;
+  *order = ps_element_kinds[kind].order;
+  return PS_OK;
+}
