@@ -67,3 +67,41 @@ void ps_rate_force(const psModel* m, psData* d, const psuHD* c, const double* g,
     }
   }
 }
+
+void ps_hold_position(const psModel* m, psData* d, const psuHD* c, int tape, const double* g,
+                      int mu, const double* y, Assembly* as) {
+  double* gj = ps_tmp(m, d, F_CI);
+  int badr = m->tape_basis_adr[tape], nq = m->tape_nh[tape] - 1;
+  double mv = y[mu];
+  as->res[mu] = g[0];
+  if (as->deriv)
+    for (int j = 0; j < c->n; j++) {
+      int kind = m->basis_kind[badr + j];
+      if (kind == PS_BASIS_T) continue;
+      jadd(as, mu, m->basis_idx[badr + j], g[1 + j] * (kind == PS_BASIS_YP ? as->cj : 1.0));
+    }
+  /* the leading nq basis entries are the positions q of the tape's bodies */
+  for (int j = 0; j < nq; j++) {
+    int row = m->basis_idx[badr + j];
+    psu_hd_gradcomp(c, gj, g, j);
+    as->res[row] -= mv * gj[0];
+    if (!as->deriv) continue;
+    jadd(as, row, mu, -gj[0]);
+    for (int i = 0; i < nq; i++) jadd(as, row, m->basis_idx[badr + i], -mv * gj[1 + i]);
+  }
+}
+
+void ps_hold_rate(const psModel* m, psData* d, const psuHD* c, int tape, const double* g,
+                  const double* gd, int lam, const double* y, Assembly* as) {
+  double* L = ps_tmp(m, d, F_LEN);
+  psu_hd_const(c, L, y[lam]);
+  ps_rate_force(m, d, c, g, tape, L, lam, as);
+  as->res[lam] = gd[0];
+  if (!as->deriv) return;
+  int badr = m->tape_basis_adr[tape];
+  for (int j = 0; j < c->n; j++) {
+    int bk = m->basis_kind[badr + j];
+    if (bk == PS_BASIS_T) continue;
+    jadd(as, lam, m->basis_idx[badr + j], gd[1 + j] * (bk == PS_BASIS_YP ? as->cj : 1.0));
+  }
+}

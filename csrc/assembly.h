@@ -81,6 +81,19 @@ void ps_apply_load(const psModel* m, psData* d, const psuHD* c, int tape, int mk
 void ps_rate_force(const psModel* m, psData* d, const psuHD* c, const double* g, int tape,
                    const double* F, int lam, Assembly* as);
 
+/* A reaction lam (a state, model force units) that holds g' at a target: it acts like a
+ * penalty force F = lam along c_i = d(g')/du_i, and its own row is g' (the caller subtracts
+ * the target). The row has no lam in it (index 2): lam is left out of IDA's error test. */
+void ps_hold_rate(const psModel* m, psData* d, const psuHD* c, int tape, const double* g,
+                  const double* gd, int lam, const double* y, Assembly* as);
+
+/* Hold g = 0 at the position level (the stabilization of Gear, Gupta and Leimkuhler, with
+ * the velocity level g' = 0 in the reaction's own row): row mu is g, and every position row
+ * q_j of the tape's bodies gets -mu dg/dq_j, which vanishes on the exact solution (mu = 0)
+ * and lets the corrector satisfy both levels. g's tape ran at one order above as->deriv. */
+void ps_hold_position(const psModel* m, psData* d, const psuHD* c, int tape, const double* g,
+                      int mu, const double* y, Assembly* as);
+
 /* One element kind: its contribution to the rows (csrc/elements/<kind>.c), given the element's
  * ints I (its layout in pysolver/catalogue.py) after its tape has run, and how the kernel runs
  * that tape and diagnoses it. */

@@ -64,6 +64,8 @@ struct psIDA {
   SUNMatrix A;            /* dense or band matrix                                   */
   SUNLinearSolver LS;     /* linear solver                                          */
   int band;               /* 1: band matrix filled through map                      */
+  int hit;                /* 1: the model has reactions; IDA ends a step at every
+                             requested time (ps_ida_solve)                          */
   int sparse;             /* 1: CSC matrix (SuperLU_MT) filled through map          */
   const int* map;         /* (ntrip x 1) band or CSC storage index of each triplet  */
   const int* colptr;      /* (ny + 1) CSC column pointers of the fixed pattern      */
@@ -256,6 +258,8 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   release(s);
   s->m = m;
   s->d = d;
+  s->hit = 0;
+  for (int i = 0; i < m->ny; i++) s->hit |= m->state_alg[i];
   s->msg[0] = '\0';
   SET(s, CALL(s, SUNContext_Create)(0, &s->ctx), "SUNContext_Create");
   CALL(s, SUNContext_ClearErrHandlers)(s->ctx); /* C never prints: flags are returned */
@@ -361,6 +365,9 @@ int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0) {
 int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret, double* y,
                  double* yp, int* rootsfound) {
   int n = s->m->ny;
+  /* constraints hold at the steps, not on IDA's interpolant between them: with reactions,
+   * every requested time is a step's end */
+  if (s->hit && !onestep && tout < tstop) tstop = tout;
   int flag = CALL(s, IDASetStopTime)(s->mem, tstop);
   if (flag < 0) return flag;
   flag = CALL(s, IDASolve)(s->mem, tout, tret, s->y, s->yp, onestep ? 2 : 1);

@@ -8,7 +8,11 @@ Everything else reads this table: the parser's names, arities and id arguments
 tape basis (``build/compiler.py``), the generated C's tables (``build/codegen``) and the
 function table of docs/deck-language.md (``python -m pysolver.catalogue``). C cannot read it:
 tests/test_catalogue.py checks that ``csrc/include/pysolver.h``'s ``PS_OP_*`` and ``PS_M_*``
-enums and ``csrc/usersub.c``'s c_sysfnc table agree with it.
+enums and ``csrc/usersub.c``'s c_sysfnc table agree with it. The element kinds (their kernel
+layouts) and the joint types' equations are declared here too.
+
+Longer than 420 lines because it is a table: the functions, the element kinds and the joint
+types, each a record or a row, are the one place they are declared.
 """
 import operator
 import re
@@ -339,8 +343,11 @@ ELEMENTS = (
                   "r:marker", "sr:bslot"), values=3),
     Element(("Motion_Marker",), "motion", "motions", "MOTION",
             "a driven displacement, velocity or acceleration", c="PS_EL_MOTION",
-            ints=("f:slot", "gd:slot", "g:slot", "kind:flag", "lam:state", "w:state"), values=2,
-            order=1),
+            ints=("f:slot", "gd:slot", "g:slot", "kind:flag", "lam:state", "w:state",
+                  "mu:state"), values=2, order=1),
+    Element(("Constraint_Joint", "Constraint_Jprim"), "joint", "joints", "JOINT",
+            "a joint: equations that hold two markers' bodies together", c="PS_EL_JOINT",
+            ints=("g:slot", "gd:slot", "lam:state", "mu:state"), values=2, order=1),
     Element(("LoadControl",), "loadcontrol", "controls", "LOADCONTROL",
             "the LoadControl task (seed 002)"),
     Element(("Reference_Variable",), "variable", "variables", "VARIABLE",
@@ -357,6 +364,38 @@ ELEMENT_OF_TAG = {tag: e for e in ELEMENTS for tag in e.tags}
 ELEMENT_OF_KIND = {e.kind: e for e in ELEMENTS}
 #: The kinds of the kernel's element table, in the order of its PS_EL_* values.
 TABLE_KINDS = tuple(e for e in ELEMENTS if e.c)
+
+
+# joint types -----------------------------------------------------------------------------
+#: The equations g(q) = 0 of each Constraint_Joint / Constraint_Jprim type (elements.md 1.2):
+#: ("d", axis) a global component of d = oI - oJ, ("dJ", axis) d along an axis of J, ("dot",
+#: a, b) axis a of I dotted with axis b of J, ("dot2", a, b) that plus axis b of I with axis a
+#: of J; axes 0, 1, 2 are x, y, z. pysolver.deck.joints lowers them.
+_X, _Y, _Z = 0, 1, 2
+_D = [("d", _X), ("d", _Y), ("d", _Z)]
+
+JOINT_EQUATIONS = {
+    "SPHERICAL": _D,
+    "ATPOINT": _D,
+    "FIXED": _D + [("dot", _X, _Y), ("dot", _Y, _Z), ("dot", _Z, _X)],
+    "REVOLUTE": _D + [("dot", _X, _Z), ("dot", _Y, _Z)],
+    "TRANSLATIONAL": [("dot", _X, _Z), ("dot", _Y, _Z), ("dot", _X, _Y), ("dJ", _X), ("dJ", _Y)],
+    "CYLINDRICAL": [("dot", _X, _Z), ("dot", _Y, _Z), ("dJ", _X), ("dJ", _Y)],
+    "PLANAR": [("dot", _X, _Z), ("dot", _Y, _Z), ("dJ", _Z)],
+    "UNIVERSAL": _D + [("dot", _Z, _Z)],
+    "HOOKE": _D + [("dot", _X, _Y)],
+    "CONSTANT_VELOCITY": _D + [("dot2", _X, _Y)],
+    "INLINE": [("dJ", _X), ("dJ", _Y)],
+    "INPLANE": [("dJ", _Z)],
+    "ORIENTATION": [("dot", _X, _Y), ("dot", _Y, _Z), ("dot", _Z, _X)],
+    "PARALLEL_AXES": [("dot", _Z, _X), ("dot", _Z, _Y)],
+    "PERPENDICULAR": [("dot", _Z, _Z)],
+    "FREE": [],
+}
+
+#: Types MotionSolve lists that pysolver does not hold yet, and why.
+JOINTS_NOT_YET = {"RACK_PINION": "it needs the pinion's cumulative rotation angle",
+                  "SCREW": "it needs the cumulative rotation angle about the screw axis"}
 
 
 # the documentation's function table -----------------------------------------------------------

@@ -205,6 +205,8 @@ class Model:
                   f"{lc.load_text}, every {lc.update_time:g}" for lc in self.controls.values()]
         lines += [f"Motion_Marker {mo.id} ({mo.val_type} {mo.direction} I={mo.i} J={mo.j}): "
                   f"{mo.text}" for mo in self.motions.values() if mo.id > 0]  # not LoadControl's
+        lines += [f"Constraint_Joint {jo.id} ({jo.type} I={jo.i} J={jo.j})"
+                  for jo in self.joints.values()]
         lines += [f"Reference_Variable {v.id}: {v.text}" for v in self.variables.values()]
         lines += [f"Post_Request {r.id}: {sum(1 for t in r.texts if t)} channel(s)"
                   for r in self.requests.values()]
@@ -226,9 +228,12 @@ class Model:
         return "\n".join(lines)
 
     def num_states(self) -> int:
-        """IDA states: 6 per point body, 13 per rigid body, 1 per motion (2 for acceleration)."""
+        """IDA states: 6 per point body, 13 per rigid body, 1 per motion (2 for a displacement
+        or an acceleration), 2 per joint equation (its reactions at the velocity and the
+        position level)."""
         return (sum({"point": 6, "rigid": 13}.get(b.kind, 0) for b in self.bodies.values())
-                + sum(1 + (m.val_type == "A") for m in self.motions.values()))
+                + sum(1 + (m.val_type != "V") for m in self.motions.values())
+                + sum(2 * len(catalogue.JOINT_EQUATIONS[j.type]) for j in self.joints.values()))
 
     def __reduce__(self):
         return (_rebuild, (self.source.file, self.source.text, self.source.fmt,

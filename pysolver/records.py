@@ -134,6 +134,18 @@ class Motion:
 
 
 @record
+class Joint:
+    """Constraint_Joint (or Constraint_Jprim): marker I's body held to marker J's by the
+    equations of `type` (pysolver.deck.joints.EQUATIONS). The reactions are res.joint(id)."""
+    id: int
+    type: str
+    i: int
+    j: int
+    label: str = ""
+    virtual: bool = False
+
+
+@record
 class LoadControl:
     """The LoadControl task (seed 002): every update_time, the velocity of `body` along global
     axis `direction` (0, 1, 2) is set so that the load on it follows `load_expr` (a function of

@@ -80,6 +80,7 @@ enum psElement {
   PS_EL_SFORCE,      /* Force_Scalar_TwoBody */
   PS_EL_VFORCE,      /* Force_Vector_TwoBody */
   PS_EL_MOTION,      /* Motion_Marker */
+  PS_EL_JOINT,       /* one equation of a Constraint_Joint */
   PS_EL_COUNT
 };
 

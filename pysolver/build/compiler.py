@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from .. import catalogue
-from ..deck import motions
+from ..deck import joints, motions
 from ..deck.expr import CONSTANTS
 from ..errors import DeckError
 from ..rotations import e_from_rot
@@ -51,19 +51,33 @@ class Layout:
             un = ["vx", "vy", "vz"] + (["wx", "wy", "wz"] if nu == 6 else [])
             self.names += [f"body{b.id}.{n}" for n in qn + un]
             off += nq + nu
-        # per Motion_Marker its reaction (an algebraic state); an acceleration motion also
-        # the driven velocity, which integrates its expression
+        # per Motion_Marker its reaction lam (an algebraic state); a displacement motion also
+        # mu, which holds it at the position level, an acceleration motion the driven
+        # velocity w, which integrates its expression; then per joint equation lam and mu.
+        # lam, rate (w) and mu are aligned: motions first, in id order, then joints.
         self.motion_ids = sorted(model.motions)
-        self.lam, self.rate = [], []
+        self.lam, self.rate, self.mu = [], [], []
         for mid in self.motion_ids:
+            mo = model.motions[mid]
             self.lam.append(off)
             self.names.append(f"motion{mid}.reaction")
             off += 1
-            if model.motions[mid].val_type == "A":
-                self.names.append(f"motion{mid}.velocity")
+            self.rate.append(off if mo.val_type == "A" else -1)
+            self.mu.append(off if mo.val_type == "D" else -1)
+            if mo.val_type != "V":
+                self.names.append(f"motion{mid}." + ("velocity" if mo.val_type == "A" else
+                                                      "position_reaction"))
                 off += 1
-            self.rate.append(off - 1 if model.motions[mid].val_type == "A" else -1)
-        self.algebraic = list(self.lam)
+        self.joint_rows = []      # (joint id, equation index), aligned with the joints' lam
+        for jid in sorted(model.joints):
+            for k in range(len(catalogue.JOINT_EQUATIONS[model.joints[jid].type])):
+                self.joint_rows.append((jid, k))
+                self.lam.append(off)
+                self.mu.append(off + 1)
+                self.rate.append(-1)
+                self.names += [f"joint{jid}.reaction{k + 1}", f"joint{jid}.position_reaction{k + 1}"]
+                off += 2
+        self.algebraic = sorted(self.lam + [m for m in self.mu if m >= 0])
         self.ny = off
 
     def initial_state(self):
@@ -240,6 +254,10 @@ class Compiler:
             return tape.emit(lib.PS_OP_SENVAL, len(self.eidx) + node[1])
         if tag == "num":
             return tape.const(node[1])
+        if tag == "axdot":                # a joint's dot product of two markers' axes
+            mi, si = self.marker(tape, node[1])
+            mj, sj = self.marker(tape, node[3])
+            return tape.emit(lib.PS_OP_AXDOT, mi, node[2], mj, node[4], si, sj)
         if tag == "name":
             if node[1] == "TIME":
                 return tape.emit(lib.PS_OP_TIME)
@@ -457,6 +475,25 @@ class Compiler:
             raise AssertionError(f"{kind} {eid}: {len(ints)} ints for its layout")
         self.elements.append((kind, eid, tape, tuple(int(v) for v in ints)))
 
+    def joint(self, ti, tape, jo):
+        """A joint's equations g in one tape, each with g' (its rate, which the kernel holds
+        with the reaction lam; g itself with mu): one table row per equation."""
+        rows = [k for k, (jid, _) in enumerate(self.layout.joint_rows) if jid == jo.id]
+        base = len(self.layout.motion_ids)
+        self.marker(tape, jo.i)           # I's body first, then J's
+        self.marker(tape, jo.j)
+        for k, eq in zip(rows, catalogue.JOINT_EQUATIONS[jo.type]):
+            touched = set()
+            tape.touch.append(touched)
+            g = self.lower(tape, joints.equation_tree(jo, eq))
+            tape.touch.pop()
+            for s in touched:             # g' needs the velocities of g's bodies
+                tape.bodies[s][1] = True
+            gd = tape.emit(lib.PS_OP_GDOT, g)
+            tape.has_gdot = True
+            self.element("joint", jo.id, ti, g, gd, self.layout.lam[base + k],
+                         self.layout.mu[base + k])
+
     def new_tape(self):
         t = _Tape(self)
         self.tapes.append(t)
@@ -488,7 +525,10 @@ class Compiler:
             ti, t = self.new_tape()
             g, gd, f, kind = self.motion(t, model.motions[mid])
             self.element("motion", mid, ti, f, gd, g, kind, self.layout.lam[k],
-                         self.layout.rate[k])
+                         self.layout.rate[k], self.layout.mu[k])
+        for jid in sorted(model.joints):
+            ti, t = self.new_tape()
+            self.joint(ti, t, model.joints[jid])
         # forces that read SENVAL need a restart with consistent yp when a value is stored
         self.forces_use_senval = any(self.tapes[t].uses_senval
                                      for kind, _, t, _ in self.elements if kind != "motion")

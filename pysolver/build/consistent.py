@@ -13,12 +13,10 @@ state is made consistent in three steps, each the smallest change that does it:
 """
 import numpy as np
 
-from ..catalogue import ELEMENT_OF_KIND
 from ..options import SPARSE_THRESHOLD
 from ..rotations import G
-from .bindings import ffi, lib
 
-MOTION = ELEMENT_OF_KIND["motion"]
+
 
 class _Jac:
     """The iteration matrix at cj, dense or (from SPARSE_THRESHOLD states) sparse, with the
@@ -41,37 +39,39 @@ class _Jac:
 
 
 def consistent(kernel, t, y, iters=8):
-    """Make y consistent in place (positions, velocities, lam, w) and return yp."""
+    """Make y consistent in place (positions, velocities, lam, mu, w) and return yp."""
     lay = kernel.layout
-    lam = np.array(lay.lam)
+    lam, mu, rate = np.array(lay.lam), np.array(lay.mu), np.array(lay.rate)
     y[lam] = 0.0
+    y[mu[mu >= 0]] = 0.0
     u_idx = np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" else 6))
                             for b, ua in zip(lay.bodies, lay.uadr)]).astype(int)
     yp = np.zeros_like(y)
-    kinds = np.array([ints[MOTION.field("kind")] for kind, _, _, ints in kernel.elements
-                      if kind == "motion"])
-    disp = np.nonzero(kinds == lib.PS_MOTION_D)[0]
-    # 1. positions
+    disp = np.nonzero(mu >= 0)[0]          # held at the position level too
+    # 1. positions: g (the rows of mu) to zero along the reactions' directions
     for _ in range(iters if len(disp) else 0):
-        g = _motion_g(kernel, t, y)[disp]
+        g = kernel.residual_array(t, y, yp)[mu[disp]]
         if np.max(np.abs(g)) <= 1e-13 * (1.0 + np.max(np.abs(y))):
             break
         C = _Jac(kernel, t, y, yp, 0.0).block(lam[disp], u_idx)
         du = np.zeros(kernel.ny)
         du[u_idx] = C.T @ np.linalg.lstsq(C @ C.T, -g, rcond=None)[0]
         _move(lay, y, du)
+    else:
+        if len(disp):
+            _unassembled(kernel, lay, disp, kernel.residual_array(t, y, yp)[mu[disp]], y)
     # 2. velocities: A motions take w = g'; the others change u
     r = kernel.residual_array(t, y, yp)[lam]
-    for k, w in enumerate(lay.rate):
+    for k, w in enumerate(rate):
         if w >= 0:
             y[w] += r[k]
             r[k] = 0.0
-    held = np.nonzero(kinds != lib.PS_MOTION_A)[0]
+    held = np.nonzero(rate < 0)[0]
     if len(held):
         C = _Jac(kernel, t, y, yp, 0.0).block(lam[held], u_idx)
         y[u_idx] += C.T @ np.linalg.lstsq(C @ C.T, -r[held], rcond=None)[0]
     # 3. accelerations and reactions (linear in them unless forces read accelerations)
-    rows = np.setdiff1d(np.arange(kernel.ny), lam)
+    rows = np.setdiff1d(np.arange(kernel.ny), lay.algebraic)
     for _ in range(4):
         J0 = _Jac(kernel, t, y, yp, 0.0)
         D = _Jac(kernel, t, y, yp, 1.0).J - J0.J
@@ -88,6 +88,20 @@ def consistent(kernel, t, y, iters=8):
     return yp
 
 
+class AssemblyError(ValueError):
+    """No positions satisfy the constraints near the initial ones."""
+
+
+def _unassembled(kernel, lay, disp, g, y):
+    """Raise AssemblyError unless the position constraints hold after the Newton steps."""
+    if np.max(np.abs(g)) <= 1e-9 * (1.0 + np.max(np.abs(y))):
+        return
+    names = [kernel.layout.names[lay.mu[k]].split(".")[0] for k in disp[np.abs(g) > 1e-9]]
+    raise AssemblyError("the initial positions cannot be assembled: "
+                        f"{', '.join(dict.fromkeys(names))} violated by up to "
+                        f"{np.max(np.abs(g)):.3g} after the least-change correction")
+
+
 def reactions(kernel, t, y, yp):
     """The motions' reactions that balance the residual's force rows at (t, y, yp), by least
     squares. IDA interpolates output rows over its steps, and for the algebraic reactions,
@@ -95,8 +109,8 @@ def reactions(kernel, t, y, yp):
     inside a step spreads over the whole step): the driver recomputes them at every row."""
     lam = np.array(kernel.layout.lam)
     y = np.array(y, dtype=float)
-    y[lam] = 0.0
-    rows = np.setdiff1d(np.arange(kernel.ny), lam)
+    y[kernel.layout.algebraic] = 0.0
+    rows = np.setdiff1d(np.arange(kernel.ny), kernel.layout.algebraic)
     r = kernel.residual_array(t, y, yp)[rows]
     C = _Jac(kernel, t, y, yp, 0.0).block(rows, lam)
     return np.linalg.lstsq(C, -r, rcond=None)[0]
@@ -116,15 +130,6 @@ def _solve_saddle(D, J0, rows, lam, rhs, sparse):
     D, J0 = D.tocsr(), J0.tocsr()
     A = sp.bmat([[D[rows][:, rows], J0[rows][:, lam]], [J0[lam][:, rows], None]], format="csc")
     return spsolve(A, rhs)
-
-
-def _motion_g(kernel, t, y):
-    """The motions' g: the driven measure, less the expression for displacement motions."""
-    fb = ffi.from_buffer
-    yv, ypv = fb("double[]", np.ascontiguousarray(y)), fb("double[]", np.zeros_like(y))
-    g = MOTION.field("g")
-    return np.array([lib.ps_eval_tape(kernel.m, kernel.d, tape, ints[g], t, yv, ypv)
-                     for kind, _, tape, ints in kernel.elements if kind == "motion"])
 
 
 def _move(lay, y, du):

@@ -384,7 +384,7 @@ class Kernel:
         expressions use accelerations). dF/dyp is the difference of the iteration matrix at
         cj = 1 and cj = 0; large scenes use the sparse path. With motions y is made consistent
         too, in place (pysolver.build.consistent)."""
-        if self.layout.motion_ids:
+        if self.layout.lam:                # motions and joints
             return consistent(self, t, y)
         sparse = self.ny >= SPARSE_THRESHOLD
         if not sparse:                     # in C: a residual, two Jacobians, LU, per step

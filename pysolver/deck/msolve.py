@@ -23,7 +23,7 @@ import threading
 _STATE = threading.local()
 
 __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "VFORCE",
-           "MOTION",
+           "MOTION", "JOINT", "JPRIM",
            "LOADCONTROL", "VARIABLE",
            "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM",
            "py_sysfnc", "py_sysary", "py_errmes"]
@@ -181,6 +181,31 @@ def MOTION(id, **kw):
     _emit("MOTION", "Motion_Marker",
           {"I": "i_marker_id", "J": "j_marker_id", "DIRECTION": "direction",
            "VAL_TYPE": "val_type", "FUNCTION": "expr", "LABEL": "label"}, id, **kw)
+
+
+def _joint_type(val):
+    """TYPE of a JOINT statement: MotionSolve's names, or Adams' CONVEL and RACKPIN."""
+    name = str(val).upper()
+    return {"type": {"CONVEL": "CONSTANT_VELOCITY", "RACKPIN": "RACK_PINION"}.get(name, name)}
+
+
+def JOINT(id, **kw):
+    """Joint (Constraint_Joint): TYPE (REVOLUTE, SPHERICAL, TRANSLATIONAL, CYLINDRICAL,
+    UNIVERSAL, HOOKE, FIXED, PLANAR, CONSTANT_VELOCITY or CONVEL, the primitives INLINE,
+    INPLANE, ORIENTATION, PARALLEL_AXES, PERPENDICULAR, FREE), I, J (markers: I on the first
+    body, J on the second), PITCH (SCREW), PD (RACK_PINION), LABEL. The reactions are
+    res.joint(id)."""
+    _emit("JOINT", "Constraint_Joint",
+          {"TYPE": _joint_type, "I": "i_marker_id", "J": "j_marker_id", "PITCH": "pitch",
+           "PD": "pitch_diameter", "LABEL": "label"}, id, **kw)
+
+
+def JPRIM(id, **kw):
+    """Joint primitive (Constraint_Jprim): TYPE (ATPOINT, INLINE, INPLANE, ORIENTATION,
+    PARALLEL_AXES, PERPENDICULAR), I, J, LABEL."""
+    _emit("JPRIM", "Constraint_Jprim",
+          {"TYPE": _joint_type, "I": "i_marker_id", "J": "j_marker_id", "LABEL": "label"},
+          id, **kw)
 
 
 def LOADCONTROL(id=None, **kw):

@@ -26,6 +26,7 @@ from ..options import DECK_NAMES, Options, rule_problem
 from . import units as un
 from . import usersubs
 from .bodies import add_bodies
+from .joints import add_joint
 from .motions import add_motion
 from .references import check_references
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
@@ -96,10 +97,11 @@ def build_model(elements, source):
     for ctx, a in later:
         _force_like(model, ctx, a)
     for cmd in model.commands:
-        if model.motions and cmd.analysis != "TRANSIENT":
-            raise DeckError(f"{cmd.analysis.lower()} analyses of scenes with Motion_Marker are "
-                            "not supported yet", file=source.file, line=cmd.line,
-                            element="Simulate", attribute="analysis_type")
+        for table, tag in ((model.motions, "Motion_Marker"), (model.joints, "Constraint_Joint")):
+            if table and cmd.analysis != "TRANSIENT":
+                raise DeckError(f"{cmd.analysis.lower()} analyses of scenes with {tag} are "
+                                "not supported yet", file=source.file, line=cmd.line,
+                                element="Simulate", attribute="analysis_type")
     check_references(model)
     if not model.commands:
         model.commands.append(Simulate("TRANSIENT", 1.0, 0.01))
@@ -298,6 +300,8 @@ def _force_like(model, ctx, a):
         model._where[("vforce", a["id"])] = ctx
     elif tag == "Motion_Marker":
         add_motion(model, ctx, a)
+    elif tag in ("Constraint_Joint", "Constraint_Jprim"):
+        add_joint(model, ctx, a)
     elif tag == "LoadControl":
         add_loadcontrol(model, ctx, a)
     elif tag == "Reference_Variable":

@@ -92,10 +92,10 @@ def make(kernel, options, the_plan, bounds):
         lin = dict(linsolver="dense", jacfn=kernel.jacobian_ida)
     if options.jacobian == "dq":      # IDA's own difference quotients, for comparison
         lin.pop("jacfn")
-    if kernel.layout.algebraic:       # motion reactions (scikit-sundae keeps them in the
-        lin["algebraic_idx"] = list(kernel.layout.algebraic)   # error test)
+    if kernel.layout.algebraic:       # reactions (scikit-sundae keeps them in the error test)
+        lin["algebraic_idx"] = list(kernel.layout.algebraic)
     rootfn = kernel.roots if kernel.nsensor else None
     return PyIDA(kernel.residual, rootfn=rootfn, nroots=kernel.nsensor, rtol=tol, atol=tol,
                  max_step=bounds[0], min_step=bounds[1], first_step=bounds[2],
                  max_num_steps=mxsteps, outputs=kernel.outputs, nout=len(kernel.channels),
-                 **lin)
+                 hit_outputs=bool(kernel.layout.algebraic), **lin)

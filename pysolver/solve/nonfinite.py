@@ -11,6 +11,8 @@ _SHOWN = 12        # state entries quoted in a message
 
 
 def _texts(e):
+    if hasattr(e, "type"):                # a joint: its equations are its type's
+        return [f"{e.type} I={e.i} J={e.j}"]
     return [e.text] if hasattr(e, "text") else list(e.texts)
 
 

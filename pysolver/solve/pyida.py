@@ -34,13 +34,17 @@ class PyIDA:
         Request channels written by :meth:`outputs` (a kernel's); None: no channels.
     nout : int
         Number of channels ``outputs`` returns.
+    hit_outputs : bool
+        End a step at every requested time (a model with reactions: its constraints hold at
+        steps, not on IDA's interpolant), as the C driver does.
     **lin
         scikit-sundae's linear-solver options: ``linsolver``, ``jacfn``, ``sparsity``,
         ``algebraic_idx``.
     """
 
     def __init__(self, resfn, rootfn=None, nroots=0, rtol=1e-3, atol=1e-3, max_step=0.0,
-                 min_step=0.0, first_step=0.0, max_num_steps=500, outputs=None, nout=0, **lin):
+                 min_step=0.0, first_step=0.0, max_num_steps=500, outputs=None, nout=0,
+                 hit_outputs=False, **lin):
         options = dict(rtol=rtol, atol=atol, max_step=max_step, min_step=min_step,
                        first_step=first_step, max_num_steps=max_num_steps, **lin)
         self._events = None
@@ -51,6 +55,7 @@ class PyIDA:
             options.update(eventsfn=ev, num_events=nroots)
             self._events = ev
         self._outputs, self._nout = outputs, nout
+        self._hit = hit_outputs
         self._ny = None
         self._done = [0, 0]          # nfev, njev of earlier starts (scikit-sundae resets them)
         self._last = (0, 0)
@@ -78,7 +83,10 @@ class PyIDA:
                 lst.clear()
 
     def step(self, tout, tstop=None, onestep=False):
-        """One IDASolve call toward tout, never past tstop (None: no limit)."""
+        """One IDASolve call toward tout, never past tstop (None: no limit); with reactions
+        (algebraic states) a step ends at tout, as in csrc/ida.c."""
+        if self._hit and not onestep and (tstop is None or tout < tstop):
+            tstop = tout
         try:
             sol = self._ida.step(tout, method="onestep" if onestep else "normal", tstop=tstop)
         except UserFailure:             # the kernel holds the subroutine's message

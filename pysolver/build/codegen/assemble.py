@@ -153,15 +153,39 @@ class Assembly:
         self.apply_at(tape, -1 if s.a["marker_body"][mi] < 0 else si, P, F, None, 1.0)
         self.apply_at(tape, sj, P, F, None, -1.0)
 
-    def _motion(self, tape, f, gd, gn, kind, lam, w):
+    def hold_rate(self, tape, gn, gd, lam):
+        """The reaction lam along d(g')/du, and its row g' (csrc/assembly.c ps_hold_rate)."""
+        self.rate_force(tape, gn, self.s.y[lam])
+        self.res[lam] = gd
+
+    def hold_position(self, tape, gn, mu):
+        """Row mu is g; each position row q_j of the tape's bodies gets -mu dg/dq_j
+        (csrc/assembly.c ps_hold_position)."""
+        s, g = self.s, self.s.g
+        self.res[mu] = gn
+        for b in s.tape_bodies(tape):
+            qa = s.body(b)["qa"]
+            for j in range(7 if s.body(b)["rigid"] else 3):
+                self.res[qa + j] = g.sub(self.res[qa + j],
+                                         g.mul(s.y[mu], g.diff(gn, s.y[qa + j])))
+
+    def _motion(self, tape, f, gd, gn, kind, lam, w, mu):
         s, g = self.s, self.s.g
         slots = s.tape(tape)
         gn, gd, f = slots[gn], slots[gd], slots[f]
-        self.rate_force(tape, gn, s.y[lam])
-        target = f if kind == lib.PS_MOTION_V else s.y[w] if kind == lib.PS_MOTION_A else g.zero
-        self.res[lam] = g.sub(gd, target)
-        if kind == lib.PS_MOTION_A:
+        self.hold_rate(tape, gn, gd, lam)
+        if kind == lib.PS_MOTION_V:
+            self.res[lam] = g.sub(self.res[lam], f)
+        elif kind == lib.PS_MOTION_D:
+            self.hold_position(tape, gn, mu)
+        else:
+            self.res[lam] = g.sub(self.res[lam], s.y[w])
             self.res[w] = g.sub(s.yp[w], f)
+
+    def _joint(self, tape, gn, gd, lam, mu):
+        slots = self.s.tape(tape)
+        self.hold_rate(tape, slots[gn], slots[gd], lam)
+        self.hold_position(tape, slots[gn], mu)
 
     # the iteration matrix ---------------------------------------------------------------
     def _jacobian(self):

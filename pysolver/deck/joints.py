@@ -1,0 +1,56 @@
+"""Constraint_Joint and Constraint_Jprim: checks at load, and each type's equations.
+
+Every type is a list of holonomic equations g(q) = 0 between marker I (on the first body) and
+marker J (on the second), in the forms of ../shared/reference/elements.md section 1.2: ``d``
+components (d = oI - oJ, global: the origins coincide), ``dJ`` components (d along one of J's
+axes: I's origin on a line or in a plane of J), and ``dot`` products of an axis of I with an
+axis of J (the "dot-1" form: two axes stay perpendicular). The kernel holds each equation at
+the position and the velocity level (csrc/elements/joint.c).
+"""
+from ..catalogue import JOINT_EQUATIONS as EQUATIONS
+from ..catalogue import JOINTS_NOT_YET as NOT_YET
+from ..records import Joint
+
+X, Y = 0, 1
+
+def add_joint(model, ctx, a):
+    """Validate one Constraint_Joint or Constraint_Jprim and add it to the model."""
+    ctx.id = a["id"]
+    kind = a["type"]
+    if kind in NOT_YET:
+        raise ctx.error(f"type {kind} is not supported yet: {NOT_YET[kind]}", "type")
+    for key in ("i_marker_id", "j_marker_id"):
+        if a[key] not in model.markers:
+            raise ctx.error(f"marker {a[key]} does not exist", key)
+    bi, bj = (model.markers[a[k]].body for k in ("i_marker_id", "j_marker_id"))
+    ground = {b.id for b in model.bodies.values() if b.kind == "ground"}
+    if bi == bj or (bi in ground and bj in ground):
+        where = "ground" if bi in ground else f"body {bi}"
+        raise ctx.error(f"a joint needs I and J on different bodies, one of them moving; both "
+                        f"markers are on {where}", "j_marker_id")
+    if any(e[0].startswith("dot") for e in EQUATIONS[kind]):
+        for key, b in (("i_marker_id", bi), ("j_marker_id", bj)):
+            if model.bodies[b].kind == "point":
+                raise ctx.error(f"a {kind} joint holds orientations and needs rigid bodies; "
+                                f"marker {a[key]} is on point body {b}", key)
+    model.joints[a["id"]] = Joint(a["id"], kind, a["i_marker_id"], a["j_marker_id"],
+                                  a["label"], bool(a.get("is_virtual")))
+    model._where[("joint", a["id"])] = ctx
+
+
+def equation_tree(joint, eq):
+    """One equation of a joint as an expression tree the compiler lowers: measures for the
+    ``d`` and ``dJ`` forms, ``("axdot", i, axis, j, axis)`` nodes for the dot products."""
+    kind = eq[0]
+    if kind == "d":
+        return _call("DX DY DZ".split()[eq[1]], joint.i, joint.j)
+    if kind == "dJ":
+        return _call("DX DY DZ".split()[eq[1]], joint.i, joint.j, joint.j)
+    if kind == "dot":
+        return ("axdot", joint.i, eq[1], joint.j, eq[2])
+    # CONSTANT_VELOCITY: xI.yJ + yI.xJ
+    return ("bin", "+", ("axdot", joint.i, X, joint.j, Y), ("axdot", joint.i, Y, joint.j, X))
+
+
+def _call(name, *ids):
+    return ("call", name, [("num", float(i)) for i in ids], 0)
