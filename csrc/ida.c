@@ -24,7 +24,7 @@
   X(0, SUNMatDestroy) X(0, SUNLinSolFree) X(1, N_VNew_Serial) X(1, N_VGetArrayPointer)        \
   X(1, N_VDestroy) X(2, SUNDenseMatrix) X(2, SUNDenseMatrix_Data) X(3, SUNLinSol_Dense)       \
   X(5, SUNBandMatrix) X(5, SUNBandMatrix_Data) X(6, SUNLinSol_Band) X(4, IDACreate)           \
-  X(4, IDAInit) X(4, IDAReInit) X(4, IDASStolerances) X(4, IDASetUserData)                    \
+  X(4, IDAInit) X(4, IDAReInit) X(4, IDASStolerances) X(4, IDASetUserData) X(4, IDAWFtolerances) \
   X(4, IDASetLinearSolver) X(4, IDASetJacFn) X(4, IDASetMaxNumSteps) X(4, IDASetMaxStep)      \
   X(4, IDASetMinStep) X(4, IDASetInitStep) X(4, IDASetStopTime) X(4, IDASetEtaMax)            \
   X(4, IDASetNonlinConvCoef) X(4, IDARootInit) X(4, IDASetRootDirection)                      \
@@ -65,7 +65,9 @@ struct psIDA {
   SUNLinearSolver LS;     /* linear solver                                          */
   int band;               /* 1: band matrix filled through map                      */
   int hit;                /* 1: the model has reactions; IDA ends a step at every
-                             requested time (ps_ida_solve)                          */
+                             requested time (ps_ida_solve) and weighs them by the
+                             step size (weights)                                    */
+  double rtol, atol;      /* the tolerances                                         */
   int sparse;             /* 1: CSC matrix (SuperLU_MT) filled through map          */
   const int* map;         /* (ntrip x 1) band or CSC storage index of each triplet  */
   const int* colptr;      /* (ny + 1) CSC column pointers of the fixed pattern      */
@@ -250,6 +252,25 @@ static int fail(psIDA* s, const char* what, int flag) {
     if (flag_ < 0) return fail(s, name, flag_);     \
   } while (0)
 
+/* IDA's error weights 1 / (rtol |y_i| + atol), the reactions' (algebraic states) times
+ * min(1, h): they are outside the error test, and in the corrector's convergence test an
+ * index-2 reaction's correction grows like 1/h (its rows' conditioning does), which at the
+ * tiny first steps of a tight tolerance would fail the corrector for nothing (Hairer and
+ * Wanner's scaling of index-2 variables). */
+static int weights(N_Vector y, N_Vector ewt, void* user_data) {
+  psIDA* s = user_data;
+  const double* v = CALL(s, N_VGetArrayPointer)(y);
+  double* w = CALL(s, N_VGetArrayPointer)(ewt);
+  double h = 0.0;
+  CALL(s, IDAGetCurrentStep)(s->mem, &h);
+  double scale = h > 0.0 && h < 1.0 ? h : 1.0;
+  for (int i = 0; i < s->m->ny; i++) {
+    w[i] = 1.0 / (s->rtol * fabs(v[i]) + s->atol);
+    if (s->m->state_alg[i]) w[i] *= scale;
+  }
+  return 0;
+}
+
 int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* y0,
                 const double* yp0, double rtol, double atol, double hmax, double hmin, double h0,
                 long mxsteps, const int* rootdir, int mu, int ml, const int* map, int ntrip,
@@ -272,7 +293,12 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   if (!s->mem) return fail(s, "IDACreate", -1);
   SET(s, CALL(s, IDAInit)(s->mem, res_fn, t0, s->y, s->yp), "IDAInit");
   SET(s, CALL(s, IDASetUserData)(s->mem, s), "IDASetUserData");
-  SET(s, CALL(s, IDASStolerances)(s->mem, rtol, atol), "IDASStolerances");
+  s->rtol = rtol;
+  s->atol = atol;
+  if (s->hit)
+    SET(s, CALL(s, IDAWFtolerances)(s->mem, weights), "IDAWFtolerances");
+  else
+    SET(s, CALL(s, IDASStolerances)(s->mem, rtol, atol), "IDASStolerances");
   s->band = mu >= 0 && ml >= 0;
   s->sparse = mu == PS_IDA_SPARSE;
   if (s->sparse) {

@@ -17,6 +17,7 @@ typedef struct SUNContext_* SUNContext;
 typedef int (*IDAResFn)(sunrealtype, N_Vector, N_Vector, N_Vector, void*);
 typedef int (*IDALsJacFn)(sunrealtype, sunrealtype, N_Vector, N_Vector, N_Vector, SUNMatrix, void*,
                           N_Vector, N_Vector, N_Vector);
+typedef int (*IDAEwtFn)(N_Vector y, N_Vector ewt, void* user_data);
 typedef int (*IDARootFn)(sunrealtype, N_Vector, N_Vector, sunrealtype*, void*);
 
 /* core */
@@ -48,6 +49,7 @@ void* IDACreate(SUNContext ctx);
 int IDAInit(void* mem, IDAResFn res, sunrealtype t0, N_Vector y0, N_Vector yp0);
 int IDAReInit(void* mem, sunrealtype t0, N_Vector y0, N_Vector yp0);
 int IDASStolerances(void* mem, sunrealtype rtol, sunrealtype atol);
+int IDAWFtolerances(void* mem, IDAEwtFn efun);
 int IDASetUserData(void* mem, void* user_data);
 int IDASetLinearSolver(void* mem, SUNLinearSolver ls, SUNMatrix a);
 int IDASetJacFn(void* mem, IDALsJacFn jac);

@@ -17,8 +17,8 @@ import cffi
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 HEADER = ROOT / "csrc" / "include" / "pysolver.h"
 USERSUB_HEADER = ROOT / "csrc" / "include" / "pysolver_usersub.h"
-SOURCES = ["hd.c", "kinematics.c", "tape.c", "residual.c", "assembly.c",
-           "elements/penalty.c", "elements/sforce.c", "elements/vforce.c", "elements/motion.c", "elements/joint.c",
+SOURCES = ["hd.c", "kinematics.c", "tape.c", "residual.c", "assembly.c", "elements/penalty.c",
+           "elements/sforce.c", "elements/vforce.c", "elements/motion.c", "elements/joint.c",
            "elements/table.c", "usersub.c", "ida.c", "csv.c", "gen.c"]
 
 

@@ -38,7 +38,7 @@ def _key_ids(key):
 class Layout:
     """Where each body's coordinates live in the state vector."""
 
-    def __init__(self, model):
+    def __init__(self, model, removed=()):
         self.bodies = [b for _, b in sorted(model.bodies.items()) if b.kind != "ground"]
         self.index = {b.id: i for i, b in enumerate(self.bodies)}
         self.qadr, self.uadr, self.names = [], [], []
@@ -68,14 +68,19 @@ class Layout:
                 self.names.append(f"motion{mid}." + ("velocity" if mo.val_type == "A" else
                                                       "position_reaction"))
                 off += 1
-        self.joint_rows = []      # (joint id, equation index), aligned with the joints' lam
+        # (joint id, equation index), aligned with the joints' lam; redundant equations
+        # (`removed`, found by pysolver.build.consistent.redundant) are left out
+        self.joint_rows = []
         for jid in sorted(model.joints):
             for k in range(len(catalogue.JOINT_EQUATIONS[model.joints[jid].type])):
+                if (jid, k) in removed:
+                    continue
                 self.joint_rows.append((jid, k))
                 self.lam.append(off)
                 self.mu.append(off + 1)
                 self.rate.append(-1)
-                self.names += [f"joint{jid}.reaction{k + 1}", f"joint{jid}.position_reaction{k + 1}"]
+                self.names += [f"joint{jid}.reaction{k + 1}",
+                               f"joint{jid}.position_reaction{k + 1}"]
                 off += 2
         self.algebraic = sorted(self.lam + [m for m in self.mu if m >= 0])
         self.ny = off
@@ -206,10 +211,10 @@ class _Tape:
 class Compiler:
     """Turns a Model into psModel arrays (see csrc/include/pysolver.h)."""
 
-    def __init__(self, model, conservative=False):
+    def __init__(self, model, conservative=False, removed=()):
         self.model = model
         self.conservative = conservative   # MKEAM: velocity-dependent terms (damping) removed
-        self.layout = Layout(model)
+        self.layout = Layout(model, removed)
         self.consts, self._cidx = [], {}
         self.params, self.param_slots = {}, set()   # sweep parameters: path -> const slot
         self.markers = sorted(model.markers)
@@ -478,11 +483,14 @@ class Compiler:
     def joint(self, ti, tape, jo):
         """A joint's equations g in one tape, each with g' (its rate, which the kernel holds
         with the reaction lam; g itself with mu): one table row per equation."""
-        rows = [k for k, (jid, _) in enumerate(self.layout.joint_rows) if jid == jo.id]
+        rows = {eq: k for k, (jid, eq) in enumerate(self.layout.joint_rows) if jid == jo.id}
         base = len(self.layout.motion_ids)
         self.marker(tape, jo.i)           # I's body first, then J's
         self.marker(tape, jo.j)
-        for k, eq in zip(rows, catalogue.JOINT_EQUATIONS[jo.type]):
+        for n, eq in enumerate(catalogue.JOINT_EQUATIONS[jo.type]):
+            if n not in rows:
+                continue
+            k = rows[n]
             touched = set()
             tape.touch.append(touched)
             g = self.lower(tape, joints.equation_tree(jo, eq))

@@ -17,7 +17,6 @@ from ..options import SPARSE_THRESHOLD
 from ..rotations import G
 
 
-
 class _Jac:
     """The iteration matrix at cj, dense or (from SPARSE_THRESHOLD states) sparse, with the
     few block operations the steps below need."""
@@ -47,19 +46,8 @@ def consistent(kernel, t, y, iters=8):
     u_idx = np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" else 6))
                             for b, ua in zip(lay.bodies, lay.uadr)]).astype(int)
     yp = np.zeros_like(y)
-    disp = np.nonzero(mu >= 0)[0]          # held at the position level too
     # 1. positions: g (the rows of mu) to zero along the reactions' directions
-    for _ in range(iters if len(disp) else 0):
-        g = kernel.residual_array(t, y, yp)[mu[disp]]
-        if np.max(np.abs(g)) <= 1e-13 * (1.0 + np.max(np.abs(y))):
-            break
-        C = _Jac(kernel, t, y, yp, 0.0).block(lam[disp], u_idx)
-        du = np.zeros(kernel.ny)
-        du[u_idx] = C.T @ np.linalg.lstsq(C @ C.T, -g, rcond=None)[0]
-        _move(lay, y, du)
-    else:
-        if len(disp):
-            _unassembled(kernel, lay, disp, kernel.residual_array(t, y, yp)[mu[disp]], y)
+    _assemble(kernel, t, y, iters)
     # 2. velocities: A motions take w = g'; the others change u
     r = kernel.residual_array(t, y, yp)[lam]
     for k, w in enumerate(rate):
@@ -88,6 +76,59 @@ def consistent(kernel, t, y, iters=8):
     return yp
 
 
+def redundant(kernel, t, y, tol=1e-8):
+    """The joint equations that repeat others at the assembled initial positions, as (joint
+    id, equation index): each equation in table order (motions first) is kept when its
+    velocity-level row d(g')/du adds a direction to those kept before it (relative size of
+    the new part above `tol`), else it is redundant. Raises AssemblyError when a motion's is
+    (it drives what other motions or the joints already fix, and it comes first)."""
+    lay = kernel.layout
+    y = np.array(y, dtype=float)
+    u_idx = np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" else 6))
+                            for b, ua in zip(lay.bodies, lay.uadr)]).astype(int)
+    _assemble(kernel, t, y, 8)
+    C = _Jac(kernel, t, y, np.zeros_like(y), 0.0).block(np.array(lay.lam), u_idx)
+    C = C.toarray() if hasattr(C, "toarray") else np.asarray(C)
+    basis, out = [], []
+    nmot = len(lay.motion_ids)
+    for k, row in enumerate(C):
+        size = np.linalg.norm(row)
+        for q in basis:
+            row = row - (q @ row) * q
+        if size > 0 and np.linalg.norm(row) > tol * size:
+            basis.append(row / np.linalg.norm(row))
+        elif k < nmot:
+            raise AssemblyError(f"Motion_Marker {lay.motion_ids[k]} drives a coordinate that "
+                                "other motions or the joints already fix")
+        else:
+            out.append(lay.joint_rows[k - nmot])
+    return out
+
+
+def _assemble(kernel, t, y, iters):
+    """Move the positions of y (in place) to satisfy the position-level constraints, each
+    Newton step the least change along the reactions' directions; return the last g."""
+    lay = kernel.layout
+    lam, mu = np.array(lay.lam), np.array(lay.mu)
+    disp = np.nonzero(mu >= 0)[0]
+    u_idx = np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" else 6))
+                            for b, ua in zip(lay.bodies, lay.uadr)]).astype(int)
+    yp = np.zeros_like(y)
+    g = np.zeros(0)
+    for _ in range(iters if len(disp) else 0):
+        g = kernel.residual_array(t, y, yp)[mu[disp]]
+        if np.max(np.abs(g)) <= 1e-13 * (1.0 + np.max(np.abs(y))):
+            return g
+        C = _Jac(kernel, t, y, yp, 0.0).block(lam[disp], u_idx)
+        du = np.zeros(kernel.ny)
+        du[u_idx] = C.T @ np.linalg.lstsq(C @ C.T, -g, rcond=None)[0]
+        _move(lay, y, du)
+    if len(disp):
+        g = kernel.residual_array(t, y, yp)[mu[disp]]
+        _unassembled(kernel, lay, disp, g, y)
+    return g
+
+
 class AssemblyError(ValueError):
     """No positions satisfy the constraints near the initial ones."""
 
@@ -96,7 +137,12 @@ def _unassembled(kernel, lay, disp, g, y):
     """Raise AssemblyError unless the position constraints hold after the Newton steps."""
     if np.max(np.abs(g)) <= 1e-9 * (1.0 + np.max(np.abs(y))):
         return
-    names = [kernel.layout.names[lay.mu[k]].split(".")[0] for k in disp[np.abs(g) > 1e-9]]
+    tags = {"joint": "Constraint_Joint ", "motion": "Motion_Marker "}
+    names = []
+    for k in disp[np.abs(g) > 1e-9]:
+        prefix = kernel.layout.names[lay.mu[k]].split(".")[0]
+        kind = prefix.rstrip("0123456789")
+        names.append(tags[kind] + prefix[len(kind):])
     raise AssemblyError("the initial positions cannot be assembled: "
                         f"{', '.join(dict.fromkeys(names))} violated by up to "
                         f"{np.max(np.abs(g)):.3g} after the least-change correction")

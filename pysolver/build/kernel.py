@@ -10,13 +10,12 @@ from .bindings import ffi, lib
 from .compiler import Compiler
 from .consistent import consistent, reactions
 
-#: Trial times closer than this times |t| to a non-finite residual are at rounding level.
-ROUNDING = 1e-10
+ROUNDING = 1e-10     # trial times this close (times |t|) to a non-finite residual: rounding
 
 
 class UserFailure(Exception):
-    """A kernel call failed for good (scikit-sundae path): a user subroutine reported an error
-    (``d.user_error`` set), or a non-finite value IDA's trial steps cannot step around."""
+    """A kernel call failed for good on the scikit-sundae path: a user subroutine's error,
+    or a non-finite value IDA's trial steps cannot step around."""
 
 
 class Kernel:
@@ -34,6 +33,8 @@ class Kernel:
         :mod:`pysolver.build.codegen`) and call it; the tape interpreter runs when that is not
         possible ("auto" says why in :attr:`codegen`; "generated" too, it never fails a run).
         "tapes": interpret the tapes.
+    removed : set of (int, int), optional
+        Redundant joint equations left out: (joint id, equation index).
 
     Attributes
     ----------
@@ -48,10 +49,10 @@ class Kernel:
         bool, "path": ...}`` or ``{"kernel": "tapes", "why": ...}``.
     """
 
-    def __init__(self, model, conservative=False, kind="auto"):
+    def __init__(self, model, conservative=False, kind="auto", removed=()):
         usersubs.resolve(model)         # Python user subroutines traced into expressions
         usercalls.bind(model)           # the others called from the kernel
-        comp = Compiler(model, conservative)
+        comp = Compiler(model, conservative, removed)
         arrays = comp.compile()
         self.layout = comp.layout
         self.channels = comp.channels
@@ -62,7 +63,7 @@ class Kernel:
         self.params = comp.params               # sweep parameters: path -> slot in consts
         self.marker_index = dict(comp.midx)     # marker id -> its row in the marker arrays
         self.forces_use_senval = comp.forces_use_senval
-        self.elements = comp.elements           # the element table: (kind, id, tape, ints)
+        self.elements = comp.elements      # the element table: (kind, id, tape, ints)
         self.nsensor = arrays["nsensor"]
         self.ny = arrays["ny"]
         self.ntape = arrays["ntape"]

@@ -7,6 +7,7 @@ the caches of runs (their settings, integration plans, the batched path's IDA ob
 holds one CompiledModel per kind of kernel; ``model.run(...)`` is ``model.compile().run(...)``.
 """
 from ..build import Kernel
+from ..build.consistent import AssemblyError, redundant
 from ..build.params import Parameters
 from .run import run_model
 
@@ -33,7 +34,7 @@ class CompiledModel:
         # the scene compiled and run: a private copy of the model (user subroutines resolve
         # into it, parameters change it), the model itself never changes
         self.model, self.kind = model._working_copy(), kind
-        self.kernel = Kernel(self.model, False, kind)
+        self.kernel = self._kernel_without_redundancy(kind)
         self._conservative = None
         self._parameters = None
         # kept between runs: the last run's settings (solve.run), plans (solve.integrator)
@@ -42,11 +43,29 @@ class CompiledModel:
         self.plans = {}
         self.batched = {}
 
+    def _kernel_without_redundancy(self, kind):
+        """The kernel, joint equations that repeat others left out (found on the tapes at
+        the assembled initial positions; :attr:`notes` names them)."""
+        self.removed, self.notes = (), []
+        if not self.model.joints:
+            return Kernel(self.model, False, kind)
+        probe = Kernel(self.model, False, "tapes")
+        try:
+            self.removed = redundant(probe, 0.0, probe.layout.initial_state())
+        except AssemblyError:             # each run says so (solve.driver.start_state)
+            pass
+        if self.removed:
+            eqs = ", ".join(f"Constraint_Joint {jid} equation {k + 1}" for jid, k in self.removed)
+            self.notes.append(f"redundant constraints removed ({len(self.removed)}): {eqs}")
+        if kind == "tapes" and not self.removed:
+            return probe
+        return Kernel(self.model, False, kind, self.removed)
+
     @property
     def conservative_kernel(self):
         """The kernel without velocity-dependent terms, for MKEAM (built on first use)."""
         if self._conservative is None:
-            self._conservative = Kernel(self.model, True, self.kind)
+            self._conservative = Kernel(self.model, True, self.kind, self.removed)
         return self._conservative
 
     @property

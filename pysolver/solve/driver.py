@@ -16,6 +16,7 @@ import time
 import numpy as np
 
 from ..build.bindings import ffi, lib
+from ..build.consistent import AssemblyError
 from ..build.kernel import UserFailure
 from . import integrator, nonfinite, quasistatic
 from .actors import Actor, Flow
@@ -61,6 +62,11 @@ def start_state(model, kernel):
     kernel.d.bad_kind = 0
     try:
         yp0 = kernel.consistent_yp(t0, y0)
+    except AssemblyError as err:
+        raise Stop(False, -720, f"initial conditions: {err}") from None
+    except np.linalg.LinAlgError:
+        raise Stop(False, -700, "initial conditions: the accelerations and reactions cannot "
+                   "be solved for (a zero mass or inertia, or constraints that fight)") from None
     except UserFailure as err:           # a user subroutine failed (or Ctrl-C came)
         if lib.ps_interrupted():
             raise Stop(False, -600, f"interrupted at t = {t0:.6g}") from None

@@ -29,6 +29,7 @@ def run_model(compiled, progress=None, overrides=None, actors=(), stream=None):
     gen = kernel.codegen
     log = [f"kernel: the tapes run ({gen['why']})"] if gen["kernel"] == "tapes" and \
         kind != "tapes" else []
+    log += compiled.notes
     sink = Stream(stream, kernel, labels) if stream is not None else None
     # Ctrl-C ends a run at its next residual (the C kernel's handler; main thread only)
     main = threading.current_thread() is threading.main_thread()
