@@ -10,6 +10,7 @@ the position and the velocity level (csrc/elements/joint.c).
 from ..catalogue import JOINT_EQUATIONS as EQUATIONS
 from ..catalogue import JOINTS_NOT_YET as NOT_YET
 from ..records import Joint
+from .motions import two_bodies
 
 X, Y = 0, 1
 
@@ -19,15 +20,7 @@ def add_joint(model, ctx, a):
     kind = a["type"]
     if kind in NOT_YET:
         raise ctx.error(f"type {kind} is not supported yet: {NOT_YET[kind]}", "type")
-    for key in ("i_marker_id", "j_marker_id"):
-        if a[key] not in model.markers:
-            raise ctx.error(f"marker {a[key]} does not exist", key)
-    bi, bj = (model.markers[a[k]].body for k in ("i_marker_id", "j_marker_id"))
-    ground = {b.id for b in model.bodies.values() if b.kind == "ground"}
-    if bi == bj or (bi in ground and bj in ground):
-        where = "ground" if bi in ground else f"body {bi}"
-        raise ctx.error(f"a joint needs I and J on different bodies, one of them moving; both "
-                        f"markers are on {where}", "j_marker_id")
+    bi, bj, _ = two_bodies(model, ctx, a, "a joint")
     if any(e[0].startswith("dot") for e in EQUATIONS[kind]):
         for key, b in (("i_marker_id", bi), ("j_marker_id", bj)):
             if model.bodies[b].kind == "point":

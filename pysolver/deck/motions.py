@@ -11,8 +11,9 @@ from . import expr as ex
 _MEASURE = {"X": "DX", "Y": "DY", "Z": "DZ", "B1": "AX", "B2": "AY", "B3": "AZ"}
 
 
-def add_motion(model, ctx, a):
-    """Validate one Motion_Marker's attributes and add it to the model."""
+def two_bodies(model, ctx, a, noun):
+    """(I's body, J's body, ground body ids) of an element holding marker I to marker J: both
+    markers exist, on different bodies, not both on ground (else a DeckError)."""
     ctx.id = a["id"]
     for key in ("i_marker_id", "j_marker_id"):
         if a[key] not in model.markers:
@@ -21,8 +22,14 @@ def add_motion(model, ctx, a):
     ground = {b.id for b in model.bodies.values() if b.kind == "ground"}
     if bi == bj or (bi in ground and bj in ground):
         where = "ground" if bi in ground else f"body {bi}"
-        raise ctx.error(f"a motion needs I and J on different bodies, one of them moving; "
+        raise ctx.error(f"{noun} needs I and J on different bodies, one of them moving; "
                         f"both markers are on {where}", "j_marker_id")
+    return bi, bj, ground
+
+
+def add_motion(model, ctx, a):
+    """Validate one Motion_Marker's attributes and add it to the model."""
+    bi, bj, ground = two_bodies(model, ctx, a, "a motion")
     rotation = a["direction"].startswith("B")
     if rotation:
         for key, b in (("i_marker_id", bi), ("j_marker_id", bj)):
