@@ -71,15 +71,21 @@ static void inertia_rows(const psModel* m, double t, const double* y, const doub
 }
 
 /* The elements' contributions, in table order (only those of kind `only`, unless it is -1):
- * each runs its tape, then its kind's contribution (csrc/elements/<kind>.c). */
+ * each runs its tape, then its kind's contribution (csrc/elements/<kind>.c). Consecutive
+ * rows of one tape (the equations of a joint) run it once: contributions write only scratch
+ * numbers, never the tape's slots or body kinematics. */
 static void element_rows(const psModel* m, psData* d, double t, const double* y,
                          const double* yp, Assembly* as, int only) {
+  int last_tape = -1, last_order = -1;
   for (int e = 0; e < m->nel; e++) {
     int kind = m->el_kind[e], tape = m->el_tape[e];
     if (only >= 0 && kind != only) continue;
     const psElementKind* k = &ps_element_kinds[kind];
     int base = m->tape_order[tape] > k->order ? m->tape_order[tape] : k->order;
-    ps_tape_run(m, d, tape, as->deriv + base, !as->deriv, t, y, yp);
+    if (tape != last_tape || as->deriv + base != last_order)
+      ps_tape_run(m, d, tape, as->deriv + base, !as->deriv, t, y, yp);
+    last_tape = tape;
+    last_order = as->deriv + base;
     psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], as->deriv, m->hd_stride};
     k->assemble(m, d, &c, tape, m->el_int + m->el_adr[e], t, y, yp, as);
   }

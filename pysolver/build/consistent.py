@@ -1,11 +1,13 @@
-"""Consistent initial conditions for scenes with motions (Motion_Marker).
+"""Consistent initial conditions for scenes with motions (Motion_Marker) and joints, and the
+joint equations that repeat others (:func:`redundant`).
 
-A motion adds a reaction lam (algebraic) and a row holding the driven measure's rate g' to its
-target; a displacement motion also needs g = 0 itself. Before IDA starts (and at restarts) the
-state is made consistent in three steps, each the smallest change that does it:
+A motion or a joint equation adds a reaction lam (algebraic) and a row holding a rate g' to its
+target; a displacement motion and a joint equation also hold g = 0 itself (with mu). Before
+IDA starts (and at restarts) the state is made consistent in three steps, each the smallest
+change that does it:
 
-1. positions: displacement motions' g = 0 by Newton steps moving the bodies along the motions'
-   own rate directions c = d(g')/du (the velocity that changes g fastest);
+1. positions (the assembly): every held g = 0 by Newton steps moving the bodies along the
+   reactions' own rate directions c = d(g')/du (the velocity that changes g fastest);
 2. velocities: the rate rows g' = target by the least-norm change of u along the same
    directions; an acceleration motion's driven velocity w takes the current g';
 3. accelerations and reactions: yp and lam from the residual rows and the time derivative of
@@ -43,8 +45,7 @@ def consistent(kernel, t, y, iters=8):
     lam, mu, rate = np.array(lay.lam), np.array(lay.mu), np.array(lay.rate)
     y[lam] = 0.0
     y[mu[mu >= 0]] = 0.0
-    u_idx = np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" else 6))
-                            for b, ua in zip(lay.bodies, lay.uadr)]).astype(int)
+    u_idx = _velocities(lay)
     yp = np.zeros_like(y)
     # 1. positions: g (the rows of mu) to zero along the reactions' directions
     _assemble(kernel, t, y, iters)
@@ -84,8 +85,7 @@ def redundant(kernel, t, y, tol=1e-8):
     (it drives what other motions or the joints already fix, and it comes first)."""
     lay = kernel.layout
     y = np.array(y, dtype=float)
-    u_idx = np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" else 6))
-                            for b, ua in zip(lay.bodies, lay.uadr)]).astype(int)
+    u_idx = _velocities(lay)
     _assemble(kernel, t, y, 8)
     C = _Jac(kernel, t, y, np.zeros_like(y), 0.0).block(np.array(lay.lam), u_idx)
     C = C.toarray() if hasattr(C, "toarray") else np.asarray(C)
@@ -111,8 +111,7 @@ def _assemble(kernel, t, y, iters):
     lay = kernel.layout
     lam, mu = np.array(lay.lam), np.array(lay.mu)
     disp = np.nonzero(mu >= 0)[0]
-    u_idx = np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" else 6))
-                            for b, ua in zip(lay.bodies, lay.uadr)]).astype(int)
+    u_idx = _velocities(lay)
     yp = np.zeros_like(y)
     g = np.zeros(0)
     for _ in range(iters if len(disp) else 0):
@@ -127,6 +126,12 @@ def _assemble(kernel, t, y, iters):
         g = kernel.residual_array(t, y, yp)[mu[disp]]
         _unassembled(kernel, lay, disp, g, y)
     return g
+
+
+def _velocities(lay):
+    """The state indices of every body's velocities u."""
+    return np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" else 6))
+                           for b, ua in zip(lay.bodies, lay.uadr)]).astype(int)
 
 
 class AssemblyError(ValueError):
