@@ -73,7 +73,8 @@ void ps_hold_position(const psModel* m, psData* d, const psuHD* c, int tape, con
   double* gj = ps_tmp(m, d, F_CI);
   int badr = m->tape_basis_adr[tape], nq = m->tape_nh[tape] - 1;
   double mv = y[mu];
-  as->res[mu] = g[0];
+  as->res[mu] = g[0] + m->compliance[mu] * mv;
+  if (as->deriv) jadd(as, mu, mu, m->compliance[mu]);
   if (as->deriv)
     for (int j = 0; j < c->n; j++) {
       int kind = m->basis_kind[badr + j];
@@ -96,8 +97,9 @@ void ps_hold_rate(const psModel* m, psData* d, const psuHD* c, int tape, const d
   double* L = ps_tmp(m, d, F_LEN);
   psu_hd_const(c, L, y[lam]);
   ps_rate_force(m, d, c, g, tape, L, lam, as);
-  as->res[lam] = gd[0];
+  as->res[lam] = gd[0] + m->compliance[lam] * y[lam];
   if (!as->deriv) return;
+  jadd(as, lam, lam, m->compliance[lam]);
   int badr = m->tape_basis_adr[tape];
   for (int j = 0; j < c->n; j++) {
     int bk = m->basis_kind[badr + j];

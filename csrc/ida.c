@@ -65,8 +65,8 @@ struct psIDA {
   SUNLinearSolver LS;     /* linear solver                                          */
   int band;               /* 1: band matrix filled through map                      */
   int hit;                /* 1: the model has reactions; IDA ends a step at every
-                             requested time (ps_ida_solve) and weighs them by the
-                             step size (weights)                                    */
+                             requested time (ps_ida_solve) and leaves them out of
+                             its tests (weights)                                    */
   double rtol, atol;      /* the tolerances                                         */
   int sparse;             /* 1: CSC matrix (SuperLU_MT) filled through map          */
   const int* map;         /* (ntrip x 1) band or CSC storage index of each triplet  */
@@ -252,22 +252,22 @@ static int fail(psIDA* s, const char* what, int flag) {
     if (flag_ < 0) return fail(s, name, flag_);     \
   } while (0)
 
-/* IDA's error weights 1 / (rtol |y_i| + atol), the reactions' (algebraic states) times
- * min(1, h): they are outside the error test, and in the corrector's convergence test an
- * index-2 reaction's correction grows like 1/h (its rows' conditioning does), which at the
- * tiny first steps of a tight tolerance would fail the corrector for nothing (Hairer and
- * Wanner's scaling of index-2 variables). */
+/* IDA's error weights 1 / (rtol |y_i| + atol), zero for the reactions (algebraic states):
+ * they are outside the error test (IDASetSuppressAlg) and, with a zero weight, outside the
+ * corrector's convergence test too. A reaction's correction follows the velocities' (M u' =
+ * f - G^T lam): once those have converged, so have the reactions along every direction the
+ * constraints determine. Weighed in, they only harm: a residual of rounding size e in a
+ * constraint row moves its multiplier by about e / h (an index-2 variable), which fails the
+ * corrector at the tiny first steps of a tight tolerance (IDA's first step is about
+ * atol / |yp|) even scaled by h as Hairer and Wanner do, and near a singular configuration
+ * (IFToMM A02) a combination of multipliers is barely determined. docs/numerics.md,
+ * "Constraints". */
 static int weights(N_Vector y, N_Vector ewt, void* user_data) {
   psIDA* s = user_data;
   const double* v = CALL(s, N_VGetArrayPointer)(y);
   double* w = CALL(s, N_VGetArrayPointer)(ewt);
-  double h = 0.0;
-  CALL(s, IDAGetCurrentStep)(s->mem, &h);
-  double scale = h > 0.0 && h < 1.0 ? h : 1.0;
-  for (int i = 0; i < s->m->ny; i++) {
-    w[i] = 1.0 / (s->rtol * fabs(v[i]) + s->atol);
-    if (s->m->state_alg[i]) w[i] *= scale;
-  }
+  for (int i = 0; i < s->m->ny; i++)
+    w[i] = s->m->state_alg[i] ? 0.0 : 1.0 / (s->rtol * fabs(v[i]) + s->atol);
   return 0;
 }
 

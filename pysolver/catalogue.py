@@ -341,7 +341,7 @@ ELEMENTS = (
             "a force by its components, between two bodies", c="PS_EL_VFORCE",
             ints=("fx:slot", "fy:slot", "fz:slot", "i:marker", "si:bslot", "sj:bslot",
                   "r:marker", "sr:bslot"), values=3),
-    Element(("Motion_Marker",), "motion", "motions", "MOTION",
+    Element(("Motion_Marker", "Motion_Joint"), "motion", "motions", "MOTION",
             "a driven displacement, velocity or acceleration", c="PS_EL_MOTION",
             ints=("f:slot", "gd:slot", "g:slot", "kind:flag", "lam:state", "w:state",
                   "mu:state"), values=2, order=1),

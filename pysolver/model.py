@@ -203,8 +203,10 @@ class Model:
                          f"{vf.ref or 'global'}): ({', '.join(vf.texts)})")
         lines += [f"LoadControl {lc.id}: body {lc.body} along {'xyz'[lc.direction]}, load "
                   f"{lc.load_text}, every {lc.update_time:g}" for lc in self.controls.values()]
-        lines += [f"Motion_Marker {mo.id} ({mo.val_type} {mo.direction} I={mo.i} J={mo.j}): "
-                  f"{mo.text}" for mo in self.motions.values() if mo.id > 0]  # not LoadControl's
+        lines += [(f"Motion_Joint {mo.id} ({mo.val_type} {'R' if mo.direction == 'B3' else 'T'}"
+                   f" of joint {mo.joint}): " if mo.joint else
+                   f"Motion_Marker {mo.id} ({mo.val_type} {mo.direction} I={mo.i} J={mo.j}): ")
+                  + mo.text for mo in self.motions.values() if mo.id > 0]  # not LoadControl's
         lines += [f"Constraint_Joint {jo.id} ({jo.type} I={jo.i} J={jo.j})"
                   for jo in self.joints.values()]
         lines += [f"Reference_Variable {v.id}: {v.text}" for v in self.variables.values()]

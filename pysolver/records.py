@@ -122,7 +122,8 @@ class VectorForce:
 class Motion:
     """Motion_Marker: the displacement (D), velocity (V) or acceleration (A) of marker I
     relative to J along one axis of J (X, Y, Z: DX/DY/DZ(I, J, J)) or about it (B1, B2, B3:
-    AX/AY/AZ(I, J)) follows expr, a function of time."""
+    AX/AY/AZ(I, J)) follows expr, a function of time. A Motion_Joint is one on its joint's
+    markers (`joint` its id; 0 for a Motion_Marker): Z for a translation, B3 for a rotation."""
     id: int
     i: int
     j: int
@@ -131,6 +132,7 @@ class Motion:
     expr: tuple
     text: str
     label: str = ""
+    joint: int = 0
 
 
 @record

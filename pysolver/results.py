@@ -146,13 +146,13 @@ class Result:
         return self._controllers[id]
 
     def motion(self, id: int) -> np.ndarray:
-        """Reaction of Motion_Marker `id` at the output times, shape (n,): the force (X, Y, Z)
-        or torque (B1, B2, B3) the motion applies to I's body along or about its axis of J
-        (J's body gets the opposite), in model units."""
+        """Reaction of Motion_Marker or Motion_Joint `id` at the output times, shape (n,): the
+        force (X, Y, Z; a joint's T) or torque (B1, B2, B3; a joint's R) the motion applies to
+        I's body along or about its axis of J (J's body gets the opposite), in model units."""
         name = f"motion{id}.reaction"
         if name not in self.state_names:
             known = [n.split(".")[0][6:] for n in self.state_names if n.endswith(".reaction")]
-            raise KeyError(f"no Motion_Marker {id} (motions: {', '.join(known) or 'none'})")
+            raise KeyError(f"no motion {id} (motions: {', '.join(known) or 'none'})")
         return self.y[:, self.state_names.index(name)]
 
     def columns(self) -> tuple[list, np.ndarray]:

@@ -201,6 +201,9 @@ typedef struct psModel {
   int* el_int;            /* tape slots, flags, markers, body slots and states  */
   int* state_alg;         /* (ny x 1) 1 for an algebraic state (a reaction),
                              left out of IDA's error test                       */
+  double* compliance;     /* (ny x 1) c_i of a reaction's row: the row holds
+                             g' + c_i lam or g + c_i mu (docs/numerics.md,
+                             "Constraints"); 0 elsewhere                        */
 
   /* Sensor_Event: expression f in a tape slot, compared with value */
   int* sensor_tape;       /* (nsensor x 1)                                      */

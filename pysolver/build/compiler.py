@@ -468,6 +468,10 @@ class Compiler:
             tape.bodies[s][1] = True
         f = self.lower(tape, mo.expr)
         g = tape.op(lib.PS_OP_SUB, phi, f) if mo.val_type == "D" else phi
+        if mo.val_type == "D" and mo.direction.startswith("B"):
+            # an angle's error wrapped to (-pi, pi]: AZ jumps by 2 pi where a driven
+            # rotation passes pi, atan2(sin e, cos e) does not
+            g = tape.op(lib.PS_OP_ATAN2, tape.op(lib.PS_OP_SIN, g), tape.op(lib.PS_OP_COS, g))
         gd = tape.emit(lib.PS_OP_GDOT, g)
         tape.has_gdot = True
         return g, gd, f, {"D": lib.PS_MOTION_D, "V": lib.PS_MOTION_V, "A": lib.PS_MOTION_A}[
@@ -654,6 +658,7 @@ class Compiler:
             el_adr=i32(np.cumsum([0] + [len(v) for *_, v in self.elements])[:-1]),
             el_int=i32([i for *_, v in self.elements for i in v]),
             state_alg=i32(np.isin(np.arange(lay.ny), lay.algebraic)),
+            compliance=f64(np.zeros(lay.ny)),     # set by the Kernel (consistent.compliance)
             out_tape=i32([o[0] for o in self.out]), out_slot=i32([o[1] for o in self.out]),
             nsensor=len(self.sensor), sensor_tape=i32([x[0] for x in self.sensor]),
             sensor_slot=i32([x[1] for x in self.sensor]),

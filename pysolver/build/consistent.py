@@ -98,7 +98,8 @@ def redundant(kernel, t, y, tol=1e-8):
         if size > 0 and np.linalg.norm(row) > tol * size:
             basis.append(row / np.linalg.norm(row))
         elif k < nmot:
-            raise AssemblyError(f"Motion_Marker {lay.motion_ids[k]} drives a coordinate that "
+            mid = lay.motion_ids[k]
+            raise AssemblyError(f"{kernel.motion_tags[mid]} {mid} drives a coordinate that "
                                 "other motions or the joints already fix")
         else:
             out.append(lay.joint_rows[k - nmot])
@@ -128,6 +129,74 @@ def _assemble(kernel, t, y, iters):
     return g
 
 
+#: Each row holding a position, g = 0, holds g + c mu = 0 with c = COMPLIANCE_TIME x (the row's
+#: reciprocal effective mass sum_j G_ij^2 / M_jj over the positions, at the start): exact, for
+#: mu is zero on the solution, and the iteration matrix stays regular where the constraints
+#: lose rank (a singular configuration, IFToMM A02). docs/numerics.md, "Constraints".
+COMPLIANCE_TIME = 1e-12
+
+#: Each row holding a rate, g' = 0, holds g' + c lam = 0 with c = RATE_COMPLIANCE x integr_tol /
+#: (the bodies' weight): a reaction of that size moves the rate by 1 % of the tolerance, and
+#: near a singular configuration the velocity the constraints stop determining is left to the
+#: dynamics instead of to rounding errors divided by a vanishing singular value.
+RATE_COMPLIANCE = 1e-2
+
+
+def compliance(kernel, t, y, tau=COMPLIANCE_TIME):
+    """The compliance of every reaction's row at (t, y) (zero for other states): tau times
+    sum_j G_ij^2 / M_jj over the velocities j for a rate row and over the positions for a
+    position row, where G is the row's gradient and M_jj the coefficient of yp_j in row j."""
+    lay = kernel.layout
+    c = np.zeros(kernel.ny)
+    lam = np.array(lay.lam, dtype=int)
+    mu = np.array([m for m in lay.mu if m >= 0], dtype=int)
+    if not len(lam):
+        return c
+    yp = np.zeros_like(y)
+    J0 = _Jac(kernel, t, y, yp, 0.0)
+    J1 = _Jac(kernel, t, y, yp, 1.0)
+    for rows, cols in ((lam, _velocities(lay)), (mu, _positions(lay))):
+        if len(rows):
+            diag = np.array([J1.block([j], [j])[0, 0] - J0.block([j], [j])[0, 0] for j in cols])
+            G = J0.block(rows, cols)
+            c[rows] = tau * (G ** 2 / np.where(diag != 0.0, np.abs(diag), np.inf)).sum(axis=1)
+    return c
+
+
+def init_compliance(kernel, failures=()):
+    """Set the position rows' compliance (:func:`compliance`) from the iteration matrix at the
+    deck's initial state; a scale only, so a start where the matrix cannot be evaluated (the
+    run will then report why; `failures`: the kernel's exception types) takes
+    COMPLIANCE_TIME with unit gradients. Keep the bodies' weight (mass x 1 without gravity) as
+    the rate rows' force scale (:func:`set_tolerance`)."""
+    c = kernel.arrays["compliance"]
+    mu = np.array([m for m in kernel.layout.mu if m >= 0], dtype=int)
+    try:
+        got = compliance(kernel, 0.0, kernel.layout.initial_state())[mu]
+    except (*failures, ValueError, ArithmeticError):
+        got = np.full(len(mu), np.nan)
+    c[mu] = np.where(np.isfinite(got), got, COMPLIANCE_TIME)
+    mass = float(np.sum(kernel.arrays["body_mass"]))
+    gravity = float(np.linalg.norm(kernel.arrays["gravity"]))
+    kernel.force_scale = max(mass * max(gravity, 1.0), 1e-300)
+
+
+def set_tolerance(kernel, tol):
+    """Set the joints' rate rows' compliance for a run at integr_tol `tol`: RATE_COMPLIANCE x
+    tol / (the bodies' weight), so that a reaction of that size moves its rate by 1 % of the
+    tolerance. A motion's rate rows keep none: a prescribed rate is exact."""
+    lay = kernel.layout
+    if lay.joint_rows:
+        rows = lay.lam[len(lay.lam) - len(lay.joint_rows):]
+        kernel.arrays["compliance"][rows] = RATE_COMPLIANCE * tol / kernel.force_scale
+
+
+def _positions(lay):
+    """The state indices of every body's positions q."""
+    return np.concatenate([np.arange(qa, qa + (3 if b.kind == "point" else 7))
+                           for b, qa in zip(lay.bodies, lay.qadr)]).astype(int)
+
+
 def _velocities(lay):
     """The state indices of every body's velocities u."""
     return np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" else 6))
@@ -142,12 +211,13 @@ def _unassembled(kernel, lay, disp, g, y):
     """Raise AssemblyError unless the position constraints hold after the Newton steps."""
     if np.max(np.abs(g)) <= 1e-9 * (1.0 + np.max(np.abs(y))):
         return
-    tags = {"joint": "Constraint_Joint ", "motion": "Motion_Marker "}
     names = []
     for k in disp[np.abs(g) > 1e-9]:
         prefix = kernel.layout.names[lay.mu[k]].split(".")[0]
         kind = prefix.rstrip("0123456789")
-        names.append(tags[kind] + prefix[len(kind):])
+        eid = int(prefix[len(kind):])
+        names.append(f"{kernel.motion_tags[eid] if kind == 'motion' else 'Constraint_Joint'} "
+                     f"{eid}")
     raise AssemblyError("the initial positions cannot be assembled: "
                         f"{', '.join(dict.fromkeys(names))} violated by up to "
                         f"{np.max(np.abs(g)):.3g} after the least-change correction")

@@ -8,7 +8,7 @@ from ..options import SPARSE_THRESHOLD
 from . import usercalls
 from .bindings import ffi, lib
 from .compiler import Compiler
-from .consistent import consistent, reactions
+from .consistent import consistent, init_compliance
 
 ROUNDING = 1e-10     # trial times this close (times |t|) to a non-finite residual: rounding
 
@@ -57,6 +57,8 @@ class Kernel:
         self.layout = comp.layout
         self.channels = comp.channels
         self.sensor_ids = sorted(model.sensors)
+        self.motion_tags = {i: "Motion_" + ("Joint" if mo.joint else "Marker")
+                            for i, mo in model.motions.items()}
         self.evaluate_ids = sorted(model.evaluates)
         self.evaluate_tapes = comp.evaluate
         self.control_tapes = comp.ctrl
@@ -117,6 +119,8 @@ class Kernel:
         if kind != "tapes":
             self._generate()
         self._bind()
+        if len(self.layout.lam):
+            init_compliance(self, (UserFailure,))
 
     def _generate(self):
         """Attach the generated C of this scene (pysolver.build.codegen), if it can be made."""
@@ -374,11 +378,6 @@ class Kernel:
         jac = np.zeros((self.ny, self.ny))
         self.jacobian(t, np.ascontiguousarray(y, float), np.ascontiguousarray(yp, float), cj, jac)
         return jac
-
-    def reactions(self, t, y, yp):
-        """Motion reactions that balance the force rows at (t, y, yp) (see
-        pysolver.build.consistent.reactions)."""
-        return reactions(self, t, y, yp)
 
     def consistent_yp(self, t, y, iters=4):
         """Return yp with F(t, y, yp) = 0 by Newton's method on yp (F is linear in yp unless

@@ -1,9 +1,11 @@
-"""Motion_Marker: checks at load.
+"""Motion_Marker and Motion_Joint: checks at load.
 
 A motion drives marker I relative to marker J along or about one axis of J; its expression
 is a function of time only (the kernel differentiates it in time). At load: both markers
 exist, they are not on one body (ground included), a rotation does not involve a point body,
-and no two motions drive the same axis between the same two bodies.
+and no two motions drive the same axis between the same two bodies. A Motion_Joint is the
+motion of its joint's markers along z of J (T: DZ(I, J, J)) or about it (R: AZ(I, J)),
+allowed on the joint types that leave that coordinate free.
 """
 from ..model import Motion
 from . import expr as ex
@@ -27,8 +29,41 @@ def two_bodies(model, ctx, a, noun):
     return bi, bj, ground
 
 
-def add_motion(model, ctx, a):
-    """Validate one Motion_Marker's attributes and add it to the model."""
+#: The coordinates a Motion_Joint may drive on each joint type (elements.md 3.1).
+JOINT_COORDINATES = {"REVOLUTE": ("R",), "TRANSLATIONAL": ("T",), "CYLINDRICAL": ("R", "T")}
+
+
+def add_joint_motion(model, ctx, a):
+    """Validate one Motion_Joint and add it to the model as a motion of its joint's markers
+    (after the joints are loaded)."""
+    ctx.id = a["id"]
+    joint = model.joints.get(a["joint_id"])
+    if joint is None:
+        raise ctx.error(f"joint {a['joint_id']} does not exist (a Constraint_Joint id)",
+                        "joint_id")
+    free = JOINT_COORDINATES.get(joint.type)
+    if free is None:
+        raise ctx.error(f"joint {joint.id} is {joint.type}; a Motion_Joint drives a "
+                        "REVOLUTE (R), TRANSLATIONAL (T) or CYLINDRICAL (R or T) joint",
+                        "joint_id")
+    kind = a["motion_type"] or (free[0] if len(free) == 1 else None)
+    if kind is None:
+        raise ctx.error(f"joint {joint.id} is CYLINDRICAL: say which coordinate is driven, "
+                        'motion_type="R" (rotation) or "T" (translation)', "motion_type")
+    if kind not in free:
+        raise ctx.error(f"motion_type {kind} is not a coordinate of {joint.type} joint "
+                        f"{joint.id} (it has {' and '.join(free)})", "motion_type")
+    for key in ("ic_disp", "ic_vel"):
+        if a[key] is not None:
+            raise ctx.error(f"{key} is not supported yet: give the bodies' initial positions "
+                            "and velocities in the deck (the motion starts from them)", key)
+    add_motion(model, ctx, dict(a, i_marker_id=joint.i, j_marker_id=joint.j,
+                                direction="B3" if kind == "R" else "Z"), joint.id)
+
+
+def add_motion(model, ctx, a, joint=0):
+    """Validate one Motion_Marker's attributes (or a Motion_Joint's, on its joint's markers)
+    and add it to the model."""
     bi, bj, ground = two_bodies(model, ctx, a, "a motion")
     rotation = a["direction"].startswith("B")
     if rotation:
@@ -50,7 +85,8 @@ def add_motion(model, ctx, a):
         raise ctx.error(f"{what} already drives {a['direction']} between these bodies; two "
                         f"motions would fight over one coordinate", "direction")
     model.motions[a["id"]] = Motion(a["id"], a["i_marker_id"], a["j_marker_id"],
-                                    a["direction"], a["val_type"], tree, text, a["label"])
+                                    a["direction"], a["val_type"], tree, text, a["label"],
+                                    joint)
     model._where[("motion", a["id"])] = ctx
 
 

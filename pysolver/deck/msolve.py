@@ -174,10 +174,25 @@ def VFORCE(id, **kw):
            "LABEL": "label"}, id, **kw)
 
 
+def _motion_type(val):
+    """TYPE of a joint's MOTION: R or T, or Adams' ROTATION and TRANSLATION."""
+    name = str(val).upper()
+    return {"motion_type": {"ROTATION": "R", "TRANSLATION": "T"}.get(name, name)}
+
+
 def MOTION(id, **kw):
     """Motion of marker I relative to J (Motion_Marker): DIRECTION (X, Y, Z translations along
     J's axes; B1, B2, B3 rotations about them), VAL_TYPE (D displacement, V velocity,
-    A acceleration), FUNCTION (a function of time), LABEL. The reaction is res.motion(id)."""
+    A acceleration), FUNCTION (a function of time), LABEL. With JOINT= the motion of a
+    joint's coordinate instead (Motion_Joint): TYPE (R or ROTATION, T or TRANSLATION; needed
+    on a CYLINDRICAL joint), VAL_TYPE, FUNCTION, IC_DISP, IC_VEL, LABEL. The reaction is
+    res.motion(id)."""
+    if "JOINT" in {k.upper() for k in kw}:
+        _emit("MOTION", "Motion_Joint",
+              {"JOINT": "joint_id", "TYPE": _motion_type, "VAL_TYPE": "val_type",
+               "FUNCTION": "expr", "IC_DISP": "ic_disp", "IC_VEL": "ic_vel", "LABEL": "label"},
+              id, **kw)
+        return
     _emit("MOTION", "Motion_Marker",
           {"I": "i_marker_id", "J": "j_marker_id", "DIRECTION": "direction",
            "VAL_TYPE": "val_type", "FUNCTION": "expr", "LABEL": "label"}, id, **kw)

@@ -81,6 +81,11 @@ SCHEMA = {
                       "i_marker_id": ("id", REQ, None), "j_marker_id": ("id", REQ, None),
                       "direction": (("X", "Y", "Z", "B1", "B2", "B3"), REQ, None),
                       "val_type": (("D", "V", "A"), OPT, "D"), "expr": ("expr", REQ, None)},
+    "Motion_Joint": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                     "type": (("EXPRESSION",), OPT, "EXPRESSION"),
+                     "joint_id": ("id", REQ, None), "motion_type": (("R", "T"), OPT, None),
+                     "val_type": (("D", "V", "A"), OPT, "D"), "expr": ("expr", REQ, None),
+                     "ic_disp": ("float", OPT, None), "ic_vel": ("float", OPT, None)},
     # a <CustomTasks><Schedule name="LoadControl"> block (seed 002), its Parameters flattened
     "LoadControl": {"id": ("id", OPT, None), "label": ("str", OPT, ""),
                     "velocity": ("float", REQ, None), "material": ("id", REQ, None),

@@ -27,7 +27,7 @@ from . import units as un
 from . import usersubs
 from .bodies import add_bodies
 from .joints import add_joint
-from .motions import add_motion
+from .motions import add_joint_motion, add_motion
 from .references import check_references
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
 from .tasks import add_loadcontrol
@@ -95,9 +95,15 @@ def build_model(elements, source):
                             "FIM_S in Param_Static", file=source.file, line=cmd.line,
                             element="Simulate", attribute="analysis_type")
     for ctx, a in later:
+        if ctx.tag == "Motion_Joint":
+            continue
         _force_like(model, ctx, a)
+    for ctx, a in later:                # after the joints they drive
+        if ctx.tag == "Motion_Joint":
+            add_joint_motion(model, ctx, a)
     for cmd in model.commands:
-        for table, tag in ((model.motions, "Motion_Marker"), (model.joints, "Constraint_Joint")):
+        for table, tag in ((model.motions, "Motion_Marker or Motion_Joint"),
+                           (model.joints, "Constraint_Joint")):
             if table and cmd.analysis != "TRANSIENT":
                 raise DeckError(f"{cmd.analysis.lower()} analyses of scenes with {tag} are "
                                 "not supported yet", file=source.file, line=cmd.line,

@@ -55,7 +55,11 @@ class CompiledModel:
         except AssemblyError:             # each run says so (solve.driver.start_state)
             pass
         if self.removed:
-            eqs = ", ".join(f"Constraint_Joint {jid} equation {k + 1}" for jid, k in self.removed)
+            per = {}
+            for jid, k in self.removed:
+                per.setdefault(jid, []).append(str(k + 1))
+            eqs = "; ".join(f"Constraint_Joint {jid} equation{'s' * (len(ks) > 1)} "
+                            f"{', '.join(ks)}" for jid, ks in per.items())
             self.notes.append(f"redundant constraints removed ({len(self.removed)}): {eqs}")
         if kind == "tapes" and not self.removed:
             return probe

@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 from ..build.bindings import ffi, lib
-from ..build.consistent import AssemblyError
+from ..build.consistent import AssemblyError, set_tolerance
 from ..build.kernel import UserFailure
 from . import integrator, nonfinite, quasistatic
 from .actors import Actor, Flow
@@ -54,9 +54,10 @@ def deck_actors(model, kernel, log, bar):
     return sensors, controls, printer
 
 
-def start_state(model, kernel):
-    """(t0, y0, yp0) of a run: the bodies' initial state and rates consistent with it (Stop
-    when they cannot be had)."""
+def start_state(model, kernel, tol):
+    """(t0, y0, yp0) of a run at integr_tol `tol`: the bodies' initial state and rates
+    consistent with it (Stop when they cannot be had)."""
+    set_tolerance(kernel, tol)
     t0, y0 = 0.0, kernel.layout.initial_state()
     kernel.d.last_t = t0
     kernel.d.bad_kind = 0
@@ -347,7 +348,7 @@ class Run:
                     "QUASI-STATIC": lambda c: quasistatic.run_quasi_static(self, c)}
         try:
             try:
-                self.t, self.y, self.yp = start_state(self.model, k)
+                self.t, self.y, self.yp = start_state(self.model, k, self.options.integr_tol)
                 flow = Flow()
                 for actor in self.actors:
                     flow.update(actor.start(self))

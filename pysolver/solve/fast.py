@@ -85,7 +85,7 @@ class FastRun:
         ida = self.solver
         try:
             # the initial state (sweep cases change it) and a consistent yp, as the driver
-            t0, y0, yp0 = start_state(self.model, k)
+            t0, y0, yp0 = start_state(self.model, k, opts.integr_tol)
             Y[0], YP[0], REQ[0, :len(k.channels)] = y0, yp0, k.outputs(t0, y0, yp0)
             row, t_run, fresh = 1, time.perf_counter(), True
             if stream is not None:

@@ -13,6 +13,7 @@ IDA is restarted there, so no impulse enters the logged load.
 import copy
 import math
 
+from ..build.consistent import reactions
 from .actors import Actor, Flow
 from .loadlaw import FIELDS, LawParams, LoadLaw, auto_gains
 
@@ -56,7 +57,7 @@ class LoadControlTask(Actor):
         if self.lc.load == "CONTACT":
             load = float(k.penalty_loads(t, run.y, run.yp)[self.u])
         else:
-            load = -float(k.reactions(t, run.y, run.yp)[self.lam])
+            load = -float(reactions(k, t, run.y, run.yp)[self.lam])
         target = k.eval_tape(k.control_tapes[self.k], t, run.y, run.yp)
         for what, value in (("measured load", load), ("target load", target)):
             if not math.isfinite(value):

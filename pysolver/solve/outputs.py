@@ -284,12 +284,6 @@ class Printer(Actor):
         n = len(times)
         self.pending.drop(n)
         if n:
-            if self.kernel.layout.lam:
-                # the rows' reactions from their force balance, and the channels again
-                Y, REQ = np.array(Y, dtype=float), np.array(REQ, dtype=float)
-                for t, y, yp, out in zip(times, Y, YP, REQ):
-                    self._reactions(t, y, yp)
-                    out[:] = self.kernel.outputs(t, y, yp)
             self.ts.extend(times)
             self.ys.extend(Y)
             self.yps.extend(YP)
@@ -308,8 +302,6 @@ class Printer(Actor):
         if self.ts and t == self.ts.last:
             self._drop_last()
         y, yp = np.array(y, dtype=float), np.array(yp, dtype=float)
-        if self.kernel.layout.lam:
-            self._reactions(t, y, yp)
         self.ts.append(t)
         self.ys.append(y)
         self.yps.append(yp)
@@ -335,11 +327,6 @@ class Printer(Actor):
         if n:
             self.stream.rows(times[:n], self.outs.since(self.streamed)[:n])
             self.streamed += n
-
-    def _reactions(self, t, y, yp):
-        """Motion reactions of a row from its force balance, not IDA's interpolant of them
-        (an algebraic state, outside its error test)."""
-        y[self.kernel.layout.lam] = self.kernel.reactions(t, y, yp)
 
     def _drop_last(self):
         self.ts.pop()

@@ -154,15 +154,17 @@ class Assembly:
         self.apply_at(tape, sj, P, F, None, -1.0)
 
     def hold_rate(self, tape, gn, gd, lam):
-        """The reaction lam along d(g')/du, and its row g' (csrc/assembly.c ps_hold_rate)."""
-        self.rate_force(tape, gn, self.s.y[lam])
-        self.res[lam] = gd
+        """The reaction lam along d(g')/du, and its row g' + c lam (csrc/assembly.c
+        ps_hold_rate)."""
+        s = self.s
+        self.rate_force(tape, gn, s.y[lam])
+        self.res[lam] = s.g.add(gd, s.g.mul(s.par("compliance", lam), s.y[lam]))
 
     def hold_position(self, tape, gn, mu):
-        """Row mu is g; each position row q_j of the tape's bodies gets -mu dg/dq_j
+        """Row mu is g + c mu; each position row q_j of the tape's bodies gets -mu dg/dq_j
         (csrc/assembly.c ps_hold_position)."""
         s, g = self.s, self.s.g
-        self.res[mu] = gn
+        self.res[mu] = g.add(gn, g.mul(s.par("compliance", mu), s.y[mu]))
         for b in s.tape_bodies(tape):
             qa = s.body(b)["qa"]
             for j in range(7 if s.body(b)["rigid"] else 3):

@@ -188,6 +188,8 @@ class Template:
         array, obj, comp = arg
         if array == "gravity":
             return f"m->gravity[{comp}]"
+        if array == "compliance":                      # per state, like y
+            return f"m->compliance[I[{obj}]]"
         base = {"body_mass": nq, "body_inertia": nq, "marker_pos": nq + nb,
                 "marker_rot": nq + nb, "consts": nq + nb + nm}[array] + obj
         stride = STRIDE.get(array, 1)
