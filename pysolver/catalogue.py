@@ -232,9 +232,14 @@ TABLE = (
              ids=("sforce", None, None, "marker"), py_sysfnc=True, c_sysfnc=True),
     _element("SENVAL", "evaluate", "the value Sensor_Evaluate id stored when its sensor last "
              "fired (0 before)", "stored", c="PS_OP_SENVAL"),
+    Function("JOINT", "special", _FORCE_ARGS, None,
+             "reaction of Constraint_Joint id from its equations' multipliers: comp 1 |force|, "
+             "2-4 force in rm's axes, 5 |torque|, 6-8 torque; on I's body at I (jflag 0) or "
+             "on J's at J (1)", reads=frozenset({"forces"}),
+             ids=("joint", None, None, "marker")),
     Function("MOTION", "special", _FORCE_ARGS, None,
-             "reaction of Motion_Marker id along its axis; with 4 arguments a component as "
-             "SFORCE's", required=1, reads=frozenset({"forces"}),
+             "reaction of Motion_Marker or Motion_Joint id along its axis; with 4 arguments a "
+             "component as SFORCE's", required=1, reads=frozenset({"forces"}),
              ids=("motion", None, None, "marker"), py_sysfnc=True),
     # tape instructions no deck writes
     _internal("const", "a number of the model (consts[a0])"),

@@ -73,7 +73,7 @@ class Result:
         # request channels stay one (n, channels) array; request(id) builds its (n, 8) view
         self._outputs = np.asarray(outputs).reshape(len(self.t), len(channels))
         self._column = {tuple(ch): col for col, ch in enumerate(channels)}
-        self._request_ids = sorted({rid for rid, _ in self._column})
+        self._request_ids = sorted({rid for rid, _ in self._column if rid > 0})  # < 0: joints
         self._requests = {}
 
     @property
@@ -154,6 +154,22 @@ class Result:
             known = [n.split(".")[0][6:] for n in self.state_names if n.endswith(".reaction")]
             raise KeyError(f"no motion {id} (motions: {', '.join(known) or 'none'})")
         return self.y[:, self.state_names.index(name)]
+
+    def joint(self, id: int, jflag: int = 0) -> np.ndarray:
+        """Reaction of Constraint_Joint `id` at the output times, shape (n, 8), as
+        JOINT(id, jflag, comp, 0) for comp 1..8: |F|, Fx, Fy, Fz, |T|, Tx, Ty, Tz in global
+        axes, on I's body at I's origin (jflag 0) or on J's body at J's (jflag 1: the
+        opposite force, and the opposite torque less d x F, d = oI - oJ), in model units."""
+        if (-id, 0) not in self._column:
+            known = sorted(-rid for rid, k in self._column if rid < 0 and k == 0)
+            raise KeyError(f"no Constraint_Joint {id} (joints: "
+                           f"{', '.join(map(str, known)) or 'none'})")
+        cols = [self._outputs[:, self._column[(-id, k)]] for k in range(9)]
+        force, torque, d = (np.column_stack(cols[i:i + 3]) for i in (0, 3, 6))
+        if jflag:
+            torque, force = -torque - np.cross(d, force), -force
+        return np.column_stack([np.linalg.norm(force, axis=1), force,
+                                np.linalg.norm(torque, axis=1), torque])
 
     def columns(self) -> tuple[list, np.ndarray]:
         """Return (names, 2-D array) of time and every non-NULL request channel."""

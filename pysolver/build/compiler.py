@@ -288,6 +288,8 @@ class Compiler:
             return self.sforce_measure(tape, *(int(a[1]) for a in args))
         if name == "MOTION":
             return self.motion_measure(tape, *(int(a[1]) for a in args))
+        if name == "JOINT":
+            return self.joint_measure(tape, *(int(a[1]) for a in args))
         if name == "SENVAL":
             tape.uses_senval = True
             return tape.emit(lib.PS_OP_SENVAL, self.eidx[int(args[0][1])])
@@ -456,6 +458,70 @@ class Compiler:
                                 tape.op(mul, parts[2], parts[2])))
         return tape.op(lib.PS_OP_SQRT, total)
 
+    def joint_measure(self, tape, jid, jflag, comp, rm):
+        """JOINT(id, jflag, comp, rm): comp 1 |force|, 2-4 force, 5 |torque|, 6-8 torque of
+        :meth:`joint_reaction`."""
+        force, torque = self.joint_reaction(tape, jid, jflag, rm)
+        if comp in (2, 3, 4):
+            return force[comp - 2]
+        if comp in (6, 7, 8):
+            return torque[comp - 6]
+        parts = force if comp == 1 else torque
+        mul, add = lib.PS_OP_MUL, lib.PS_OP_ADD
+        total = tape.op(add, tape.op(mul, parts[0], parts[0]),
+                        tape.op(add, tape.op(mul, parts[1], parts[1]),
+                                tape.op(mul, parts[2], parts[2])))
+        return tape.op(lib.PS_OP_SQRT, total)
+
+    def joint_reaction(self, tape, jid, jflag, rm):
+        """(force, torque) slots of a joint, from its multipliers lam_k (the kernel applies
+        lam_k d(g_k')/du): a d equation pushes I's body along its global axis, a dJ equation
+        along J's axis, both at I's origin; a dot equation a_I . b_J turns it by
+        lam (a_I x b_J) (and its symmetric twin for CONSTANT_VELOCITY). J's body gets the
+        opposite force and the opposite torque less d x F about its origin (d = oI - oJ).
+        Components in rm's axes; an equation removed as redundant carries nothing."""
+        jo = self.model.joints[jid]
+        mul, add, sub = lib.PS_OP_MUL, lib.PS_OP_ADD, lib.PS_OP_SUB
+        mr, sr = self.marker(tape, rm)
+        ends = {"I": self.marker(tape, jo.i), "J": self.marker(tape, jo.j),
+                "G": self.marker(tape, 0)}
+
+        def axis(end, a):
+            m, s = ends[end]
+            return [tape.emit(lib.PS_OP_AXDOT, m, a, mr, c, s, sr) for c in range(3)]
+
+        def cross(u, v):
+            return [tape.op(sub, tape.op(mul, u[(c + 1) % 3], v[(c + 2) % 3]),
+                            tape.op(mul, u[(c + 2) % 3], v[(c + 1) % 3])) for c in range(3)]
+
+        def plus(u, v, scale=None):
+            v = v if scale is None else [tape.op(mul, scale, x) for x in v]
+            return [tape.op(add, a, b) for a, b in zip(u, v)]
+        zero = tape.const(0.0)
+        force, torque = [zero] * 3, [zero] * 3
+        eqs = catalogue.JOINT_EQUATIONS[jo.type]
+        for (owner, k), lam in zip(self.layout.joint_rows,
+                                   self.layout.lam[len(self.layout.motion_ids):]):
+            if owner != jid:
+                continue
+            if lam not in tape.states:
+                tape.states.append(lam)
+            L = tape.emit(lib.PS_OP_STATE, lam, tape.states.index(lam))
+            eq = eqs[k]
+            if eq[0] in ("d", "dJ"):
+                force = plus(force, axis("G" if eq[0] == "d" else "J", eq[1]), L)
+            else:
+                turn = cross(axis("I", eq[1]), axis("J", eq[2]))
+                if eq[0] == "dot2":
+                    turn = plus(turn, cross(axis("I", eq[2]), axis("J", eq[1])))
+                torque = plus(torque, turn, L)
+        if jflag:
+            d = [self.measure(tape, n, [jo.i, jo.j, rm]) for n in ("DX", "DY", "DZ")]
+            minus = tape.const(-1.0)
+            torque = [tape.op(mul, minus, x) for x in plus(torque, cross(d, force))]
+            force = [tape.op(mul, minus, x) for x in force]
+        return force, torque
+
     # element tapes -------------------------------------------------------------------------
     def motion(self, tape, mo):
         """Slots (g, g', expr, kind) of a Motion_Marker: g the driven measure (less expr for a
@@ -568,6 +634,16 @@ class Compiler:
             for k, e in enumerate(req.exprs):
                 self.out.append((ti, self.lower(t, e)) if e is not None else (-1, 0))
                 self.channels.append((rid, k))
+        # per joint, channels (-id, 0..8): its force and torque on I's body at I and
+        # d = oI - oJ, global (Result.joint)
+        for jid in sorted(model.joints):
+            ti, t = self.new_tape()
+            force, torque = self.joint_reaction(t, jid, 0, 0)
+            jo = model.joints[jid]
+            d = [self.measure(t, n, [jo.i, jo.j, 0]) for n in ("DX", "DY", "DZ")]
+            for k, slot in enumerate(force + torque + d):
+                self.out.append((ti, slot))
+                self.channels.append((-jid, k))
         return self.arrays()
 
     def arrays(self):

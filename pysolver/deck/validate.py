@@ -102,8 +102,9 @@ def build_model(elements, source):
         if ctx.tag == "Motion_Joint":
             add_joint_motion(model, ctx, a)
     for cmd in model.commands:
-        for table, tag in ((model.motions, "Motion_Marker or Motion_Joint"),
-                           (model.joints, "Constraint_Joint")):
+        motion = ("Motion_Joint" if all(mo.joint for mo in model.motions.values())
+                  else "Motion_Marker")
+        for table, tag in ((model.motions, motion), (model.joints, "Constraint_Joint")):
             if table and cmd.analysis != "TRANSIENT":
                 raise DeckError(f"{cmd.analysis.lower()} analyses of scenes with {tag} are "
                                 "not supported yet", file=source.file, line=cmd.line,

@@ -85,6 +85,10 @@ def channels(model, kernel, t, outputs):
     bad = ~np.isfinite(outputs)
     for col in defined[bad[:, defined].any(axis=0)]:
         rid, k = kernel.channels[col]
+        if rid < 0:                       # a joint's reaction channel (Result.joint)
+            lines.append(f"Constraint_Joint {-rid} reaction is not finite from t = "
+                         f"{t[np.flatnonzero(bad[:, col])[0]]:.6g}")
+            continue
         req = model.requests[rid]
         rows = np.flatnonzero(bad[:, col])
         text = req.texts[k] if req.texts[k] else f"{req.usersub.name} channel {k + 1}"

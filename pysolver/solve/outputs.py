@@ -54,7 +54,7 @@ class Stream:
     def __init__(self, path, kernel, labels):
         names, cols, defined = ["time"], [], set(kernel.defined_channels.tolist())
         for col, (rid, k) in sorted(enumerate(kernel.channels), key=lambda c: tuple(c[1])):
-            if col in defined or labels.get((rid, k)):
+            if rid > 0 and (col in defined or labels.get((rid, k))):    # not joints' (< 0)
                 names.append(labels.get((rid, k)) or f"REQ{rid}.{k + 1}")
                 cols.append(col)
         self.path, self.cols = os.fsencode(path), np.array(cols, dtype=np.int32)
