@@ -34,6 +34,29 @@ class _Jac:
             return self.J[:, cols].tocsr()[rows].toarray()
         return self.J[np.ix_(rows, cols)]
 
+    def diagonal(self):
+        """The matrix's diagonal."""
+        return self.J.diagonal() if self.sparse else np.diag(self.J).copy()
+
+    def least_change(self, rows, cols, rhs):
+        """The least-norm x with J[rows, cols] x = rhs: x = C^T (C C^T)^-1 rhs, by a sparse
+        factorization of C C^T on the sparse path (C has full row rank once redundant
+        equations are out; where it has not, least squares), dense least squares otherwise."""
+        if self.sparse:
+            import scipy.sparse.linalg as spla
+            C = self.J[:, cols].tocsr()[rows]
+            try:
+                with np.errstate(all="raise"):
+                    x = C.T @ spla.splu((C @ C.T).tocsc()).solve(np.asarray(rhs, float))
+                if np.all(np.isfinite(x)):
+                    return x
+            except (RuntimeError, FloatingPointError):
+                pass
+            C = C.toarray()
+        else:
+            C = self.block(rows, cols)
+        return np.linalg.lstsq(C, rhs, rcond=None)[0]
+
     def rows_times(self, rows, v):
         """J[rows] @ v."""
         return (self.J @ v)[rows]
@@ -57,8 +80,7 @@ def consistent(kernel, t, y, iters=8):
             r[k] = 0.0
     held = np.nonzero(rate < 0)[0]
     if len(held):
-        C = _Jac(kernel, t, y, yp, 0.0).block(lam[held], u_idx)
-        y[u_idx] += C.T @ np.linalg.lstsq(C @ C.T, -r[held], rcond=None)[0]
+        y[u_idx] += _Jac(kernel, t, y, yp, 0.0).least_change(lam[held], u_idx, -r[held])
     # 3. accelerations and reactions (linear in them unless forces read accelerations)
     rows = np.setdiff1d(np.arange(kernel.ny), lay.algebraic)
     for _ in range(4):
@@ -119,9 +141,8 @@ def _assemble(kernel, t, y, iters):
         g = kernel.residual_array(t, y, yp)[mu[disp]]
         if np.max(np.abs(g)) <= 1e-13 * (1.0 + np.max(np.abs(y))):
             return g
-        C = _Jac(kernel, t, y, yp, 0.0).block(lam[disp], u_idx)
         du = np.zeros(kernel.ny)
-        du[u_idx] = C.T @ np.linalg.lstsq(C @ C.T, -g, rcond=None)[0]
+        du[u_idx] = _Jac(kernel, t, y, yp, 0.0).least_change(lam[disp], u_idx, -g)
         _move(lay, y, du)
     if len(disp):
         g = kernel.residual_array(t, y, yp)[mu[disp]]
@@ -157,7 +178,7 @@ def compliance(kernel, t, y, tau=COMPLIANCE_TIME):
     J1 = _Jac(kernel, t, y, yp, 1.0)
     for rows, cols in ((lam, _velocities(lay)), (mu, _positions(lay))):
         if len(rows):
-            diag = np.array([J1.block([j], [j])[0, 0] - J0.block([j], [j])[0, 0] for j in cols])
+            diag = (J1.diagonal() - J0.diagonal())[cols]
             G = J0.block(rows, cols)
             c[rows] = tau * (G ** 2 / np.where(diag != 0.0, np.abs(diag), np.inf)).sum(axis=1)
     return c
