@@ -220,7 +220,7 @@ class Model:
         lines.append(f"Param_Transient: integr_tol={t.integr_tol:g} h_max={t.h_max} h_min="
                      f"{t.h_min:g} h0_max={t.h0_max}")
         st = self.static
-        if any(c.analysis != "TRANSIENT" for c in self.commands):
+        if any(c.analysis in ("STATIC", "QUASI-STATIC") for c in self.commands):
             lines.append(f"Param_Static: method={st.method} max_imbalance={st.max_imbalance:g} "
                          f"max_error={st.max_error:g} stability={st.stability:g}")
         for c in self.commands:

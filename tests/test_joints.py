@@ -241,3 +241,28 @@ def test_joint_function_errors_name_the_joint():
         pysolver.loads(RESTING.replace('expr8="JOINT(2,1,8,0)"', 'expr8="JOINT(2,1,9,0)"'))
     with pytest.raises(KeyError, match="no Constraint_Joint 5"):
         pysolver.loads(RESTING).run().joint(5)
+
+
+def test_an_assembly_analysis_assembles_and_stops():
+    """Simulate analysis_type="Assembly": the pendulum's marker I placed 1 cm off its pivot is
+    pulled onto it with the least change (one row, the joint's gap closed); a transient after
+    it starts from the assembled state; an Assembly takes no end time."""
+    text = (JOINTS / "pendulum_revolute.xml").read_text()
+    text = re.sub(r'<Simulate [^>]*/>', '<Simulate analysis_type="Assembly"/>', text)
+    text = text.replace('id="20" body_id="2" pos_x="2"', 'id="20" body_id="2" pos_x="2.01"')
+    text = text.replace('id="21" body_id="2" pos_x="0"', 'id="21" body_id="2" pos_x="0.01"')
+    res = pysolver.loads(text).run()
+    assert res.success, res.message
+    assert len(res.t) == 1 and res.t[0] == 0.0
+    q = res.request(1)
+    assert abs(q[0, 0] - 2.0) < 1e-12 and abs(q[0, 6]) < 1e-12          # moved back 1 cm
+    both = text.replace('<Simulate analysis_type="Assembly"/>',
+                        '<Simulate analysis_type="Assembly"/><Simulate analysis_type="Transient" '
+                        'end_time="0.5" print_interval="0.25"/>')
+    res = pysolver.loads(both).run()
+    assert res.success, res.message
+    np.testing.assert_allclose(res.t, [0.0, 0.25, 0.5])          # one row at t = 0
+    assert np.abs(res.request(1)[:, 6]).max() < 1e-9
+    with pytest.raises(DeckError, match="an Assembly analysis takes no end time"):
+        pysolver.loads(text.replace('analysis_type="Assembly"',
+                                    'analysis_type="Assembly" end_time="1"'))

@@ -299,7 +299,8 @@ def EQUILIBRIUM(**kw):
 
 
 def SIMULATE(**kw):
-    """Run: TYPE (TRANSIENT, STATIC, QUASI-STATIC), END or DURATION, DTOUT or STEPS."""
+    """Run: TYPE (TRANSIENT, STATIC, QUASI-STATIC, ASSEMBLY), END or DURATION, DTOUT or
+    STEPS (ASSEMBLY takes neither: the initial-conditions analysis alone)."""
     _emit("SIMULATE", "Simulate", {"TYPE": "analysis_type", "END": "end_time",
                                    "DURATION": "duration", "DTOUT": "print_interval",
                                    "STEPS": "num_step", "START": "start_time"}, **kw)

@@ -105,7 +105,7 @@ def build_model(elements, source):
         motion = ("Motion_Joint" if all(mo.joint for mo in model.motions.values())
                   else "Motion_Marker")
         for table, tag in ((model.motions, motion), (model.joints, "Constraint_Joint")):
-            if table and cmd.analysis != "TRANSIENT":
+            if table and cmd.analysis in ("STATIC", "QUASI-STATIC"):
                 raise DeckError(f"{cmd.analysis.lower()} analyses of scenes with {tag} are "
                                 "not supported yet", file=source.file, line=cmd.line,
                                 element="Simulate", attribute="analysis_type")
@@ -202,6 +202,16 @@ def given_span(a):
 
 
 def _simulate(ctx, a, model, t_prev):
+    if a["analysis_type"] == "ASSEMBLY":
+        # the initial-conditions analysis alone: positions and velocities made to satisfy the
+        # joints and motions with the least change, one output row, at the current time
+        given = [k for k in ("end_time", "duration", "print_interval", "num_step",
+                             "print_increment") if a[k] is not None]
+        if given:
+            raise ctx.error("an Assembly analysis takes no end time or output interval",
+                            given[0])
+        model.commands.append(Simulate("ASSEMBLY", t_prev, 0.0, ctx.line))
+        return t_prev
     if a["analysis_type"] == "STATIC":
         # an equilibrium at the current time, or at end_time when given
         given = [k for k in ("duration", "print_interval", "num_step", "print_increment")

@@ -327,6 +327,20 @@ class Run:
                 self.remember_step()
         self.act_due(timed)
 
+    def run_assembly(self, cmd):
+        """Simulate analysis_type="Assembly": the state made consistent with the constraints
+        (pysolver.build.consistent; at the start of a run that is already done) and one row;
+        IDA restarts from it when a transient follows."""
+        if self.t > 0.0 or not self.printer.ts:
+            y = self.y.copy()
+            try:
+                self.yp = self.kernel.consistent_yp(self.t, y)
+            except AssemblyError as err:
+                raise Stop(False, -720, f"assembly at t = {self.t:.6g}: {err}") from None
+            self.y = y
+            self.need_start = True
+        self.printer.emit(self.t, self.y, self.yp)
+
     # statics -------------------------------------------------------------------------
     def after_static(self, t, y):
         """Continue from an equilibrium: velocities zero and, since the forces balance there,
@@ -343,7 +357,7 @@ class Run:
         k = self.kernel
         self.t = 0.0
         self.y = self.yp = np.zeros(k.ny)
-        commands = {"TRANSIENT": self.run_transient,
+        commands = {"TRANSIENT": self.run_transient, "ASSEMBLY": self.run_assembly,
                     "STATIC": lambda c: quasistatic.run_static(self, c),
                     "QUASI-STATIC": lambda c: quasistatic.run_quasi_static(self, c)}
         try:
