@@ -209,6 +209,7 @@ class Model:
                   + mo.text for mo in self.motions.values() if mo.id > 0]  # not LoadControl's
         lines += [f"Constraint_Joint {jo.id} ({jo.type} I={jo.i} J={jo.j})"
                   for jo in self.joints.values()]
+        lines += [f"Constraint_General {gc.id}: {gc.text} = 0" for gc in self.gcons.values()]
         lines += [f"Reference_Variable {v.id}: {v.text}" for v in self.variables.values()]
         lines += [f"Post_Request {r.id}: {sum(1 for t in r.texts if t)} channel(s)"
                   for r in self.requests.values()]
@@ -231,11 +232,12 @@ class Model:
 
     def num_states(self) -> int:
         """IDA states: 6 per point body, 13 per rigid body, 1 per motion (2 for a displacement
-        or an acceleration), 2 per joint equation (its reactions at the velocity and the
-        position level)."""
+        or an acceleration), 2 per joint equation and per Constraint_General (its reactions at
+        the velocity and the position level)."""
         return (sum({"point": 6, "rigid": 13}.get(b.kind, 0) for b in self.bodies.values())
                 + sum(1 + (m.val_type != "V") for m in self.motions.values())
-                + sum(2 * len(catalogue.JOINT_EQUATIONS[j.type]) for j in self.joints.values()))
+                + sum(2 * len(catalogue.JOINT_EQUATIONS[j.type]) for j in self.joints.values())
+                + 2 * len(self.gcons))
 
     def __reduce__(self):
         return (_rebuild, (self.source.file, self.source.text, self.source.fmt,

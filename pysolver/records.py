@@ -148,6 +148,19 @@ class Joint:
 
 
 @record
+class GeneralConstraint:
+    """Constraint_General: the expression `expr` of displacements and time held at zero (one
+    equation, like a joint's: its reaction res.motion-like state gcon<id>.reaction); `i` the
+    marker MotionSolve reports the reaction at (recorded; 0 when none)."""
+    id: int
+    expr: tuple
+    text: str
+    i: int = 0
+    label: str = ""
+    virtual: bool = False
+
+
+@record
 class LoadControl:
     """The LoadControl task (seed 002): every update_time, the velocity of `body` along global
     axis `direction` (0, 1, 2) is set so that the load on it follows `load_expr` (a function of

@@ -10,6 +10,7 @@ KIND(sforce)
 KIND(vforce)
 KIND(motion)
 KIND(joint)
+KIND(gcon)
 
 const psElementKind ps_element_kinds[PS_EL_COUNT] = {
   [PS_EL_PENALTY] = {ps_el_penalty, 2, 2, 1},
@@ -17,6 +18,7 @@ const psElementKind ps_element_kinds[PS_EL_COUNT] = {
   [PS_EL_VFORCE] = {ps_el_vforce, 8, 3, 0},
   [PS_EL_MOTION] = {ps_el_motion, 7, 2, 1},
   [PS_EL_JOINT] = {ps_el_joint, 4, 2, 1},
+  [PS_EL_GCON] = {ps_el_gcon, 4, 2, 1},
 };
 
 int ps_element_layout(int kind, int* nint, int* nvalue, int* order) {

@@ -81,6 +81,7 @@ enum psElement {
   PS_EL_VFORCE,      /* Force_Vector_TwoBody */
   PS_EL_MOTION,      /* Motion_Marker */
   PS_EL_JOINT,       /* one equation of a Constraint_Joint */
+  PS_EL_GCON,        /* a Constraint_General */
   PS_EL_COUNT
 };
 

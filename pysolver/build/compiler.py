@@ -53,8 +53,9 @@ class Layout:
             off += nq + nu
         # per Motion_Marker its reaction lam (an algebraic state); a displacement motion also
         # mu, which holds it at the position level, an acceleration motion the driven
-        # velocity w, which integrates its expression; then per joint equation lam and mu.
-        # lam, rate (w) and mu are aligned: motions first, in id order, then joints.
+        # velocity w, which integrates its expression; then per joint equation lam and mu, then
+        # per Constraint_General. lam, rate (w) and mu are aligned: motions first, in id
+        # order, then joints, then general constraints.
         self.motion_ids = sorted(model.motions)
         self.lam, self.rate, self.mu = [], [], []
         for mid in self.motion_ids:
@@ -68,19 +69,26 @@ class Layout:
                 self.names.append(f"motion{mid}." + ("velocity" if mo.val_type == "A" else
                                                       "position_reaction"))
                 off += 1
-        # (joint id, equation index), aligned with the joints' lam; redundant equations
+        # (kind, id, equation index) of each constraint equation, aligned with their lam:
+        # joint_rows the joints' (jid, k), then the general constraints'; redundant equations
         # (`removed`, found by pysolver.build.consistent.redundant) are left out
-        self.joint_rows = []
-        for jid in sorted(model.joints):
-            for k in range(len(catalogue.JOINT_EQUATIONS[model.joints[jid].type])):
-                if (jid, k) in removed:
+        self.joint_rows, self.constraint_rows = [], []
+        equations = [("joint", jid, len(catalogue.JOINT_EQUATIONS[model.joints[jid].type]))
+                     for jid in sorted(model.joints)]
+        equations += [("gcon", gid, 1) for gid in sorted(model.gcons)]
+        for kind, jid, neq in equations:
+            for k in range(neq):
+                if (kind, jid, k) in removed:
                     continue
-                self.joint_rows.append((jid, k))
+                self.constraint_rows.append((kind, jid, k))
+                if kind == "joint":
+                    self.joint_rows.append((jid, k))
                 self.lam.append(off)
                 self.mu.append(off + 1)
                 self.rate.append(-1)
-                self.names += [f"joint{jid}.reaction{k + 1}",
-                               f"joint{jid}.position_reaction{k + 1}"]
+                self.names += ([f"joint{jid}.reaction{k + 1}",
+                                f"joint{jid}.position_reaction{k + 1}"] if kind == "joint" else
+                               [f"gcon{jid}.reaction", f"gcon{jid}.position_reaction"])
                 off += 2
         self.algebraic = sorted(self.lam + [m for m in self.mu if m >= 0])
         self.ny = off
@@ -572,6 +580,23 @@ class Compiler:
             self.element("joint", jo.id, ti, g, gd, self.layout.lam[base + k],
                          self.layout.mu[base + k])
 
+    def gcon(self, ti, tape, gc):
+        """A Constraint_General's expression g(q, t) as one constraint equation (held like a
+        joint's: its rate with lam, itself with mu), if it is not redundant."""
+        lay = self.layout
+        if ("gcon", gc.id, 0) not in lay.constraint_rows:
+            return
+        k = len(lay.motion_ids) + lay.constraint_rows.index(("gcon", gc.id, 0))
+        touched = set()
+        tape.touch.append(touched)
+        g = self.lower(tape, gc.expr)
+        tape.touch.pop()
+        for s in touched:                 # g' needs the velocities of g's bodies
+            tape.bodies[s][1] = True
+        gd = tape.emit(lib.PS_OP_GDOT, g)
+        tape.has_gdot = True
+        self.element("gcon", gc.id, ti, g, gd, lay.lam[k], lay.mu[k])
+
     def new_tape(self):
         t = _Tape(self)
         self.tapes.append(t)
@@ -607,6 +632,9 @@ class Compiler:
         for jid in sorted(model.joints):
             ti, t = self.new_tape()
             self.joint(ti, t, model.joints[jid])
+        for gid in sorted(model.gcons):
+            ti, t = self.new_tape()
+            self.gcon(ti, t, model.gcons[gid])
         # forces that read SENVAL need a restart with consistent yp when a value is stored
         self.forces_use_senval = any(self.tapes[t].uses_senval
                                      for kind, _, t, _ in self.elements if kind != "motion")

@@ -124,7 +124,7 @@ def redundant(kernel, t, y, tol=1e-8):
             raise AssemblyError(f"{kernel.motion_tags[mid]} {mid} drives a coordinate that "
                                 "other motions or the joints already fix")
         else:
-            out.append(lay.joint_rows[k - nmot])
+            out.append(lay.constraint_rows[k - nmot])
     return out
 
 
@@ -209,8 +209,8 @@ def set_tolerance(kernel, tol):
     tol / (the bodies' weight), so that a reaction of that size moves its rate by the
     tolerance. A motion's rate rows keep none: a prescribed rate is exact."""
     lay = kernel.layout
-    if lay.joint_rows:
-        rows = lay.lam[len(lay.lam) - len(lay.joint_rows):]
+    if lay.constraint_rows:
+        rows = lay.lam[len(lay.motion_ids):]
         kernel.arrays["compliance"][rows] = RATE_COMPLIANCE * tol / kernel.force_scale
 
 
@@ -239,8 +239,8 @@ def _unassembled(kernel, lay, disp, g, y):
         prefix = kernel.layout.names[lay.mu[k]].split(".")[0]
         kind = prefix.rstrip("0123456789")
         eid = int(prefix[len(kind):])
-        names.append(f"{kernel.motion_tags[eid] if kind == 'motion' else 'Constraint_Joint'} "
-                     f"{eid}")
+        tag = {"joint": "Constraint_Joint", "gcon": "Constraint_General"}.get(kind)
+        names.append(f"{kernel.motion_tags[eid] if kind == 'motion' else tag} {eid}")
     raise AssemblyError("the initial positions cannot be assembled: "
                         f"{', '.join(dict.fromkeys(names))} violated by up to "
                         f"{np.max(np.abs(g)):.3g} after the least-change correction")

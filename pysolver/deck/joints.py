@@ -9,7 +9,7 @@ the position and the velocity level (csrc/elements/joint.c).
 """
 from ..catalogue import JOINT_EQUATIONS as EQUATIONS
 from ..catalogue import JOINTS_NOT_YET as NOT_YET
-from ..records import Joint
+from ..records import GeneralConstraint, Joint
 from .motions import two_bodies
 
 X, Y = 0, 1
@@ -47,3 +47,18 @@ def equation_tree(joint, eq):
 
 def _call(name, *ids):
     return ("call", name, [("num", float(i)) for i in ids], 0)
+
+
+def add_gcon(model, ctx, a):
+    """Validate one Constraint_General and add it to the model (that it reads displacements
+    and time only is checked with the other expressions: deck.references)."""
+    ctx.id = a["id"]
+    tree, text = a["expr"]
+    if tree[0] == "user":
+        raise ctx.error("a GCOSUB user subroutine for Constraint_General is not supported "
+                        "yet: give the expression", "expr")
+    if a["i_marker_id"] is not None and a["i_marker_id"] not in model.markers:
+        raise ctx.error(f"marker {a['i_marker_id']} does not exist", "i_marker_id")
+    model.gcons[a["id"]] = GeneralConstraint(a["id"], tree, text, a["i_marker_id"] or 0,
+                                             a["label"], bool(a["is_virtual"]))
+    model._where[("gcon", a["id"])] = ctx

@@ -23,7 +23,7 @@ import threading
 _STATE = threading.local()
 
 __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "VFORCE",
-           "MOTION", "JOINT", "JPRIM",
+           "MOTION", "JOINT", "JPRIM", "GCON",
            "LOADCONTROL", "VARIABLE",
            "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM",
            "py_sysfnc", "py_sysary", "py_errmes"]
@@ -213,6 +213,13 @@ def JOINT(id, **kw):
     _emit("JOINT", "Constraint_Joint",
           {"TYPE": _joint_type, "I": "i_marker_id", "J": "j_marker_id", "PITCH": "pitch",
            "PD": "pitch_diameter", "LABEL": "label"}, id, **kw)
+
+
+def GCON(id, **kw):
+    """General constraint (Constraint_General): FUNCTION (an expression of displacements and
+    time held at zero), I (the marker MotionSolve reports its reaction at), LABEL."""
+    _emit("GCON", "Constraint_General",
+          {"FUNCTION": "expr", "I": "i_marker_id", "LABEL": "label"}, id, **kw)
 
 
 def JPRIM(id, **kw):

@@ -42,17 +42,23 @@ def check_references(model):
         if key[0] == "penalty" and dyn:
             raise ctx.error("a penalty constraint g(q, t) may use displacement measures only "
                             f"(found {dyn}); velocities enter through penalty1", attr)
+        if key[0] == "gcon" and dyn:
+            raise ctx.error("a Constraint_General of velocities (non-holonomic) is not "
+                            f"supported yet: the expression may read displacements and time "
+                            f"(found {dyn})", attr)
 
 
 def _expressions(model):
     """(key, attribute, tree) of every expression in the model; a user subroutine's traced
     expression is named by its routine attribute, and one not traced yet is left out."""
-    for kind, table in (("penalty", model.penalties), ("sforce", model.sforces),
+    for kind, table in (("penalty", model.penalties), ("gcon", model.gcons),
+                        ("sforce", model.sforces),
                         ("variable", model.variables), ("sensor", model.sensors),
                         ("evaluate", model.evaluates)):
         for el in table.values():
             if el.expr is not None:
-                yield (kind, el.id), el.usersub.attribute if el.usersub else "expr", el.expr
+                sub = getattr(el, "usersub", None)
+                yield (kind, el.id), sub.attribute if sub else "expr", el.expr
     for vf in model.vforces.values():
         for c, e in zip("xyz", vf.exprs):
             yield ("vforce", vf.id), f"f{c}_expression", e

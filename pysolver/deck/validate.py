@@ -26,7 +26,7 @@ from ..options import DECK_NAMES, Options, rule_problem
 from . import units as un
 from . import usersubs
 from .bodies import add_bodies
-from .joints import add_joint
+from .joints import add_gcon, add_joint
 from .motions import add_joint_motion, add_motion
 from .references import check_references
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
@@ -104,7 +104,8 @@ def build_model(elements, source):
     for cmd in model.commands:
         motion = ("Motion_Joint" if all(mo.joint for mo in model.motions.values())
                   else "Motion_Marker")
-        for table, tag in ((model.motions, motion), (model.joints, "Constraint_Joint")):
+        for table, tag in ((model.motions, motion), (model.joints, "Constraint_Joint"),
+                           (model.gcons, "Constraint_General")):
             if table and cmd.analysis in ("STATIC", "QUASI-STATIC"):
                 raise DeckError(f"{cmd.analysis.lower()} analyses of scenes with {tag} are "
                                 "not supported yet", file=source.file, line=cmd.line,
@@ -319,6 +320,8 @@ def _force_like(model, ctx, a):
         add_motion(model, ctx, a)
     elif tag in ("Constraint_Joint", "Constraint_Jprim"):
         add_joint(model, ctx, a)
+    elif tag == "Constraint_General":
+        add_gcon(model, ctx, a)
     elif tag == "LoadControl":
         add_loadcontrol(model, ctx, a)
     elif tag == "Reference_Variable":

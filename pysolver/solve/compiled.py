@@ -47,7 +47,7 @@ class CompiledModel:
         """The kernel, joint equations that repeat others left out (found on the tapes at
         the assembled initial positions; :attr:`notes` names them)."""
         self.removed, self.notes = (), []
-        if not self.model.joints:
+        if not self.model.joints and not self.model.gcons:
             return Kernel(self.model, False, kind)
         probe = Kernel(self.model, False, "tapes")
         try:
@@ -56,10 +56,13 @@ class CompiledModel:
             pass
         if self.removed:
             per = {}
-            for jid, k in self.removed:
-                per.setdefault(jid, []).append(str(k + 1))
-            eqs = "; ".join(f"Constraint_Joint {jid} equation{'s' * (len(ks) > 1)} "
-                            f"{', '.join(ks)}" for jid, ks in per.items())
+            for kind, cid, k in self.removed:
+                per.setdefault((kind, cid), []).append(str(k + 1))
+            tag = {"joint": "Constraint_Joint", "gcon": "Constraint_General"}
+            eqs = "; ".join(f"{tag[kind]} {cid}" + ("" if kind == "gcon" else
+                                                    f" equation{'s' * (len(ks) > 1)} "
+                                                    f"{', '.join(ks)}")
+                            for (kind, cid), ks in per.items())
             self.notes.append(f"redundant constraints removed ({len(self.removed)}): {eqs}")
         if kind == "tapes" and not self.removed:
             return probe

@@ -189,6 +189,8 @@ class Assembly:
         self.hold_rate(tape, slots[gn], slots[gd], lam)
         self.hold_position(tape, slots[gn], mu)
 
+    _gcon = _joint                        # csrc/elements/gcon.c holds it as a joint equation
+
     # the iteration matrix ---------------------------------------------------------------
     def _jacobian(self):
         """(row, col, node) of dF/dy + cj dF/dyp, sorted by column then row."""
