@@ -370,16 +370,22 @@ class Compiler:
                             element=key[0], id=key[1])
         self.stack.append(key)
 
+    def lower_for_rate(self, tape, tree):
+        """Lower a displacement expression g whose total time derivative g' (PS_OP_GDOT) the
+        tape will take: the velocities of the bodies g reads become part of its basis."""
+        touched = set()
+        tape.touch.append(touched)
+        g = self.lower(tape, tree)
+        tape.touch.pop()
+        for s in touched:
+            tape.bodies[s][1] = True
+        return g
+
     def penalty_force(self, tape, pid):
         """Return slots (g, F) of Force_Penalty `pid`: F = -p g - p1 g', smoothed if unilateral."""
         self._guard(("Force_Penalty", pid))
         p = self.model.penalties[pid]
-        touched = set()
-        tape.touch.append(touched)
-        g = self.lower(tape, p.expr)
-        tape.touch.pop()
-        for s in touched:                 # g' needs the velocities of g's bodies
-            tape.bodies[s][1] = True
+        g = self.lower_for_rate(tape, p.expr)
         mul, add = lib.PS_OP_MUL, lib.PS_OP_ADD
         where = f"Force_Penalty/{pid}"
         gd = None
@@ -534,12 +540,7 @@ class Compiler:
     def motion(self, tape, mo):
         """Slots (g, g', expr, kind) of a Motion_Marker: g the driven measure (less expr for a
         displacement motion), g' its total time derivative, which the kernel constrains."""
-        touched = set()
-        tape.touch.append(touched)
-        phi = self.lower(tape, motions.measure(mo))
-        tape.touch.pop()
-        for s in touched:                 # g' needs the velocities of g's bodies
-            tape.bodies[s][1] = True
+        phi = self.lower_for_rate(tape, motions.measure(mo))
         f = self.lower(tape, mo.expr)
         g = tape.op(lib.PS_OP_SUB, phi, f) if mo.val_type == "D" else phi
         if mo.val_type == "D" and mo.direction.startswith("B"):
@@ -569,12 +570,7 @@ class Compiler:
             if n not in rows:
                 continue
             k = rows[n]
-            touched = set()
-            tape.touch.append(touched)
-            g = self.lower(tape, joints.equation_tree(jo, eq))
-            tape.touch.pop()
-            for s in touched:             # g' needs the velocities of g's bodies
-                tape.bodies[s][1] = True
+            g = self.lower_for_rate(tape, joints.equation_tree(jo, eq))
             gd = tape.emit(lib.PS_OP_GDOT, g)
             tape.has_gdot = True
             self.element("joint", jo.id, ti, g, gd, self.layout.lam[base + k],
@@ -587,12 +583,7 @@ class Compiler:
         if ("gcon", gc.id, 0) not in lay.constraint_rows:
             return
         k = len(lay.motion_ids) + lay.constraint_rows.index(("gcon", gc.id, 0))
-        touched = set()
-        tape.touch.append(touched)
-        g = self.lower(tape, gc.expr)
-        tape.touch.pop()
-        for s in touched:                 # g' needs the velocities of g's bodies
-            tape.bodies[s][1] = True
+        g = self.lower_for_rate(tape, gc.expr)
         gd = tape.emit(lib.PS_OP_GDOT, g)
         tape.has_gdot = True
         self.element("gcon", gc.id, ti, g, gd, lay.lam[k], lay.mu[k])
