@@ -123,7 +123,9 @@ class Motion:
     """Motion_Marker: the displacement (D), velocity (V) or acceleration (A) of marker I
     relative to J along one axis of J (X, Y, Z: DX/DY/DZ(I, J, J)) or about it (B1, B2, B3:
     AX/AY/AZ(I, J)) follows expr, a function of time. A Motion_Joint is one on its joint's
-    markers (`joint` its id; 0 for a Motion_Marker): Z for a translation, B3 for a rotation."""
+    markers (`joint` its id; 0 for a Motion_Marker): Z for a translation, B3 for a rotation.
+    ic_disp (V or A) and ic_vel (A): the driven measure and its rate at t = 0 (None: the
+    bodies' initial state decides)."""
     id: int
     i: int
     j: int
@@ -133,6 +135,8 @@ class Motion:
     text: str
     label: str = ""
     joint: int = 0
+    ic_disp: float = None
+    ic_vel: float = None
 
 
 @record

@@ -98,7 +98,8 @@ def test_the_python_statement_drives_a_joint(tmp_path):
     ('joint_id="1" expr="TIME"', "motion_type", "CYLINDRICAL: say which"),
     ('joint_id="3" motion_type="T" expr="TIME"', "motion_type", "not a coordinate of "
                                                                "REVOLUTE"),
-    ('joint_id="3" val_type="V" ic_disp="0.1" expr="1"', "ic_disp", "not supported yet"),
+    ('joint_id="3" ic_disp="0.1" expr="TIME"', "ic_disp", "of a V or A motion"),
+    ('joint_id="3" val_type="V" ic_vel="0.1" expr="1"', "ic_vel", "of a A motion"),
     ('joint_id="3" expr="DX(20)"', "expr", "time only"),
     ('expr="TIME"', "joint_id", "required"),
 ])
@@ -125,3 +126,36 @@ def test_a_motion_joint_shares_the_motion_ids():
                'expr="0"/>')
     with pytest.raises(DeckError, match="duplicate motion id 1"):
         pysolver.loads(CYLINDER.format(motions=motions))
+
+
+def test_initial_conditions_of_velocity_and_acceleration_motions():
+    """ic_disp and ic_vel are the integration constants: a crank turned at 1 rad/s (V) from
+    ic_disp 0.5 rad sits at 0.5 + t, one driven at zero acceleration (A) from ic_disp 2.5 and
+    ic_vel 2 at 2.5 + 2 t (wrapped: it passes pi), and a slider driven at 0.2 m/s from ic_disp
+    0.1 at 0.1 + 0.2 t; the bodies start there, moved with the least change from the deck's
+    own (zero) positions and velocities; at integr_tol 1e-9."""
+    deck = """<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+      <Reference_Marker id="1" body_id="1"/>
+      <Reference_Marker id="20" body_id="2"/><Reference_Marker id="30" body_id="3"/>
+      <Reference_Marker id="40" body_id="4"/>
+      <Body_Rigid id="2" cg_id="20" mass="1" inertia_xx="1" inertia_yy="1" inertia_zz="1"/>
+      <Body_Rigid id="3" cg_id="30" mass="1" inertia_xx="1" inertia_yy="1" inertia_zz="1"/>
+      <Body_Rigid id="4" cg_id="40" mass="1" inertia_xx="1" inertia_yy="1" inertia_zz="1"/>
+      <Constraint_Joint id="1" type="REVOLUTE" i_marker_id="20" j_marker_id="1"/>
+      <Constraint_Joint id="2" type="REVOLUTE" i_marker_id="30" j_marker_id="1"/>
+      <Constraint_Joint id="3" type="TRANSLATIONAL" i_marker_id="40" j_marker_id="1"/>
+      <Motion_Joint id="1" joint_id="1" val_type="V" expr="1" ic_disp="0.5"/>
+      <Motion_Joint id="2" joint_id="2" val_type="A" expr="0" ic_disp="2.5" ic_vel="2"/>
+      <Motion_Joint id="3" joint_id="3" val_type="V" expr="0.2" ic_disp="0.1"/>
+      <Post_Request id="1" expr1="AZ(20,1)" expr2="AZ(30,1)" expr3="DZ(40,1,1)"/>
+      <Param_Transient integr_tol="1e-9"/></Model>
+      <Simulate analysis_type="Transient" end_time="1" print_interval="0.25"/></MotionSolve>"""
+    res = pysolver.loads(deck).run()
+    assert res.success, res.message
+    q, t = res.request(1), res.t
+
+    def wrapped(a):
+        return np.abs(np.angle(np.exp(1j * a)))
+    assert wrapped(q[:, 0] - (0.5 + t)).max() < 1e-8
+    assert wrapped(q[:, 1] - (2.5 + 2 * t)).max() < 1e-7        # measured 4.6e-8
+    assert np.abs(q[:, 2] - (0.1 + 0.2 * t)).max() < 1e-9

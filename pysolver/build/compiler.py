@@ -57,6 +57,11 @@ class Layout:
         # per Constraint_General. lam, rate (w) and mu are aligned: motions first, in id
         # order, then joints, then general constraints.
         self.motion_ids = sorted(model.motions)
+        self.motion_tags = {m: "Motion_" + ("Joint" if model.motions[m].joint else "Marker")
+                            for m in self.motion_ids}
+        # each motion's (ic_disp, ic_vel) and whether it turns (ic_disp then an angle)
+        self.motion_ic = [(model.motions[m].ic_disp, model.motions[m].ic_vel,
+                           model.motions[m].direction.startswith("B")) for m in self.motion_ids]
         self.lam, self.rate, self.mu = [], [], []
         for mid in self.motion_ids:
             mo = model.motions[mid]

@@ -62,8 +62,9 @@ class _Jac:
         return (self.J @ v)[rows]
 
 
-def consistent(kernel, t, y, iters=8):
-    """Make y consistent in place (positions, velocities, lam, mu, w) and return yp."""
+def consistent(kernel, t, y, iters=8, initial=False):
+    """Make y consistent in place (positions, velocities, lam, mu, w) and return yp; at the
+    `initial` state also with the motions' ic_disp and ic_vel."""
     lay = kernel.layout
     lam, mu, rate = np.array(lay.lam), np.array(lay.mu), np.array(lay.rate)
     y[lam] = 0.0
@@ -71,14 +72,19 @@ def consistent(kernel, t, y, iters=8):
     u_idx = _velocities(lay)
     yp = np.zeros_like(y)
     # 1. positions: g (the rows of mu) to zero along the reactions' directions
-    _assemble(kernel, t, y, iters)
-    # 2. velocities: A motions take w = g'; the others change u
+    _assemble(kernel, t, y, iters, initial)
+    # 2. velocities: A motions take w = g' (or their ic_vel, and u changes); the others change u
+    given = [initial and rate[k] >= 0 and lay.motion_ic[k][1] is not None
+             for k in range(len(rate))]
+    for k, w in enumerate(rate):
+        if given[k]:
+            y[w] = lay.motion_ic[k][1]
     r = kernel.residual_array(t, y, yp)[lam]
     for k, w in enumerate(rate):
-        if w >= 0:
+        if w >= 0 and not given[k]:
             y[w] += r[k]
             r[k] = 0.0
-    held = np.nonzero(rate < 0)[0]
+    held = np.nonzero((rate < 0) | np.array(given, dtype=bool))[0]
     if len(held):
         y[u_idx] += _Jac(kernel, t, y, yp, 0.0).least_change(lam[held], u_idx, -r[held])
     # 3. accelerations and reactions (linear in them unless forces read accelerations)
@@ -108,7 +114,7 @@ def redundant(kernel, t, y, tol=1e-8):
     lay = kernel.layout
     y = np.array(y, dtype=float)
     u_idx = _velocities(lay)
-    _assemble(kernel, t, y, 8)
+    _assemble(kernel, t, y, 8, initial=True)
     C = _Jac(kernel, t, y, np.zeros_like(y), 0.0).block(np.array(lay.lam), u_idx)
     C = C.toarray() if hasattr(C, "toarray") else np.asarray(C)
     basis, out = [], []
@@ -128,25 +134,37 @@ def redundant(kernel, t, y, tol=1e-8):
     return out
 
 
-def _assemble(kernel, t, y, iters):
-    """Move the positions of y (in place) to satisfy the position-level constraints, each
-    Newton step the least change along the reactions' directions; return the last g."""
+def _assemble(kernel, t, y, iters, initial=False):
+    """Move the positions of y (in place) to satisfy the position-level constraints (and at
+    the `initial` state the motions' ic_disp), each Newton step the least change along the
+    reactions' directions; return the last g."""
     lay = kernel.layout
     lam, mu = np.array(lay.lam), np.array(lay.mu)
     disp = np.nonzero(mu >= 0)[0]
+    ic = [k for k, (d, _, _) in enumerate(lay.motion_ic) if initial and d is not None]
+    rows = np.concatenate([disp, ic]).astype(int)
     u_idx = _velocities(lay)
     yp = np.zeros_like(y)
     g = np.zeros(0)
-    for _ in range(iters if len(disp) else 0):
-        g = kernel.residual_array(t, y, yp)[mu[disp]]
+
+    def gaps():
+        """The held g and, per ic_disp, the driven measure's distance from it."""
+        extra = []
+        for k in ic:
+            target, _, angle = lay.motion_ic[k]
+            e = kernel.eval_tape(kernel.motion_slots[lay.motion_ids[k]], t, y, yp) - target
+            extra.append(np.angle(np.exp(1j * e)) if angle else e)
+        return np.concatenate([kernel.residual_array(t, y, yp)[mu[disp]], extra])
+    for _ in range(iters if len(rows) else 0):
+        g = gaps()
         if np.max(np.abs(g)) <= 1e-13 * (1.0 + np.max(np.abs(y))):
             return g
         du = np.zeros(kernel.ny)
-        du[u_idx] = _Jac(kernel, t, y, yp, 0.0).least_change(lam[disp], u_idx, -g)
+        du[u_idx] = _Jac(kernel, t, y, yp, 0.0).least_change(lam[rows], u_idx, -g)
         _move(lay, y, du)
-    if len(disp):
-        g = kernel.residual_array(t, y, yp)[mu[disp]]
-        _unassembled(kernel, lay, disp, g, y)
+    if len(rows):
+        g = gaps()
+        _unassembled(kernel, lay, rows, g, y, len(disp))
     return g
 
 
@@ -233,12 +251,18 @@ class AssemblyError(ValueError):
     """No positions satisfy the constraints near the initial ones."""
 
 
-def _unassembled(kernel, lay, disp, g, y):
-    """Raise AssemblyError unless the position constraints hold after the Newton steps."""
+def _unassembled(kernel, lay, rows, g, y, ndisp):
+    """Raise AssemblyError unless the position constraints hold after the Newton steps (rows:
+    the held equations' indices into lay.lam, the first `ndisp` of them with a mu)."""
     if np.max(np.abs(g)) <= 1e-9 * (1.0 + np.max(np.abs(y))):
         return
     names = []
-    for k in disp[np.abs(g) > 1e-9]:
+    for n in np.flatnonzero(np.abs(g) > 1e-9):
+        k = rows[n]
+        if n >= ndisp:                    # a motion's ic_disp
+            mid = lay.motion_ids[k]
+            names.append(f"{kernel.motion_tags[mid]} {mid} (ic_disp)")
+            continue
         prefix = kernel.layout.names[lay.mu[k]].split(".")[0]
         kind = prefix.rstrip("0123456789")
         eid = int(prefix[len(kind):])

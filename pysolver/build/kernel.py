@@ -57,8 +57,7 @@ class Kernel:
         self.layout = comp.layout
         self.channels = comp.channels
         self.sensor_ids = sorted(model.sensors)
-        self.motion_tags = {i: "Motion_" + ("Joint" if mo.joint else "Marker")
-                            for i, mo in model.motions.items()}
+        self.motion_tags = self.layout.motion_tags         # id -> Motion_Marker / Motion_Joint
         self.evaluate_ids = sorted(model.evaluates)
         self.evaluate_tapes = comp.evaluate
         self.control_tapes = comp.ctrl
@@ -66,6 +65,7 @@ class Kernel:
         self.marker_index = dict(comp.midx)     # marker id -> its row in the marker arrays
         self.forces_use_senval = comp.forces_use_senval
         self.elements = comp.elements      # the element table: (kind, id, tape, ints)
+        self.motion_slots = {i: (t, v[2]) for k, i, t, v in self.elements if k == "motion"}
         self.nsensor = arrays["nsensor"]
         self.ny = arrays["ny"]
         self.ntape = arrays["ntape"]
@@ -379,13 +379,14 @@ class Kernel:
         self.jacobian(t, np.ascontiguousarray(y, float), np.ascontiguousarray(yp, float), cj, jac)
         return jac
 
-    def consistent_yp(self, t, y, iters=4):
+    def consistent_yp(self, t, y, iters=4, initial=False):
         """Return yp with F(t, y, yp) = 0 by Newton's method on yp (F is linear in yp unless
         expressions use accelerations). dF/dyp is the difference of the iteration matrix at
-        cj = 1 and cj = 0; large scenes use the sparse path. With motions y is made consistent
-        too, in place (pysolver.build.consistent)."""
-        if self.layout.lam:                # motions and joints
-            return consistent(self, t, y)
+        cj = 1 and cj = 0; large scenes use the sparse path. With motions and constraints y is
+        made consistent too, in place, at the `initial` state with the motions' ic_disp and
+        ic_vel (pysolver.build.consistent)."""
+        if self.layout.lam:
+            return consistent(self, t, y, initial=initial)
         sparse = self.ny >= SPARSE_THRESHOLD
         if not sparse:                     # in C: a residual, two Jacobians, LU, per step
             if self._cyp is None:

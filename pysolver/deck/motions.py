@@ -53,10 +53,6 @@ def add_joint_motion(model, ctx, a):
     if kind not in free:
         raise ctx.error(f"motion_type {kind} is not a coordinate of {joint.type} joint "
                         f"{joint.id} (it has {' and '.join(free)})", "motion_type")
-    for key in ("ic_disp", "ic_vel"):
-        if a[key] is not None:
-            raise ctx.error(f"{key} is not supported yet: give the bodies' initial positions "
-                            "and velocities in the deck (the motion starts from them)", key)
     add_motion(model, ctx, dict(a, i_marker_id=joint.i, j_marker_id=joint.j,
                                 direction="B3" if kind == "R" else "Z"), joint.id)
 
@@ -75,6 +71,11 @@ def add_motion(model, ctx, a, joint=0):
     if tree[0] == "user":
         raise ctx.error("a motion's expression is a function of time, not a user subroutine",
                         "expr")
+    # the integration constants: a displacement for V and A, a velocity for A
+    for key, kinds in (("ic_disp", "VA"), ("ic_vel", "A")):
+        if a.get(key) is not None and a["val_type"] not in kinds:
+            raise ctx.error(f"{key} is an initial condition of a {' or '.join(kinds)} motion; "
+                            f"this one is val_type {a['val_type']}", key)
     reads = time_only(tree)
     if reads:
         raise ctx.error(f"a motion's expression must depend on time only; it reads "
@@ -86,7 +87,7 @@ def add_motion(model, ctx, a, joint=0):
                         f"motions would fight over one coordinate", "direction")
     model.motions[a["id"]] = Motion(a["id"], a["i_marker_id"], a["j_marker_id"],
                                     a["direction"], a["val_type"], tree, text, a["label"],
-                                    joint)
+                                    joint, a.get("ic_disp"), a.get("ic_vel"))
     model._where[("motion", a["id"])] = ctx
 
 

@@ -183,7 +183,7 @@ def _motion_type(val):
 def MOTION(id, **kw):
     """Motion of marker I relative to J (Motion_Marker): DIRECTION (X, Y, Z translations along
     J's axes; B1, B2, B3 rotations about them), VAL_TYPE (D displacement, V velocity,
-    A acceleration), FUNCTION (a function of time), LABEL. With JOINT= the motion of a
+    A acceleration), FUNCTION (a function of time), IC_DISP, IC_VEL, LABEL. With JOINT= the motion of a
     joint's coordinate instead (Motion_Joint): TYPE (R or ROTATION, T or TRANSLATION; needed
     on a CYLINDRICAL joint), VAL_TYPE, FUNCTION, IC_DISP, IC_VEL, LABEL. The reaction is
     res.motion(id)."""
@@ -195,7 +195,8 @@ def MOTION(id, **kw):
         return
     _emit("MOTION", "Motion_Marker",
           {"I": "i_marker_id", "J": "j_marker_id", "DIRECTION": "direction",
-           "VAL_TYPE": "val_type", "FUNCTION": "expr", "LABEL": "label"}, id, **kw)
+           "VAL_TYPE": "val_type", "FUNCTION": "expr", "IC_DISP": "ic_disp",
+           "IC_VEL": "ic_vel", "LABEL": "label"}, id, **kw)
 
 
 def _joint_type(val):
