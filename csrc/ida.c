@@ -85,6 +85,7 @@ struct psIDA {
   long limited_at;        /* step at which auto_eta was switched on (0: not)        */
   psStream* stream;       /* where output rows are written as made (NULL: nowhere)  */
   char msg[256];          /* message of the last error                              */
+  void (*set_threads)(int); /* SuperLU_MT's libgomp omp_set_num_threads (NULL: none)    */
 };
 
 psIDA* ps_ida_load(const char* const* paths, char* msg, int msglen) {
@@ -103,14 +104,7 @@ psIDA* ps_ida_load(const char* const* paths, char* msg, int msglen) {
       return NULL;
     }
   }
-  /* SuperLU_MT's OpenMP (the wheel's own copy of libgomp, private to SUNDIALS) runs one
-   * thread: IDA's sparse systems are small next to a team's start-up, whose idle threads spin
-   * on a core another process of a batch needs (A02, N = 40: 0.33 s alone, 1.8 s beside one
-   * busy process) */
-  if (s->lib[8]) {
-    void (*set_threads)(int) = (void (*)(int))dlsym(s->lib[8], "omp_set_num_threads");
-    if (set_threads) set_threads(1);
-  }
+  if (s->lib[8]) s->set_threads = (void (*)(int))dlsym(s->lib[8], "omp_set_num_threads");
   for (int k = 0; k < F_COUNT; k++) {
     if (s->lib[FNS[k].lib]) s->fn[k] = dlsym(s->lib[FNS[k].lib], FNS[k].name);
     /* a function may sit in another library of the set in other SUNDIALS builds */
@@ -131,6 +125,7 @@ psIDA* ps_ida_new(const psIDA* loaded) {
   if (!s) return NULL;
   memcpy(s->lib, loaded->lib, sizeof(s->lib));
   memcpy(s->fn, loaded->fn, sizeof(s->fn));
+  s->set_threads = loaded->set_threads;
   return s;
 }
 
@@ -309,6 +304,11 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
     SET(s, CALL(s, IDASStolerances)(s->mem, rtol, atol), "IDASStolerances");
   s->band = mu >= 0 && ml >= 0;
   s->sparse = mu == PS_IDA_SPARSE;
+  /* SuperLU_MT's OpenMP (the wheel's own copy of libgomp, private to SUNDIALS) runs one
+   * thread, set in the calling thread (the setting is per thread): IDA's sparse systems are
+   * small next to a team's start-up, whose idle threads spin on a core another process of a
+   * batch needs (A02, N = 40: 0.33 s alone, 1.8 s beside one busy process) */
+  if (s->sparse && s->set_threads) s->set_threads(1);
   if (s->sparse) {
     if (!ps_ida_has_sparse(s)) return fail(s, "SuperLU_MT (not in this SUNDIALS build)", -1);
     s->map = map;

@@ -212,6 +212,8 @@ class Result:
         path = os.fspath(path)
         if path.lower().endswith(".npz"):
             extra = {f"request_{rid}": self.request(rid) for rid in self.request_ids}
+            extra.update({f"joint_{-rid}": self.joint(-rid) for rid, k in self._column
+                          if rid < 0 and k == 0})
             extra.update({f"controller{lid}_{name}": col
                           for lid, rec in self._controllers.items() for name, col in rec.items()})
             np.savez(path, t=self.t, y=self.y, yp=self.yp, state_names=np.array(self.state_names),

@@ -159,3 +159,13 @@ def test_initial_conditions_of_velocity_and_acceleration_motions():
     assert wrapped(q[:, 0] - (0.5 + t)).max() < 1e-8
     assert wrapped(q[:, 1] - (2.5 + 2 * t)).max() < 1e-7        # measured 4.6e-8
     assert np.abs(q[:, 2] - (0.1 + 0.2 * t)).max() < 1e-9
+
+
+def test_two_motions_on_one_joint_coordinate_name_the_first():
+    motions = ('<Motion_Joint id="5" joint_id="1" motion_type="T" expr="0"/>'
+               '<Motion_Joint id="6" joint_id="1" motion_type="T" expr="TIME"/>')
+    with pytest.raises(DeckError) as err:
+        pysolver.loads(CYLINDER.format(motions=motions))
+    e = err.value
+    assert (e.element, e.id, e.attribute) == ("Motion_Joint", 6, "motion_type")
+    assert "Motion_Joint 5 already drives T of joint 1" in str(e)

@@ -266,3 +266,18 @@ def test_an_assembly_analysis_assembles_and_stops():
     with pytest.raises(DeckError, match="an Assembly analysis takes no end time"):
         pysolver.loads(text.replace('analysis_type="Assembly"',
                                     'analysis_type="Assembly" end_time="1"'))
+
+
+def test_a_mass_changed_by_params_runs_as_the_edited_deck():
+    """The constraint rows' compliance follows the run's numbers: a pendulum made 1000x
+    heavier through params= runs as the deck edited to that mass (it ran 100x less accurately
+    when the compliance kept the deck's weight)."""
+    deck = (JOINTS / "pendulum_revolute.xml").read_text()
+    heavy = pysolver.loads(deck.replace('cg_id="20" mass="1"', 'cg_id="20" mass="1000"'))
+    model = pysolver.loads(deck)
+    model.run()
+    for tol in (1e-6, 1e-8):
+        a = model.run(integr_tol=tol, params={"Body_Rigid/2/mass": 1000.0})
+        b = heavy.run(integr_tol=tol)
+        assert a.success and b.success
+        np.testing.assert_allclose(a.request(1)[:, :4], b.request(1)[:, :4], rtol=0, atol=1e-9)

@@ -223,13 +223,26 @@ def init_compliance(kernel, failures=()):
     mass = float(np.sum(kernel.arrays["body_mass"]))
     gravity = float(np.linalg.norm(kernel.arrays["gravity"]))
     kernel.force_scale = max(mass * max(gravity, 1.0), 1e-300)
+    kernel.compliance_key = _numbers(kernel)
 
 
-def set_tolerance(kernel, tol):
+def _numbers(kernel):
+    """The numbers the compliance depends on and a run may change (params=, sweeps): masses,
+    inertias, gravity, marker positions, the bodies' initial state."""
+    a = kernel.arrays
+    return b"".join(np.ascontiguousarray(v, float).tobytes() for v in (
+        a["body_mass"], a["body_inertia"], a["gravity"], a["marker_pos"],
+        kernel.layout.initial_state()))
+
+
+def set_tolerance(kernel, tol, failures=()):
     """Set the joints' rate rows' compliance for a run at integr_tol `tol`: RATE_COMPLIANCE x
     tol / (the bodies' weight), so that a reaction of that size moves its rate by the
-    tolerance. A motion's rate rows keep none: a prescribed rate is exact."""
+    tolerance. A motion's rate rows keep none: a prescribed rate is exact. The position rows'
+    compliance and the weight are recomputed first when the run changed their numbers."""
     lay = kernel.layout
+    if lay.lam and kernel.compliance_key != _numbers(kernel):
+        init_compliance(kernel, failures)
     if lay.constraint_rows:
         rows = lay.lam[len(lay.motion_ids):]
         kernel.arrays["compliance"][rows] = RATE_COMPLIANCE * tol / kernel.force_scale

@@ -82,9 +82,13 @@ def add_motion(model, ctx, a, joint=0):
                         f"{', '.join(sorted(reads))}", "expr")
     other = clashes(model, bi, bj, a["direction"], ground)
     if other is not None:
-        what = f"Motion_Marker {other}" if other > 0 else f"LoadControl {-other}"
-        raise ctx.error(f"{what} already drives {a['direction']} between these bodies; two "
-                        f"motions would fight over one coordinate", "direction")
+        tag = "Motion_Joint" if other > 0 and model.motions[other].joint else "Motion_Marker"
+        what = f"{tag} {other}" if other > 0 else f"LoadControl {-other}"
+        coordinate = (("R" if a["direction"] == "B3" else "T") + f" of joint {joint}" if joint
+                      else a["direction"])
+        raise ctx.error(f"{what} already drives {coordinate} between these bodies; two "
+                        f"motions would fight over one coordinate",
+                        "motion_type" if joint else "direction")
     model.motions[a["id"]] = Motion(a["id"], a["i_marker_id"], a["j_marker_id"],
                                     a["direction"], a["val_type"], tree, text, a["label"],
                                     joint, a.get("ic_disp"), a.get("ic_vel"))

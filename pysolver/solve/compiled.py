@@ -6,6 +6,8 @@ numbers a run may change without recompiling (:class:`~pysolver.build.params.Par
 the caches of runs (their settings, integration plans, the batched path's IDA object). A Model
 holds one CompiledModel per kind of kernel; ``model.run(...)`` is ``model.compile().run(...)``.
 """
+import numpy as np
+
 from ..build import Kernel
 from ..build.consistent import AssemblyError, redundant
 from ..build.params import Parameters
@@ -52,8 +54,8 @@ class CompiledModel:
         probe = Kernel(self.model, False, "tapes")
         try:
             self.removed = redundant(probe, 0.0, probe.layout.initial_state())
-        except AssemblyError:             # each run says so (solve.driver.start_state)
-            pass
+        except (AssemblyError, np.linalg.LinAlgError, ValueError, ArithmeticError):
+            pass                          # each run says why (solve.driver.start_state)
         if self.removed:
             per = {}
             for kind, cid, k in self.removed:

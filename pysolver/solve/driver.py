@@ -57,7 +57,7 @@ def deck_actors(model, kernel, log, bar):
 def start_state(model, kernel, tol):
     """(t0, y0, yp0) of a run at integr_tol `tol`: the bodies' initial state and rates
     consistent with it (Stop when they cannot be had)."""
-    set_tolerance(kernel, tol)
+    set_tolerance(kernel, tol, (UserFailure,))
     t0, y0 = 0.0, kernel.layout.initial_state()
     kernel.d.last_t = t0
     kernel.d.bad_kind = 0

@@ -22,7 +22,8 @@ def _element(model, kernel, kind, index):
     if kind == lib.PS_BAD_ELEMENT:
         name, eid, *_ = kernel.elements[index]
         e = catalogue.ELEMENT_OF_KIND[name]
-        return e.tags[0], getattr(model, e.table)[eid]
+        tag = kernel.motion_tags[eid] if name == "motion" else e.tags[0]
+        return tag, getattr(model, e.table)[eid]
     e = next(e for e in catalogue.ELEMENTS if e.bad and getattr(lib, e.bad) == kind)
     table = getattr(model, e.table)
     return e.tags[0], table[sorted(table)[index]]
@@ -85,9 +86,11 @@ def channels(model, kernel, t, outputs):
     bad = ~np.isfinite(outputs)
     for col in defined[bad[:, defined].any(axis=0)]:
         rid, k = kernel.channels[col]
-        if rid < 0:                       # a joint's reaction channel (Result.joint)
-            lines.append(f"Constraint_Joint {-rid} reaction is not finite from t = "
-                         f"{t[np.flatnonzero(bad[:, col])[0]]:.6g}")
+        if rid < 0:                       # a joint's reaction channel (Result.joint), once
+            line = (f"Constraint_Joint {-rid} reaction is not finite from t = "
+                    f"{t[np.flatnonzero(bad[:, col])[0]]:.6g}")
+            if line not in lines:
+                lines.append(line)
             continue
         req = model.requests[rid]
         rows = np.flatnonzero(bad[:, col])
