@@ -236,7 +236,7 @@ TABLE = (
              "reaction of Constraint_Joint id from its equations' multipliers: comp 1 |force|, "
              "2-4 force in rm's axes, 5 |torque|, 6-8 torque; on I's body at I (jflag 0) or "
              "on J's at J (1)", reads=frozenset({"forces"}),
-             ids=("joint", None, None, "marker")),
+             ids=("joint", None, None, "marker"), py_sysfnc=True),
     Function("MOTION", "special", _FORCE_ARGS, None,
              "reaction of Motion_Marker or Motion_Joint id along its axis; with 4 arguments a "
              "component as SFORCE's", required=1, reads=frozenset({"forces"}),

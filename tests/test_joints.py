@@ -281,3 +281,36 @@ def test_a_mass_changed_by_params_runs_as_the_edited_deck():
         b = heavy.run(integr_tol=tol)
         assert a.success and b.success
         np.testing.assert_allclose(a.request(1)[:, :4], b.request(1)[:, :4], rtol=0, atol=1e-9)
+
+
+PY_PENDULUM = """from pysolver.msolve import *
+import math
+PART(1, GROUND=True)
+MARKER(2, PART=1)
+MARKER(20, PART=2, QP=[2, 0, 0])
+MARKER(21, PART=2)
+PART(2, MASS=1, CM=20, IP=[1e-3, 1e-3, 1e-3])
+ACCGRAV(JGRAV=-9.81)
+JOINT(1, TYPE="REVOLUTE", I=21, J=2)
+{request}
+INTEGRATOR(ERROR=1e-9)
+SIMULATE(TYPE="TRANSIENT", END=1.0, DTOUT=0.1)
+"""
+
+
+def test_a_traced_python_routine_reads_the_joint_reaction():
+    """py_sysfnc("JOINT", [id, jflag, comp, rm]) in a Python REQSUB equals JOINT() in an
+    expression, channel for channel (the routine is traced into the kernel)."""
+    routine = '''
+def reqsub(id, time, par, npar, iflag):
+    return [py_sysfnc("JOINT", [1, 0, c, 0])[0] for c in (1, 2, 3, 4)] + [
+        py_sysfnc("JOINT", [1, 1, c, 20])[0] for c in (2, 3, 6, 8)]
+REQUEST(1, FUNCTION="USER()", ROUTINE=reqsub)'''
+    exprs = ", ".join([f'F{k + 1}="JOINT(1, 0, {c}, 0)"' for k, c in enumerate((1, 2, 3, 4))]
+                      + [f'F{k + 5}="JOINT(1, 1, {c}, 20)"' for k, c in enumerate((2, 3, 6, 8))])
+    ref = pysolver.loads(PY_PENDULUM.format(request=f"REQUEST(1, {exprs})"), fmt="py").run()
+    res = pysolver.loads(PY_PENDULUM.format(request=routine), fmt="py").run()
+    assert ref.success and res.success
+    np.testing.assert_allclose(res.request(1), ref.request(1), rtol=0, atol=1e-9)
+    # |F| on the bob at most 3 m g (at the bottom, for a point mass), nearly that at t = 0.7
+    assert 25.0 < ref.request(1)[:, 0].max() <= 3 * 9.81
