@@ -314,3 +314,24 @@ REQUEST(1, FUNCTION="USER()", ROUTINE=reqsub)'''
     np.testing.assert_allclose(res.request(1), ref.request(1), rtol=0, atol=1e-9)
     # |F| on the bob at most 3 m g (at the bottom, for a point mass), nearly that at t = 0.7
     assert 25.0 < ref.request(1)[:, 0].max() <= 3 * 9.81
+
+
+def test_loadcontrol_drives_a_body_held_on_a_line():
+    """decks/loadcontrol_bed.py with its indenter held on the vertical line through its start
+    by an INLINE primitive: LoadControl still drives it (the same 120 updates and the same
+    final load as the free indenter, whose contacts are symmetric), and it stays on the
+    line while the primitive carries the sideways contact forces."""
+    text = (ROOT / "decks" / "loadcontrol_bed.py").read_text()
+    at = text.index("LOADCONTROL(")
+    held = (text[:at] + 'MARKER(3, PART=1, QP=[W / 2, 0, 0])\n'
+            'JPRIM(1, TYPE="INLINE", I=10, J=3)\n'
+            'REQUEST(2, F1="DX(10)", F2="DY(10)")\n' + text[at:])
+    free = pysolver.loads(text, fmt="py").run()
+    res = pysolver.loads(held, fmt="py").run()
+    assert free.success and res.success, res.message
+    a, b = free.controller(1), res.controller(1)
+    assert len(a["time"]) == len(b["time"]) == 120
+    assert abs(b["measured"][-1] - a["measured"][-1]) < 1e-3 * abs(a["measured"][-1])
+    xy = res.request(2)[:, :2]
+    assert np.abs(xy - xy[0]).max() < 1e-9
+    assert np.isfinite(res.joint(1)).all()
