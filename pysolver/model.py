@@ -210,6 +210,8 @@ class Model:
         lines += [f"Constraint_Joint {jo.id} ({jo.type} I={jo.i} J={jo.j})"
                   for jo in self.joints.values()]
         lines += [f"Constraint_General {gc.id}: {gc.text} = 0" for gc in self.gcons.values()]
+        lines += [f"Constraint_Coupler {cp.id}: joints {cp.joints} ({':'.join(cp.freedoms)}), "
+                  f"scales {cp.scales}" for cp in self.couplers.values()]
         lines += [f"Reference_Variable {v.id}: {v.text}" for v in self.variables.values()]
         lines += [f"Post_Request {r.id}: {sum(1 for t in r.texts if t)} channel(s)"
                   for r in self.requests.values()]
@@ -237,7 +239,8 @@ class Model:
         return (sum({"point": 6, "rigid": 13}.get(b.kind, 0) for b in self.bodies.values())
                 + sum(1 + (m.val_type != "V") for m in self.motions.values())
                 + sum(2 * len(catalogue.JOINT_EQUATIONS[j.type]) for j in self.joints.values())
-                + 2 * len(self.gcons))
+                + 2 * len(self.gcons)
+                + sum(1 + ("R" not in cp.freedoms) for cp in self.couplers.values()))
 
     def __reduce__(self):
         return (_rebuild, (self.source.file, self.source.text, self.source.fmt,

@@ -165,6 +165,20 @@ class GeneralConstraint:
 
 
 @record
+class Coupler:
+    """Constraint_Coupler: sum_k scales[k] q_k = 0 over the coordinates q_k of `joints` (T: DZ
+    of the joint's I along zJ; R: its rotation AZ about zJ), `freedoms` their kinds; `expr` the
+    relation as an expression tree (pysolver.deck.joints.add_coupler)."""
+    id: int
+    joints: tuple
+    freedoms: tuple
+    scales: tuple
+    expr: tuple
+    label: str = ""
+    virtual: bool = False
+
+
+@record
 class LoadControl:
     """The LoadControl task (seed 002): every update_time, the velocity of `body` along global
     axis `direction` (0, 1, 2) is set so that the load on it follows `load_expr` (a function of

@@ -11,6 +11,7 @@ KIND(vforce)
 KIND(motion)
 KIND(joint)
 KIND(gcon)
+KIND(coupler)
 
 const psElementKind ps_element_kinds[PS_EL_COUNT] = {
   [PS_EL_PENALTY] = {ps_el_penalty, 2, 2, 1},
@@ -19,6 +20,7 @@ const psElementKind ps_element_kinds[PS_EL_COUNT] = {
   [PS_EL_MOTION] = {ps_el_motion, 7, 2, 1},
   [PS_EL_JOINT] = {ps_el_joint, 4, 2, 1},
   [PS_EL_GCON] = {ps_el_gcon, 4, 2, 1},
+  [PS_EL_COUPLER] = {ps_el_coupler, 4, 2, 1},
 };
 
 int ps_element_layout(int kind, int* nint, int* nvalue, int* order) {

@@ -82,6 +82,7 @@ enum psElement {
   PS_EL_MOTION,      /* Motion_Marker */
   PS_EL_JOINT,       /* one equation of a Constraint_Joint */
   PS_EL_GCON,        /* a Constraint_General */
+  PS_EL_COUPLER,     /* a Constraint_Coupler */
   PS_EL_COUNT
 };
 

@@ -81,6 +81,9 @@ class Layout:
         equations = [("joint", jid, len(catalogue.JOINT_EQUATIONS[model.joints[jid].type]))
                      for jid in sorted(model.joints)]
         equations += [("gcon", gid, 1) for gid in sorted(model.gcons)]
+        equations += [("coupler", cid, 1) for cid in sorted(model.couplers)]
+        # a coupler of rotations is held at the velocity level only (AZ wraps at pi)
+        rate_only = {("coupler", c) for c, cp in model.couplers.items() if "R" in cp.freedoms}
         for kind, jid, neq in equations:
             for k in range(neq):
                 if (kind, jid, k) in removed:
@@ -88,13 +91,15 @@ class Layout:
                 self.constraint_rows.append((kind, jid, k))
                 if kind == "joint":
                     self.joint_rows.append((jid, k))
+                held = (kind, jid) not in rate_only
                 self.lam.append(off)
-                self.mu.append(off + 1)
+                self.mu.append(off + 1 if held else -1)
                 self.rate.append(-1)
                 self.names += ([f"joint{jid}.reaction{k + 1}",
                                 f"joint{jid}.position_reaction{k + 1}"] if kind == "joint" else
-                               [f"gcon{jid}.reaction", f"gcon{jid}.position_reaction"])
-                off += 2
+                               [f"{kind}{jid}.reaction"]
+                               + [f"{kind}{jid}.position_reaction"] * held)
+                off += 1 + held
         self.algebraic = sorted(self.lam + [m for m in self.mu if m >= 0])
         self.ny = off
 
@@ -581,17 +586,18 @@ class Compiler:
             self.element("joint", jo.id, ti, g, gd, self.layout.lam[base + k],
                          self.layout.mu[base + k])
 
-    def gcon(self, ti, tape, gc):
-        """A Constraint_General's expression g(q, t) as one constraint equation (held like a
-        joint's: its rate with lam, itself with mu), if it is not redundant."""
+    def gcon(self, ti, tape, kind, gc):
+        """A Constraint_General's (or a coupler's) expression g(q, t) as one constraint
+        equation (held like a joint's: its rate with lam, itself with mu), if it is not
+        redundant."""
         lay = self.layout
-        if ("gcon", gc.id, 0) not in lay.constraint_rows:
+        if (kind, gc.id, 0) not in lay.constraint_rows:
             return
-        k = len(lay.motion_ids) + lay.constraint_rows.index(("gcon", gc.id, 0))
+        k = len(lay.motion_ids) + lay.constraint_rows.index((kind, gc.id, 0))
         g = self.lower_for_rate(tape, gc.expr)
         gd = tape.emit(lib.PS_OP_GDOT, g)
         tape.has_gdot = True
-        self.element("gcon", gc.id, ti, g, gd, lay.lam[k], lay.mu[k])
+        self.element(kind, gc.id, ti, g, gd, lay.lam[k], lay.mu[k])
 
     def new_tape(self):
         t = _Tape(self)
@@ -628,9 +634,10 @@ class Compiler:
         for jid in sorted(model.joints):
             ti, t = self.new_tape()
             self.joint(ti, t, model.joints[jid])
-        for gid in sorted(model.gcons):
-            ti, t = self.new_tape()
-            self.gcon(ti, t, model.gcons[gid])
+        for kind, table in (("gcon", model.gcons), ("coupler", model.couplers)):
+            for cid in sorted(table):
+                ti, t = self.new_tape()
+                self.gcon(ti, t, kind, table[cid])
         # forces that read SENVAL need a restart with consistent yp when a value is stored
         self.forces_use_senval = any(self.tapes[t].uses_senval
                                      for kind, _, t, _ in self.elements if kind != "motion")

@@ -279,7 +279,8 @@ def _unassembled(kernel, lay, rows, g, y, ndisp):
         prefix = kernel.layout.names[lay.mu[k]].split(".")[0]
         kind = prefix.rstrip("0123456789")
         eid = int(prefix[len(kind):])
-        tag = {"joint": "Constraint_Joint", "gcon": "Constraint_General"}.get(kind)
+        tag = {"joint": "Constraint_Joint", "gcon": "Constraint_General",
+               "coupler": "Constraint_Coupler"}.get(kind)
         names.append(f"{kernel.motion_tags[eid] if kind == 'motion' else tag} {eid}")
     raise AssemblyError("the initial positions cannot be assembled: "
                         f"{', '.join(dict.fromkeys(names))} violated by up to "

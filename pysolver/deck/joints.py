@@ -9,7 +9,7 @@ the position and the velocity level (csrc/elements/joint.c).
 """
 from ..catalogue import JOINT_EQUATIONS as EQUATIONS
 from ..catalogue import JOINTS_NOT_YET as NOT_YET
-from ..records import GeneralConstraint, Joint
+from ..records import Coupler, GeneralConstraint, Joint
 from .motions import two_bodies
 
 X, Y = 0, 1
@@ -62,3 +62,54 @@ def add_gcon(model, ctx, a):
     model.gcons[a["id"]] = GeneralConstraint(a["id"], tree, text, a["i_marker_id"] or 0,
                                              a["label"], bool(a["is_virtual"]))
     model._where[("gcon", a["id"])] = ctx
+
+
+#: The coordinates a coupler may relate on each joint type (elements.md 2.2).
+COUPLED = {"REVOLUTE": ("R",), "TRANSLATIONAL": ("T",), "CYLINDRICAL": ("T", "R")}
+
+
+def add_coupler(model, ctx, a):
+    """Validate one Constraint_Coupler (after the joints) and add it with its relation as an
+    expression: r1 q1 + r2 q2 [+ r3 q3], q = DZ(I, J, J) (T) or AZ(I, J) (R) of each joint.
+    Coefficients as Adams' SCALES: one fewer than the joints means r1 = 1."""
+    ctx.id = a["id"]
+    ids = [a[f"joint{k}_id"] for k in (1, 2, 3) if a[f"joint{k}_id"] is not None]
+    joints, freedoms = [], []
+    for k, jid in enumerate(ids, 1):
+        jo = model.joints.get(jid)
+        if jo is None:
+            raise ctx.error(f"joint {jid} does not exist (a Constraint_Joint id)", f"joint{k}_id")
+        free = COUPLED.get(jo.type)
+        if free is None:
+            raise ctx.error(f"joint {jid} is {jo.type}; a coupler relates REVOLUTE (R), "
+                            "TRANSLATIONAL (T) or CYLINDRICAL (R or T) joints", f"joint{k}_id")
+        kind = a[f"freedom_{k}"] or (free[0] if len(free) == 1 else None)
+        if kind is None:
+            raise ctx.error(f"joint {jid} is CYLINDRICAL: say which coordinate is coupled, "
+                            f'freedom_{k}="R" or "T"', f"freedom_{k}")
+        if kind not in free:
+            raise ctx.error(f"freedom {kind} is not a coordinate of {jo.type} joint {jid}",
+                            f"freedom_{k}")
+        joints.append(jo)
+        freedoms.append(kind)
+    try:
+        scales = [float(v) for v in a["coefficients"].replace(",", " ").split()]
+    except ValueError:
+        scales = []
+    if len(scales) == len(ids) - 1:
+        scales = [1.0] + scales
+    if len(scales) != len(ids) or not all(map(_finite, scales)) or not any(scales):
+        raise ctx.error(f"got {a['coefficients']!r}; expected {len(ids)} numbers (or "
+                        f"{len(ids) - 1}, r1 = 1), not all zero", "coefficients")
+    expr = None
+    for jo, kind, r in zip(joints, freedoms, scales):
+        q = (_call("AZ", jo.i, jo.j) if kind == "R" else _call("DZ", jo.i, jo.j, jo.j))
+        term = ("bin", "*", ("num", r), q)
+        expr = term if expr is None else ("bin", "+", expr, term)
+    model.couplers[a["id"]] = Coupler(a["id"], tuple(ids), tuple(freedoms), tuple(scales),
+                                      expr, a["label"], bool(a["is_virtual"]))
+    model._where[("coupler", a["id"])] = ctx
+
+
+def _finite(v):
+    return v == v and abs(v) != float("inf")

@@ -23,7 +23,7 @@ import threading
 _STATE = threading.local()
 
 __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "VFORCE",
-           "MOTION", "JOINT", "JPRIM", "GCON",
+           "MOTION", "JOINT", "JPRIM", "GCON", "COUPLER",
            "LOADCONTROL", "VARIABLE",
            "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM",
            "py_sysfnc", "py_sysary", "py_errmes"]
@@ -214,6 +214,25 @@ def JOINT(id, **kw):
     _emit("JOINT", "Constraint_Joint",
           {"TYPE": _joint_type, "I": "i_marker_id", "J": "j_marker_id", "PITCH": "pitch",
            "PD": "pitch_diameter", "LABEL": "label"}, id, **kw)
+
+
+def _coupled_joints(val):
+    return {f"joint{k}_id": int(j) for k, j in enumerate(val, 1)}
+
+
+def _coupled_types(val):
+    kinds = val.split(":") if isinstance(val, str) else list(val)
+    return {f"freedom_{k}": str(t).upper()[:1] for k, t in enumerate(kinds, 1)}
+
+
+def COUPLER(id, **kw):
+    """Coupler (Constraint_Coupler): JOINTS (two or three joint ids), TYPE ("T:R", or a list;
+    T translation, R rotation; needed for CYLINDRICAL joints), SCALES (r1, r2[, r3], or one
+    fewer with r1 = 1: r1 q1 + r2 q2 [+ r3 q3] = 0), LABEL."""
+    _emit("COUPLER", "Constraint_Coupler",
+          {"JOINTS": _coupled_joints, "TYPE": _coupled_types,
+           "SCALES": lambda v: {"coefficients": ", ".join(str(float(x)) for x in v)},
+           "LABEL": "label"}, id, **kw)
 
 
 def GCON(id, **kw):

@@ -26,7 +26,7 @@ from ..options import DECK_NAMES, Options, rule_problem
 from . import units as un
 from . import usersubs
 from .bodies import add_bodies
-from .joints import add_gcon, add_joint
+from .joints import add_coupler, add_gcon, add_joint
 from .motions import add_joint_motion, add_motion
 from .references import check_references
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
@@ -94,18 +94,21 @@ def build_model(elements, source):
             raise DeckError("MKEAM does not do quasi-static analyses (seed 004); use FIM_D or "
                             "FIM_S in Param_Static", file=source.file, line=cmd.line,
                             element="Simulate", attribute="analysis_type")
+    after = ("Motion_Joint", "Constraint_Coupler")
     for ctx, a in later:
-        if ctx.tag == "Motion_Joint":
-            continue
-        _force_like(model, ctx, a)
-    for ctx, a in later:                # after the joints they drive
+        if ctx.tag not in after:
+            _force_like(model, ctx, a)
+    for ctx, a in later:                # after the joints they drive or couple
         if ctx.tag == "Motion_Joint":
             add_joint_motion(model, ctx, a)
+        elif ctx.tag == "Constraint_Coupler":
+            add_coupler(model, ctx, a)
     for cmd in model.commands:
         motion = ("Motion_Joint" if all(mo.joint for mo in model.motions.values())
                   else "Motion_Marker")
         for table, tag in ((model.motions, motion), (model.joints, "Constraint_Joint"),
-                           (model.gcons, "Constraint_General")):
+                           (model.gcons, "Constraint_General"),
+                           (model.couplers, "Constraint_Coupler")):
             if table and cmd.analysis in ("STATIC", "QUASI-STATIC"):
                 raise DeckError(f"{cmd.analysis.lower()} analyses of scenes with {tag} are "
                                 "not supported yet", file=source.file, line=cmd.line,

@@ -49,7 +49,7 @@ class CompiledModel:
         """The kernel, joint equations that repeat others left out (found on the tapes at
         the assembled initial positions; :attr:`notes` names them)."""
         self.removed, self.notes = (), []
-        if not self.model.joints and not self.model.gcons:
+        if not (self.model.joints or self.model.gcons or self.model.couplers):
             return Kernel(self.model, False, kind)
         probe = Kernel(self.model, False, "tapes")
         try:
@@ -60,8 +60,9 @@ class CompiledModel:
             per = {}
             for kind, cid, k in self.removed:
                 per.setdefault((kind, cid), []).append(str(k + 1))
-            tag = {"joint": "Constraint_Joint", "gcon": "Constraint_General"}
-            eqs = "; ".join(f"{tag[kind]} {cid}" + ("" if kind == "gcon" else
+            tag = {"joint": "Constraint_Joint", "gcon": "Constraint_General",
+                   "coupler": "Constraint_Coupler"}
+            eqs = "; ".join(f"{tag[kind]} {cid}" + ("" if kind != "joint" else
                                                     f" equation{'s' * (len(ks) > 1)} "
                                                     f"{', '.join(ks)}")
                             for (kind, cid), ks in per.items())

@@ -191,6 +191,12 @@ class Assembly:
 
     _gcon = _joint                        # csrc/elements/gcon.c holds it as a joint equation
 
+    def _coupler(self, tape, gn, gd, lam, mu):
+        slots = self.s.tape(tape)
+        self.hold_rate(tape, slots[gn], slots[gd], lam)
+        if mu >= 0:                       # couplers of translations only
+            self.hold_position(tape, slots[gn], mu)
+
     # the iteration matrix ---------------------------------------------------------------
     def _jacobian(self):
         """(row, col, node) of dF/dy + cj dF/dyp, sorted by column then row."""
