@@ -74,13 +74,14 @@ void ps_hold_position(const psModel* m, psData* d, const psuHD* c, int tape, con
   int badr = m->tape_basis_adr[tape], nq = m->tape_nh[tape] - 1;
   double mv = y[mu];
   as->res[mu] = g[0] + m->compliance[mu] * mv;
-  if (as->deriv) jadd(as, mu, mu, m->compliance[mu]);
-  if (as->deriv)
+  if (as->deriv) {
+    jadd(as, mu, mu, m->compliance[mu]);
     for (int j = 0; j < c->n; j++) {
       int kind = m->basis_kind[badr + j];
       if (kind == PS_BASIS_T) continue;
       jadd(as, mu, m->basis_idx[badr + j], g[1 + j] * (kind == PS_BASIS_YP ? as->cj : 1.0));
     }
+  }
   /* the leading nq basis entries are the positions q of the tape's bodies */
   for (int j = 0; j < nq; j++) {
     int row = m->basis_idx[badr + j];

@@ -9,5 +9,6 @@ void ps_el_joint(const psModel* m, psData* d, const psuHD* c, int tape, const in
   (void)t; (void)yp;
   const double* g = ps_slot(m, d, I[0]);
   ps_hold_rate(m, d, c, tape, g, ps_slot(m, d, I[1]), I[2], y, as);
-  ps_hold_position(m, d, c, tape, g, I[3], y, as);
+  /* mu < 0: a coupler of rotations, held at the velocity level alone */
+  if (I[3] >= 0) ps_hold_position(m, d, c, tape, g, I[3], y, as);
 }

@@ -586,7 +586,7 @@ class Compiler:
             self.element("joint", jo.id, ti, g, gd, self.layout.lam[base + k],
                          self.layout.mu[base + k])
 
-    def gcon(self, ti, tape, kind, gc):
+    def held_expression(self, ti, tape, kind, gc):
         """A Constraint_General's (or a coupler's) expression g(q, t) as one constraint
         equation (held like a joint's: its rate with lam, itself with mu), if it is not
         redundant."""
@@ -626,9 +626,11 @@ class Compiler:
             mr, sr = self.marker(t, vf.ref)
             self.element("vforce", vid, ti, *[self.lower(t, e) for e in vf.exprs], mi, si, sj,
                          mr, sr)
+        self.motion_slots = {}            # motion id -> (tape, slot) of g (its measure for V, A)
         for k, mid in enumerate(self.layout.motion_ids):
             ti, t = self.new_tape()
             g, gd, f, kind = self.motion(t, model.motions[mid])
+            self.motion_slots[mid] = (ti, g)
             self.element("motion", mid, ti, f, gd, g, kind, self.layout.lam[k],
                          self.layout.rate[k], self.layout.mu[k])
         for jid in sorted(model.joints):
@@ -637,7 +639,7 @@ class Compiler:
         for kind, table in (("gcon", model.gcons), ("coupler", model.couplers)):
             for cid in sorted(table):
                 ti, t = self.new_tape()
-                self.gcon(ti, t, kind, table[cid])
+                self.held_expression(ti, t, kind, table[cid])
         # forces that read SENVAL need a restart with consistent yp when a value is stored
         self.forces_use_senval = any(self.tapes[t].uses_senval
                                      for kind, _, t, _ in self.elements if kind != "motion")

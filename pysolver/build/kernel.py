@@ -65,7 +65,7 @@ class Kernel:
         self.marker_index = dict(comp.midx)     # marker id -> its row in the marker arrays
         self.forces_use_senval = comp.forces_use_senval
         self.elements = comp.elements      # the element table: (kind, id, tape, ints)
-        self.motion_slots = {i: (t, v[2]) for k, i, t, v in self.elements if k == "motion"}
+        self.motion_slots = comp.motion_slots   # motion id -> (tape, slot) of its measure
         self.nsensor = arrays["nsensor"]
         self.ny = arrays["ny"]
         self.ntape = arrays["ntape"]

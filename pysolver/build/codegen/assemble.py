@@ -187,15 +187,11 @@ class Assembly:
     def _joint(self, tape, gn, gd, lam, mu):
         slots = self.s.tape(tape)
         self.hold_rate(tape, slots[gn], slots[gd], lam)
-        self.hold_position(tape, slots[gn], mu)
-
-    _gcon = _joint                        # csrc/elements/gcon.c holds it as a joint equation
-
-    def _coupler(self, tape, gn, gd, lam, mu):
-        slots = self.s.tape(tape)
-        self.hold_rate(tape, slots[gn], slots[gd], lam)
-        if mu >= 0:                       # couplers of translations only
+        if mu >= 0:                       # a coupler of rotations has none
             self.hold_position(tape, slots[gn], mu)
+
+    # csrc/elements/gcon.c and coupler.c hold theirs as a joint equation
+    _gcon = _coupler = _joint
 
     # the iteration matrix ---------------------------------------------------------------
     def _jacobian(self):
