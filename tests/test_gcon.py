@@ -95,13 +95,6 @@ def test_a_bad_general_constraint_is_a_deck_error(gcon, attribute, words):
     assert words in str(e)
 
 
-def test_statics_with_a_general_constraint_say_not_yet():
-    text = CIRCLE.format(extra=SPHERE, T=1.0, dt=0.5).replace(
-        'analysis_type="Transient" end_time="1.0" print_interval="0.5"', 'analysis_type="Static"')
-    with pytest.raises(DeckError, match="Constraint_General are not supported yet"):
-        pysolver.loads(text)
-
-
 def test_a_general_constraint_that_is_not_finite_fails_the_run():
     """1/TIME at t = 0: a failed Result naming the problem, not an exception."""
     text = CIRCLE.format(extra='<Constraint_General id="7" expr="DZ(9) - 1/TIME"/>', T=1.0,

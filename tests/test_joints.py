@@ -163,14 +163,6 @@ def test_a_joint_that_cannot_be_assembled_fails_the_run_naming_it():
     assert "cannot be assembled" in res.message and "Constraint_Joint" in res.message
 
 
-def test_statics_with_joints_say_they_are_not_supported_yet():
-    text = BAD.format(joint='<Constraint_Joint id="7" type="SPHERICAL" i_marker_id="20" '
-                            'j_marker_id="1"/>').replace(
-        'analysis_type="Transient" end_time="0.1" print_interval="0.1"', 'analysis_type="Static"')
-    with pytest.raises(DeckError, match="Constraint_Joint are not supported yet"):
-        pysolver.loads(text)
-
-
 def test_joint_reactions_on_the_pendulum_are_m_a_minus_m_g():
     """res.joint(1) and JOINT(1, 0, comp, 0) against the reference's joint force on the body
     (m a - m g, benchmarks/data), within 1e-4 N of up to 30 N at integr_tol 1e-9 (measured

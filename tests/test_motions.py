@@ -142,7 +142,7 @@ def test_indenter_deck_force_balance():
     (deck(POINT, motion("X", "J", "1")), "VAL_TYPE", "D, V, A"),
     (deck(POINT, motion("X", "V", "1")).replace('TYPE="TRANSIENT", END=1.0, DTOUT=0.05',
                                                   'TYPE="STATIC"'),
-     "analysis_type", "analyses of scenes with Motion_Marker are not supported"),
+     "analysis_type", "hold each motion's displacement, and Motion_Marker 1 gives a velocity"),
 ])
 def test_bad_motions(text, attribute, match):
     with pytest.raises(pysolver.DeckError, match=match) as info:

@@ -35,6 +35,11 @@ def _key_ids(key):
     return [int(v) for v in inner.split(",") if v]
 
 
+#: The constant that stands for TIME in a conservative (MKEAM) kernel: its motions hold
+#: their place at the static command's time, with no rate.
+FROZEN_TIME = "MKEAM/time"
+
+
 class Layout:
     """Where each body's coordinates live in the state vector."""
 
@@ -282,6 +287,8 @@ class Compiler:
             mj, sj = self.marker(tape, node[3])
             return tape.emit(lib.PS_OP_AXDOT, mi, node[2], mj, node[4], si, sj)
         if tag == "name":
+            if node[1] == "TIME" and self.conservative:
+                return tape.param(FROZEN_TIME, 0.0)   # MKEAM's time stands still
             if node[1] == "TIME":
                 return tape.emit(lib.PS_OP_TIME)
             return tape.const(CONSTANTS[node[1]])

@@ -103,16 +103,7 @@ def build_model(elements, source):
             add_joint_motion(model, ctx, a)
         elif ctx.tag == "Constraint_Coupler":
             add_coupler(model, ctx, a)
-    for cmd in model.commands:
-        motion = ("Motion_Joint" if all(mo.joint for mo in model.motions.values())
-                  else "Motion_Marker")
-        for table, tag in ((model.motions, motion), (model.joints, "Constraint_Joint"),
-                           (model.gcons, "Constraint_General"),
-                           (model.couplers, "Constraint_Coupler")):
-            if table and cmd.analysis in ("STATIC", "QUASI-STATIC"):
-                raise DeckError(f"{cmd.analysis.lower()} analyses of scenes with {tag} are "
-                                "not supported yet", file=source.file, line=cmd.line,
-                                element="Simulate", attribute="analysis_type")
+    _check_static_motions(model, source)
     check_references(model)
     if not model.commands:
         model.commands.append(Simulate("TRANSIENT", 1.0, 0.01))
@@ -125,6 +116,22 @@ def build_model(elements, source):
 #: Largest magnitude of a gravity component, in any unit system (9.81 m/s^2 is 9.81e9 nm/s^2):
 #: past it forces and accelerations are beyond what the integrator can carry.
 MAX_GRAVITY = 1e20
+
+
+def _check_static_motions(model, source):
+    """Statics hold a motion's displacement; a velocity or acceleration motion gives none to
+    hold (docs/deck-language.md, "Statics with constraints")."""
+    static = [c for c in model.commands if c.analysis in ("STATIC", "QUASI-STATIC")]
+    rated = [mo for mo in model.motions.values() if mo.val_type != "D"]
+    if static and rated:
+        mo = rated[0]
+        tag = "Motion_Joint" if mo.joint else "Motion_Marker"
+        kind = "velocity" if mo.val_type == "V" else "acceleration"
+        raise DeckError(f"{static[0].analysis.lower()} analyses hold each motion's "
+                        f"displacement, and {tag} {mo.id} gives a {kind} (val_type "
+                        f"{mo.val_type}); write it as a displacement (val_type D) or run "
+                        "the scene as a transient", file=source.file, line=static[0].line,
+                        element="Simulate", attribute="analysis_type")
 
 
 def _once(ctx, once, tag):

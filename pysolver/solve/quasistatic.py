@@ -1,7 +1,9 @@
 """Quasi-static analyses and the static commands of a run.
 
-- FIM_D: quasi-statics as an index-1 DAE in q alone (F(q, t) = 0 plus |e| = 1 for each rigid
-  body) integrated by IDA with the run's tolerance; FIM_S at the first and the last point and
+- FIM_D: quasi-statics as an index-1 DAE in q and the constraints' multipliers
+  (F(q, lam, t) = 0, |e| = 1 for each rigid body, g(q, t) = 0 for each position-held
+  constraint and C N^+ q' = 0 for each rate-held one) integrated by IDA with the run's
+  tolerance, the multipliers out of the error test; FIM_S at the first and the last point and
   whenever the integration fails.
 - FIM_S: each output's equilibrium solved on its own, from the previous one.
 """
@@ -27,62 +29,93 @@ def quasi_static(model, t0, y0, times, params, tol, kind=None):
         return [], results
     lay = kernel.layout
     rigid = [qa + 3 for b, qa in zip(lay.bodies, lay.qadr) if b.kind == "rigid"]
-    nq = len(prob.qcols)
+    nq, n, m = len(prob.qcols), prob.n, prob.m
     qpos = {q: i for i, q in enumerate(prob.qcols)}
     reg = math.sqrt(params.stability) * prob.M
+    # the unknowns are q and the constraints' multipliers; the equations F = 0, |e| = 1, the
+    # position-held constraints g = 0 and the rate-held ones C N^+ q' = 0
+    held = np.flatnonzero(prob.pos >= 0)
+    rows_g = nq + held
+    rows_r = nq + prob.by_rate
 
-    def embed(q):
+    def embed(x):
         yy = np.zeros(kernel.ny)
-        yy[prob.qcols] = q
+        yy[prob.qcols] = x[:nq]
+        yy[prob.lam] = x[nq:]
         return yy
 
-    def residual(t, q, qp, r):
-        r[:prob.n] = prob.imbalance(t, embed(q)) / prob.cf
+    def unit_rows(x, r):
         for i, e in enumerate(rigid):
             j = qpos[e]
-            r[prob.n + i] = q[j:j + 4] @ q[j:j + 4] - 1.0
+            r[n + i] = x[j:j + 4] @ x[j:j + 4] - 1.0
 
-    def jacobian(t, q, qp, r, cj, JJ):
-        yy = embed(q)
-        J = kernel.jacobian_array(t, yy, prob.zero, 0.0)[np.ix_(prob.rows, prob.qcols)]
+    def residual(t, x, xp, r):
+        yy = embed(x)
+        R = prob.residual(t, yy)
+        r[:n] = R[:n] / prob.cf
+        unit_rows(x, r)
+        r[rows_g] = R[n + held]
+        if len(rows_r):
+            r[rows_r] = prob.matrix(t, yy)[n + prob.by_rate, :n] @ prob.N_pinv(yy) @ xp[:nq]
+
+    def jacobian(t, x, xp, r, cj, JJ):
+        yy = embed(x)
+        J = kernel.jacobian_array(t, yy, prob.zero, 0.0)
+        JJ[:] = 0.0
         # regularised like FIM_S: sqrt(stability) M mapped back to q increments (N^+)
-        JJ[:prob.n, :] = (J + reg @ prob.N_pinv(yy)) / prob.cf
+        JJ[:n, :nq] = (J[np.ix_(prob.rows, prob.qcols)] + reg @ prob.N_pinv(yy)) / prob.cf
+        JJ[:n, nq:] = J[np.ix_(prob.rows, prob.lam)] / prob.cf
         for i, e in enumerate(rigid):
             j = qpos[e]
-            JJ[prob.n + i, :] = 0.0
-            JJ[prob.n + i, j:j + 4] = 2.0 * q[j:j + 4]
+            JJ[n + i, j:j + 4] = 2.0 * x[j:j + 4]
+        JJ[rows_g, :nq] = J[np.ix_(prob.pos[held], prob.qcols)]
+        if len(rows_r):
+            JJ[rows_r, :nq] = cj * (prob.matrix(t, yy)[n + prob.by_rate, :n]
+                                    @ prob.N_pinv(yy))
 
-    def rate(t, q):
-        """dq/dt on the equilibrium path: -(dR/dq)^-1 dR/dt (dR/dt by central differences)."""
+    def rate(t, x):
+        """dx/dt on the equilibrium path: the algebraic rows differentiated in time (dR/dt
+        by central differences) and the rate rows, solved for x'."""
         h = 1e-6 * max(1.0, abs(t))
-        rp, rm, JJ = np.zeros(nq), np.zeros(nq), np.zeros((nq, nq))
-        residual(t + h, q, None, rp)
-        residual(t - h, q, None, rm)
-        jacobian(t, q, None, None, 0.0, JJ)
-        return -np.linalg.solve(JJ, (rp - rm) / (2 * h))
+        size = nq + m
+        rp, rm, A, A1 = np.zeros(size), np.zeros(size), np.zeros((size, size)), None
+        zero = np.zeros(size)
+        residual(t + h, x, zero, rp)
+        residual(t - h, x, zero, rm)
+        jacobian(t, x, zero, None, 0.0, A)
+        rhs = -(rp - rm) / (2 * h)
+        if len(rows_r):
+            A1 = np.zeros((size, size))
+            jacobian(t, x, zero, None, 1.0, A1)
+            A[rows_r] = A1[rows_r]
+            rhs[rows_r] = 0.0
+        return np.linalg.solve(A, rhs)
 
-    solver = PyIDA(residual, rtol=tol, atol=tol, max_num_steps=100000, linsolver="dense",
-                   jacfn=jacobian, algebraic_idx=list(range(nq)))
-    q = y[prob.qcols].copy()
-    solver.init_step(t0, q, rate(t0, q))
+    # the multipliers are out of IDA's error test, as in the transient driver
+    atol = np.concatenate([np.full(nq, tol), np.full(m, 1e300)])
+    solver = PyIDA(residual, rtol=tol, atol=atol, max_num_steps=100000, linsolver="dense",
+                   hit_outputs=bool(m),
+                   jacfn=jacobian, algebraic_idx=list(range(nq + m)))
+    x = np.concatenate([y[prob.qcols], y[prob.lam]])
+    solver.init_step(t0, x, rate(t0, x))
     out = [(t0, y)]
     for i, tp in enumerate(times):
         sol = solver.step(tp)
         if not sol.success:
             # FIM_S from the last good point to this output, then integrate on from there
-            yy, r = fim_s(prob, tp, embed(q), params)
+            yy, r = fim_s(prob, tp, embed(x), params)
             results.append(finished(prob, tp, yy, params, r))
             if not r.success:
                 return out, results
-            q = yy[prob.qcols].copy()
-            solver.init_step(tp, q, rate(tp, q))
+            x = np.concatenate([yy[prob.qcols], yy[prob.lam]])
+            solver.init_step(tp, x, rate(tp, x))
         else:
-            q = np.array(sol.y)
+            x = np.array(sol.y)
         if i == len(times) - 1:
-            yy, r = fim_s(prob, tp, embed(q), params)
+            yy, r = fim_s(prob, tp, embed(x), params)
             results.append(finished(prob, tp, yy, params, r))
-            q = yy[prob.qcols].copy()
-        out.append((tp, embed(q)))
+            x = np.concatenate([yy[prob.qcols], yy[prob.lam]])
+        out.append((tp, embed(x)))
     return out, results
 
 

@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from ..build.compiler import FROZEN_TIME
 from ..rotations import G
 from .pyida import PyIDA
 
@@ -82,12 +83,54 @@ class StaticProblem:
         self.n = len(rows)
         self.M = _block_diag(M, self.n)
         self.zero = np.zeros(kernel.ny)
+        # constraint equations: each one's multiplier state and its position row (-1: held
+        # at the rate level only, which statics keep by admissible increments)
+        self.lam = np.array(lay.lam, dtype=int)
+        self.pos = np.array(lay.mu, dtype=int)
+        self.m = len(self.lam)
+        self.size = self.n + self.m
+        self.by_rate = np.flatnonzero(self.pos < 0)
 
     def state(self, y):
-        """Positions of y with every velocity set to zero."""
+        """Positions and multipliers of y with every velocity (and position multiplier mu)
+        set to zero."""
         y = np.array(y, dtype=float)
         y[self.rows] = 0.0
+        y[self.pos[self.pos >= 0]] = 0.0
         return y
+
+    def residual(self, t, y):
+        """The static equations [F; g]: force imbalance (model units) and the position-held
+        constraints' violations (0 for a constraint held at the rate level)."""
+        r = self.k.residual_array(t, y, self.zero)
+        g = np.where(self.pos >= 0, r[np.maximum(self.pos, 0)], 0.0)
+        return np.concatenate([r[self.rows], g])
+
+    def violation(self, R):
+        """Largest constraint violation in a residual of :meth:`residual` (deck lengths or
+        radians)."""
+        return np.abs(R[self.n:]).max() if self.m else 0.0
+
+    def matrix(self, t, y, reg=None):
+        """d[F; g]/d[u-increment, lam] at y, with `reg` (n x n) added to the stiffness block:
+        [[K + reg, dF/dlam], [C, 0]]. A rate-held row is C = d(g')/du, which makes each
+        increment keep it."""
+        J = self.k.jacobian_array(t, y, self.zero, 0.0)
+        N = self.N(y)
+        A = np.zeros((self.size, self.size))
+        A[:self.n, :self.n] = J[np.ix_(self.rows, self.qcols)] @ N
+        if reg is not None:
+            A[:self.n, :self.n] += reg
+        if self.m:
+            A[:self.n, self.n:] = J[np.ix_(self.rows, self.lam)]
+            held = self.pos >= 0
+            A[self.n:, :self.n][held] = J[np.ix_(self.pos[held], self.qcols)] @ N
+        if len(self.by_rate):
+            rr = self.lam[self.by_rate]
+            dyp = self.k.jacobian_array(t, y, self.zero, 1.0) - J
+            A[self.n + self.by_rate, :self.n] = (J[np.ix_(rr, self.rows)]
+                                                 + dyp[np.ix_(rr, self.qcols)] @ N)
+        return A
 
     def imbalance(self, t, y):
         """F(q, t) in model units (mass * length / time^2)."""
@@ -121,14 +164,12 @@ class StaticProblem:
                 r, c = r + 3, c + 3
         return P
 
-    def stiffness(self, t, y):
-        """K = dF/dq N(q), model units."""
-        J = self.k.jacobian_array(t, y, self.zero, 0.0)
-        return J[np.ix_(self.rows, self.qcols)] @ self.N(y)
-
-    def apply(self, y, du):
-        """q <- q (+) du: translations added, rotations by the exponential map (body frame)."""
+    def apply(self, y, dx):
+        """q <- q (+) du: translations added, rotations by the exponential map (body frame);
+        the multipliers (dx past the n increments) added."""
         y = y.copy()
+        du = dx[:self.n]
+        y[self.lam] += dx[self.n:]
         c = 0
         for b, qa in zip(self.k.layout.bodies, self.k.layout.qadr):
             y[qa:qa + 3] += du[c:c + 3]
@@ -161,9 +202,11 @@ def _quat_mul(p, q):
     return np.concatenate([[p0 * q0 - pv @ qv], p0 * qv + q0 * pv + np.cross(pv, qv)])
 
 
-def _limit(prob, du, tlimit, alimit):
-    """Scale an increment so that no translation exceeds tlimit and no rotation alimit
-    (Adams' TLIMIT and ALIMIT), keeping its direction."""
+def _limit(prob, dx, tlimit, alimit):
+    """Scale an increment (and its multipliers' change with it: a damped Newton step) so that
+    no translation exceeds tlimit and no rotation alimit (Adams' TLIMIT and ALIMIT), keeping
+    its direction."""
+    du = dx[:prob.n]
     scale = 1.0
     c = 0
     for b in prob.k.layout.bodies:
@@ -173,7 +216,7 @@ def _limit(prob, du, tlimit, alimit):
             c += 6
         else:
             c += 3
-    return du * scale
+    return dx * scale
 
 
 def fim_s(prob, t, y, params, max_iter=None):
@@ -200,65 +243,77 @@ def _newton(prob, t, y, params, max_iter, search):
     y = prob.state(y)
     reg = math.sqrt(params.stability) * prob.M
     max_iter = max_iter or params.max_num_iter
-    F = prob.imbalance(t, y)
+    n = prob.n
+    R = prob.residual(t, y)
     err = math.inf
-    best, best_it = np.abs(F).max(), 0
+    # progress: the imbalance and the constraints' violation, each against its tolerance
+    merit = lambda R: max(np.abs(R[:n]).max() / (prob.cf * params.max_imbalance),  # noqa
+                          prob.violation(R) / params.max_error)
+    best, best_it = merit(R), 0
     for it in range(1, max_iter + 1):
         if not search and it - best_it > 10:
             break                     # plain Newton is cycling: let the search take over
-        A = prob.stiffness(t, y) + reg
+        A = prob.matrix(t, y, reg)
         try:
-            du = np.linalg.solve(A, -F)
+            dx = np.linalg.solve(A, -R)
         except np.linalg.LinAlgError:
-            du = None
-        if du is None or not np.all(np.isfinite(du)):
-            imb = np.abs(F).max() / prob.cf
+            dx = None
+        if dx is None or not np.all(np.isfinite(dx)):
+            imb = np.abs(R[:n]).max() / prob.cf
+            what = ("stiffness matrix is singular at iteration {} (a neutral equilibrium?)"
+                    if not prob.m else "stiffness matrix with the constraints is singular at "
+                    "iteration {} (a neutral equilibrium, or the constraints at a singular "
+                    "position?)").format(it)
             return y, StaticResult(t, "FIM_S", False,
-                                   f"FIM_S: the stiffness matrix is singular at iteration {it} "
-                                   f"(a neutral equilibrium?): set Param_Static stability > 0; "
+                                   f"FIM_S: the {what}: set Param_Static stability > 0; "
                                    f"imbalance reached {imb:.3g}", it - 1, imb, err)
-        du = _limit(prob, du, params.tlimit, params.alimit)
-        # accept a step that does not raise the imbalance, or whose next Newton correction
-        # (with this matrix) is smaller than the step itself (Deuflhard's natural monotonicity,
-        # in displacement units, so that a stiff joint's transient force does not veto it);
+        dx = _limit(prob, dx, params.tlimit, params.alimit)
+        # accept a step that does not raise the merit, or whose next Newton correction (with
+        # this matrix) is smaller than the step itself (Deuflhard's natural monotonicity, in
+        # displacement units, so that a stiff joint's transient force does not veto it);
         # otherwise halve it
-        f0 = np.abs(F).max()
+        f0 = merit(R)
         for _ in range(30 if search else 1):
-            y1 = prob.apply(y, du)
-            F1 = prob.imbalance(t, y1)
-            if np.abs(F1).max() <= f0:
+            y1 = prob.apply(y, dx)
+            R1 = prob.residual(t, y1)
+            if merit(R1) <= f0:
                 break
             try:
-                nxt = np.abs(np.linalg.solve(A, -F1)).max()
+                nxt = np.abs(np.linalg.solve(A, -R1)[:n]).max()
             except np.linalg.LinAlgError:
                 nxt = math.inf
-            if nxt < np.abs(du).max():
+            if nxt < np.abs(dx[:n]).max():
                 break
-            du = 0.5 * du
-        y, F = y1, F1
-        if np.abs(F).max() < best:
-            best, best_it = np.abs(F).max(), it
-        err = np.abs(du).max()
-        imb = np.abs(F).max() / prob.cf
+            dx = 0.5 * dx
+        y, R = y1, R1
+        if merit(R) < best:
+            best, best_it = merit(R), it
+        err = max(np.abs(dx[:n]).max(), prob.violation(R))
+        imb = np.abs(R[:n]).max() / prob.cf
         if imb < params.max_imbalance and err < params.max_error:
             return y, StaticResult(t, "FIM_S", True, f"FIM_S converged in {it} iterations", it,
                                    imb, err)
-    imb = np.abs(F).max() / prob.cf
+    imb = np.abs(R[:n]).max() / prob.cf
     return y, StaticResult(t, "FIM_S", False,
                            f"FIM_S did not converge in {it} iterations: imbalance "
                            f"reached {imb:.3g} (max_imbalance {params.max_imbalance:g}), last "
-                           f"increment {err:.3g}", it, imb, err)
+                           f"increment or constraint violation {err:.3g}", it, imb, err)
 
 
 def mkeam(prob_c, t, y, params, tol):
     """Maximum kinetic energy attrition on the undamped kernel; returns (y, StaticResult)."""
     k = prob_c.k
     y = prob_c.state(y)
+    if FROZEN_TIME in k.params:           # motions held where they are at time t
+        k.arrays["consts"][k.params[FROZEN_TIME]] = t
     root = lambda tau, yy, yyp, g: g.__setitem__(0, -k.power(yy, yyp))  # noqa: E731
     res = lambda tau, yy, yyp, r: k.residual(t, yy, yyp, r)  # noqa: E731  (time frozen)
     jac = lambda tau, yy, yyp, r, cj, J: k.jacobian(t, yy, yyp, cj, J)  # noqa: E731
-    solver = PyIDA(res, rootfn=root, nroots=1, rtol=tol, atol=tol, max_num_steps=100000,
-                   linsolver="dense", jacfn=jac)
+    # the constraints' multipliers are out of the error test, as in the transient driver
+    atol = np.full(k.ny, tol)
+    atol[k.layout.algebraic] = 1e300
+    solver = PyIDA(res, rootfn=root, nroots=1, rtol=tol, atol=atol, max_num_steps=100000,
+                   linsolver="dense", jacfn=jac, hit_outputs=bool(k.layout.algebraic))
     q_prev = y.copy()
     ke = dq = math.inf
     horizon = 1e6
@@ -290,10 +345,13 @@ def mkeam(prob_c, t, y, params, tol):
 
 
 def compliance(prob, t, y, params):
-    """(K + sqrt(stability) M)^-1 in deck length per deck force, or None when singular."""
-    A = prob.stiffness(t, y) + math.sqrt(params.stability) * prob.M
+    """(K + sqrt(stability) M)^-1 in deck length per deck force, or None when singular; with
+    constraints, the compliance of the motions they admit (the stiffness block of the
+    inverse of [[K + sqrt(stability) M, dF/dlam], [C, 0]])."""
+    A = prob.matrix(t, y, math.sqrt(params.stability) * prob.M)
+    A[:prob.n] /= prob.cf
     try:
-        return np.linalg.inv(A / prob.cf)
+        return np.linalg.inv(A)[:prob.n, :prob.n]
     except np.linalg.LinAlgError:
         return None
 
