@@ -19,7 +19,7 @@ HEADER = ROOT / "csrc" / "include" / "pysolver.h"
 USERSUB_HEADER = ROOT / "csrc" / "include" / "pysolver_usersub.h"
 SOURCES = ["hd.c", "kinematics.c", "tape.c", "residual.c", "assembly.c", "elements/penalty.c",
            "elements/sforce.c", "elements/vforce.c", "elements/motion.c", "elements/joint.c",
-           "elements/gcon.c", "elements/coupler.c",
+           "elements/gcon.c", "elements/coupler.c", "elements/turn.c",
            "elements/table.c", "usersub.c", "ida.c", "csv.c", "gen.c"]
 
 

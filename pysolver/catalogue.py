@@ -360,6 +360,10 @@ ELEMENTS = (
             "a linear relation between the coordinates of two or three joints",
             c="PS_EL_COUPLER", ints=("g:slot", "gd:slot", "lam:state", "mu:state"), values=2,
             order=1),
+    Element((), "turn", "turns", None,
+            "the tracked angle of a rotation held through any number of turns (a SCREW or "
+            "RACK_PINION joint, a coupler's rotation): no deck element of its own",
+            c="PS_EL_TURN", ints=("w:slot", "s:state"), values=1),
     Element(("LoadControl",), "loadcontrol", "controls", "LOADCONTROL",
             "the LoadControl task (seed 002)"),
     Element(("Reference_Variable",), "variable", "variables", "VARIABLE",
@@ -403,11 +407,11 @@ JOINT_EQUATIONS = {
     "PARALLEL_AXES": [("dot", _Z, _X), ("dot", _Z, _Y)],
     "PERPENDICULAR": [("dot", _Z, _Z)],
     "FREE": [],
+    # d along zJ led by an angle theta = atan2(sign a_I . b_J, c_I . d_J), tracked through
+    # every turn: ("lead", a, b, sign, c, d); docs/deck-language.md, "Joints"
+    "SCREW": [("lead", _X, _Y, 1.0, _X, _X)],
+    "RACK_PINION": [("lead", _Y, _Z, -1.0, _X, _Z)],
 }
-
-#: Types MotionSolve lists that pysolver does not hold yet, and why.
-JOINTS_NOT_YET = {"RACK_PINION": "it needs the pinion's cumulative rotation angle",
-                  "SCREW": "it needs the cumulative rotation angle about the screw axis"}
 
 
 # the documentation's function table -----------------------------------------------------------

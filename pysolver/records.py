@@ -142,13 +142,16 @@ class Motion:
 @record
 class Joint:
     """Constraint_Joint (or Constraint_Jprim): marker I's body held to marker J's by the
-    equations of `type` (pysolver.deck.joints.EQUATIONS). The reactions are res.joint(id)."""
+    equations of `type` (pysolver.deck.joints.EQUATIONS). The reactions are res.joint(id).
+    A SCREW or RACK_PINION holds d . zJ = lead theta + offset (catalogue, "lead")."""
     id: int
     type: str
     i: int
     j: int
     label: str = ""
     virtual: bool = False
+    lead: float = 0.0      # SCREW pitch / 2 pi, RACK_PINION pitch_diameter / 2: d per radian
+    offset: float = 0.0    # SCREW, RACK_PINION: d - lead theta at the deck's positions
 
 
 @record

@@ -12,6 +12,7 @@ KIND(motion)
 KIND(joint)
 KIND(gcon)
 KIND(coupler)
+KIND(turn)
 
 const psElementKind ps_element_kinds[PS_EL_COUNT] = {
   [PS_EL_PENALTY] = {ps_el_penalty, 2, 2, 1},
@@ -21,6 +22,7 @@ const psElementKind ps_element_kinds[PS_EL_COUNT] = {
   [PS_EL_JOINT] = {ps_el_joint, 4, 2, 1},
   [PS_EL_GCON] = {ps_el_gcon, 4, 2, 1},
   [PS_EL_COUPLER] = {ps_el_coupler, 4, 2, 1},
+  [PS_EL_TURN] = {ps_el_turn, 2, 1, 0},
 };
 
 int ps_element_layout(int kind, int* nint, int* nvalue, int* order) {

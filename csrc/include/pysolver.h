@@ -83,6 +83,7 @@ enum psElement {
   PS_EL_JOINT,       /* one equation of a Constraint_Joint */
   PS_EL_GCON,        /* a Constraint_General */
   PS_EL_COUPLER,     /* a Constraint_Coupler */
+  PS_EL_TURN,        /* the tracked angle of a screw, a rack and pinion or a coupler */
   PS_EL_COUNT
 };
 

@@ -87,8 +87,6 @@ class Layout:
                      for jid in sorted(model.joints)]
         equations += [("gcon", gid, 1) for gid in sorted(model.gcons)]
         equations += [("coupler", cid, 1) for cid in sorted(model.couplers)]
-        # a coupler of rotations is held at the velocity level only (AZ wraps at pi)
-        rate_only = {("coupler", c) for c, cp in model.couplers.items() if "R" in cp.freedoms}
         for kind, jid, neq in equations:
             for k in range(neq):
                 if (kind, jid, k) in removed:
@@ -96,16 +94,26 @@ class Layout:
                 self.constraint_rows.append((kind, jid, k))
                 if kind == "joint":
                     self.joint_rows.append((jid, k))
-                held = (kind, jid) not in rate_only
                 self.lam.append(off)
-                self.mu.append(off + 1 if held else -1)
+                self.mu.append(off + 1)
                 self.rate.append(-1)
                 self.names += ([f"joint{jid}.reaction{k + 1}",
                                 f"joint{jid}.position_reaction{k + 1}"] if kind == "joint" else
-                               [f"{kind}{jid}.reaction"]
-                               + [f"{kind}{jid}.position_reaction"] * held)
-                off += 1 + held
-        self.algebraic = sorted(self.lam + [m for m in self.mu if m >= 0])
+                               [f"{kind}{jid}.reaction", f"{kind}{jid}.position_reaction"])
+                off += 2
+        # per angle tracked through its turns (a SCREW's or RACK_PINION's, a coupler's
+        # rotation k) its state s, algebraic: (owner kind, id, k) -> s
+        self.turns = {}
+        keys = [("joint", jid, 0) for jid in sorted(model.joints) if model.joints[jid].lead]
+        keys += [("coupler", cid, k) for cid in sorted(model.couplers)
+                 for k, f in enumerate(model.couplers[cid].freedoms) if f == "R"]
+        for key in keys:
+            self.turns[key] = off
+            self.names.append(f"{key[0]}{key[1]}.angle" + (f"{key[2] + 1}" if key[0] ==
+                                                              "coupler" else ""))
+            off += 1
+        self.algebraic = sorted(self.lam + [m for m in self.mu if m >= 0]
+                                + list(self.turns.values()))
         self.ny = off
 
     def initial_state(self):
@@ -282,6 +290,9 @@ class Compiler:
             return tape.emit(lib.PS_OP_SENVAL, len(self.eidx) + node[1])
         if tag == "num":
             return tape.const(node[1])
+        if tag == "turned":               # an angle unwrapped by its tracked state
+            s, w = self.turn_error(tape, node[1], node[2])
+            return tape.op(lib.PS_OP_ADD, s, w)
         if tag == "axdot":                # a joint's dot product of two markers' axes
             mi, si = self.marker(tape, node[1])
             mj, sj = self.marker(tape, node[3])
@@ -325,6 +336,16 @@ class Compiler:
             return tape.op(_C[f.c], *slots)
         # functions built from other instructions: IMPACT, BISTOP
         return getattr(self, name.lower())(tape, *slots)
+
+    def turn_error(self, tape, angle, key):
+        """(s, w): the tracked angle `key`'s state s, read on the tape, and w = the measured
+        `angle` less s, wrapped to (-pi, pi] (csrc/elements/turn.c holds w at zero)."""
+        state = self.layout.turns[key]
+        if state not in tape.states:
+            tape.states.append(state)
+        s = tape.emit(lib.PS_OP_STATE, state, tape.states.index(state))
+        e = tape.op(lib.PS_OP_SUB, self.lower(tape, angle), s)
+        return s, tape.op(lib.PS_OP_ATAN2, tape.op(lib.PS_OP_SIN, e), tape.op(lib.PS_OP_COS, e))
 
     def user_call(self, tape, k, channel, inputs):
         """A user subroutine on its declared inputs (csrc/usersub.c)."""
@@ -541,6 +562,21 @@ class Compiler:
             eq = eqs[k]
             if eq[0] in ("d", "dJ"):
                 force = plus(force, axis("G" if eq[0] == "d" else "J", eq[1]), L)
+            elif eq[0] == "lead":
+                # d . zJ - lead theta: along zJ at I, and -lead L dtheta/dw_I, with
+                # theta = atan2(S, C), S = sign a_I . b_J, C = c_I . d_J:
+                # dtheta/dw_I = (C sign (a_I x b_J) - S (c_I x d_J)) / (S^2 + C^2)
+                _, a, b, sign, c, d = eq
+                force = plus(force, axis("J", 2), L)
+                dot = [tape.emit(lib.PS_OP_AXDOT, ends["I"][0], p, ends["J"][0], q,
+                                 ends["I"][1], ends["J"][1]) for p, q in ((a, b), (c, d))]
+                S, C = tape.op(mul, tape.const(sign), dot[0]), dot[1]
+                norm = tape.op(add, tape.op(mul, S, S), tape.op(mul, C, C))
+                scale = tape.op(lib.PS_OP_DIV, tape.op(mul, tape.const(-jo.lead), L), norm)
+                rate = plus([tape.op(mul, tape.op(mul, tape.const(sign), C), x)
+                             for x in cross(axis("I", a), axis("J", b))],
+                            cross(axis("I", c), axis("J", d)), tape.op(lib.PS_OP_NEG, S))
+                torque = plus(torque, rate, scale)
             else:
                 turn = cross(axis("I", eq[1]), axis("J", eq[2]))
                 if eq[0] == "dot2":
@@ -606,6 +642,15 @@ class Compiler:
         tape.has_gdot = True
         self.element(kind, gc.id, ti, g, gd, lay.lam[k], lay.mu[k])
 
+    def turned_angle(self, key):
+        """The measured angle (in (-pi, pi]) that tracked angle `key` follows."""
+        kind, eid, k = key
+        if kind == "joint":
+            jo = self.model.joints[eid]
+            return joints.lead_angle(jo.i, jo.j, catalogue.JOINT_EQUATIONS[jo.type][0])
+        jo = self.model.joints[self.model.couplers[eid].joints[k]]
+        return ("call", "AZ", [("num", float(jo.i)), ("num", float(jo.j))], 0)
+
     def new_tape(self):
         t = _Tape(self)
         self.tapes.append(t)
@@ -647,6 +692,10 @@ class Compiler:
             for cid in sorted(table):
                 ti, t = self.new_tape()
                 self.held_expression(ti, t, kind, table[cid])
+        for key, state in self.layout.turns.items():
+            ti, t = self.new_tape()
+            self.element("turn", key[1], ti, self.turn_error(t, self.turned_angle(key),
+                                                             key)[1], state)
         # forces that read SENVAL need a restart with consistent yp when a value is stored
         self.forces_use_senval = any(self.tapes[t].uses_senval
                                      for kind, _, t, _ in self.elements if kind != "motion")

@@ -71,8 +71,11 @@ def consistent(kernel, t, y, iters=8, initial=False):
     y[mu[mu >= 0]] = 0.0
     u_idx = _velocities(lay)
     yp = np.zeros_like(y)
-    # 1. positions: g (the rows of mu) to zero along the reactions' directions
+    # 1. positions: g (the rows of mu) to zero along the reactions' directions; the tracked
+    # angles follow their measured angles (each row is its wrapped error, d/ds = -1)
+    _track_turns(kernel, t, y, yp)
     _assemble(kernel, t, y, iters, initial)
+    _track_turns(kernel, t, y, yp)
     # 2. velocities: A motions take w = g' (or their ic_vel, and u changes); the others change u
     given = [initial and rate[k] >= 0 and lay.motion_ic[k][1] is not None
              for k in range(len(rate))]
@@ -105,6 +108,14 @@ def consistent(kernel, t, y, iters=8, initial=False):
     return yp
 
 
+def _track_turns(kernel, t, y, yp):
+    """Move each tracked angle s onto its measured angle (one exact Newton step: its row is
+    atan2(sin(theta - s), cos(theta - s)))."""
+    turns = list(kernel.layout.turns.values())
+    if turns:
+        y[turns] += kernel.residual_array(t, y, yp)[turns]
+
+
 def redundant(kernel, t, y, tol=1e-8):
     """The joint equations that repeat others at the assembled initial positions, as (joint
     id, equation index): each equation in table order (motions first) is kept when its
@@ -114,6 +125,7 @@ def redundant(kernel, t, y, tol=1e-8):
     lay = kernel.layout
     y = np.array(y, dtype=float)
     u_idx = _velocities(lay)
+    _track_turns(kernel, t, y, np.zeros_like(y))
     _assemble(kernel, t, y, 8, initial=True)
     C = _Jac(kernel, t, y, np.zeros_like(y), 0.0).block(np.array(lay.lam), u_idx)
     C = C.toarray() if hasattr(C, "toarray") else np.asarray(C)

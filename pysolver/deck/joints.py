@@ -4,11 +4,14 @@ Every type is a list of holonomic equations g(q) = 0 between marker I (on the fi
 marker J (on the second), in the forms of ../shared/reference/elements.md section 1.2: ``d``
 components (d = oI - oJ, global: the origins coincide), ``dJ`` components (d along one of J's
 axes: I's origin on a line or in a plane of J), and ``dot`` products of an axis of I with an
-axis of J (the "dot-1" form: two axes stay perpendicular). The kernel holds each equation at
-the position and the velocity level (csrc/elements/joint.c).
+axis of J (the "dot-1" form: two axes stay perpendicular). SCREW and RACK_PINION hold one
+``lead`` equation, d . zJ = lead theta + offset, with theta tracked through every turn (a
+"turned" node: csrc/elements/turn.c). The kernel holds each equation at the position and the
+velocity level (csrc/elements/joint.c).
 """
+import math
+
 from ..catalogue import JOINT_EQUATIONS as EQUATIONS
-from ..catalogue import JOINTS_NOT_YET as NOT_YET
 from ..records import Coupler, GeneralConstraint, Joint
 from .motions import two_bodies
 
@@ -18,17 +21,49 @@ def add_joint(model, ctx, a):
     """Validate one Constraint_Joint or Constraint_Jprim and add it to the model."""
     ctx.id = a["id"]
     kind = a["type"]
-    if kind in NOT_YET:
-        raise ctx.error(f"type {kind} is not supported yet: {NOT_YET[kind]}", "type")
     bi, bj, _ = two_bodies(model, ctx, a, "a joint")
+    lead = _lead(ctx, a)
     if any(e[0].startswith("dot") for e in EQUATIONS[kind]):
         for key, b in (("i_marker_id", bi), ("j_marker_id", bj)):
             if model.bodies[b].kind == "point":
                 raise ctx.error(f"a {kind} joint holds orientations and needs rigid bodies; "
                                 f"marker {a[key]} is on point body {b}", key)
+    offset = _offset(model, a["i_marker_id"], a["j_marker_id"], lead, EQUATIONS[kind][0]) \
+        if lead else 0.0
     model.joints[a["id"]] = Joint(a["id"], kind, a["i_marker_id"], a["j_marker_id"],
-                                  a["label"], bool(a.get("is_virtual")))
+                                  a["label"], bool(a.get("is_virtual")), lead, offset)
     model._where[("joint", a["id"])] = ctx
+
+
+def _lead(ctx, a):
+    """A SCREW's pitch / 2 pi or a RACK_PINION's pitch_diameter / 2 (0 for other types)."""
+    kind = a["type"]
+    need = {"SCREW": "pitch", "RACK_PINION": "pitch_diameter"}.get(kind)
+    for key in ("pitch", "pitch_diameter"):
+        if a.get(key) is not None and key != need:
+            raise ctx.error(f"{key} belongs to a "
+                            f"{'SCREW' if key == 'pitch' else 'RACK_PINION'} joint, not a "
+                            f"{kind}", key)
+    if need is None:
+        return 0.0
+    v = a.get(need)
+    if v is None:
+        raise ctx.error(f"a {kind} joint needs {need}", need)
+    if need == "pitch" and (v == 0 or not math.isfinite(v)):
+        raise ctx.error("pitch is the translation per turn: a finite number, not 0", need)
+    if need == "pitch_diameter" and not (v > 0 and math.isfinite(v)):
+        raise ctx.error("pitch_diameter is a finite length > 0", need)
+    return v / (2 * math.pi) if need == "pitch" else v / 2
+
+
+def _offset(model, i, j, lead, eq):
+    """d . zJ - lead theta of a lead equation at the deck's marker positions: the relation
+    the joint keeps."""
+    mi, mj = model.markers[i], model.markers[j]
+    _, a, b, sign, c, d = eq
+    theta = math.atan2(sign * float(mi.rot[:, a] @ mj.rot[:, b]),
+                       float(mi.rot[:, c] @ mj.rot[:, d]))
+    return float((mi.pos - mj.pos) @ mj.rot[:, 2]) - lead * theta
 
 
 def equation_tree(joint, eq):
@@ -41,8 +76,22 @@ def equation_tree(joint, eq):
         return _call("DX DY DZ".split()[eq[1]], joint.i, joint.j, joint.j)
     if kind == "dot":
         return ("axdot", joint.i, eq[1], joint.j, eq[2])
+    if kind == "lead":
+        # d . zJ - lead theta - offset, theta unwrapped by the joint's tracked angle
+        along = _call("DZ", joint.i, joint.j, joint.j)
+        turned = ("turned", lead_angle(joint.i, joint.j, eq), ("joint", joint.id, 0))
+        return ("bin", "-", ("bin", "-", along, ("bin", "*", ("num", joint.lead), turned)),
+                ("num", joint.offset))
     # CONSTANT_VELOCITY: xI.yJ + yI.xJ
     return ("bin", "+", ("axdot", joint.i, X, joint.j, Y), ("axdot", joint.i, Y, joint.j, X))
+
+
+def lead_angle(i, j, eq):
+    """theta = atan2(sign a_I . b_J, c_I . d_J) of a ("lead", a, b, sign, c, d) equation, in
+    (-pi, pi]."""
+    _, a, b, sign, c, d = eq
+    s = ("axdot", i, a, j, b)
+    return ("call", "ATAN2", [s if sign > 0 else ("neg", s), ("axdot", i, c, j, d)], 0)
 
 
 def _call(name, *ids):
@@ -102,8 +151,10 @@ def add_coupler(model, ctx, a):
         raise ctx.error(f"got {a['coefficients']!r}; expected {len(ids)} numbers (or "
                         f"{len(ids) - 1}, r1 = 1), not all zero", "coefficients")
     expr = None
-    for jo, kind, r in zip(joints, freedoms, scales):
-        q = (_call("AZ", jo.i, jo.j) if kind == "R" else _call("DZ", jo.i, jo.j, jo.j))
+    for k, (jo, kind, r) in enumerate(zip(joints, freedoms, scales)):
+        # a rotation through every turn: AZ unwrapped by the coupler's tracked angle k
+        q = (("turned", _call("AZ", jo.i, jo.j), ("coupler", a["id"], k)) if kind == "R"
+             else _call("DZ", jo.i, jo.j, jo.j))
         term = ("bin", "*", ("num", r), q)
         expr = term if expr is None else ("bin", "+", expr, term)
     model.couplers[a["id"]] = Coupler(a["id"], tuple(ids), tuple(freedoms), tuple(scales),

@@ -207,9 +207,10 @@ def _joint_type(val):
 
 def JOINT(id, **kw):
     """Joint (Constraint_Joint): TYPE (REVOLUTE, SPHERICAL, TRANSLATIONAL, CYLINDRICAL,
-    UNIVERSAL, HOOKE, FIXED, PLANAR, CONSTANT_VELOCITY or CONVEL, the primitives INLINE,
-    INPLANE, ORIENTATION, PARALLEL_AXES, PERPENDICULAR, FREE), I, J (markers: I on the first
-    body, J on the second), PITCH (SCREW), PD (RACK_PINION), LABEL. The reactions are
+    UNIVERSAL, HOOKE, FIXED, PLANAR, CONSTANT_VELOCITY or CONVEL, SCREW, RACK_PINION or
+    RACKPIN, the primitives INLINE, INPLANE, ORIENTATION, PARALLEL_AXES, PERPENDICULAR,
+    FREE), I, J (markers: I on the first body, J on the second), PITCH (SCREW: translation
+    per turn), PD (RACK_PINION: pitch diameter), LABEL. The reactions are
     res.joint(id)."""
     _emit("JOINT", "Constraint_Joint",
           {"TYPE": _joint_type, "I": "i_marker_id", "J": "j_marker_id", "PITCH": "pitch",

@@ -1,9 +1,9 @@
 """Quasi-static analyses and the static commands of a run.
 
-- FIM_D: quasi-statics as an index-1 DAE in q and the constraints' multipliers
-  (F(q, lam, t) = 0, |e| = 1 for each rigid body, g(q, t) = 0 for each position-held
-  constraint and C N^+ q' = 0 for each rate-held one) integrated by IDA with the run's
-  tolerance, the multipliers out of the error test; FIM_S at the first and the last point and
+- FIM_D: quasi-statics as an index-1 DAE in q, the constraints' multipliers and the tracked
+  angles (F(q, lam, t) = 0, |e| = 1 for each rigid body, g(q, t) = 0 for each constraint, each
+  tracked angle's row) integrated by IDA with the run's tolerance, the algebraic states out of
+  the error test; FIM_S at the first and the last point and
   whenever the integration fails.
 - FIM_S: each output's equilibrium solved on its own, from the previous one.
 """
@@ -29,34 +29,29 @@ def quasi_static(model, t0, y0, times, params, tol, kind=None):
         return [], results
     lay = kernel.layout
     rigid = [qa + 3 for b, qa in zip(lay.bodies, lay.qadr) if b.kind == "rigid"]
-    nq, n, m = len(prob.qcols), prob.n, prob.m
+    nq, n, m, nt = len(prob.qcols), prob.n, prob.m, len(prob.turns)
     qpos = {q: i for i, q in enumerate(prob.qcols)}
     reg = math.sqrt(params.stability) * prob.M
-    # the unknowns are q and the constraints' multipliers; the equations F = 0, |e| = 1, the
-    # position-held constraints g = 0 and the rate-held ones C N^+ q' = 0
-    held = np.flatnonzero(prob.pos >= 0)
-    rows_g = nq + held
-    rows_r = nq + prob.by_rate
+    # the unknowns are q, the constraints' multipliers and the tracked angles; the equations
+    # F = 0, |e| = 1, the constraints g = 0 and the tracked angles' rows
+    cols = np.concatenate([prob.lam, prob.turns]).astype(int)
+    size = nq + m + nt
 
     def embed(x):
         yy = np.zeros(kernel.ny)
         yy[prob.qcols] = x[:nq]
-        yy[prob.lam] = x[nq:]
+        yy[cols] = x[nq:]
         return yy
-
-    def unit_rows(x, r):
-        for i, e in enumerate(rigid):
-            j = qpos[e]
-            r[n + i] = x[j:j + 4] @ x[j:j + 4] - 1.0
 
     def residual(t, x, xp, r):
         yy = embed(x)
-        R = prob.residual(t, yy)
-        r[:n] = R[:n] / prob.cf
-        unit_rows(x, r)
-        r[rows_g] = R[n + held]
-        if len(rows_r):
-            r[rows_r] = prob.matrix(t, yy)[n + prob.by_rate, :n] @ prob.N_pinv(yy) @ xp[:nq]
+        R = kernel.residual_array(t, yy, prob.zero)
+        r[:n] = R[prob.rows] / prob.cf
+        for i, e in enumerate(rigid):
+            j = qpos[e]
+            r[n + i] = x[j:j + 4] @ x[j:j + 4] - 1.0
+        r[nq:nq + m] = R[prob.pos]
+        r[nq + m:] = R[prob.turns]
 
     def jacobian(t, x, xp, r, cj, JJ):
         yy = embed(x)
@@ -64,39 +59,29 @@ def quasi_static(model, t0, y0, times, params, tol, kind=None):
         JJ[:] = 0.0
         # regularised like FIM_S: sqrt(stability) M mapped back to q increments (N^+)
         JJ[:n, :nq] = (J[np.ix_(prob.rows, prob.qcols)] + reg @ prob.N_pinv(yy)) / prob.cf
-        JJ[:n, nq:] = J[np.ix_(prob.rows, prob.lam)] / prob.cf
+        JJ[:n, nq:] = J[np.ix_(prob.rows, cols)] / prob.cf
         for i, e in enumerate(rigid):
             j = qpos[e]
             JJ[n + i, j:j + 4] = 2.0 * x[j:j + 4]
-        JJ[rows_g, :nq] = J[np.ix_(prob.pos[held], prob.qcols)]
-        if len(rows_r):
-            JJ[rows_r, :nq] = cj * (prob.matrix(t, yy)[n + prob.by_rate, :n]
-                                    @ prob.N_pinv(yy))
+        rows = np.concatenate([prob.pos, prob.turns]).astype(int)
+        JJ[nq:, :nq] = J[np.ix_(rows, prob.qcols)]
+        JJ[nq:, nq:] = J[np.ix_(rows, cols)]
 
     def rate(t, x):
-        """dx/dt on the equilibrium path: the algebraic rows differentiated in time (dR/dt
-        by central differences) and the rate rows, solved for x'."""
+        """dx/dt on the equilibrium path: -(dR/dx)^-1 dR/dt (dR/dt by central differences)."""
         h = 1e-6 * max(1.0, abs(t))
-        size = nq + m
-        rp, rm, A, A1 = np.zeros(size), np.zeros(size), np.zeros((size, size)), None
-        zero = np.zeros(size)
-        residual(t + h, x, zero, rp)
-        residual(t - h, x, zero, rm)
-        jacobian(t, x, zero, None, 0.0, A)
-        rhs = -(rp - rm) / (2 * h)
-        if len(rows_r):
-            A1 = np.zeros((size, size))
-            jacobian(t, x, zero, None, 1.0, A1)
-            A[rows_r] = A1[rows_r]
-            rhs[rows_r] = 0.0
-        return np.linalg.solve(A, rhs)
+        rp, rm, A = np.zeros(size), np.zeros(size), np.zeros((size, size))
+        residual(t + h, x, None, rp)
+        residual(t - h, x, None, rm)
+        jacobian(t, x, None, None, 0.0, A)
+        return -np.linalg.solve(A, (rp - rm) / (2 * h))
 
     # the multipliers are out of IDA's error test, as in the transient driver
-    atol = np.concatenate([np.full(nq, tol), np.full(m, 1e300)])
+    atol = np.concatenate([np.full(nq, tol), np.full(m + nt, 1e300)])
     solver = PyIDA(residual, rtol=tol, atol=atol, max_num_steps=100000, linsolver="dense",
-                   hit_outputs=bool(m),
-                   jacfn=jacobian, algebraic_idx=list(range(nq + m)))
-    x = np.concatenate([y[prob.qcols], y[prob.lam]])
+                   hit_outputs=bool(m + nt),
+                   jacfn=jacobian, algebraic_idx=list(range(size)))
+    x = np.concatenate([y[prob.qcols], y[cols]])
     solver.init_step(t0, x, rate(t0, x))
     out = [(t0, y)]
     for i, tp in enumerate(times):
@@ -107,14 +92,14 @@ def quasi_static(model, t0, y0, times, params, tol, kind=None):
             results.append(finished(prob, tp, yy, params, r))
             if not r.success:
                 return out, results
-            x = np.concatenate([yy[prob.qcols], yy[prob.lam]])
+            x = np.concatenate([yy[prob.qcols], yy[cols]])
             solver.init_step(tp, x, rate(tp, x))
         else:
             x = np.array(sol.y)
         if i == len(times) - 1:
             yy, r = fim_s(prob, tp, embed(x), params)
             results.append(finished(prob, tp, yy, params, r))
-            x = np.concatenate([yy[prob.qcols], yy[prob.lam]])
+            x = np.concatenate([yy[prob.qcols], yy[cols]])
         out.append((tp, embed(x)))
     return out, results
 

@@ -83,38 +83,46 @@ class StaticProblem:
         self.n = len(rows)
         self.M = _block_diag(M, self.n)
         self.zero = np.zeros(kernel.ny)
-        # constraint equations: each one's multiplier state and its position row (-1: held
-        # at the rate level only, which statics keep by admissible increments)
+        # constraint equations: each one's multiplier state and its position row (displacement
+        # motions and every constraint have one; the deck refuses other motions in statics);
+        # the tracked angles of screws, racks and couplers, kept on their measured angles
         self.lam = np.array(lay.lam, dtype=int)
         self.pos = np.array(lay.mu, dtype=int)
+        if np.any(self.pos < 0):
+            raise AssertionError("a constraint without a position row in a static analysis")
         self.m = len(self.lam)
         self.size = self.n + self.m
-        self.by_rate = np.flatnonzero(self.pos < 0)
+        self.turns = np.array(list(lay.turns.values()), dtype=int)
 
     def state(self, y):
         """Positions and multipliers of y with every velocity (and position multiplier mu)
         set to zero."""
         y = np.array(y, dtype=float)
         y[self.rows] = 0.0
-        y[self.pos[self.pos >= 0]] = 0.0
+        y[self.pos] = 0.0
         return y
 
     def residual(self, t, y):
-        """The static equations [F; g]: force imbalance (model units) and the position-held
-        constraints' violations (0 for a constraint held at the rate level)."""
+        """The static equations [F; g]: force imbalance (model units) and the constraints'
+        violations."""
         r = self.k.residual_array(t, y, self.zero)
-        g = np.where(self.pos >= 0, r[np.maximum(self.pos, 0)], 0.0)
-        return np.concatenate([r[self.rows], g])
+        return np.concatenate([r[self.rows], r[self.pos]])
+
+    def track(self, t, y):
+        """Move the tracked angles of y (in place) onto their measured angles (each row is
+        the wrapped error, d/ds = -1): increments turn a body by less than pi."""
+        if len(self.turns):
+            y[self.turns] += self.k.residual_array(t, y, self.zero)[self.turns]
+        return y
 
     def violation(self, R):
-        """Largest constraint violation in a residual of :meth:`residual` (deck lengths or
+        """Largest constraint violation in a residual of :meth:`residual` (model lengths or
         radians)."""
         return np.abs(R[self.n:]).max() if self.m else 0.0
 
     def matrix(self, t, y, reg=None):
         """d[F; g]/d[u-increment, lam] at y, with `reg` (n x n) added to the stiffness block:
-        [[K + reg, dF/dlam], [C, 0]]. A rate-held row is C = d(g')/du, which makes each
-        increment keep it."""
+        [[K + reg, dF/dlam], [C, 0]]."""
         J = self.k.jacobian_array(t, y, self.zero, 0.0)
         N = self.N(y)
         A = np.zeros((self.size, self.size))
@@ -123,13 +131,7 @@ class StaticProblem:
             A[:self.n, :self.n] += reg
         if self.m:
             A[:self.n, self.n:] = J[np.ix_(self.rows, self.lam)]
-            held = self.pos >= 0
-            A[self.n:, :self.n][held] = J[np.ix_(self.pos[held], self.qcols)] @ N
-        if len(self.by_rate):
-            rr = self.lam[self.by_rate]
-            dyp = self.k.jacobian_array(t, y, self.zero, 1.0) - J
-            A[self.n + self.by_rate, :self.n] = (J[np.ix_(rr, self.rows)]
-                                                 + dyp[np.ix_(rr, self.qcols)] @ N)
+            A[self.n:, :self.n] = J[np.ix_(self.pos, self.qcols)] @ N
         return A
 
     def imbalance(self, t, y):
@@ -240,7 +242,7 @@ def fim_s(prob, t, y, params, max_iter=None):
 
 
 def _newton(prob, t, y, params, max_iter, search):
-    y = prob.state(y)
+    y = prob.track(t, prob.state(y))
     reg = math.sqrt(params.stability) * prob.M
     max_iter = max_iter or params.max_num_iter
     n = prob.n
@@ -274,7 +276,7 @@ def _newton(prob, t, y, params, max_iter, search):
         # otherwise halve it
         f0 = merit(R)
         for _ in range(30 if search else 1):
-            y1 = prob.apply(y, dx)
+            y1 = prob.track(t, prob.apply(y, dx))
             R1 = prob.residual(t, y1)
             if merit(R1) <= f0:
                 break

@@ -193,6 +193,10 @@ class Assembly:
     # csrc/elements/gcon.c and coupler.c hold theirs as a joint equation
     _gcon = _coupler = _joint
 
+    def _turn(self, tape, w, s):
+        """A tracked angle's row: the wrapped error w (csrc/elements/turn.c)."""
+        self.res[s] = self.s.tape(tape)[w]
+
     # the iteration matrix ---------------------------------------------------------------
     def _jacobian(self):
         """(row, col, node) of dF/dy + cj dF/dyp, sorted by column then row."""
