@@ -224,8 +224,11 @@ static double call(void* fn, int form, int id, double t, const double* par, int 
   double p[PS_USER_MAXPAR], val[8] = {0};
   int n = npar < PS_USER_MAXPAR ? npar : PS_USER_MAXPAR;
   memcpy(p, par, sizeof(double) * (size_t)n);   /* the routine may not change the model */
+  int iord = 0;
   if (form == PS_USER_DFLAG)
     ((UserFnD)fn)(&id, &t, p, &n, &dflag, &iflag, val);
+  else if (form == PS_USER_IORD)
+    ((UserFnD)fn)(&id, &t, p, &n, &iord, &iflag, val);
   else
     ((UserFnP)fn)(&id, &t, p, &n, &iflag, val);
   return val[chan];

@@ -137,6 +137,7 @@ class Motion:
     joint: int = 0
     ic_disp: float = None
     ic_vel: float = None
+    usersub: UserSub = None
 
 
 @record
@@ -165,6 +166,7 @@ class GeneralConstraint:
     i: int = 0
     label: str = ""
     virtual: bool = False
+    usersub: UserSub = None
 
 
 @record

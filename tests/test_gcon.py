@@ -84,7 +84,8 @@ def test_the_python_statement(tmp_path):
     ('expr="VX(9)"', "expr", "non-holonomic"),
     ('expr="DX(99)"', "expr", "marker id 99"),
     ('expr="DX(9)" i_marker_id="77"', "i_marker_id", "marker 77 does not exist"),
-    ('', "expr", "required"),
+    ('', "expr", "give expr, or a user subroutine"),
+    ('expr="USER(9)"', "script_name", "needs the routine"),
 ])
 def test_a_bad_general_constraint_is_a_deck_error(gcon, attribute, words):
     text = CIRCLE.format(extra=f'<Constraint_General id="4" {gcon}/>', T=1.0, dt=0.5)

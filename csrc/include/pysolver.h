@@ -102,6 +102,8 @@ enum psElement {
                             int* iflag, double* value): PFOSUB, VARSUB, SFOSUB */
 #define PS_USER_PLAIN 1  /* f(int* id, double* time, double* par, int* npar, int* iflag,
                             double* value): SENSUB, SEVSUB, REQSUB (value[8]) */
+#define PS_USER_IORD 2   /* as PS_USER_DFLAG with iord in dflag's place, always 0 (the
+                            value; its derivatives are differenced): MOTSUB */
 #define PS_USER_KEY 32   /* bytes of one canonical input key */
 #define PS_USER_MAXIN 16 /* most inputs one routine may declare */
 /* doubles of one PS_OP_USER instruction's cache: what it holds (0 nothing, 1 the value,

@@ -18,7 +18,10 @@ from ..errors import ExpressionError
 from .bindings import ffi, lib
 
 _SIGNATURE = {lib.PS_USER_DFLAG: "void(int *, double *, double *, int *, int *, int *, double *)",
+              lib.PS_USER_IORD: "void(int *, double *, double *, int *, int *, int *, double *)",
               lib.PS_USER_PLAIN: "void(int *, double *, double *, int *, int *, double *)"}
+#: The C form of each argument list: a fifth argument dflag, iord (MOTSUB), or none.
+_FORM = {"dflag": lib.PS_USER_DFLAG, "iord": lib.PS_USER_IORD, "iflag": lib.PS_USER_PLAIN}
 
 
 @dataclasses.dataclass
@@ -40,7 +43,7 @@ def bind(model):
         ctx = model._where[(kind, el.id)]
         ctx.id = el.id
         sub = el.usersub
-        form = lib.PS_USER_DFLAG if "dflag" in CONVENTIONS[ctx.tag][1] else lib.PS_USER_PLAIN
+        form = _FORM[CONVENTIONS[ctx.tag][1][4]]
         if sub.library:
             fn, keep, how = _library(ctx, sub), None, f"C library {sub.library}"
         else:
@@ -49,6 +52,9 @@ def bind(model):
         if len(sub.par) > 64:
             raise ctx.error("at most 64 USER(...) parameters", sub.attribute)
         keys = _declare(ctx, sub, fn, form, el.id)
+        if kind == "motion" and keys:
+            raise ctx.error(f"{sub.name} declares {', '.join(keys)}: a motion is a function "
+                            "of time only", sub.attribute)
         if keep is not None:
             keep[1].keys = keys         # the Python routine reads them by name
         k = len(model.user_routines)
@@ -135,6 +141,9 @@ def _callback(ctx, sub, form, model):
     if form == lib.PS_USER_DFLAG:
         def entry(id, time, par, npar, dflag, iflag, value):
             call(id, time, dflag[0], iflag[0], value)
+    elif form == lib.PS_USER_IORD:
+        def entry(id, time, par, npar, iord, iflag, value):
+            call(id, time, 0, iflag[0], value)
     else:
         def entry(id, time, par, npar, iflag, value):
             call(id, time, 0, iflag[0], value)

@@ -8,7 +8,8 @@ motion of its joint's markers along z of J (T: DZ(I, J, J)) or about it (R: AZ(I
 allowed on the joint types that leave that coordinate free.
 """
 from ..model import Motion
-from . import expr as ex
+from . import usersubs
+from .references import time_only
 
 _MEASURE = {"X": "DX", "Y": "DY", "Z": "DZ", "B1": "AX", "B2": "AY", "B3": "AZ"}
 
@@ -67,16 +68,23 @@ def add_motion(model, ctx, a, joint=0):
             if model.bodies[b].kind == "point":
                 raise ctx.error(f"a rotation ({a['direction']}) needs rigid bodies; marker "
                                 f"{a[key]} is on point body {b}", key)
-    tree, text = a["expr"]
-    if tree[0] == "user":
-        raise ctx.error("a motion's expression is a function of time, not a user subroutine",
-                        "expr")
+    sub = usersubs.from_attributes(model, ctx, a)
+    if sub is not None:
+        tree, text = None, sub.describe()          # traced or bound when first compiled
+    elif a.get("expr") is None:
+        raise ctx.error("give expr (a function of time), or type=\"USERSUB\" and its routine "
+                        "(MOTSUB)", "expr")
+    else:
+        tree, text = a["expr"]
+        if tree[0] == "user":
+            raise ctx.error("USER(...) calls a user subroutine: give type=\"USERSUB\" and "
+                            "the routine (script_name, or ROUTINE= in a Python deck)", "expr")
     # the integration constants: a displacement for V and A, a velocity for A
     for key, kinds in (("ic_disp", "VA"), ("ic_vel", "A")):
         if a.get(key) is not None and a["val_type"] not in kinds:
             raise ctx.error(f"{key} is an initial condition of a {' or '.join(kinds)} motion; "
                             f"this one is val_type {a['val_type']}", key)
-    reads = time_only(tree)
+    reads = time_only(tree) if tree is not None else ()
     if reads:
         raise ctx.error(f"a motion's expression must depend on time only; it reads "
                         f"{', '.join(sorted(reads))}", "expr")
@@ -91,7 +99,7 @@ def add_motion(model, ctx, a, joint=0):
                         "motion_type" if joint else "direction")
     model.motions[a["id"]] = Motion(a["id"], a["i_marker_id"], a["j_marker_id"],
                                     a["direction"], a["val_type"], tree, text, a["label"],
-                                    joint, a.get("ic_disp"), a.get("ic_vel"))
+                                    joint, a.get("ic_disp"), a.get("ic_vel"), sub)
     model._where[("motion", a["id"])] = ctx
 
 
@@ -113,9 +121,3 @@ def clashes(model, bi, bj, direction, ground):
         if bodies == pair and other.direction == direction:
             return other.id
     return None
-
-
-def time_only(tree):
-    """Names of the state-dependent functions an expression tree calls (empty: it depends on
-    time only)."""
-    return {n[1] for n in ex.nodes(tree) if n[0] == "call" and n[1] in ex.ID_ARGS}

@@ -54,12 +54,13 @@ def _line(rec):
     return None
 
 
-def _emit(stmt, tag, mapping, id=None, **kw):
-    """Record element `tag`; mapping: statement keyword -> XML attribute (or a function)."""
+def _emit(stmt, tag, mapping, id=None, extra=None, **kw):
+    """Record element `tag`; mapping: statement keyword -> XML attribute (or a function);
+    `extra` attributes the statement implies."""
     from ..errors import DeckError
     rec = _recorder()
     line = _line(rec)
-    attrs, names = {}, {}
+    attrs, names = dict(extra or {}), {k: "ROUTINE" for k in extra or {}}
     if id is not None:
         attrs["id"], names["id"] = id, "ID"
     for key, val in kw.items():
@@ -136,6 +137,15 @@ def MARKER(id, **kw):
            "RM": "rm_id", "LABEL": "label"}, id, **kw)
 
 
+#: The keywords that name a user subroutine, on a statement whose TYPE means something else.
+_ROUTINE = {k: v for k, v in _USERSUB.items() if k != "TYPE"}
+
+
+def _routine_type(kw):
+    """type="USERSUB" when the statement names its routine."""
+    return {"type": "USERSUB"} if any(k.upper() in _ROUTINE for k in kw) else None
+
+
 def _usersub(kw, typed=True):
     """A statement with ROUTINE, SCRIPT or INTERPRETER calls a user subroutine."""
     if typed and any(k.upper() in ("ROUTINE", "SCRIPT", "INTERPRETER") for k in kw):
@@ -186,17 +196,18 @@ def MOTION(id, **kw):
     A acceleration), FUNCTION (a function of time), IC_DISP, IC_VEL, LABEL. With JOINT= the
     motion of a joint's coordinate instead (Motion_Joint): TYPE (R or ROTATION, T or
     TRANSLATION; needed on a CYLINDRICAL joint), VAL_TYPE, FUNCTION, IC_DISP, IC_VEL, LABEL.
+    ROUTINE (MOTSUB), SCRIPT, INTERPRETER and FUNCTION="USER(...)" for a user subroutine.
     The reaction is res.motion(id)."""
     if "JOINT" in {k.upper() for k in kw}:
         _emit("MOTION", "Motion_Joint",
               {"JOINT": "joint_id", "TYPE": _motion_type, "VAL_TYPE": "val_type",
-               "FUNCTION": "expr", "IC_DISP": "ic_disp", "IC_VEL": "ic_vel", "LABEL": "label"},
-              id, **kw)
+               "FUNCTION": "expr", "IC_DISP": "ic_disp", "IC_VEL": "ic_vel", "LABEL": "label",
+               **_ROUTINE}, id, _routine_type(kw), **kw)
         return
     _emit("MOTION", "Motion_Marker",
           {"I": "i_marker_id", "J": "j_marker_id", "DIRECTION": "direction",
            "VAL_TYPE": "val_type", "FUNCTION": "expr", "IC_DISP": "ic_disp",
-           "IC_VEL": "ic_vel", "LABEL": "label"}, id, **kw)
+           "IC_VEL": "ic_vel", "LABEL": "label", **_ROUTINE}, id, _routine_type(kw), **kw)
 
 
 def _joint_type(val):
@@ -238,9 +249,10 @@ def COUPLER(id, **kw):
 
 def GCON(id, **kw):
     """General constraint (Constraint_General): FUNCTION (an expression of displacements and
-    time held at zero), I (the marker MotionSolve reports its reaction at), LABEL."""
+    time held at zero), I (the marker MotionSolve reports its reaction at), LABEL; ROUTINE
+    (GCOSUB), SCRIPT, INTERPRETER and FUNCTION="USER(...)" for a user subroutine."""
     _emit("GCON", "Constraint_General",
-          {"FUNCTION": "expr", "I": "i_marker_id", "LABEL": "label"}, id, **kw)
+          {"FUNCTION": "expr", "I": "i_marker_id", "LABEL": "label", **_ROUTINE}, id, **kw)
 
 
 def JPRIM(id, **kw):

@@ -42,6 +42,11 @@ def check_references(model):
         if key[0] == "penalty" and dyn:
             raise ctx.error("a penalty constraint g(q, t) may use displacement measures only "
                             f"(found {dyn}); velocities enter through penalty1", attr)
+        if key[0] == "motion":
+            reads = time_only(tree)
+            if reads:
+                raise ctx.error(f"{model.motions[key[1]].usersub.name} must give a function "
+                                f"of time only; it reads {', '.join(sorted(reads))}", attr)
         if key[0] == "gcon" and dyn:
             raise ctx.error("a Constraint_General of velocities (non-holonomic) is not "
                             f"supported yet: the expression may read displacements and time "
@@ -51,8 +56,11 @@ def check_references(model):
 def _expressions(model):
     """(key, attribute, tree) of every expression in the model; a user subroutine's traced
     expression is named by its routine attribute, and one not traced yet is left out."""
+    # motions: those of a MOTSUB (an expression's is checked when it is added; a
+    # LoadControl's own motions are not the deck's)
+    routed = {i: mo for i, mo in model.motions.items() if mo.usersub is not None}
     for kind, table in (("penalty", model.penalties), ("gcon", model.gcons),
-                        ("sforce", model.sforces),
+                        ("motion", routed), ("sforce", model.sforces),
                         ("variable", model.variables), ("sensor", model.sensors),
                         ("evaluate", model.evaluates)):
         for el in table.values():
@@ -66,6 +74,12 @@ def _expressions(model):
         for k, e in enumerate(r.exprs):
             if e is not None:
                 yield ("request", r.id), r.usersub.attribute if r.usersub else f"expr{k + 1}", e
+
+
+def time_only(tree):
+    """Names of the state-dependent functions an expression tree calls (empty: it depends on
+    time only)."""
+    return {n[1] for n in ex.nodes(tree) if n[0] == "call" and n[1] in ex.ID_ARGS}
 
 
 class _Cycle(Exception):

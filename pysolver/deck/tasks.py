@@ -12,7 +12,8 @@ import numpy as np
 from ..errors import ExpressionError
 from ..model import LoadControl, Motion
 from . import expr as ex
-from .motions import clashes, time_only
+from .motions import clashes
+from .references import time_only
 
 _T = re.compile(r"(?<![A-Za-z0-9_])t(?![A-Za-z0-9_])")
 

@@ -1,4 +1,5 @@
-"""User subroutines (``type="USERSUB"``): PFOSUB, SENSUB, SEVSUB, VARSUB, SFOSUB, REQSUB.
+"""User subroutines (``type="USERSUB"``): PFOSUB, SENSUB, SEVSUB, VARSUB, SFOSUB, REQSUB,
+MOTSUB, GCOSUB.
 
 At load (:func:`from_attributes`) the attributes are checked without running anything: the
 routine's script or library exists, a script defines the function with the conventional
@@ -22,8 +23,8 @@ from . import elfsyms, tracer
 from . import expr as ex
 
 #: Element -> (conventional routine name, its Python arguments, values it returns).
-CONVENTIONS = {e.tags[0]: e.usersub for e in catalogue.ELEMENTS if e.usersub}
-_KIND = {e.tags[0]: e.kind for e in catalogue.ELEMENTS if e.usersub}
+CONVENTIONS = {tag: e.usersub for e in catalogue.ELEMENTS if e.usersub for tag in e.tags}
+_KIND = {tag: e.kind for e in catalogue.ELEMENTS if e.usersub for tag in e.tags}
 _ATTRS = ("usrsub_dll_name", "usrsub_fnc_name", "usrsub_param_string", "script_name",
           "interpreter")
 
@@ -33,7 +34,7 @@ def from_attributes(model, ctx, a):
     attributes. Nothing is executed."""
     given = [k for k in _ATTRS if a.get(k) is not None]
     user_expr = a.get("expr") is not None and a["expr"][0][0] == "user"
-    if ctx.tag == "Force_Scalar_TwoBody":      # its type is FORCE/TORQUE: USERSUB is implied
+    if ctx.tag in ("Force_Scalar_TwoBody", "Constraint_General"):  # no type=USERSUB there
         wanted = bool(given) or user_expr
     else:
         wanted = a.get("type") == "USERSUB"
@@ -263,7 +264,7 @@ def _trace(ctx, sub, id, model):
 
     def run(iflag):
         call = {"id": id, "time": time, "par": list(par), "npar": len(par), "dflag": 0,
-                "iflag": iflag}
+                "iord": 0, "iflag": iflag}
         with tracer.active():
             out = fn(*[call[k] for k in args])
         return _value_trees(ctx, sub, out, nvalues) if iflag == 0 else None
