@@ -8,10 +8,10 @@
 from ._version import __version__
 from .batch import Sweep, grid, sample, sweep
 from .deck.loader import load, loads
-from .errors import DeckError
+from .errors import DeckError, DeckWarning
 from .headers import get_include
 from .model import Model
 from .results import Result
 
-__all__ = ["load", "loads", "DeckError", "Model", "Result", "get_include", "__version__",
-           "sweep", "grid", "sample", "Sweep"]
+__all__ = ["load", "loads", "DeckError", "DeckWarning", "Model", "Result", "get_include",
+           "__version__", "sweep", "grid", "sample", "Sweep"]

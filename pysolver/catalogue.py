@@ -222,6 +222,16 @@ TABLE = (
     _measure("AX", "ij", _POS, "angle of i's axes about j's x axis"),
     _measure("AY", "ij", _POS, "angle of i's axes about j's y axis"),
     _measure("AZ", "ij", _POS, "angle of i's axes about j's z axis"),
+    # orientation angles of i relative to j, lowered to dot products of their axes
+    *(Function(name, "special", ("i", "j"), None, doc, required=1, reads=_POS,
+               ids=("marker", "marker"), py_sysfnc=True) for name, doc in (
+        ("PSI", "first body-fixed 3-1-3 angle of i relative to j (0 where theta is 0 or pi)"),
+        ("THETA", "second body-fixed 3-1-3 angle of i relative to j, in [0, pi]"),
+        ("PHI", "third body-fixed 3-1-3 angle of i relative to j"),
+        ("YAW", "first body-fixed 3-2-1 angle of i relative to j"),
+        ("PITCH", "minus the second body-fixed 3-2-1 angle of i relative to j (Adams'), in "
+                  "[-pi/2, pi/2]"),
+        ("ROLL", "third body-fixed 3-2-1 angle of i relative to j"))),
     # values of other elements, named by id
     _element("VARVAL", "variable", "the value of Reference_Variable id", "variables"),
     _element("PFORCE", "penalty", "the scalar force -p g - p1 g' of Force_Penalty id",

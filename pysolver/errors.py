@@ -45,6 +45,18 @@ class DeckError(ValueError):
         return (", ".join(where) + ": " if where else "") + self.reason
 
 
+class DeckWarning(UserWarning):
+    """A deck loads, but part of it is read in a way its author may not have meant (an
+    ambiguity of the public documentation, decided in docs/). Located like :class:`DeckError`,
+    with the same attributes."""
+
+    def __init__(self, message, file=None, line=None, element=None, id=None, attribute=None):
+        where = DeckError(message, file, line, element, id, attribute)
+        self.reason, self.file, self.line = message, file, line
+        self.element, self.id, self.attribute = element, id, attribute
+        super().__init__(str(where))
+
+
 class ExpressionError(ValueError):
     """A syntax or semantic error inside one expression string (column is 0-based)."""
 

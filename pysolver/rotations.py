@@ -28,6 +28,18 @@ def rot_313(psi, theta, phi):
     return rz(psi) @ rx @ rz(phi)
 
 
+def rot_321(yaw, pitch, roll):
+    """Body 3-2-1 rotation with Adams' PITCH (the negated second angle):
+    A = Rz(yaw) Ry(-pitch) Rx(roll), so YAW, PITCH and ROLL read the angles back."""
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    cp, sp = math.cos(-pitch), math.sin(-pitch)
+    cr, sr = math.cos(roll), math.sin(roll)
+    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1.0]])
+    ry = np.array([[cp, 0, sp], [0, 1.0, 0], [-sp, 0, cp]])
+    rx = np.array([[1.0, 0, 0], [0, cr, -sr], [0, sr, cr]])
+    return rz @ ry @ rx
+
+
 def rot_from_e(e):
     """Rotation matrix of unit Euler parameters (e0, e1, e2, e3)."""
     e0, e1, e2, e3 = e

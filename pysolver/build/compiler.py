@@ -19,6 +19,7 @@ from ..deck import joints, motions
 from ..deck.expr import CONSTANTS
 from ..errors import DeckError
 from ..rotations import e_from_rot
+from . import angles
 from .bindings import lib
 
 W = lib.PS_INSTR_WIDTH
@@ -326,6 +327,8 @@ class Compiler:
             return self.motion_measure(tape, *(int(a[1]) for a in args))
         if name == "JOINT":
             return self.joint_measure(tape, *(int(a[1]) for a in args))
+        if name in angles.NAMES:
+            return angles.lower_angle(self, tape, name, [int(a[1]) for a in args])
         if name == "SENVAL":
             tape.uses_senval = True
             return tape.emit(lib.PS_OP_SENVAL, self.eidx[int(args[0][1])])

@@ -2,7 +2,7 @@
 import numpy as np
 
 from ..model import Body, Marker
-from ..rotations import rot_313, rot_from_e
+from ..rotations import rot_313, rot_321, rot_from_e
 
 
 def add_bodies(model, bodies_raw, markers_raw):
@@ -63,7 +63,13 @@ def add_bodies(model, bodies_raw, markers_raw):
                                          np.eye(3), vel, np.zeros(3), a["label"], cg=cg.id)
             continue
         im = marker_of(ctx, a, "im_id") or cg
-        marker_of(ctx, a, "lprf_id")
+        lprf = marker_of(ctx, a, "lprf_id")
+        if lprf is not None and not (np.allclose(lprf.pos, 0, atol=1e-12)
+                                     and np.allclose(lprf.rot, np.eye(3), atol=1e-12)):
+            ctx.warn(f"lprf_id {lprf.id} is not the global frame; marker positions and axes "
+                     "are read as global, as MotionSolve's Reference_Marker defines them, so "
+                     "the LPRF moves no marker (docs/deck-language.md, \"Placement\")",
+                     "lprf_id")
         Iim = np.array([[a["inertia_xx"], a["inertia_xy"], a["inertia_xz"]],
                         [a["inertia_xy"], a["inertia_yy"], a["inertia_yz"]],
                         [a["inertia_xz"], a["inertia_yz"], a["inertia_zz"]]])
@@ -87,19 +93,20 @@ def add_bodies(model, bodies_raw, markers_raw):
 def _orientation(ctx, a):
     """Marker axes (relative to its rm frame) from one of the orientation forms."""
     forms = {"matrix": ["a00", "a10", "a20", "a01", "a11", "a21", "a02", "a12", "a22"],
-             "313": ["psi", "theta", "phi"], "euler": ["e0", "e1", "e2", "e3"]}
+             "313": ["psi", "theta", "phi"], "321": ["yaw", "pitch", "roll"],
+             "euler": ["e0", "e1", "e2", "e3"]}
     given = [f for f, keys in forms.items() if any(a[k] is not None for k in keys)]
     if len(given) > 1:
-        raise ctx.error("give one orientation form only: a00..a22, psi/theta/phi or e0..e3",
-                        forms[given[1]][0])
+        raise ctx.error("give one orientation form only: a00..a22, psi/theta/phi, "
+                        "yaw/pitch/roll or e0..e3", forms[given[1]][0])
     if not given:
         return np.eye(3)
     form = given[0]
-    missing = [k for k in forms[form] if a[k] is None and form != "313"]
+    missing = [k for k in forms[form] if a[k] is None and form not in ("313", "321")]
     if missing:
         raise ctx.error(f"orientation form {', '.join(forms[form])} is incomplete", missing[0])
-    if form == "313":
-        return rot_313(*(a[k] or 0.0 for k in forms["313"]))
+    if form in ("313", "321"):               # angles left out are 0
+        return (rot_313 if form == "313" else rot_321)(*(a[k] or 0.0 for k in forms[form]))
     if form == "euler":
         e = np.array([a[k] for k in forms["euler"]])
         n = np.linalg.norm(e)

@@ -18,7 +18,7 @@ REQ = True
 OPT = False
 _ORIENT = {k: ("float", OPT, None) for k in
            ("a00", "a10", "a20", "a01", "a11", "a21", "a02", "a12", "a22",
-            "psi", "theta", "phi", "e0", "e1", "e2", "e3")}
+            "psi", "theta", "phi", "yaw", "pitch", "roll", "e0", "e1", "e2", "e3")}
 _USERSUB = {"usrsub_dll_name": ("str", OPT, None), "usrsub_fnc_name": ("routine", OPT, None),
             "usrsub_param_string": ("user", OPT, None), "script_name": ("str", OPT, None),
             "interpreter": (("PYTHON", "MATLAB"), OPT, None)}
@@ -123,7 +123,10 @@ SCHEMA = {
                         "max_step_growth": ("pos", OPT, None),
                         "nonlin_conv_coef": ("pos", OPT, None), "label": ("str", OPT, "")},
     "Post_Request": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
-                     "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
+                     "type": (("EXPRESSION", "USERSUB", "MARKER_DISPLACEMENT", "MARKER_VELOCITY",
+                               "MARKER_ACCELERATION", "MARKER_FORCE"), OPT, "EXPRESSION"),
+                     "i_marker_id": ("id", OPT, None), "j_marker_id": ("id", OPT, None),
+                     "ref_marker_id": ("id", OPT, None),
                      "comment": ("str", OPT, ""), **_USERSUB,
                      **{f"expr{k}": ("expr?", OPT, None) for k in range(1, 9)},
                      **{f"name{k}": ("str", OPT, None) for k in range(1, 9)}},
@@ -176,6 +179,15 @@ class Ctx:
 
     def where(self):
         return dict(file=self.file, line=self.line, element=self.tag, id=self.id)
+
+    def warn(self, msg, attribute=None):
+        """Issue a DeckWarning located at this element."""
+        import warnings
+
+        from ..errors import DeckWarning
+        shown = self.names.get(attribute, attribute) if attribute else None
+        warnings.warn(DeckWarning(msg, file=self.file, line=self.line, element=self.tag,
+                                  id=self.id, attribute=shown), stacklevel=4)
 
 
 def convert(ctx, name, kind, raw):

@@ -29,6 +29,7 @@ from .bodies import add_bodies
 from .joints import add_coupler, add_gcon, add_joint
 from .motions import add_joint_motion, add_motion
 from .references import check_references
+from .requests import marker_channels
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
 from .tasks import add_loadcontrol
 
@@ -353,6 +354,13 @@ def _force_like(model, ctx, a):
         tree, text, sub = _expression(model, ctx, a)
         model.evaluates[a["id"]] = Evaluate(a["id"], tree, text, a["label"], sub)
         model._where[("evaluate", a["id"])] = ctx
+    elif tag == "Post_Request" and a["type"].startswith("MARKER_"):
+        for key in ("usrsub_param_string", "script_name", "usrsub_dll_name"):
+            if a.get(key) is not None:
+                raise ctx.error(f"{key} belongs to a USERSUB request, not {a['type']}", key)
+        trees, texts, names = marker_channels(ctx, a, model.markers)
+        model.requests[a["id"]] = Request(a["id"], trees, texts, names, a["label"], None)
+        model._where[("request", a["id"])] = ctx
     elif tag == "Post_Request":
         sub = usersubs.from_attributes(model, ctx, a)
         exprs = [a[f"expr{k}"] for k in range(1, 9)]

@@ -1,0 +1,53 @@
+"""Orientation angles of one marker relative to another, lowered to tape instructions.
+
+PSI, THETA, PHI (body-fixed 3-1-3) and YAW, PITCH, ROLL (body-fixed 3-2-1, PITCH negated as
+Adams' function returns it) of marker i relative to marker j (0: the global frame), from the
+relative rotation R = A_J^T A_I, whose entry R[a][b] is axis a of J dotted with axis b of I
+(one AXDOT instruction), so their derivatives are exact like every measure's
+(../shared/reference/elements.md sections 0 and 7.3; docs/deck-language.md, "Angles").
+
+- THETA = atan2(sqrt(R13^2 + R23^2), R33), in [0, pi]; PSI = atan2(R13, -R23) and
+  PHI = atan2(R31, R32), except where sin(theta) < 1e-12 (psi and phi then turn about one axis):
+  PSI = 0 and PHI = atan2(R33 R21, R11).
+- YAW = atan2(R21, R11), PITCH = atan2(R31, sqrt(R32^2 + R33^2)), ROLL = atan2(R32, R33);
+  YAW and ROLL are not defined where PITCH = +-pi/2.
+"""
+from .bindings import lib
+
+#: sin(theta)^2 under which the 3-1-3 angles are taken as a single turn about z.
+_GIMBAL = 1e-24
+
+NAMES = ("PSI", "THETA", "PHI", "YAW", "PITCH", "ROLL")
+
+
+def lower_angle(comp, tape, name, ids):
+    """Slot of angle `name` of marker ids[0] relative to ids[1] (default 0) on `tape`."""
+    mi, si = comp.marker(tape, ids[0])
+    mj, sj = comp.marker(tape, ids[1] if len(ids) > 1 else 0)
+    op = tape.op
+
+    def R(a, b):                          # rows a, columns b from 1, as in the formulas
+        return tape.emit(lib.PS_OP_AXDOT, mi, b - 1, mj, a - 1, si, sj)
+
+    def atan2(y, x):
+        return op(lib.PS_OP_ATAN2, y, x)
+
+    def hypot(x, y):
+        return op(lib.PS_OP_SQRT, op(lib.PS_OP_ADD, op(lib.PS_OP_MUL, x, x),
+                                     op(lib.PS_OP_MUL, y, y)))
+    if name == "THETA":
+        return atan2(hypot(R(1, 3), R(2, 3)), R(3, 3))
+    if name in ("PSI", "PHI"):
+        s2 = op(lib.PS_OP_ADD, op(lib.PS_OP_MUL, R(1, 3), R(1, 3)),
+                op(lib.PS_OP_MUL, R(2, 3), R(2, 3)))
+        regular = (atan2(R(1, 3), op(lib.PS_OP_NEG, R(2, 3))) if name == "PSI"
+                   else atan2(R(3, 1), R(3, 2)))
+        single = (tape.const(0.0) if name == "PSI"
+                  else atan2(op(lib.PS_OP_MUL, R(3, 3), R(2, 1)), R(1, 1)))
+        flag = op(lib.PS_OP_SUB, s2, tape.const(_GIMBAL))
+        return op(lib.PS_OP_IF, flag, single, single, regular)
+    if name == "YAW":
+        return atan2(R(2, 1), R(1, 1))
+    if name == "PITCH":
+        return atan2(R(3, 1), hypot(R(3, 2), R(3, 3)))
+    return atan2(R(3, 2), R(3, 3))       # ROLL

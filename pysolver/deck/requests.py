@@ -1,0 +1,77 @@
+"""Post_Request's marker types as the eight expressions they stand for.
+
+MARKER_DISPLACEMENT, MARKER_VELOCITY of marker I relative to J (default: the global frame),
+components in ref_marker_id's axes (default: global); the channels are those Adams' REQUEST and
+MotionSolve's msolve Request report (../shared/reference/elements.md section 6.2); angles in
+radians, as every angle pysolver reports:
+
+- MARKER_DISPLACEMENT: mag, x, y, z, -, psi, theta, phi (DM, DX/DY/DZ in RM, and the
+  body-fixed 3-1-3 angles of I relative to J, which RM does not change);
+- MARKER_VELOCITY: vm, vx, vy, vz, wm, wx, wy, wz (the velocity and angular velocity of I
+  relative to J, time derivatives in the global frame, in RM's axes).
+"""
+
+#: Marker request types pysolver does not compute yet, and why.
+NOT_YET = {"MARKER_ACCELERATION": "its angular channels need WDTX/WDTY/WDTZ",
+           "MARKER_FORCE": "it needs the net force functions FX..TZ"}
+
+#: Channel names and functions of each marker request type (None: the unused channel).
+CHANNELS = {
+    "MARKER_DISPLACEMENT": (("mag", "DM", "ij"), ("x", "DX", "ijr"), ("y", "DY", "ijr"),
+                            ("z", "DZ", "ijr"), None, ("psi", "PSI", "ij"),
+                            ("theta", "THETA", "ij"), ("phi", "PHI", "ij")),
+    "MARKER_VELOCITY": (("vm", "VM", "ij"), ("vx", "VX", "ijr"), ("vy", "VY", "ijr"),
+                        ("vz", "VZ", "ijr"), ("wm", "WM", "ij"), ("wx", "WX", "ijr"),
+                        ("wy", "WY", "ijr"), ("wz", "WZ", "ijr")),
+}
+
+
+def _call(name, ids):
+    return ("call", name, [("num", float(i)) for i in ids], 0)
+
+
+def _magnitude(names, ids):
+    """sqrt of the sum of the squares of three measures."""
+    total = None
+    for n in names:
+        sq = ("bin", "*", _call(n, ids), _call(n, ids))
+        total = sq if total is None else ("bin", "+", total, sq)
+    return ("call", "SQRT", [total], 0)
+
+
+def marker_channels(ctx, a, markers):
+    """(trees, texts, names) of the eight channels of a marker request; DeckError for a
+    missing or unknown marker, a type not computed yet, or expressions given as well."""
+    kind = a["type"]
+    if kind in NOT_YET:
+        raise ctx.error(f"type {kind} is not supported yet: {NOT_YET[kind]}", "type")
+    given = [f"expr{k}" for k in range(1, 9) if a.get(f"expr{k}") is not None]
+    if given:
+        raise ctx.error(f"a {kind} request computes its channels; expressions belong to "
+                        "type=\"EXPRESSION\"", given[0])
+    if a.get("i_marker_id") is None:
+        raise ctx.error(f"a {kind} request needs i_marker_id", "i_marker_id")
+    role = {"i": a["i_marker_id"], "j": a.get("j_marker_id") or 0,
+            "r": a.get("ref_marker_id") or 0}
+    for key in ("i_marker_id", "j_marker_id", "ref_marker_id"):
+        if a.get(key) and a[key] not in markers:
+            raise ctx.error(f"marker {a[key]} does not exist", key)
+    trees, texts, names = [], [], []
+    for k, channel in enumerate(CHANNELS[kind]):
+        if channel is None:
+            trees.append(None)
+            texts.append(None)
+            names.append(a.get(f"name{k + 1}"))
+            continue
+        name, fn, roles = channel
+        ids = [role[r] for r in roles]
+        if fn == "WM":
+            tree = _magnitude(("WX", "WY", "WZ"), ids)
+            text = f"WM({ids[0]},{ids[1]})"
+        else:
+            tree = _call(fn, ids)
+            text = f"{fn}({','.join(str(i) for i in ids)})"
+        trees.append(tree)
+        texts.append(text)
+        names.append(a.get(f"name{k + 1}") or name)
+    return trees, texts, names

@@ -1,0 +1,189 @@
+"""Marker placement (rm_id chains, every orientation form, lprf_id), the orientation angle
+functions and the marker request types, against independent computations."""
+import warnings
+
+import numpy as np
+import pytest
+
+import pysolver
+from pysolver import DeckError, DeckWarning
+from pysolver.rotations import rot_313, rot_321
+
+RNG = np.random.default_rng(7)
+
+
+def _matrix_attrs(A):
+    return " ".join(f'a{r}{c}="{float(A[r, c])!r}"' for c in range(3) for r in range(3))
+
+
+def _quat(A):
+    """Euler parameters (e0 >= 0) of a rotation matrix."""
+    e0 = 0.5 * np.sqrt(max(0.0, 1 + np.trace(A)))
+    e = np.array([e0, (A[2, 1] - A[1, 2]) / (4 * e0), (A[0, 2] - A[2, 0]) / (4 * e0),
+                  (A[1, 0] - A[0, 1]) / (4 * e0)])
+    return e / np.linalg.norm(e)
+
+
+def _scene(markers, requests, end="1"):
+    return f"""<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+  <Reference_Marker id="1" body_id="1"/>
+  {markers}
+  <Body_Rigid id="2" cg_id="20" mass="1.5" inertia_xx="0.2" inertia_yy="0.3" inertia_zz="0.4"
+    w_ic_x="1" w_ic_y="0.3" w_ic_z="2" v_ic_x="0.5"/>
+  <Force_Gravity grav_y="-9.81"/>
+  {requests}
+  <Param_Transient integr_tol="1e-10"/></Model>
+  <Simulate analysis_type="Transient" end_time="{end}" print_interval="0.1"/></MotionSolve>"""
+
+
+def test_markers_placed_through_rm_chains_equal_the_same_markers_given_globally():
+    """Markers 20-23 on a spinning body and 5-6 on ground, each given relative to the one
+    before (rm_id) in a different orientation form; the same deck with every marker written
+    globally (positions and a00..a22 computed here) runs the same to 1e-12."""
+    local = [(5, 1, None, [0.3, -0.2, 0.1], ("313", (0.3, 1.1, -0.4))),
+             (6, 1, 5, [0.5, 0.0, -0.3], ("321", (0.2, -0.5, 0.9))),
+             (20, 2, 6, [0.1, 0.7, 0.2], ("e", _quat(rot_313(0.4, 0.2, 1.3)))),
+             (21, 2, 20, [0.4, 0.0, 0.0], ("matrix", rot_321(1.0, 0.3, -0.2))),
+             (22, 2, 21, [0.0, 0.2, 0.1], ("313", (-0.7, 0.5, 0.25)))]
+    frames, rel, glob = {}, [], []
+    for mid, body, rm, pos, (form, vals) in local:
+        A = {"313": lambda v: rot_313(*v), "321": lambda v: rot_321(*v),
+             "e": lambda v: _rot_e(v), "matrix": lambda v: v}[form](vals)
+        attrs = {"313": lambda v: f'psi="{v[0]}" theta="{v[1]}" phi="{v[2]}"',
+                 "321": lambda v: f'yaw="{v[0]}" pitch="{v[1]}" roll="{v[2]}"',
+                 "e": lambda v: " ".join(f'e{k}="{float(x)!r}"' for k, x in enumerate(v)),
+                 "matrix": _matrix_attrs}[form](vals)
+        p0, R0 = frames.get(rm, (np.zeros(3), np.eye(3)))
+        p, R = p0 + R0 @ np.array(pos), R0 @ A
+        frames[mid] = (p, R)
+        where = " ".join(f'pos_{c}="{float(v)!r}"' for c, v in zip("xyz", pos))
+        rel.append(f'<Reference_Marker id="{mid}" body_id="{body}" {where} {attrs}'
+                   + (f' rm_id="{rm}"' if rm else "") + "/>")
+        where = " ".join(f'pos_{c}="{float(v)!r}"' for c, v in zip("xyz", p))
+        glob.append(f'<Reference_Marker id="{mid}" body_id="{body}" {where} '
+                    f'{_matrix_attrs(R)}/>')
+    requests = ('<Post_Request id="1" expr1="DX(22,6,5)" expr2="DY(22,6,5)" expr3="DZ(22,6,5)" '
+                'expr4="PSI(22,5)" expr5="THETA(22,5)" expr6="PHI(22,5)" expr7="WX(21,6,22)" '
+                'expr8="VZ(22,5,21)"/>')
+    a = pysolver.loads(_scene("".join(rel), requests)).run()
+    b = pysolver.loads(_scene("".join(glob), requests)).run()
+    assert a.success and b.success
+    np.testing.assert_allclose(a.request(1), b.request(1), rtol=0, atol=1e-12)
+
+
+def _rot_e(e):
+    from pysolver.rotations import rot_from_e
+    return rot_from_e(np.asarray(e) / np.linalg.norm(e))
+
+
+@pytest.mark.parametrize("trial", range(4))
+def test_angle_functions_read_back_every_orientation_form(trial):
+    """A ground marker given by psi/theta/phi, another by yaw/pitch/roll (random angles in
+    their ranges), a third by the Euler parameters and a fourth by the matrix of a random
+    rotation: PSI/THETA/PHI and YAW/PITCH/ROLL read the given angles back, and the angles of
+    the third and fourth relative to each other equal those of A_J^T A_I computed here."""
+    psi, phi, yaw, roll = RNG.uniform(-np.pi, np.pi, 4)
+    theta, pitch = RNG.uniform(0.05, np.pi - 0.05), RNG.uniform(-1.5, 1.5)
+    A3, A4 = rot_313(*RNG.uniform(-3, 3, 3)), rot_321(*RNG.uniform(-1.4, 1.4, 3))
+    e3 = _quat(A3)
+    markers = (f'<Reference_Marker id="5" body_id="1" psi="{float(psi)!r}" theta="{float(theta)!r}" '
+               f'phi="{float(phi)!r}"/><Reference_Marker id="6" body_id="1" yaw="{float(yaw)!r}" '
+               f'pitch="{float(pitch)!r}" roll="{float(roll)!r}"/>'
+               f'<Reference_Marker id="7" body_id="1" '
+               + " ".join(f'e{k}="{float(x)!r}"' for k, x in enumerate(e3)) + "/>"
+               f'<Reference_Marker id="8" body_id="1" {_matrix_attrs(A4)}/>'
+               '<Reference_Marker id="20" body_id="2"/>')
+    requests = ('<Post_Request id="1" expr1="PSI(5)" expr2="THETA(5)" expr3="PHI(5)" '
+                'expr4="YAW(6)" expr5="PITCH(6)" expr6="ROLL(6)"/>'
+                '<Post_Request id="2" expr1="PSI(7,8)" expr2="THETA(7,8)" expr3="PHI(7,8)" '
+                'expr4="YAW(7,8)" expr5="PITCH(7,8)" expr6="ROLL(7,8)"/>')
+    res = pysolver.loads(_scene(markers, requests, end="0.1")).run()
+    assert res.success, res.message
+    np.testing.assert_allclose(res.request(1)[0, :6], [psi, theta, phi, yaw, pitch, roll],
+                               rtol=0, atol=1e-12)
+    R = A4.T @ A3
+    want = [np.arctan2(R[0, 2], -R[1, 2]), np.arccos(R[2, 2]), np.arctan2(R[2, 0], R[2, 1]),
+            np.arctan2(R[1, 0], R[0, 0]), np.arcsin(R[2, 0]), np.arctan2(R[2, 1], R[2, 2])]
+    np.testing.assert_allclose(res.request(2)[0, :6], want, rtol=0, atol=1e-12)
+
+
+def test_the_3_1_3_angles_of_an_unturned_marker_are_zero_and_a_turn_about_z_is_phi():
+    """At theta = 0 only psi + phi is defined: PSI = 0 and PHI the whole turn."""
+    markers = ('<Reference_Marker id="5" body_id="1"/>'
+               '<Reference_Marker id="6" body_id="1" psi="0.7"/>'
+               '<Reference_Marker id="7" body_id="1" psi="0.3" theta="3.141592653589793"/>'
+               '<Reference_Marker id="20" body_id="2"/>')
+    requests = ('<Post_Request id="1" expr1="PSI(5)" expr2="THETA(5)" expr3="PHI(5)" '
+                'expr4="PSI(6)" expr5="PHI(6)" expr6="PHI(7)" expr7="THETA(7)"/>')
+    res = pysolver.loads(_scene(markers, requests, end="0.1")).run()
+    np.testing.assert_allclose(res.request(1)[0, :7], [0, 0, 0, 0, 0.7, -0.3, np.pi],
+                               rtol=0, atol=1e-12)
+
+
+MARKERS = ('<Reference_Marker id="3" body_id="1" yaw="0.3" pitch="0.5" roll="-0.7" pos_x="1"/>'
+           '<Reference_Marker id="20" body_id="2" pos_y="1" psi="0.2"/>'
+           '<Reference_Marker id="21" body_id="2" pos_y="1.5" theta="0.4" pos_z="0.2"/>')
+
+
+@pytest.mark.parametrize("kind, exprs", [
+    ("MARKER_DISPLACEMENT", ["DM(21,3)", "DX(21,3,3)", "DY(21,3,3)", "DZ(21,3,3)", None,
+                             "PSI(21,3)", "THETA(21,3)", "PHI(21,3)"]),
+    ("MARKER_VELOCITY", ["VM(21,3)", "VX(21,3,3)", "VY(21,3,3)", "VZ(21,3,3)",
+                         "SQRT(WX(21,3)**2 + WY(21,3)**2 + WZ(21,3)**2)", "WX(21,3,3)",
+                         "WY(21,3,3)", "WZ(21,3,3)"]),
+])
+def test_a_marker_request_is_its_eight_expressions(kind, exprs):
+    """Of marker 21 on a tumbling body relative to a turned ground marker, in its axes: equal
+    to the EXPRESSION request written out, at every row (1e-12), with the channel names of
+    Adams' and msolve's requests."""
+    req = (f'<Post_Request id="1" type="{kind}" i_marker_id="21" j_marker_id="3" '
+           'ref_marker_id="3"/><Post_Request id="2" '
+           + " ".join(f'expr{k + 1}="{e}"' for k, e in enumerate(exprs) if e) + "/>")
+    model = pysolver.loads(_scene(MARKERS, req))
+    res = model.run()
+    assert res.success, res.message
+    a, b = res.request(1), res.request(2)
+    np.testing.assert_allclose(a, b, rtol=0, atol=1e-12)
+    assert np.isnan(a[:, 4]).all() == (kind == "MARKER_DISPLACEMENT")
+    assert model.requests[1].names[:2] == (["mag", "x"] if kind == "MARKER_DISPLACEMENT"
+                                           else ["vm", "vx"])
+
+
+@pytest.mark.parametrize("attrs, attribute, words", [
+    ('type="MARKER_DISPLACEMENT" i_marker_id="99"', "i_marker_id", "marker 99 does not exist"),
+    ('type="MARKER_DISPLACEMENT" i_marker_id="21" ref_marker_id="98"', "ref_marker_id",
+     "marker 98 does not exist"),
+    ('type="MARKER_VELOCITY"', "i_marker_id", "needs i_marker_id"),
+    ('type="MARKER_DISPLACEMENT" i_marker_id="21" expr1="DX(21)"', "expr1",
+     "computes its channels"),
+    ('type="MARKER_ACCELERATION" i_marker_id="21"', "type", "WDTX"),
+    ('type="MARKER_FORCE" i_marker_id="21"', "type", "not supported yet"),
+])
+def test_a_bad_marker_request_is_a_deck_error(attrs, attribute, words):
+    with pytest.raises(DeckError, match=words) as err:
+        pysolver.loads(_scene(MARKERS, f'<Post_Request id="4" {attrs}/>'))
+    assert (err.value.element, err.value.id, err.value.attribute) == ("Post_Request", 4,
+                                                                      attribute)
+
+
+def test_two_orientation_forms_on_one_marker_are_a_deck_error():
+    with pytest.raises(DeckError, match="give one orientation form only") as err:
+        pysolver.loads(_scene('<Reference_Marker id="20" body_id="2" psi="1" yaw="2"/>', ""))
+    assert err.value.attribute == "yaw"
+
+
+def test_an_lprf_off_the_global_frame_warns_and_moves_no_marker():
+    """Decision (docs/deck-language.md, "Placement"): positions are global as MotionSolve's
+    Reference_Marker says; an LPRF elsewhere is named in a DeckWarning, and the body is where
+    its markers say."""
+    text = _scene('<Reference_Marker id="20" body_id="2" pos_x="2"/>'
+                  '<Reference_Marker id="24" body_id="2" pos_x="5" psi="1"/>',
+                  '<Post_Request id="1" expr1="DX(20)"/>', end="0.1").replace(
+        'cg_id="20"', 'cg_id="20" lprf_id="24"')
+    with pytest.warns(DeckWarning, match="lprf_id 24 is not the global frame") as got:
+        model = pysolver.loads(text)
+    assert got[0].message.element == "Body_Rigid" and got[0].message.attribute == "lprf_id"
+    assert model.run().request(1)[0, 0] == 2.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")          # an LPRF at the global frame says nothing
+        pysolver.loads(text.replace('pos_x="5" psi="1"', ""))
