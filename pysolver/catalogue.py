@@ -352,6 +352,9 @@ ELEMENTS = (
     Element(("Force_Scalar_TwoBody",), "sforce", "sforces", "SFORCE",
             "a force along the line of two markers, or a torque", ("SFOSUB", _DFLAG, 1),
             c="PS_EL_SFORCE", ints=("f:slot", "torque:flag", "i:marker", "j:marker"), values=1),
+    Element(("Force_SpringDamper",), "springdamper", "springdampers", "SPRINGDAMPER",
+            "a translational or rotational spring and damper between two markers (held as "
+            "a scalar force: pysolver.deck.springs)"),
     Element(("Force_Vector_TwoBody",), "vforce", "vforces", "VFORCE",
             "a force by its components, between two bodies", c="PS_EL_VFORCE",
             ints=("fx:slot", "fy:slot", "fz:slot", "i:marker", "si:bslot", "sj:bslot",

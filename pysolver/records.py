@@ -94,6 +94,9 @@ class Penalty:
 
 @record
 class ScalarForce:
+    """Force_Scalar_TwoBody (or, under the negative id, a Force_SpringDamper's law): a force
+    along the line J to I (positive repels), or a torque about zJ. `turns`: its expression
+    reads an angle tracked through every turn."""
     id: int
     torque: bool
     i: int
@@ -102,6 +105,22 @@ class ScalarForce:
     text: str
     label: str = ""
     usersub: UserSub = None
+    turns: bool = False
+
+
+@record
+class SpringDamper:
+    """Force_SpringDamper (pysolver.deck.springs): TRANSLATIONAL or ROTATIONAL; `length` the
+    free length, or the reference angle of a ROTATIONAL one (radians)."""
+    id: int
+    type: str
+    i: int
+    j: int
+    stiffness: float
+    damping: float
+    length: float
+    preload: float
+    label: str = ""
 
 
 @record

@@ -108,10 +108,13 @@ class Layout:
         keys = [("joint", jid, 0) for jid in sorted(model.joints) if model.joints[jid].lead]
         keys += [("coupler", cid, k) for cid in sorted(model.couplers)
                  for k, f in enumerate(model.couplers[cid].freedoms) if f == "R"]
+        keys += [("sforce", sid, 0) for sid in sorted(model.sforces) if model.sforces[sid].turns]
         for key in keys:
             self.turns[key] = off
-            self.names.append(f"{key[0]}{key[1]}.angle" + (f"{key[2] + 1}" if key[0] ==
-                                                              "coupler" else ""))
+            owner = (f"springdamper{-key[1]}" if key[0] == "sforce" else
+                     f"{key[0]}{key[1]}")
+            self.names.append(f"{owner}.angle" + (f"{key[2] + 1}" if key[0] == "coupler"
+                                                  else ""))
             off += 1
         self.algebraic = sorted(self.lam + [m for m in self.mu if m >= 0]
                                 + list(self.turns.values()))
@@ -291,6 +294,8 @@ class Compiler:
             return tape.emit(lib.PS_OP_SENVAL, len(self.eidx) + node[1])
         if tag == "num":
             return tape.const(node[1])
+        if tag == "param":                # a number of the model sweeps may change
+            return tape.param(node[1], node[2])
         if tag == "turned":               # an angle unwrapped by its tracked state
             s, w = self.turn_error(tape, node[1], node[2])
             return tape.op(lib.PS_OP_ADD, s, w)
@@ -648,6 +653,9 @@ class Compiler:
     def turned_angle(self, key):
         """The measured angle (in (-pi, pi]) that tracked angle `key` follows."""
         kind, eid, k = key
+        if kind == "sforce":
+            sf = self.model.sforces[eid]
+            return ("call", "AZ", [("num", float(sf.i)), ("num", float(sf.j))], 0)
         if kind == "joint":
             jo = self.model.joints[eid]
             return joints.lead_angle(jo.i, jo.j, catalogue.JOINT_EQUATIONS[jo.type][0])

@@ -385,7 +385,7 @@ class Kernel:
         cj = 1 and cj = 0; large scenes use the sparse path. With motions and constraints y is
         made consistent too, in place, at the `initial` state with the motions' ic_disp and
         ic_vel (pysolver.build.consistent)."""
-        if self.layout.lam:
+        if self.layout.lam or self.layout.turns:
             return consistent(self, t, y, initial=initial)
         sparse = self.ny >= SPARSE_THRESHOLD
         if not sparse:                     # in C: a residual, two Jacobians, LU, per step

@@ -22,8 +22,8 @@ import threading
 
 _STATE = threading.local()
 
-__all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "VFORCE",
-           "MOTION", "JOINT", "JPRIM", "GCON", "COUPLER",
+__all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "SPRINGDAMPER",
+           "VFORCE", "MOTION", "JOINT", "JPRIM", "GCON", "COUPLER",
            "LOADCONTROL", "VARIABLE",
            "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM",
            "py_sysfnc", "py_sysary", "py_errmes"]
@@ -172,6 +172,23 @@ def SFORCE(id, I=None, J=None, TRANSLATION=False, ROTATION=False, **kw):  # noqa
     _emit("SFORCE", "Force_Scalar_TwoBody",
           {"I": "i_marker_id", "J": "j_marker_id", "FUNCTION": "expr", "LABEL": "label",
            **_USERSUB}, id, I=I, J=J, **kw)
+
+
+def SPRINGDAMPER(id, I=None, J=None, TRANSLATION=False, ROTATION=False,  # noqa: E741
+                 **kw):
+    """Spring and damper (Force_SpringDamper): I, J markers; TRANSLATION=True with K, C,
+    LENGTH, FORCE (the force at LENGTH, positive repels), or ROTATION=True with KT, CT, ANGLE
+    (radians), TORQUE (about z of J); LABEL. Adams' SPRINGDAMPER keywords."""
+    if bool(TRANSLATION) == bool(ROTATION):
+        kw["TYPE"] = "missing: TRANSLATION=True or ROTATION=True"
+    else:
+        kw["TYPE"] = "ROTATIONAL" if ROTATION else "TRANSLATIONAL"
+    # a torsion spring takes KT, CT, ANGLE, TORQUE; a translational one K, C, LENGTH, FORCE
+    mine = ("KT", "CT", "ANGLE", "TORQUE") if ROTATION else ("K", "C", "LENGTH", "FORCE")
+    keys = dict(zip(mine, ("stiffness", "damping", "length", "preload")))
+    _emit("SPRINGDAMPER", "Force_SpringDamper",
+          {"I": "i_marker_id", "J": "j_marker_id", "TYPE": "type", "LABEL": "label", **keys},
+          id, I=I, J=J, **kw)
 
 
 def VFORCE(id, **kw):

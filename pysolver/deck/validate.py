@@ -31,6 +31,7 @@ from .motions import add_joint_motion, add_motion
 from .references import check_references
 from .requests import marker_channels
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
+from .springs import add_springdamper
 from .tasks import add_loadcontrol
 
 
@@ -317,6 +318,8 @@ def _force_like(model, ctx, a):
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
                                              a["j_marker_id"], tree, text, a["label"], sub)
         model._where[("sforce", a["id"])] = ctx
+    elif tag == "Force_SpringDamper":
+        add_springdamper(model, ctx, a)
     elif tag == "Force_Vector_TwoBody":
         for key in ("i_marker_id", "j_floating_marker_id", "ref_marker_id"):
             if a[key] is not None and a[key] not in model.markers:

@@ -22,6 +22,8 @@ def _element(model, kernel, kind, index):
     if kind == lib.PS_BAD_ELEMENT:
         name, eid, *_ = kernel.elements[index]
         e = catalogue.ELEMENT_OF_KIND[name]
+        if name == "sforce" and eid < 0:          # a Force_SpringDamper's law
+            return "Force_SpringDamper", model.springdampers[-eid]
         tag = kernel.motion_tags[eid] if name == "motion" else e.tags[0]
         return tag, getattr(model, e.table)[eid]
     e = next(e for e in catalogue.ELEMENTS if e.bad and getattr(lib, e.bad) == kind)
