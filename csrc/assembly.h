@@ -23,6 +23,7 @@
 #define F_CI 92
 #define F_PT 93
 #define F_FV 96
+#define F_TV 99
 
 /* Where derivatives go: a dense row-major matrix, or a list of (row, col, value) triplets
  * whose order depends only on the model's structure (used for sparse CSC matrices). */

@@ -355,10 +355,14 @@ ELEMENTS = (
     Element(("Force_SpringDamper",), "springdamper", "springdampers", "SPRINGDAMPER",
             "a translational or rotational spring and damper between two markers (held as "
             "a scalar force: pysolver.deck.springs)"),
-    Element(("Force_Vector_TwoBody",), "vforce", "vforces", "VFORCE",
-            "a force by its components, between two bodies", c="PS_EL_VFORCE",
-            ints=("fx:slot", "fy:slot", "fz:slot", "i:marker", "si:bslot", "sj:bslot",
-                  "r:marker", "sr:bslot"), values=3),
+    Element(("Force_Bushing",), "bushing", "bushings", "BUSHING",
+            "six linear springs and dampers in J's axes between two markers (held as a vector "
+            "force: pysolver.deck.vectors)"),
+    Element(("Force_Vector_TwoBody", "Force_Vector_OneBody"), "vforce", "vforces", "VFORCE",
+            "a force and a torque by their components, between two bodies or on one",
+            c="PS_EL_VFORCE",
+            ints=("fx:slot", "fy:slot", "fz:slot", "tx:slot", "ty:slot", "tz:slot", "i:marker",
+                  "si:bslot", "sj:bslot", "r:marker", "sr:bslot"), values=6),
     Element(("Motion_Marker", "Motion_Joint"), "motion", "motions", "MOTION",
             "a driven displacement, velocity or acceleration",
             ("MOTSUB", ("id", "time", "par", "npar", "iord", "iflag"), 1), c="PS_EL_MOTION",

@@ -125,15 +125,29 @@ class SpringDamper:
 
 @record
 class VectorForce:
-    """Force_Vector_TwoBody: a force with components exprs (x, y, z of marker `ref`; None or 0:
-    global axes) on I's body at I, and its opposite on J's body at the same point (J is the
-    floating marker: only its body matters)."""
+    """Force_Vector_TwoBody or OneBody (or, under the negative id, a Force_Bushing's law): a
+    force and a torque with components exprs (fx, fy, fz, tx, ty, tz in marker `ref`'s axes;
+    0: global axes) on I's body at I, and their opposite on J's body at the same point (J is
+    the floating marker: only its body matters; 0 for a OneBody force: no reaction)."""
     id: int
     i: int
     j: int
     ref: int
     exprs: list
     texts: list
+    label: str = ""
+
+
+@record
+class Bushing:
+    """Force_Bushing (pysolver.deck.vectors): six stiffnesses, dampings and preloads (x, y,
+    z, tx, ty, tz, in J's axes)."""
+    id: int
+    i: int
+    j: int
+    stiffness: tuple
+    damping: tuple
+    preload: tuple
     label: str = ""
 
 

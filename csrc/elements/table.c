@@ -17,7 +17,7 @@ KIND(turn)
 const psElementKind ps_element_kinds[PS_EL_COUNT] = {
   [PS_EL_PENALTY] = {ps_el_penalty, 2, 2, 1},
   [PS_EL_SFORCE] = {ps_el_sforce, 4, 1, 0},
-  [PS_EL_VFORCE] = {ps_el_vforce, 8, 3, 0},
+  [PS_EL_VFORCE] = {ps_el_vforce, 11, 6, 0},
   [PS_EL_MOTION] = {ps_el_motion, 7, 2, 1},
   [PS_EL_JOINT] = {ps_el_joint, 4, 2, 1},
   [PS_EL_GCON] = {ps_el_gcon, 4, 2, 1},

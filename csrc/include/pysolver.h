@@ -29,7 +29,7 @@ extern "C" {
 
 /* Width of one tape instruction in ints: op followed by 9 operands a0..a8. */
 #define PS_INSTR_WIDTH 10
-#define PS_TMP_TOTAL 100   /* scratch hyper-duals in psData.tmp */
+#define PS_TMP_TOTAL 104   /* scratch hyper-duals in psData.tmp */
 
 /* Tape opcodes. Operands a0..a8 follow the op; "slot" means an earlier instruction's result.
  * Each is declared in pysolver/catalogue.py too (tests/test_catalogue.py checks they agree). */

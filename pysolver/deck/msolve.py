@@ -23,7 +23,7 @@ import threading
 _STATE = threading.local()
 
 __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "SPRINGDAMPER",
-           "VFORCE", "MOTION", "JOINT", "JPRIM", "GCON", "COUPLER",
+           "VFORCE", "VTORQUE", "GFORCE", "BUSHING", "MOTION", "JOINT", "JPRIM", "GCON", "COUPLER",
            "LOADCONTROL", "VARIABLE",
            "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM",
            "py_sysfnc", "py_sysary", "py_errmes"]
@@ -199,6 +199,41 @@ def VFORCE(id, **kw):
           {"I": "i_marker_id", "JFLOAT": "j_floating_marker_id", "RM": "ref_marker_id",
            "FX": "fx_expression", "FY": "fy_expression", "FZ": "fz_expression",
            "LABEL": "label"}, id, **kw)
+
+
+def VTORQUE(id, **kw):
+    """Vector torque (Force_Vector_TwoBody, TORQUEONLY): I, JFLOAT, RM, TX, TY, TZ, LABEL."""
+    _emit("VTORQUE", "Force_Vector_TwoBody",
+          {"I": "i_marker_id", "JFLOAT": "j_floating_marker_id", "RM": "ref_marker_id",
+           "TX": "tx_expression", "TY": "ty_expression", "TZ": "tz_expression",
+           "LABEL": "label"}, id, {"type": "TORQUEONLY"}, **kw)
+
+
+def GFORCE(id, **kw):
+    """General force (Force_Vector_TwoBody, FORCEANDTORQUE): I, JFLOAT, RM, FX, FY, FZ, TX,
+    TY, TZ, LABEL."""
+    _emit("GFORCE", "Force_Vector_TwoBody",
+          {"I": "i_marker_id", "JFLOAT": "j_floating_marker_id", "RM": "ref_marker_id",
+           **{f"{c}": f"{c.lower()}_expression" for c in ("FX", "FY", "FZ", "TX", "TY", "TZ")},
+           "LABEL": "label"}, id, {"type": "FORCEANDTORQUE"}, **kw)
+
+
+def _triple(prefix):
+    def split(val):
+        vals = [float(v) for v in val]
+        if len(vals) != 3:
+            raise ValueError
+        return {f"{prefix}{c}": v for c, v in zip("xyz", vals)}
+    return split
+
+
+def BUSHING(id, **kw):
+    """Bushing (Force_Bushing): I, J, K, C, KT, CT, FORCE, TORQUE (three numbers each, in J's
+    axes), LABEL; Adams' BUSHING keywords."""
+    _emit("BUSHING", "Force_Bushing",
+          {"I": "i_marker_id", "J": "j_marker_id", "K": _triple("k"), "C": _triple("c"),
+           "KT": _triple("kt"), "CT": _triple("ct"), "FORCE": _triple("preload_"),
+           "TORQUE": _triple("preload_t"), "LABEL": "label"}, id, **kw)
 
 
 def _motion_type(val):

@@ -68,8 +68,8 @@ def _expressions(model):
                 sub = getattr(el, "usersub", None)
                 yield (kind, el.id), sub.attribute if sub else "expr", el.expr
     for vf in model.vforces.values():
-        for c, e in zip("xyz", vf.exprs):
-            yield ("vforce", vf.id), f"f{c}_expression", e
+        for c, e in zip(("fx", "fy", "fz", "tx", "ty", "tz"), vf.exprs):
+            yield ("vforce", vf.id), f"{c}_expression", e
     for r in model.requests.values():
         for k, e in enumerate(r.exprs):
             if e is not None:

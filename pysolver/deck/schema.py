@@ -23,6 +23,9 @@ _USERSUB = {"usrsub_dll_name": ("str", OPT, None), "usrsub_fnc_name": ("routine"
             "usrsub_param_string": ("user", OPT, None), "script_name": ("str", OPT, None),
             "interpreter": (("PYTHON", "MATLAB"), OPT, None)}
 
+_VTYPES = ("FORCEONLY", "TORQUEONLY", "FORCEANDTORQUE")
+_VCOMPS = {f"{lead}{c}_expression": ("expr?", OPT, None) for lead in "ft" for c in "xyz"}
+
 #: Every element, its attributes, their kinds, whether required, and defaults.
 SCHEMA = {
     "Units": {"mass": ("unit:mass", OPT, "KILOGRAM"), "length": ("unit:length", OPT, "METER"),
@@ -62,11 +65,21 @@ SCHEMA = {
                            "stiffness": ("nonneg", OPT, 0.0), "damping": ("nonneg", OPT, 0.0),
                            "length": ("float", OPT, 0.0), "preload": ("float", OPT, 0.0)},
     "Force_Vector_TwoBody": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
-                             "type": (("FORCEONLY",), OPT, "FORCEONLY"),
+                             "type": (_VTYPES, OPT, "FORCEONLY"),
                              "i_marker_id": ("id", REQ, None),
                              "j_floating_marker_id": ("id", REQ, None),
-                             "ref_marker_id": ("id", OPT, None),
-                             **{f"f{c}_expression": ("expr?", OPT, None) for c in "xyz"}},
+                             "ref_marker_id": ("id", OPT, None), **_VCOMPS},
+    "Force_Vector_OneBody": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                             "type": (_VTYPES, OPT, "FORCEONLY"),
+                             "marker_id": ("id", REQ, None),
+                             "ref_marker_id": ("id", OPT, None), **_VCOMPS},
+    "Force_Bushing": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                      "i_marker_id": ("id", REQ, None), "j_marker_id": ("id", REQ, None),
+                      **{k: ("nonneg", OPT, 0.0) for k in ("kx", "ky", "kz", "ktx", "kty",
+                                                           "ktz", "cx", "cy", "cz", "ctx",
+                                                           "cty", "ctz")},
+                      **{f"preload_{c}": ("float", OPT, 0.0)
+                         for c in ("x", "y", "z", "tx", "ty", "tz")}},
     "Constraint_Joint": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
                          "type": (("CONSTANT_VELOCITY", "CYLINDRICAL", "FIXED", "FREE", "HOOKE",
                                    "INLINE", "INPLANE", "ORIENTATION", "PARALLEL_AXES",

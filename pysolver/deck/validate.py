@@ -20,7 +20,6 @@ from ..model import (
     Simulate,
     Static,
     Variable,
-    VectorForce,
 )
 from ..options import DECK_NAMES, Options, rule_problem
 from . import units as un
@@ -33,6 +32,7 @@ from .requests import marker_channels
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
 from .springs import add_springdamper
 from .tasks import add_loadcontrol
+from .vectors import add_bushing, add_vforce
 
 
 def build_model(elements, source):
@@ -320,16 +320,10 @@ def _force_like(model, ctx, a):
         model._where[("sforce", a["id"])] = ctx
     elif tag == "Force_SpringDamper":
         add_springdamper(model, ctx, a)
-    elif tag == "Force_Vector_TwoBody":
-        for key in ("i_marker_id", "j_floating_marker_id", "ref_marker_id"):
-            if a[key] is not None and a[key] not in model.markers:
-                raise ctx.error(f"marker {a[key]} does not exist", key)
-        comps = [a[f"f{c}_expression"] for c in "xyz"]
-        model.vforces[a["id"]] = VectorForce(
-            a["id"], a["i_marker_id"], a["j_floating_marker_id"], a["ref_marker_id"] or 0,
-            [e[0] if e else ("num", 0.0) for e in comps], [e[1] if e else "0" for e in comps],
-            a["label"])
-        model._where[("vforce", a["id"])] = ctx
+    elif tag in ("Force_Vector_TwoBody", "Force_Vector_OneBody"):
+        add_vforce(model, ctx, a)
+    elif tag == "Force_Bushing":
+        add_bushing(model, ctx, a)
     elif tag == "Motion_Marker":
         add_motion(model, ctx, a)
     elif tag in ("Constraint_Joint", "Constraint_Jprim"):

@@ -24,6 +24,8 @@ def _element(model, kernel, kind, index):
         e = catalogue.ELEMENT_OF_KIND[name]
         if name == "sforce" and eid < 0:          # a Force_SpringDamper's law
             return "Force_SpringDamper", model.springdampers[-eid]
+        if name == "vforce" and eid < 0:          # a Force_Bushing's law
+            return "Force_Bushing", model.bushings[-eid]
         tag = kernel.motion_tags[eid] if name == "motion" else e.tags[0]
         return tag, getattr(model, e.table)[eid]
     e = next(e for e in catalogue.ELEMENTS if e.bad and getattr(lib, e.bad) == kind)

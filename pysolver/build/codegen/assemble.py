@@ -138,20 +138,23 @@ class Assembly:
         self.apply_load(tape, mi, si, vec, None, 1.0)
         self.apply_load(tape, mj, sj, vec, None, -1.0)
 
-    def _vforce(self, tape, fx, fy, fz, mi, si, sj, r, sr):
+    def _vforce(self, tape, fx, fy, fz, tx, ty, tz, mi, si, sj, r, sr):
         s, g = self.s, self.s.g
         slots = s.tape(tape)
-        f = [slots[fx], slots[fy], slots[fz]]
         X = s.axes(tape, r, sr)
-        F = []
-        for i in range(3):
-            v = g.zero
-            for j in range(3):
-                v = g.add(v, g.mul(X[3 * i + j], f[j]))
-            F.append(v)
+
+        def resolve(comps):
+            out = []
+            for i in range(3):
+                v = g.zero
+                for j in range(3):
+                    v = g.add(v, g.mul(X[3 * i + j], slots[comps[j]]))
+                out.append(v)
+            return out
+        F, T = resolve((fx, fy, fz)), resolve((tx, ty, tz))
         P = s.pos(tape, mi, si)
-        self.apply_at(tape, -1 if s.a["marker_body"][mi] < 0 else si, P, F, None, 1.0)
-        self.apply_at(tape, sj, P, F, None, -1.0)
+        self.apply_at(tape, -1 if s.a["marker_body"][mi] < 0 else si, P, F, T, 1.0)
+        self.apply_at(tape, sj, P, F, T, -1.0)
 
     def hold_rate(self, tape, gn, gd, lam):
         """The reaction lam along d(g')/du, and its row g' + c lam (csrc/assembly.c
