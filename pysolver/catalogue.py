@@ -383,6 +383,8 @@ ELEMENTS = (
             "the tracked angle of a rotation held through any number of turns (a SCREW or "
             "RACK_PINION joint, a coupler's rotation): no deck element of its own",
             c="PS_EL_TURN", ints=("w:slot", "s:state"), values=1),
+    Element(("Post_Graphic",), "graphic", "graphics", "GRAPHICS",
+            "geometry kept for the 3-D view (no effect on the motion)"),
     Element(("LoadControl",), "loadcontrol", "controls", "LOADCONTROL",
             "the LoadControl task (seed 002)"),
     Element(("Reference_Variable",), "variable", "variables", "VARIABLE",

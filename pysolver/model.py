@@ -18,6 +18,7 @@ from .records import (  # noqa: F401 - the records are the model's vocabulary
     UNIT_DEFAULTS,
     Body,
     Evaluate,
+    Graphic,
     LoadControl,
     Marker,
     Motion,
@@ -57,6 +58,7 @@ class Model:
         for element in catalogue.ELEMENTS:
             setattr(self, element.table, {})
         self.transient = Options()      # Param_Transient
+        self.output_settings = {}       # ResOutput, H3DOutput: kept as written, not used
         self.static = Static()
         self.commands = []
         self.has_units = False

@@ -139,6 +139,16 @@ class VectorForce:
 
 
 @record
+class Graphic:
+    """Post_Graphic (Adams GRAPHICS): geometry for the 3-D view, `attrs` its other attributes
+    as written (their marker references checked at load); no effect on the motion."""
+    id: int
+    type: str
+    attrs: dict
+    label: str = ""
+
+
+@record
 class Bushing:
     """Force_Bushing (pysolver.deck.vectors): six stiffnesses, dampings and preloads (x, y,
     z, tx, ty, tz, in J's axes)."""

@@ -23,7 +23,8 @@ import threading
 _STATE = threading.local()
 
 __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "SPRINGDAMPER",
-           "VFORCE", "VTORQUE", "GFORCE", "BUSHING", "MOTION", "JOINT", "JPRIM", "GCON", "COUPLER",
+           "VFORCE", "VTORQUE", "GFORCE", "BUSHING", "GRAPHICS", "MOTION", "JOINT", "JPRIM",
+           "GCON", "COUPLER",
            "LOADCONTROL", "VARIABLE",
            "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM",
            "py_sysfnc", "py_sysary", "py_errmes"]
@@ -234,6 +235,15 @@ def BUSHING(id, **kw):
           {"I": "i_marker_id", "J": "j_marker_id", "K": _triple("k"), "C": _triple("c"),
            "KT": _triple("kt"), "CT": _triple("ct"), "FORCE": _triple("preload_"),
            "TORQUE": _triple("preload_t"), "LABEL": "label"}, id, **kw)
+
+
+def GRAPHICS(id, TYPE=None, **kw):
+    """Geometry kept for the 3-D view (Post_Graphic): TYPE (Cylinder, Sphere,
+    BoxDefinedFromCenter, ...) and its attributes as Post_Graphic names them (CENTER_MARKER_ID=,
+    RADIUS=, LENGTH=, ...), LABEL."""
+    _emit("GRAPHICS", "Post_Graphic", {"TYPE": "type", "LABEL": "label",
+                                       **{k.upper(): k.lower() for k in kw}},
+          id, TYPE=TYPE, **kw)
 
 
 def _motion_type(val):

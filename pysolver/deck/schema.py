@@ -173,8 +173,14 @@ SCHEMA = {
                         "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
                         "expr": ("expr", OPT, None), **_USERSUB},
     "Stop": {},
+    # kept for the 3-D view and the output settings: the attributes named are checked, the
+    # rest ("*") kept as written (docs/deck-language.md, "Kept, not simulated")
+    "Post_Graphic": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                     "type": ("str", REQ, None), "*": None},
+    "ResOutput": {"*": None},
+    "H3DOutput": {"*": None},
 }
-COMMANDS = ("Simulate", "Stop")
+COMMANDS = ("Simulate", "Stop", "ResOutput", "H3DOutput")
 CANONICAL = {name.lower(): name for name in SCHEMA}
 #: The id namespace of each element with a required id (the catalogue's kinds; a LoadControl's
 #: id is optional and its tasks are numbered by deck.tasks).
@@ -317,12 +323,16 @@ def attributes(ctx):
     schema = SCHEMA[ctx.tag]
     if "id" in schema and "id" in ctx.attrs:
         ctx.id = convert(ctx, "id", "id", ctx.attrs["id"])
+    keep = "*" in schema                 # an element kept as written: others allowed
     for key in ctx.attrs:
-        if key not in schema:
+        if key not in schema and not keep:
             raise ctx.error(f"unknown attribute; {ctx.tag} accepts "
                             f"{', '.join(sorted(schema)) or 'no attributes'}", key)
-    out = {}
-    for key, (kind, required, default) in schema.items():
+    out = {key: str(v) for key, v in ctx.attrs.items() if key not in schema} if keep else {}
+    for key, spec in schema.items():
+        if spec is None:
+            continue
+        kind, required, default = spec
         if key in ctx.attrs:
             out[key] = convert(ctx, key, kind, ctx.attrs[key])
             if ctx.tag == "Param_Transient" and key in DECK_NAMES:

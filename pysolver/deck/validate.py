@@ -12,6 +12,7 @@ import numpy as np
 from ..errors import DeckError
 from ..model import (
     Evaluate,
+    Graphic,
     Model,
     Penalty,
     Request,
@@ -88,6 +89,8 @@ def build_model(elements, source):
             sim_t = _simulate(ctx, a, model, sim_t)
         elif canon == "Stop":
             break
+        elif canon in ("ResOutput", "H3DOutput"):
+            model.output_settings.setdefault(canon, {}).update(a)
         else:
             later.append((ctx, a))
     add_bodies(model, bodies_raw, markers_raw)
@@ -318,6 +321,18 @@ def _force_like(model, ctx, a):
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
                                              a["j_marker_id"], tree, text, a["label"], sub)
         model._where[("sforce", a["id"])] = ctx
+    elif tag == "Post_Graphic":
+        for key, v in a.items():             # every *marker_id / *_id names a marker
+            if key.endswith("marker_id") and v is not None:
+                try:
+                    mid = int(v)
+                except ValueError:
+                    raise ctx.error(f"got {v!r}; expected a marker id", key) from None
+                if mid not in model.markers:
+                    raise ctx.error(f"marker {mid} does not exist", key)
+        model.graphics[a["id"]] = Graphic(a["id"], a["type"], {
+            k: v for k, v in a.items() if k not in ("id", "type", "label")}, a["label"])
+        model._where[("graphic", a["id"])] = ctx
     elif tag == "Force_SpringDamper":
         add_springdamper(model, ctx, a)
     elif tag in ("Force_Vector_TwoBody", "Force_Vector_OneBody"):
