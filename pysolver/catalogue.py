@@ -351,7 +351,7 @@ ELEMENTS = (
             c="PS_EL_PENALTY", ints=("g:slot", "f:slot"), values=2, order=1),
     Element(("Force_Scalar_TwoBody",), "sforce", "sforces", "SFORCE",
             "a force along the line of two markers, or a torque", ("SFOSUB", _DFLAG, 1),
-            c="PS_EL_SFORCE", ints=("f:slot", "torque:flag", "i:marker", "j:marker"), values=1),
+            c="PS_EL_SFORCE", ints=("f:slot", "mode:flag", "i:marker", "j:marker"), values=1),
     Element(("Force_SpringDamper",), "springdamper", "springdampers", "SPRINGDAMPER",
             "a translational or rotational spring and damper between two markers (held as "
             "a scalar force: pysolver.deck.springs)"),

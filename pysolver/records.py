@@ -106,6 +106,7 @@ class ScalarForce:
     label: str = ""
     usersub: UserSub = None
     turns: bool = False
+    action_only: bool = False
 
 
 @record

@@ -1,5 +1,6 @@
 /* Force_Scalar_TwoBody: a force of magnitude f along the line from J to I, or a torque f about
- * z of J. Ints: f (slot), torque (0 or 1), I, J (markers). */
+ * z of J; action only (is_action_only): a force f along z of J or a torque f about it, on I's
+ * body alone. Ints: f (slot), mode (bit 0 a torque, bit 1 action only), I, J (markers). */
 #include <math.h>
 
 #include "../assembly.h"
@@ -15,12 +16,13 @@ void ps_el_sforce(const psModel* m, psData* d, const psuHD* c, int tape, const i
   int sj = m->marker_body[mj] < 0 ? -1 : (m->marker_body[mi] < 0 ||
                                            m->marker_body[mi] == m->marker_body[mj] ? 0 : 1);
   double* vec = ps_tmp(m, d, F_VEC);
-  if (I[1]) {
+  int torque = I[1] & 1, action_only = I[1] & 2;
+  if (torque || action_only) {
     double* X = ps_tmp(m, d, F_RI);
     ps_marker_axes(m, d, c, mj, sj, X);
     for (int i = 0; i < 3; i++) psu_hd_mul(c, vec + i * s, f, X + (3 * i + 2) * s);
-    ps_apply_load(m, d, c, tape, mi, si, NULL, vec, 1.0, as);
-    ps_apply_load(m, d, c, tape, mj, sj, NULL, vec, -1.0, as);
+    ps_apply_load(m, d, c, tape, mi, si, torque ? NULL : vec, torque ? vec : NULL, 1.0, as);
+    if (!action_only) ps_apply_load(m, d, c, tape, mj, sj, NULL, vec, -1.0, as);
     return;
   }
   double* ri = ps_tmp(m, d, F_RI);

@@ -4,7 +4,7 @@ reference solution with an independent minimal-coordinate model.
 Spec: IFToMM Library of Computational Benchmark Problems, problem A05 "Stiff flyball
 governor" (http://lim.ii.udc.es/mbsbenchmark/dist/A05/A05_specification.xml, M. Gonzalez,
 2005; https://www.iftomm-multibody.org/benchmark/problem/Stiff_flyball_governor/). The
-specification file's body could not be read here (only its header is stored), so the data
+specification file's body could not be read when this was written (only its header), so the data
 below are those of two public implementations that cite it and agree with each other:
 - the OpenSim implementation of the library (RehabEngGroup/MBSbenchmarksInOpenSim,
   help/benchmarks/A05_FlyballGovernor.rst and src/A05-FlyballGovernor/createModel.cpp,
@@ -42,8 +42,10 @@ Decisions (this deck):
 Reference (reference() below): Lagrange's equations in (s, theta1, theta2) with the shaft
 angle eliminated through its conserved momentum p = J(theta1, theta2) Omega (Routh), the
 springs' length and rate written out in closed form; solved with SciPy's Radau at rtol =
-atol = 1e-12 (the run at 1e-11 agrees to below 1e-10 m). It shares nothing with pysolver
-but the numbers above.
+atol = 1e-12 (the run at 1e-11 agrees to 1.6e-12 m). It shares nothing with pysolver but
+the numbers above. It agrees within 2.3e-4 m (less than a pixel) with the library's own
+reference s(t) as plotted in the OpenSim docs (help/images/5MBS_PlotResults.png, every
+0.1 s to 3 s; digitized in tests/test_iftomm_a05.py), which checks the data and geometry.
 
 Run: ``python decks/joints/make_a05.py`` writes iftomm_a05_flyball.xml here;
 ``--reference`` prints the reference table (times, s, theta1, theta2, Omega) used by
@@ -128,13 +130,13 @@ def deck(tol=1e-6, end=10.0, dt=0.01):
         f'inertia_yy="{_f(I_SLIDER)}" inertia_zz="{_f(I_SLIDER)}" w_ic_z="{_f(OMEGA0)}" '
         'label="slider"/>')
     # rods with their balls
-    for b, sign, hinge_j in ((4, 1, 23), (5, -1, 24)):
+    for b, sign in ((4, 1), (5, -1)):
         u = (sign * ca, 0.0, -sa)                       # along the rod, outwards
         y = (0.0, 1.0, 0.0)
         n = (u[1] * y[2] - u[2] * y[1], u[2] * y[0] - u[0] * y[2], u[0] * y[1] - u[1] * y[0])
         hinge = (sign * A, 0.0, H)
 
-        def along(r):
+        def along(r, hinge=hinge, u=u):
             return tuple(hinge[i] + r * u[i] for i in range(3))
         cm = along(D)
         name = "rod 1 (+x)" if sign > 0 else "rod 2 (-x)"
@@ -206,33 +208,37 @@ HEADER = """<!-- IFToMM A05: stiff flyball governor (benchmark deck for Force_Sp
      by hand).
 
      Source: IFToMM Library of Computational Benchmark Problems, problem A05,
-     http://lim.ii.udc.es/mbsbenchmark/dist/A05/A05_specification.xml (its body was not
-     readable here); the numbers as in the OpenSim implementation of the library
-     (RehabEngGroup/MBSbenchmarksInOpenSim, src/A05-FlyballGovernor, help/benchmarks/
-     A05_FlyballGovernor.rst) and Exudyn's stiffFlyballGovernorKT.py, which agree:
+     http://lim.ii.udc.es/mbsbenchmark/dist/A05/A05_specification.xml (only its header
+     could be read when this deck was written); the numbers as in the OpenSim
+     implementation of the library (RehabEngGroup/MBSbenchmarksInOpenSim,
+     src/A05-FlyballGovernor, help/benchmarks/A05_FlyballGovernor.rst) and Exudyn's
+     stiffFlyballGovernorKT.py, which agree:
        - shaft and rods 1.0 x 0.01 x 0.01 m, slider 0.1 m cube, density 3000 kg/m^3
          (0.3, 0.3, 3 kg); two 5 kg point masses at the rods' far ends;
        - coupler rods replaced by spring-dampers K = 8e5 N/m, C = 4e4 N s/m, rest length
          0.5 m, from each rod's middle to the slider's side point (+-0.05, 0, s);
        - shaft on a revolute about global z at the origin, slider on a translational joint
-         along it (centre height s = 0.5 m at t = 0), rods hinged at (+-0.05, 0, 1) about the
-         shaft's y axis, alpha = 30 deg below the horizontal; gravity -9.81 z;
+         along it (centre height s = 0.5 m at t = 0), rods hinged at (+-0.05, 0, 1) about
+         the shaft's y axis, alpha = 30 deg below the horizontal; gravity -9.81 z;
        - every body turning at 2 pi rad/s about z at t = 0, the shaft free (not driven);
          10 s, output every 0.01 s.
-     Deck decisions: each rod and its ball are one body of {m_r!r} kg, cm {d!r} m from the
-     hinge, inertia (principal axes on the im marker, x along the rod) axial {i_ax!r},
-     transverse {i_tr!r} kg m^2; shaft axial {i_sh!r}, transverse {i_sht!r}; slider
-     {i_sl!r} kg m^2.
-     Reference: make_a05.py reference(): Lagrange's equations in (s, theta1, theta2) with the
-     shaft's conserved momentum, SciPy Radau at rtol = atol = 1e-12; s oscillates between
-     0.5 and about 0.745 m with a period of about 1.03 s, as the library's reference curve
-     (plotted in the OpenSim docs, help/images/5MBS_PlotResults.png) does.
-     Compare: request 1 channel 1 (s = DZ of the slider on the shaft) against the reference
-     table in tests/test_iftomm_a05.py; channels 2-3 the spring lengths (within about 1e-4 m
-     of 0.5: the couplers are nearly rigid), 4 the shaft speed, 5-6 the rod angles below the
-     horizontal. Request 2: channel 1 the mechanical energy (kinetic + gravity, zero at
-     z = 0, + spring), which falls only by the dampers' work (integral of C VR^2, channels
-     3-4); channel 2 the angular momentum about z, conserved exactly. -->"""
+     Deck decisions: each rod and its ball are one body of {m_r:.10g} kg, cm {d:.10g} m
+     from the hinge, inertia (principal axes on the im marker, x along the rod) axial
+     {i_ax:.10g}, transverse {i_tr:.10g} kg m^2; shaft axial {i_sh:.10g}, transverse
+     {i_sht:.10g}; slider {i_sl:.10g} kg m^2.
+     Reference: make_a05.py reference(): Lagrange's equations in (s, theta1, theta2) with
+     the shaft's conserved momentum, SciPy Radau at rtol = atol = 1e-12; s oscillates
+     between 0.5 and about 0.744 m with a period of about 1.03 s; it agrees within
+     2.3e-4 m with the library's reference curve as plotted in the OpenSim docs
+     (help/images/5MBS_PlotResults.png, every 0.1 s to 3 s, digitized in
+     tests/test_iftomm_a05.py).
+     Compare: request 1 channel 1 (s = DZ of the slider on the shaft) against the
+     reference table in tests/test_iftomm_a05.py; channels 2-3 the spring lengths (within
+     about 1e-4 m of 0.5: the couplers are nearly rigid), 4 the shaft speed, 5-6 the rod
+     angles below the horizontal. Request 2: channel 1 the mechanical energy (kinetic +
+     gravity, zero at z = 0, + spring), which falls only by the dampers' work (integral
+     of C VR^2, channels 3-4); channel 2 the angular momentum about z, conserved exactly.
+     -->"""
 
 
 # ---- reference: minimal coordinates ------------------------------------------------------

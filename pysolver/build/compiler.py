@@ -459,11 +459,11 @@ class Compiler:
         f = self.lower(tape, sf.expr)
         sign = -1.0 if jflag else 1.0
         mul = lib.PS_OP_MUL
-        if (comp >= 5) != sf.torque:
-            out = tape.const(0)
+        if (comp >= 5) != sf.torque or (jflag and sf.action_only):
+            out = tape.const(0)                   # an action-only force has no reaction
         elif comp in (1, 5):
             out = tape.op(lib.PS_OP_ABS, f)
-        elif not sf.torque:
+        elif not sf.torque and not sf.action_only:
             name = "DX DY DZ".split()[comp - 2]
             along = tape.op(lib.PS_OP_DIV, self.measure(tape, name, [sf.i, sf.j, rm]),
                             self.measure(tape, "DM", [sf.i, sf.j]))
@@ -471,7 +471,7 @@ class Compiler:
         else:
             mj, sj = self.marker(tape, sf.j)
             mr, sr = self.marker(tape, rm)
-            ax = tape.emit(lib.PS_OP_AXDOT, mj, 2, mr, comp - 6, sj, sr)
+            ax = tape.emit(lib.PS_OP_AXDOT, mj, 2, mr, (comp - 2) % 4, sj, sr)
             out = tape.op(mul, tape.const(sign), tape.op(mul, f, ax))
         self.stack.pop()
         return out
@@ -680,7 +680,8 @@ class Compiler:
             self.marker(t, sf.i)          # I's body first, then J's: the kernel relies on it
             self.marker(t, sf.j)
             f = self.lower(t, sf.expr)
-            self.element("sforce", sid, ti, f, int(sf.torque), self.midx[sf.i], self.midx[sf.j])
+            mode = int(sf.torque) | (2 if sf.action_only else 0)   # csrc/elements/sforce.c
+            self.element("sforce", sid, ti, f, mode, self.midx[sf.i], self.midx[sf.j])
         for vid in sorted(model.vforces):
             vf = model.vforces[vid]
             ti, t = self.new_tape()

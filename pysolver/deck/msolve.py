@@ -165,14 +165,15 @@ def PFORCE(id, **kw):
 
 def SFORCE(id, I=None, J=None, TRANSLATION=False, ROTATION=False, **kw):  # noqa: E741
     """Scalar two-body force: I, J markers, TRANSLATION=True (force along J->I) or
-    ROTATION=True (torque about z of J), FUNCTION, LABEL."""
+    ROTATION=True (torque about z of J), ACTIONONLY=True (on I alone, a force along z of J),
+    FUNCTION, LABEL."""
     if bool(TRANSLATION) == bool(ROTATION):
         kw["TYPE"] = "missing: TRANSLATION=True or ROTATION=True"
     else:
         kw["TYPE"] = "TORQUE" if ROTATION else "FORCE"
     _emit("SFORCE", "Force_Scalar_TwoBody",
           {"I": "i_marker_id", "J": "j_marker_id", "FUNCTION": "expr", "LABEL": "label",
-           **_USERSUB}, id, I=I, J=J, **kw)
+           "ACTIONONLY": "is_action_only", **_USERSUB}, id, I=I, J=J, **kw)
 
 
 def SPRINGDAMPER(id, I=None, J=None, TRANSLATION=False, ROTATION=False,  # noqa: E741

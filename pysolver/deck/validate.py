@@ -319,7 +319,8 @@ def _force_like(model, ctx, a):
             if a[key] not in model.markers:
                 raise ctx.error(f"marker {a[key]} does not exist", key)
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
-                                             a["j_marker_id"], tree, text, a["label"], sub)
+                                             a["j_marker_id"], tree, text, a["label"], sub,
+                                             action_only=a["is_action_only"])
         model._where[("sforce", a["id"])] = ctx
     elif tag == "Post_Graphic":
         for key, v in a.items():             # every *marker_id / *_id names a marker

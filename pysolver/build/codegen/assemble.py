@@ -120,17 +120,19 @@ class Assembly:
         P = s.pos(tape, mk, slot) if F is not None and rigid else None
         self.apply_at(tape, slot, P, F, Mo, sign)
 
-    def _sforce(self, tape, f, torque, mi, mj):
+    def _sforce(self, tape, f, mode, mi, mj):
         s, g = self.s, self.s.g
         mb = s.a["marker_body"]
         f = s.tape(tape)[f]
         si = -1 if mb[mi] < 0 else 0
         sj = -1 if mb[mj] < 0 else (0 if mb[mi] < 0 or mb[mi] == mb[mj] else 1)
-        if torque:
+        torque, action_only = mode & 1, mode & 2       # csrc/elements/sforce.c
+        if torque or action_only:
             X = s.axes(tape, mj, sj)
             vec = [g.mul(f, X[3 * i + 2]) for i in range(3)]
-            self.apply_load(tape, mi, si, None, vec, 1.0)
-            self.apply_load(tape, mj, sj, None, vec, -1.0)
+            self.apply_load(tape, mi, si, None if torque else vec, vec if torque else None, 1.0)
+            if not action_only:
+                self.apply_load(tape, mj, sj, None, vec, -1.0)
             return
         rel = g.vsub(s.pos(tape, mi, si), s.pos(tape, mj, sj))
         inv = s.norm(rel, lambda n2: g.div(g.one, g.fn("sqrt", n2)))
