@@ -222,6 +222,9 @@ TABLE = (
     _measure("AX", "ij", _POS, "angle of i's axes about j's x axis"),
     _measure("AY", "ij", _POS, "angle of i's axes about j's y axis"),
     _measure("AZ", "ij", _POS, "angle of i's axes about j's z axis"),
+    Function("KE", "special", ("id",), None,
+             "kinetic energy of body id (0: of every body), in force times length units",
+             reads=_VEL, ids=("body",), py_sysfnc=True),
     # orientation angles of i relative to j, lowered to dot products of their axes
     *(Function(name, "special", ("i", "j"), None, doc, required=1, reads=_POS,
                ids=("marker", "marker"), py_sysfnc=True) for name, doc in (

@@ -19,7 +19,7 @@ from ..deck import joints, motions
 from ..deck.expr import CONSTANTS
 from ..errors import DeckError
 from ..rotations import e_from_rot
-from . import angles
+from . import angles, energy
 from .bindings import lib
 
 W = lib.PS_INSTR_WIDTH
@@ -334,6 +334,8 @@ class Compiler:
             return self.joint_measure(tape, *(int(a[1]) for a in args))
         if name in angles.NAMES:
             return angles.lower_angle(self, tape, name, [int(a[1]) for a in args])
+        if name == "KE":
+            return energy.lower_energy(self, tape, int(args[0][1]))
         if name == "SENVAL":
             tape.uses_senval = True
             return tape.emit(lib.PS_OP_SENVAL, self.eidx[int(args[0][1])])

@@ -23,6 +23,7 @@ from ..deck.schema import SCHEMA, Ctx, convert
 from ..deck.validate import value_rule
 from ..errors import DeckError
 from ..options import DECK_NAMES
+from .energy import energy_paths
 
 _STATIC = ("max_ke_tol", "max_dq_tol", "max_num_iter", "max_imbalance", "max_error",
            "stability", "compliance_delta", "tlimit", "alimit")
@@ -92,7 +93,8 @@ class Parameters:
     def paths(self):
         """Every path a case may set, sorted."""
         m = self.model
-        out = list(self.kernel.params)
+        # KE's copies of masses and inertias follow the bodies' own paths
+        out = [p for p in self.kernel.params if not p.startswith("KE/")]
         for b in m.bodies.values():
             if b.kind == "ground":
                 continue
@@ -196,6 +198,7 @@ class Parameters:
         if attr == "mass":
             _assign(b, mass=v)
             k.arrays["body_mass"][row] = v
+            self._sync_energy(b)
         elif attr.startswith("inertia_"):
             i, j = _INERTIA[attr[8:]]
             raw = b.inertia_im.copy()
@@ -206,9 +209,20 @@ class Parameters:
                              "triangle inequality")
             _assign(b, inertia_im=raw, inertia=b.im_rot @ raw @ b.im_rot.T)
             k.arrays["body_inertia"][9 * row:9 * row + 9] = b.inertia.reshape(-1)
+            self._sync_energy(b)
         else:
             vec = b.vel if attr.startswith("v_ic") else b.omega
             vec["xyz".index(attr[-1])] = v
+
+    def _sync_energy(self, b):
+        """KE's constants of body b (pysolver.build.energy) after a change of its mass or
+        inertia."""
+        k = self.kernel
+        values = [b.mass] + list(np.asarray(b.inertia).reshape(-1) if b.kind == "rigid"
+                                 else [0.0] * 9)
+        for path, v in zip(energy_paths(b), values):
+            if path in k.params:
+                k.arrays["consts"][k.params[path]] = v
 
     def _set_marker(self, path, mid, axis, v):
         """A marker's global position; a body's cg marker moves the body (its other markers

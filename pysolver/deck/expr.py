@@ -339,7 +339,7 @@ def references(tree, out=None):
         if node[0] != "call" or node[1] not in ID_ARGS:
             continue
         for a, kind in zip(node[2], catalogue.FUNCTIONS[node[1]].ids):
-            # marker 0 is the global frame; any other id names an element
-            if kind is not None and (int(a[1]) != 0 or kind != "marker"):
+            # marker 0 is the global frame, body 0 every body; any other id names an element
+            if kind is not None and (int(a[1]) != 0 or kind not in ("marker", "body")):
                 out.setdefault(kind, set()).add(int(a[1]))
     return out

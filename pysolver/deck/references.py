@@ -9,7 +9,8 @@ def check_references(model):
     """Every id an expression names must exist; penalty g must depend on displacements only."""
     tables = {"marker": model.markers, "variable": model.variables,
               "penalty": model.penalties, "sforce": model.sforces,
-              "evaluate": model.evaluates, "motion": model.motions, "joint": model.joints}
+              "evaluate": model.evaluates, "motion": model.motions, "joint": model.joints,
+              "body": model.bodies}
     where = model._where
     for se in model.sensors.values():
         if se.evaluate_id is not None and se.evaluate_id not in model.evaluates:
