@@ -103,14 +103,7 @@ def add_gcon(model, ctx, a):
     """Validate one Constraint_General and add it to the model (that it reads displacements
     and time only is checked with the other expressions: deck.references)."""
     ctx.id = a["id"]
-    sub = usersubs.from_attributes(model, ctx, a)
-    if sub is not None:
-        tree, text = None, sub.describe()          # traced or bound when first compiled
-    elif a.get("expr") is None:
-        raise ctx.error("give expr, or a user subroutine (GCOSUB: script_name, or ROUTINE= "
-                        "in a Python deck)", "expr")
-    else:
-        tree, text = a["expr"]
+    tree, text, sub = usersubs.expression_or_routine(model, ctx, a, "GCOSUB")
     if a["i_marker_id"] is not None and a["i_marker_id"] not in model.markers:
         raise ctx.error(f"marker {a['i_marker_id']} does not exist", "i_marker_id")
     model.gcons[a["id"]] = GeneralConstraint(a["id"], tree, text, a["i_marker_id"] or 0,

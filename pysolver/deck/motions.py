@@ -68,17 +68,7 @@ def add_motion(model, ctx, a, joint=0):
             if model.bodies[b].kind == "point":
                 raise ctx.error(f"a rotation ({a['direction']}) needs rigid bodies; marker "
                                 f"{a[key]} is on point body {b}", key)
-    sub = usersubs.from_attributes(model, ctx, a)
-    if sub is not None:
-        tree, text = None, sub.describe()          # traced or bound when first compiled
-    elif a.get("expr") is None:
-        raise ctx.error("give expr (a function of time), or type=\"USERSUB\" and its routine "
-                        "(MOTSUB)", "expr")
-    else:
-        tree, text = a["expr"]
-        if tree[0] == "user":
-            raise ctx.error("USER(...) calls a user subroutine: give type=\"USERSUB\" and "
-                            "the routine (script_name, or ROUTINE= in a Python deck)", "expr")
+    tree, text, sub = usersubs.expression_or_routine(model, ctx, a, "MOTSUB")
     # the integration constants: a displacement for V and A, a velocity for A
     for key, kinds in (("ic_disp", "VA"), ("ic_vel", "A")):
         if a.get(key) is not None and a["val_type"] not in kinds:

@@ -89,6 +89,24 @@ def from_attributes(model, ctx, a):
     return UserSub(name, routine, par, script=path, attribute="script_name")
 
 
+def expression_or_routine(model, ctx, a, routine):
+    """(tree, text, usersub) of an element given by `expr` or by its user subroutine
+    (`routine`, named in the error when neither is given); the tree is None until the routine
+    is traced or bound, when the model is first compiled."""
+    sub = from_attributes(model, ctx, a)
+    if sub is not None:
+        return None, sub.describe(), sub
+    if a.get("expr") is None:
+        raise ctx.error(f"give expr, or a user subroutine ({routine}: script_name, "
+                        "usrsub_dll_name, or ROUTINE= in a Python deck)", "expr")
+    tree, text = a["expr"]
+    if tree[0] == "user":
+        typed = " type=\"USERSUB\" and" if "type" in a else ""
+        raise ctx.error(f"USER(...) calls a user subroutine: give{typed} the routine "
+                        "(script_name, usrsub_dll_name, or ROUTINE= in a Python deck)", "expr")
+    return tree, text, None
+
+
 def find_file(ctx, given, deck_file, attribute):
     """A script's or library's path: as given, relative to the deck's folder, then in the
     folders of PYSOLVER_USERSUB_DIR."""
