@@ -81,7 +81,7 @@ def test_the_python_statement(tmp_path):
 
 
 @pytest.mark.parametrize("gcon, attribute, words", [
-    ('expr="VX(9)"', "expr", "non-holonomic"),
+    ('expr="ACCX(9)"', "expr", "found ACCX"),
     ('expr="DX(99)"', "expr", "marker id 99"),
     ('expr="DX(9)" i_marker_id="77"', "i_marker_id", "marker 77 does not exist"),
     ('', "expr", "give expr, or a user subroutine"),

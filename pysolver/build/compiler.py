@@ -17,6 +17,7 @@ import numpy as np
 from .. import catalogue
 from ..deck import joints, motions
 from ..deck.expr import CONSTANTS
+from ..deck.references import velocity_level
 from ..errors import DeckError
 from ..rotations import e_from_rot
 from . import angles, energy
@@ -88,6 +89,9 @@ class Layout:
                      for jid in sorted(model.joints)]
         equations += [("gcon", gid, 1) for gid in sorted(model.gcons)]
         equations += [("coupler", cid, 1) for cid in sorted(model.couplers)]
+        # a Constraint_General of velocities is held at the velocity level alone (no mu)
+        rate_only = {("gcon", g) for g, gc in model.gcons.items()
+                     if velocity_level(gc)}
         for kind, jid, neq in equations:
             for k in range(neq):
                 if (kind, jid, k) in removed:
@@ -95,13 +99,15 @@ class Layout:
                 self.constraint_rows.append((kind, jid, k))
                 if kind == "joint":
                     self.joint_rows.append((jid, k))
+                held = (kind, jid) not in rate_only
                 self.lam.append(off)
-                self.mu.append(off + 1)
+                self.mu.append(off + 1 if held else -1)
                 self.rate.append(-1)
                 self.names += ([f"joint{jid}.reaction{k + 1}",
                                 f"joint{jid}.position_reaction{k + 1}"] if kind == "joint" else
-                               [f"{kind}{jid}.reaction", f"{kind}{jid}.position_reaction"])
-                off += 2
+                               [f"{kind}{jid}.reaction"]
+                               + [f"{kind}{jid}.position_reaction"] * held)
+                off += 1 + held
         # per angle tracked through its turns (a SCREW's or RACK_PINION's, a coupler's
         # rotation k) its state s, algebraic: (owner kind, id, k) -> s
         self.turns = {}
@@ -162,6 +168,7 @@ class _Tape:
         self.slot_of = {}
         self.touch = []           # stack of sets of body slots touched
         self.has_gdot = False
+        self.second_in_u = False     # a velocity-level constraint: d2g/du dq, d2g/du du
         self.uses_senval = False
         self.states = []          # y entries read with their derivative (PS_OP_STATE)
 
@@ -647,6 +654,11 @@ class Compiler:
         if (kind, gc.id, 0) not in lay.constraint_rows:
             return
         k = len(lay.motion_ids) + lay.constraint_rows.index((kind, gc.id, 0))
+        if lay.mu[k] < 0:                 # g(q, u, t) = 0: velocities read, held as it is
+            tape.second_in_u = True
+            g = self.lower(tape, gc.expr)
+            self.element(kind, gc.id, ti, g, g, lay.lam[k], -1)
+            return
         g = self.lower_for_rate(tape, gc.expr)
         gd = tape.emit(lib.PS_OP_GDOT, g)
         tape.has_gdot = True
@@ -776,12 +788,20 @@ class Compiler:
                 bkind += [lib.PS_BASIS_Y] * nq
                 bidx += list(range(lay.qadr[bi], lay.qadr[bi] + nq))
                 n += nq
-            bkind.append(lib.PS_BASIS_T)
-            bidx.append(0)
-            n += 1
-            tnh.append(n)
-            # velocities u (entries of y), then accelerations u' (entries of yp)
-            for flag, kind, where in ((2, lib.PS_BASIS_Y, tb_u), (3, lib.PS_BASIS_YP, tb_a)):
+            # velocities u (entries of y), then accelerations u' (entries of yp); a tape of a
+            # velocity-level constraint puts u before time, among the directions with second
+            # derivatives (time stays the last of them: csrc/tape.c reads it there)
+            stages = [(2, lib.PS_BASIS_Y, tb_u), "T", (3, lib.PS_BASIS_YP, tb_a)]
+            if not t.second_in_u:
+                stages = ["T"] + stages[:1] + stages[2:]
+            for stage in stages:
+                if stage == "T":
+                    bkind.append(lib.PS_BASIS_T)
+                    bidx.append(0)
+                    n += 1
+                    tnh.append(n)
+                    continue
+                flag, kind, where = stage
                 for slot, (_, nu) in zip(slots, sizes):
                     bi, needed = slot[1], slot[flag]
                     where.append(n if needed else -1)

@@ -88,8 +88,13 @@ def consistent(kernel, t, y, iters=8, initial=False):
             y[w] += r[k]
             r[k] = 0.0
     held = np.nonzero((rate < 0) | np.array(given, dtype=bool))[0]
-    if len(held):
+    # Newton on the held rates (one step when they are linear in u; a relation of velocities
+    # may not be)
+    for _ in range(iters if len(held) else 0):
         y[u_idx] += _Jac(kernel, t, y, yp, 0.0).least_change(lam[held], u_idx, -r[held])
+        r = kernel.residual_array(t, y, yp)[lam]
+        if np.abs(r[held]).max() <= 1e-14 * (1.0 + np.abs(y[u_idx]).max()):
+            break
     # 3. accelerations and reactions (linear in them unless forces read accelerations)
     rows = np.setdiff1d(np.arange(kernel.ny), lay.algebraic)
     for _ in range(4):
@@ -250,13 +255,16 @@ def _numbers(kernel):
 def set_tolerance(kernel, tol, failures=()):
     """Set the joints' rate rows' compliance for a run at integr_tol `tol`: RATE_COMPLIANCE x
     tol / (the bodies' weight), so that a reaction of that size moves its rate by the
-    tolerance. A motion's rate rows keep none: a prescribed rate is exact. The position rows'
-    compliance and the weight are recomputed first when the run changed their numbers."""
+    tolerance. A motion's rate rows keep none: a prescribed rate is exact; nor does a
+    constraint held at the velocity level alone (non-holonomic): its rate row is the
+    constraint. The position rows' compliance and the weight are recomputed first when the run
+    changed their numbers."""
     lay = kernel.layout
     if lay.lam and kernel.compliance_key != _numbers(kernel):
         init_compliance(kernel, failures)
     if lay.constraint_rows:
-        rows = lay.lam[len(lay.motion_ids):]
+        base = len(lay.motion_ids)
+        rows = [lam for lam, mu in zip(lay.lam[base:], lay.mu[base:]) if mu >= 0]
         kernel.arrays["compliance"][rows] = RATE_COMPLIANCE * tol / kernel.force_scale
 
 

@@ -48,10 +48,18 @@ def check_references(model):
             if reads:
                 raise ctx.error(f"{model.motions[key[1]].usersub.name} must give a function "
                                 f"of time only; it reads {', '.join(sorted(reads))}", attr)
-        if key[0] == "gcon" and dyn:
-            raise ctx.error("a Constraint_General of velocities (non-holonomic) is not "
-                            f"supported yet: the expression may read displacements and time "
-                            f"(found {dyn})", attr)
+        if key[0] == "gcon":
+            late = sorted({n[1] for n in ex.nodes(tree) if n[0] == "call" and n[1] in
+                           catalogue.FUNCTIONS and catalogue.FUNCTIONS[n[1]].reads
+                           & {"accelerations", "forces"}})
+            if late:
+                raise ctx.error("a Constraint_General may read displacements, velocities "
+                                f"and time (found {', '.join(late)})", attr)
+            if dyn and not velocity_level(model.gcons[key[1]]):
+                raise ctx.error(f"the expression reads velocities ({dyn}) through another "
+                                "element (VARVAL, PFORCE or SFORCE): a non-holonomic "
+                                "Constraint_General names its velocity measures in its own "
+                                "expression", attr)
 
 
 def _expressions(model):
@@ -75,6 +83,14 @@ def _expressions(model):
         for k, e in enumerate(r.exprs):
             if e is not None:
                 yield ("request", r.id), r.usersub.attribute if r.usersub else f"expr{k + 1}", e
+
+
+def velocity_level(gc):
+    """Whether Constraint_General `gc` names velocity measures: non-holonomic, held at the
+    velocity level alone (csrc/elements/gcon.c)."""
+    return gc.expr is not None and any(
+        n[0] == "call" and n[1] in catalogue.FUNCTIONS
+        and "velocities" in catalogue.FUNCTIONS[n[1]].reads for n in ex.nodes(gc.expr))
 
 
 def time_only(tree):

@@ -28,7 +28,7 @@ from . import usersubs
 from .bodies import add_bodies
 from .joints import add_coupler, add_gcon, add_joint
 from .motions import add_joint_motion, add_motion
-from .references import check_references
+from .references import check_references, velocity_level
 from .requests import marker_channels
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
 from .springs import add_springdamper
@@ -127,6 +127,12 @@ def _check_static_motions(model, source):
     """Statics hold a motion's displacement; a velocity or acceleration motion gives none to
     hold (docs/deck-language.md, "Statics with constraints")."""
     static = [c for c in model.commands if c.analysis in ("STATIC", "QUASI-STATIC")]
+    moving = [gc for gc in model.gcons.values() if velocity_level(gc)]
+    if static and moving:
+        raise DeckError(f"{static[0].analysis.lower()} analyses hold positions, and "
+                        f"Constraint_General {moving[0].id} is a relation of velocities "
+                        "(non-holonomic); run the scene as a transient", file=source.file,
+                        line=static[0].line, element="Simulate", attribute="analysis_type")
     rated = [mo for mo in model.motions.values() if mo.val_type != "D"]
     if static and rated:
         mo = rated[0]

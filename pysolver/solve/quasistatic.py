@@ -13,7 +13,7 @@ import numpy as np
 
 from .outputs import print_times
 from .pyida import PyIDA
-from .statics import StaticProblem, fim_s, finished, solve_static
+from .statics import StaticFailure, StaticProblem, fim_s, finished, solve_static  # noqa: F401
 
 
 def quasi_static(model, t0, y0, times, params, tol, kind=None):
@@ -102,10 +102,6 @@ def quasi_static(model, t0, y0, times, params, tol, kind=None):
             x = np.concatenate([yy[prob.qcols], yy[cols]])
         out.append((tp, embed(x)))
     return out, results
-
-
-class StaticFailure(Exception):
-    """A static or quasi-static command did not find its equilibrium."""
 
 
 def run_static(run, cmd):

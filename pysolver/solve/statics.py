@@ -26,6 +26,10 @@ from ..rotations import G
 from .pyida import PyIDA
 
 
+class StaticFailure(Exception):
+    """A static or quasi-static command did not find its equilibrium."""
+
+
 @dataclasses.dataclass
 class StaticResult:
     """Outcome of one static solve.
@@ -88,8 +92,9 @@ class StaticProblem:
         # the tracked angles of screws, racks and couplers, kept on their measured angles
         self.lam = np.array(lay.lam, dtype=int)
         self.pos = np.array(lay.mu, dtype=int)
-        if np.any(self.pos < 0):
-            raise AssertionError("a constraint without a position row in a static analysis")
+        if np.any(self.pos < 0):               # a GCOSUB of velocities, known once traced
+            raise StaticFailure("a relation of velocities (non-holonomic) has no static "
+                                "form; run the scene as a transient")
         self.m = len(self.lam)
         self.size = self.n + self.m
         self.turns = np.array(list(lay.turns.values()), dtype=int)

@@ -195,8 +195,21 @@ class Assembly:
         if mu >= 0:                       # a coupler of rotations has none
             self.hold_position(tape, slots[gn], mu)
 
-    # csrc/elements/gcon.c and coupler.c hold theirs as a joint equation
-    _gcon = _coupler = _joint
+    # csrc/elements/coupler.c holds its relation as a joint equation
+    _coupler = _joint
+
+    def _gcon(self, tape, gn, gd, lam, mu):
+        """csrc/elements/gcon.c: a joint equation, or g(q, u, t) at the velocity level (row
+        g + c lam, lam along dg/du_j on every velocity the tape reads)."""
+        if mu >= 0:
+            return self._joint(tape, gn, gd, lam, mu)
+        s, g = self.s, self.s.g
+        gnode = s.tape(tape)[gn]
+        self.res[lam] = g.add(gnode, g.mul(s.par("compliance", lam), s.y[lam]))
+        for b in s.tape_bodies(tape):
+            ua = s.body(b)["ua"]
+            for i in range(s.nu(b)):
+                self.scatter(ua + i, g.mul(s.y[lam], g.diff(gnode, s.y[ua + i])))
 
     def _turn(self, tape, w, s):
         """A tracked angle's row: the wrapped error w (csrc/elements/turn.c)."""
