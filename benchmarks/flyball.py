@@ -42,11 +42,11 @@ time / pysolver time. No timing is asserted anywhere; the machine has 2 cores an
 shared, so the load average is recorded with every row.
 
 Run from the checkout root: ``python benchmarks/flyball.py [--quick] [--repeat 5]
-[--exudyn-repeat 2] [--out PATH]``. The full mode takes about 2 minutes on this 2-core
-machine (the Exudyn runs at h = 5e-5 dominate); ``--quick`` (about 15 s once the kernel is
-cached) runs pysolver at 1e-4, 1e-7, 1e-10 and both Exudyn models at h = 1e-3 only. Writes
-benchmarks/data/flyball_work_precision.json (every number, the machine, the versions and
-the commit pysolver was imported from) and prints the tables.
+[--exudyn-repeat 2] [--out PATH]``. The full mode takes about 75 s on this 2-core machine
+(the Exudyn runs at h = 1e-4 and 5e-5 dominate); ``--quick`` (about 5 s with the kernel
+cached, 11 s when it compiles) runs pysolver at 1e-4, 1e-7, 1e-10 and both Exudyn models at
+h = 1e-3 only. Writes benchmarks/data/flyball_work_precision.json (every number, the
+machine, the versions and the commit pysolver was imported from) and prints the tables.
 """
 import argparse
 import datetime

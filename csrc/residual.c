@@ -269,7 +269,7 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
   for (int i = 0; i < n; i++) {
     noise[i] = 0.0;
     zero[i] = 0.0;
-    free_y[i] = m->state_alg[i] ? 0.0 : y[i];
+    free_y[i] = m->state_alg[i] == 1 ? 0.0 : y[i];   /* tracked angles (2) are kept */
   }
   for (int k = 0; k < ntrip; k++)
     noise[trow[k]] += fabs(d->trip[k]) * fabs(free_y[tcol[k]]) * PS_UNIT_ROUNDOFF;

@@ -155,6 +155,28 @@ static void measure(const psModel* m, psData* d, const psuHD* c, double* out, co
     hd_atan2(c, out, p, q);
     return;
   }
+  if (kind >= PS_M_WDTX) {
+    /* angular acceleration of i relative to j: alpha_i - alpha_j, the derivative taken in
+     * the frame of marker l less w_l x (w_i - w_j) */
+    double* ai = ps_tmp(m, d, T_VI);
+    double* aj = ps_tmp(m, d, T_VJ);
+    ps_marker_alpha(m, d, c, a[1], a[5], ai);
+    ps_marker_alpha(m, d, c, a[2], a[6], aj);
+    vec_lin(c, rel, 1.0, ai, -1.0, aj);
+    if (a[4] >= 0) {
+      double* c1 = ps_tmp(m, d, T_C1);
+      double* c2 = ps_tmp(m, d, T_C2);
+      double* wl = ps_tmp(m, d, T_WL);
+      ps_marker_omega(m, d, c, a[1], a[5], c1);
+      ps_marker_omega(m, d, c, a[2], a[6], c2);
+      vec_lin(c, c1, 1.0, c1, -1.0, c2);
+      ps_marker_omega(m, d, c, a[4], a[8], wl);
+      psu_hd_cross(c, c2, wl, c1, sc);
+      vec_lin(c, rel, 1.0, rel, -1.0, c2);
+    }
+    project(m, d, c, out, rel, a[3], a[7], kind - PS_M_WDTX);
+    return;
+  }
   if (kind >= PS_M_WX) {
     double* wi = ps_tmp(m, d, T_VI);
     double* wj = ps_tmp(m, d, T_VJ);

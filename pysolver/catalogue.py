@@ -219,6 +219,10 @@ TABLE = (
     _measure("WX", "ijk", _VEL, "x of the angular velocity of i relative to j, in k's axes"),
     _measure("WY", "ijk", _VEL, "y of the angular velocity of i relative to j, in k's axes"),
     _measure("WZ", "ijk", _VEL, "z of the angular velocity of i relative to j, in k's axes"),
+    *(Function(f"WDT{c}", "measure", tuple("ijkl"), f"PS_M_WDT{c}",
+               f"{c.lower()} of the angular acceleration of i relative to j, in k's axes, seen "
+               "from l's frame", required=1, reads=_ACC, ids=("marker",) * 4, py_sysfnc=True)
+      for c in "XYZ"),
     _measure("AX", "ij", _POS, "angle of i's axes about j's x axis"),
     _measure("AY", "ij", _POS, "angle of i's axes about j's y axis"),
     _measure("AZ", "ij", _POS, "angle of i's axes about j's z axis"),

@@ -69,6 +69,7 @@ enum psMeasure {
   PS_M_VX, PS_M_VY, PS_M_VZ, PS_M_VM, PS_M_VR,
   PS_M_ACCX, PS_M_ACCY, PS_M_ACCZ,
   PS_M_WX, PS_M_WY, PS_M_WZ,
+  PS_M_WDTX, PS_M_WDTY, PS_M_WDTZ,
   PS_M_AX, PS_M_AY, PS_M_AZ,
   PS_M_COUNT
 };
@@ -204,8 +205,8 @@ typedef struct psModel {
   int* el_tape;           /* (nel x 1)                                          */
   int* el_adr;            /* (nel x 1) its first int in el_int                  */
   int* el_int;            /* tape slots, flags, markers, body slots and states  */
-  int* state_alg;         /* (ny x 1) 1 for an algebraic state (a reaction),
-                             left out of IDA's error test                       */
+  int* state_alg;         /* (ny x 1) 1 for a reaction, 2 for a tracked angle:
+                             algebraic, left out of IDA's error test            */
   double* compliance;     /* (ny x 1) c_i of a reaction's row: the row holds
                              g' + c_i lam or g + c_i mu (docs/numerics.md,
                              "Constraints"); 0 elsewhere                        */

@@ -856,7 +856,9 @@ class Compiler:
             el_tape=i32([t for _, _, t, _ in self.elements]),
             el_adr=i32(np.cumsum([0] + [len(v) for *_, v in self.elements])[:-1]),
             el_int=i32([i for *_, v in self.elements for i in v]),
-            state_alg=i32(np.isin(np.arange(lay.ny), lay.algebraic)),
+            # 1 a reaction, 2 a tracked angle (algebraic too, but a position to keep)
+            state_alg=i32(np.isin(np.arange(lay.ny), lay.algebraic)
+                          + np.isin(np.arange(lay.ny), list(lay.turns.values()))),
             compliance=f64(np.zeros(lay.ny)),     # set by the Kernel (consistent.compliance)
             out_tape=i32([o[0] for o in self.out]), out_slot=i32([o[1] for o in self.out]),
             nsensor=len(self.sensor), sensor_tape=i32([x[0] for x in self.sensor]),

@@ -66,7 +66,7 @@ def consistent(kernel, t, y, iters=8, initial=False):
     """Make y consistent in place (positions, velocities, lam, mu, w) and return yp; at the
     `initial` state also with the motions' ic_disp and ic_vel."""
     lay = kernel.layout
-    lam, mu, rate = np.array(lay.lam), np.array(lay.mu), np.array(lay.rate)
+    lam, mu, rate = (np.array(v, dtype=int) for v in (lay.lam, lay.mu, lay.rate))
     y[lam] = 0.0
     y[mu[mu >= 0]] = 0.0
     u_idx = _velocities(lay)
@@ -132,7 +132,7 @@ def redundant(kernel, t, y, tol=1e-8):
     u_idx = _velocities(lay)
     _track_turns(kernel, t, y, np.zeros_like(y))
     _assemble(kernel, t, y, 8, initial=True)
-    C = _Jac(kernel, t, y, np.zeros_like(y), 0.0).block(np.array(lay.lam), u_idx)
+    C = _Jac(kernel, t, y, np.zeros_like(y), 0.0).block(np.array(lay.lam, dtype=int), u_idx)
     C = C.toarray() if hasattr(C, "toarray") else np.asarray(C)
     basis, out = [], []
     nmot = len(lay.motion_ids)
@@ -156,7 +156,7 @@ def _assemble(kernel, t, y, iters, initial=False):
     the `initial` state the motions' ic_disp), each Newton step the least change along the
     reactions' directions; return the last g."""
     lay = kernel.layout
-    lam, mu = np.array(lay.lam), np.array(lay.mu)
+    lam, mu = np.array(lay.lam, dtype=int), np.array(lay.mu, dtype=int)
     disp = np.nonzero(mu >= 0)[0]
     ic = [k for k, (d, _, _) in enumerate(lay.motion_ic) if initial and d is not None]
     rows = np.concatenate([disp, ic]).astype(int)
@@ -312,9 +312,11 @@ def reactions(kernel, t, y, yp):
     squares. IDA interpolates output rows over its steps, and for the algebraic reactions,
     which its error test leaves out, the interpolant can be far off (a jump in the reaction
     inside a step spreads over the whole step): the driver recomputes them at every row."""
-    lam = np.array(kernel.layout.lam)
+    lay = kernel.layout
+    lam, mu = np.array(lay.lam, dtype=int), np.array(lay.mu, dtype=int)
     y = np.array(y, dtype=float)
-    y[kernel.layout.algebraic] = 0.0
+    y[lam] = 0.0                       # the reactions, not the tracked angles
+    y[mu[mu >= 0]] = 0.0
     rows = np.setdiff1d(np.arange(kernel.ny), kernel.layout.algebraic)
     r = kernel.residual_array(t, y, yp)[rows]
     C = _Jac(kernel, t, y, yp, 0.0).block(rows, lam)

@@ -130,6 +130,10 @@ class Parameters:
         for raw, value in case.items():
             path = self.canonical(raw)
             v = check_value(path, value)
+            kind, *key = path.split("/")
+            if (kind == "Force_SpringDamper" and key[1] == "length" and v < 0
+                    and self.model.springdampers[int(key[0])].type == "TRANSLATIONAL"):
+                raise _error(path, f"got {v:g}; a free length is >= 0")
             if path.startswith("Param_Transient/"):
                 options[path.split("/")[1]] = v
                 continue

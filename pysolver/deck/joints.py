@@ -24,7 +24,7 @@ def add_joint(model, ctx, a):
     kind = a["type"]
     bi, bj, _ = two_bodies(model, ctx, a, "a joint")
     lead = _lead(ctx, a)
-    if any(e[0].startswith("dot") for e in EQUATIONS[kind]):
+    if any(e[0].startswith("dot") or e[0] == "lead" for e in EQUATIONS[kind]):
         for key, b in (("i_marker_id", bi), ("j_marker_id", bj)):
             if model.bodies[b].kind == "point":
                 raise ctx.error(f"a {kind} joint holds orientations and needs rigid bodies; "

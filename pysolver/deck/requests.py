@@ -8,12 +8,13 @@ radians, as every angle pysolver reports:
 - MARKER_DISPLACEMENT: mag, x, y, z, -, psi, theta, phi (DM, DX/DY/DZ in RM, and the
   body-fixed 3-1-3 angles of I relative to J, which RM does not change);
 - MARKER_VELOCITY: vm, vx, vy, vz, wm, wx, wy, wz (the velocity and angular velocity of I
-  relative to J, time derivatives in the global frame, in RM's axes).
+  relative to J, time derivatives in the global frame, in RM's axes);
+- MARKER_ACCELERATION: accm, accx, accy, accz, wdtm, wdtx, wdty, wdtz (the acceleration and
+  angular acceleration of I relative to J, derivatives in the global frame, in RM's axes).
 """
 
 #: Marker request types pysolver does not compute yet, and why.
-NOT_YET = {"MARKER_ACCELERATION": "its angular channels need WDTX/WDTY/WDTZ",
-           "MARKER_FORCE": "it needs the net force functions FX..TZ"}
+NOT_YET = {"MARKER_FORCE": "it needs the net force functions FX..TZ"}
 
 #: Channel names and functions of each marker request type (None: the unused channel).
 CHANNELS = {
@@ -23,7 +24,14 @@ CHANNELS = {
     "MARKER_VELOCITY": (("vm", "VM", "ij"), ("vx", "VX", "ijr"), ("vy", "VY", "ijr"),
                         ("vz", "VZ", "ijr"), ("wm", "WM", "ij"), ("wx", "WX", "ijr"),
                         ("wy", "WY", "ijr"), ("wz", "WZ", "ijr")),
+    "MARKER_ACCELERATION": (("accm", "ACCM", "ij"), ("accx", "ACCX", "ijr"),
+                            ("accy", "ACCY", "ijr"), ("accz", "ACCZ", "ijr"),
+                            ("wdtm", "WDTM", "ij"), ("wdtx", "WDTX", "ijr"),
+                            ("wdty", "WDTY", "ijr"), ("wdtz", "WDTZ", "ijr")),
 }
+#: The magnitudes, from their three components in the global axes.
+MAGNITUDES = {"WM": ("WX", "WY", "WZ"), "ACCM": ("ACCX", "ACCY", "ACCZ"),
+              "WDTM": ("WDTX", "WDTY", "WDTZ")}
 
 
 def _call(name, ids):
@@ -65,9 +73,9 @@ def marker_channels(ctx, a, markers):
             continue
         name, fn, roles = channel
         ids = [role[r] for r in roles]
-        if fn == "WM":
-            tree = _magnitude(("WX", "WY", "WZ"), ids)
-            text = f"WM({ids[0]},{ids[1]})"
+        if fn in MAGNITUDES:
+            tree = _magnitude(MAGNITUDES[fn], ids)
+            text = f"{fn}({ids[0]},{ids[1]})"
         else:
             tree = _call(fn, ids)
             text = f"{fn}({','.join(str(i) for i in ids)})"

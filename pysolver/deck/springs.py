@@ -32,6 +32,10 @@ def add_springdamper(model, ctx, a):
         raise ctx.error(f"markers {i} and {j} are on one body: a spring between them does "
                         "nothing", "j_marker_id")
     rotational = a["type"] == "ROTATIONAL"
+    for key, mid in (("i_marker_id", i), ("j_marker_id", j)):
+        if rotational and model.bodies[model.markers[mid].body].kind == "point":
+            raise ctx.error(f"a ROTATIONAL spring turns rigid bodies; marker {mid} is on point "
+                            f"body {model.markers[mid].body}", key)
     if not rotational and a["length"] < 0:
         raise ctx.error(f"got {a['length']:g}; a free length is >= 0", "length")
     spring = SpringDamper(sid, a["type"], i, j, a["stiffness"], a["damping"], a["length"],

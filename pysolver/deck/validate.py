@@ -136,13 +136,14 @@ def _check_static_motions(model, source):
     rated = [mo for mo in model.motions.values() if mo.val_type != "D"]
     if static and rated:
         mo = rated[0]
-        tag = "Motion_Joint" if mo.joint else "Motion_Marker"
         kind = "velocity" if mo.val_type == "V" else "acceleration"
+        what = (f"LoadControl {-mo.id} drives its body through a {kind}" if mo.id < 0 else
+                f"{'Motion_Joint' if mo.joint else 'Motion_Marker'} {mo.id} gives a {kind} "
+                f"(val_type {mo.val_type}); write it as a displacement (val_type D)")
         raise DeckError(f"{static[0].analysis.lower()} analyses hold each motion's "
-                        f"displacement, and {tag} {mo.id} gives a {kind} (val_type "
-                        f"{mo.val_type}); write it as a displacement (val_type D) or run "
-                        "the scene as a transient", file=source.file, line=static[0].line,
-                        element="Simulate", attribute="analysis_type")
+                        f"displacement, and {what}, or run the scene as a transient",
+                        file=source.file, line=static[0].line, element="Simulate",
+                        attribute="analysis_type")
 
 
 def _once(ctx, once, tag):

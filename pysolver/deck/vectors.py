@@ -33,6 +33,15 @@ def _markers(model, ctx, a, keys):
             raise ctx.error(f"marker {a[key]} does not exist", key)
 
 
+def _rigid(model, ctx, a, keys, what):
+    """DeckError when a marker of `keys` is on a point body (it cannot take `what`)."""
+    for key in keys:
+        mid = a.get(key)
+        if mid and model.bodies[model.markers[mid].body].kind == "point":
+            raise ctx.error(f"{what} needs rigid bodies; marker {mid} is on point body "
+                            f"{model.markers[mid].body}", key)
+
+
 def _components(ctx, a):
     """The six (tree, text) components of a vector force, by its type."""
     kind = a.get("type") or "FORCEONLY"
@@ -55,6 +64,8 @@ def add_vforce(model, ctx, a):
     at = "i_marker_id" if two else "marker_id"
     _markers(model, ctx, a, (at, "j_floating_marker_id", "ref_marker_id"))
     comps = _components(ctx, a)
+    if any(tree != _ZERO for tree, _ in comps[3:]):
+        _rigid(model, ctx, a, (at, "j_floating_marker_id"), "a torque")
     model.vforces[a["id"]] = VectorForce(
         a["id"], a[at], a["j_floating_marker_id"] if two else 0, a["ref_marker_id"] or 0,
         [e[0] for e in comps], [e[1] for e in comps], a["label"])
@@ -71,6 +82,8 @@ def add_bushing(model, ctx, a):
                         "nothing", "j_marker_id")
     bushing = Bushing(bid, i, j, tuple(a[k] for k in STIFF), tuple(a[k] for k in DAMP),
                       tuple(a[k] for k in LOAD), a["label"])
+    if any(v for v in bushing.stiffness[3:] + bushing.damping[3:] + bushing.preload[3:]):
+        _rigid(model, ctx, a, ("i_marker_id", "j_marker_id"), "a bushing's torques")
     model.bushings[bid] = bushing
     measures = [("DX", (i, j, j)), ("DY", (i, j, j)), ("DZ", (i, j, j)),
                 ("AX", (i, j)), ("AY", (i, j)), ("AZ", (i, j))]

@@ -73,9 +73,12 @@ class CompiledModel:
 
     @property
     def conservative_kernel(self):
-        """The kernel without velocity-dependent terms, for MKEAM (built on first use)."""
+        """The kernel without velocity-dependent terms, for MKEAM (built on first use), with
+        the numbers of the run in progress (params=, a sweep's case) copied from the run's
+        kernel each time it is asked for."""
         if self._conservative is None:
             self._conservative = Kernel(self.model, True, self.kind, self.removed)
+        _follow(self._conservative, self.kernel)
         return self._conservative
 
     @property
@@ -95,3 +98,14 @@ class CompiledModel:
                              stream=stream)
         finally:
             self.parameters.reset()
+
+
+def _follow(twin, kernel):
+    """Give `twin` (a kernel of the same scene) the numbers pysolver.build.params may have
+    changed in `kernel`: masses, inertias, marker positions, gravity and sweep parameters."""
+    for key in ("body_mass", "body_inertia", "marker_pos"):
+        twin.arrays[key][:] = kernel.arrays[key]
+    for path, slot in kernel.params.items():
+        if path in twin.params:
+            twin.arrays["consts"][twin.params[path]] = kernel.arrays["consts"][slot]
+    twin.m.gravity = list(kernel.m.gravity)

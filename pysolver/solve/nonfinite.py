@@ -1,6 +1,7 @@
 """Messages for a non-finite value the kernel found (psData.bad_kind, set in C only on that
 failure path): which element, its expression, the time and the state."""
 import math
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -23,9 +24,12 @@ def _element(model, kernel, kind, index):
         name, eid, *_ = kernel.elements[index]
         e = catalogue.ELEMENT_OF_KIND[name]
         if name == "sforce" and eid < 0:          # a Force_SpringDamper's law
-            return "Force_SpringDamper", model.springdampers[-eid]
+            return "Force_SpringDamper", SimpleNamespace(id=-eid, text=model.sforces[eid].text)
         if name == "vforce" and eid < 0:          # a Force_Bushing's law
-            return "Force_Bushing", model.bushings[-eid]
+            return "Force_Bushing", SimpleNamespace(id=-eid, texts=model.vforces[eid].texts)
+        if name == "turn":                        # the tracked angle of a joint, coupler, spring
+            return "tracked angle of element", SimpleNamespace(
+                id=eid, text="atan2(sin(theta - s), cos(theta - s))")
         tag = kernel.motion_tags[eid] if name == "motion" else e.tags[0]
         return tag, getattr(model, e.table)[eid]
     e = next(e for e in catalogue.ELEMENTS if e.bad and getattr(lib, e.bad) == kind)

@@ -25,6 +25,9 @@ from ..build.compiler import FROZEN_TIME
 from ..rotations import G
 from .pyida import PyIDA
 
+#: The largest turn (rad) of one Newton increment in a scene with tracked angles.
+TURN_LIMIT = 0.5
+
 
 class StaticFailure(Exception):
     """A static or quasi-static command did not find its equilibrium."""
@@ -251,6 +254,8 @@ def _newton(prob, t, y, params, max_iter, search):
     reg = math.sqrt(params.stability) * prob.M
     max_iter = max_iter or params.max_num_iter
     n = prob.n
+    # a tracked angle follows its body only while each increment turns it well under pi
+    alimit = min(params.alimit, TURN_LIMIT) if len(prob.turns) else params.alimit
     R = prob.residual(t, y)
     err = math.inf
     # progress: the imbalance and the constraints' violation, each against its tolerance
@@ -274,7 +279,7 @@ def _newton(prob, t, y, params, max_iter, search):
             return y, StaticResult(t, "FIM_S", False,
                                    f"FIM_S: the {what}: set Param_Static stability > 0; "
                                    f"imbalance reached {imb:.3g}", it - 1, imb, err)
-        dx = _limit(prob, dx, params.tlimit, params.alimit)
+        dx = _limit(prob, dx, params.tlimit, alimit)
         # accept a step that does not raise the merit, or whose next Newton correction (with
         # this matrix) is smaller than the step itself (Deuflhard's natural monotonicity, in
         # displacement units, so that a stiff joint's transient force does not veto it);
@@ -329,8 +334,11 @@ def mkeam(prob_c, t, y, params, tol):
         solver.init_step(0.0, y, yp)
         sol = solver.step(horizon, horizon)
         if sol.status != 2:
-            # no kinetic-energy peak: at rest already, or the motion never turns
-            return y, StaticResult(t, "MKEAM", it > 1 and sol.success,
+            # no kinetic-energy peak: at rest already (its energy at the horizon is still
+            # under max_ke_tol: FIM_S polishes it), or the motion never turns
+            u = np.array(sol.y)[prob_c.rows] if sol.success else None
+            rest = u is not None and 0.5 * u @ prob_c.M @ u / prob_c.cf < params.max_ke_tol
+            return y, StaticResult(t, "MKEAM", (it > 1 or rest) and sol.success,
                                    f"MKEAM: no kinetic-energy peak in iteration {it} "
                                    f"({sol.message})", it, np.abs(prob_c.imbalance(t, y)).max()
                                    / prob_c.cf, dq)
@@ -368,6 +376,11 @@ def solve_static(model, t, y, params, tol, kind=None):
     (Options.kernel); returns (y, StaticResult)."""
     compiled = model.compile(kind)
     prob = StaticProblem(compiled.kernel)
+    if params.method == "MKEAM" and any(_calls_routine(mo.expr)
+                                        for mo in compiled.model.motions.values()):
+        raise StaticFailure("MKEAM holds every motion at the command's time, which a MOTSUB "
+                            "called from the kernel (a C library or untraceable Python) "
+                            "cannot be: use FIM_S, or a MOTSUB that can be traced")
     if params.method == "MKEAM":
         y1, r1 = mkeam(StaticProblem(compiled.conservative_kernel), t, y, params, tol)
         if not r1.success:
@@ -379,6 +392,21 @@ def solve_static(model, t, y, params, tol, kind=None):
         return y2, finished(prob, t, y2, params, r2)
     y1, r1 = fim_s(prob, t, y, params)
     return y1, finished(prob, t, y1, params, r1)
+
+
+def _calls_routine(tree):
+    """Whether an expression tree calls a user subroutine from the kernel."""
+    stack = [tree]
+    while stack:
+        node = stack.pop()
+        if node is None:
+            continue
+        if node[0] == "user":
+            return True
+        stack.extend(c for c in node[1:] if isinstance(c, tuple))
+        stack.extend(a for c in node[1:] if isinstance(c, list) for a in c
+                     if isinstance(a, tuple))
+    return False
 
 
 def finished(prob, t, y, params, res):

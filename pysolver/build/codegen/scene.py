@@ -305,6 +305,14 @@ class Scene:
             else:
                 p, q = self.dot_cols(Xi, 0, Xj, 1), self.dot_cols(Xi, 0, Xj, 0)
             return g.atan2(p, q)
+        if kind >= M["WDTX"]:                 # csrc/tape.c: alpha_i - alpha_j, in frame l
+            rel = g.vsub(self.body_vector(t, x[1], x[5], "al"),
+                         self.body_vector(t, x[2], x[6], "al"))
+            if x[4] >= 0:
+                wrel = g.vsub(self.body_vector(t, x[1], x[5], "w"),
+                              self.body_vector(t, x[2], x[6], "w"))
+                rel = g.vsub(rel, g.cross(self.body_vector(t, x[4], x[8], "w"), wrel))
+            return self.project(t, rel, x[3], x[7], kind - M["WDTX"])
         if kind >= M["WX"]:
             rel = g.vsub(self.body_vector(t, x[1], x[5], "w"), self.body_vector(t, x[2], x[6], "w"))
             return self.project(t, rel, x[3], x[7], kind - M["WX"])
