@@ -49,14 +49,10 @@ h = 1e-3 only. Writes benchmarks/data/flyball_work_precision.json (every number,
 machine, the versions and the commit pysolver was imported from) and prints the tables.
 """
 import argparse
-import datetime
-import importlib.util
 import json
 import math
 import os
 import pathlib
-import platform
-import subprocess
 import sys
 import time
 
@@ -68,6 +64,7 @@ DECKS = ROOT / "decks" / "joints"
 sys.path.insert(0, str(DECKS))
 
 import make_a05 as a05  # noqa: E402 - decks/joints/ is put on the path just above
+import provenance  # noqa: E402 - benchmarks/ is on the path
 
 import pysolver  # noqa: E402
 
@@ -383,7 +380,7 @@ def print_headline(lines):
         else:
             print(f"  {ex}; pysolver tol {h['pysolver_integr_tol']:.0e}: "
                   f"{h['pysolver_wall_s']:.4f} s, {h['pysolver_max_err_m']:.2e} m -> "
-                  f"{speed(h['ratio'])}")
+                  f"{provenance.speed(h['ratio'])}")
 
 
 def print_convergence(conv):
@@ -392,48 +389,6 @@ def print_convergence(conv):
         for c in pairs:
             print(f"  {name}: h {c['h'][0]:.0e} -> {c['h'][1]:.0e}: {c['err'][0]:.2e} -> "
                   f"{c['err'][1]:.2e} m, order {c['order']:.2f}")
-
-
-def speed(ratio):
-    """Words for Exudyn time / pysolver time."""
-    if ratio >= 1:
-        return f"pysolver is {ratio:.1f}x faster at equal or smaller error"
-    return f"pysolver is {1 / ratio:.1f}x slower (at equal or smaller error)"
-
-
-def _git(*args):
-    """git in the checkout pysolver was imported from."""
-    try:
-        return subprocess.run(["git", *args], cwd=PYSOLVER_ROOT, capture_output=True,
-                              text=True, check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return None
-
-
-def machine():
-    """Versions, commit (and the files the work tree had modified), CPU and date."""
-    import exudyn
-    cpu = None
-    try:
-        cpu = next(line.split(":", 1)[1].strip()
-                   for line in open("/proc/cpuinfo") if line.startswith("model name"))
-    except (OSError, StopIteration):
-        pass
-    dirty = _git("status", "--porcelain", "--untracked-files=no")
-    import scipy
-    return dict(date=datetime.datetime.now().astimezone().isoformat(timespec="seconds"),
-                commit=_git("rev-parse", "HEAD"),
-                work_tree_modified=None if dirty is None else sorted(
-                    line.split(maxsplit=1)[1] for line in dirty.splitlines()),
-                python=platform.python_version(), numpy=np.__version__,
-                scipy=scipy.__version__, exudyn=exudyn.__version__,
-                exudyn_build="exudynCPPfast" if "exudyn.exudynCPPfast" in sys.modules
-                else "exudynCPP",
-                pysolver=getattr(pysolver, "__version__", None),
-                pysolver_path=str(PYSOLVER_ROOT),
-                kernel_module=importlib.util.find_spec("pysolver._kernel").origin,
-                platform=platform.platform(), cpu=cpu, cpus=os.cpu_count(),
-                load_average_at_start=list(os.getloadavg()))
 
 
 def main(argv=None):
@@ -453,7 +408,7 @@ def main(argv=None):
         sys.exudynFast = True                # Exudyn's build without range checks
     t_start = time.perf_counter()
     out = dict(generated_by="benchmarks/flyball.py" + (" --quick" if args.quick else ""),
-               machine=machine(),
+               machine=provenance.machine(pysolver, PYSOLVER_ROOT),
                problem=dict(deck=str(DECK.relative_to(ROOT)), t_end=T_END, output_dt=OUT_DT,
                             quantity="s: slider centre height (m)",
                             error="max over the reference times of |s - s_ref| (m)"),
@@ -487,7 +442,7 @@ def main(argv=None):
     print_convergence(conv)
     out["runtime_s"] = time.perf_counter() - t_start
     out["machine"]["load_average_at_end"] = list(os.getloadavg())
-    out["machine"]["commit_at_end"] = _git("rev-parse", "HEAD")
+    out["machine"]["commit_at_end"] = provenance.git(PYSOLVER_ROOT, "rev-parse", "HEAD")
     save(out, args.out)
     print(f"\nwrote {args.out} in {out['runtime_s']:.0f} s")
 

@@ -31,14 +31,10 @@ benchmarks/data/joints_work_precision.json (every number, the machine, the versi
 commit pysolver was imported from) and prints the tables. No timing is asserted.
 """
 import argparse
-import datetime
-import importlib.util
 import json
 import math
 import os
 import pathlib
-import platform
-import subprocess
 import sys
 import time
 
@@ -49,6 +45,7 @@ ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
 
 import joint_references as jr  # noqa: E402 - benchmarks/ is put on the path just above
+import provenance  # noqa: E402 - benchmarks/ is on the path
 
 import pysolver  # noqa: E402
 
@@ -217,44 +214,7 @@ def print_headline(title, lines):
         else:
             print(f"  {ex}; pysolver tol {h['pysolver_integr_tol']:.0e}: "
                   f"{h['pysolver_wall_s']:.4f} s, {h['pysolver_max_err_m']:.2e} m -> "
-                  f"{speed(h['ratio'])}")
-
-
-def speed(ratio):
-    """Words for Exudyn time / pysolver time."""
-    if ratio >= 1:
-        return f"pysolver is {ratio:.1f}x faster at equal or smaller error"
-    return f"pysolver is {1 / ratio:.1f}x slower (at equal or smaller error)"
-
-
-def _git(*args):
-    """git in the checkout pysolver was imported from."""
-    try:
-        return subprocess.run(["git", *args], cwd=PYSOLVER_ROOT, capture_output=True,
-                              text=True, check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return None
-
-
-def machine():
-    """Versions, commit (and whether the work tree had changes), CPU and date."""
-    import exudyn
-    cpu = None
-    try:
-        cpu = next(line.split(":", 1)[1].strip()
-                   for line in open("/proc/cpuinfo") if line.startswith("model name"))
-    except (OSError, StopIteration):
-        pass
-    dirty = _git("status", "--porcelain", "--untracked-files=no")
-    return dict(date=datetime.datetime.now().astimezone().isoformat(timespec="seconds"),
-                commit=_git("rev-parse", "HEAD"),
-                work_tree_modified=None if dirty is None else sorted(
-                    line.split(maxsplit=1)[1] for line in dirty.splitlines()),
-                python=platform.python_version(), numpy=np.__version__,
-                exudyn=exudyn.__version__, pysolver=getattr(pysolver, "__version__", None),
-                pysolver_path=str(PYSOLVER_ROOT), kernel_module=importlib.util.find_spec("pysolver._kernel").origin,
-                platform=platform.platform(), cpu=cpu, cpus=os.cpu_count(),
-                load_average_at_start=list(os.getloadavg()))
+                  f"{provenance.speed(h['ratio'])}")
 
 
 def main(argv=None):
@@ -268,7 +228,7 @@ def main(argv=None):
     q = int(args.quick)
     repeat = args.repeat or (3 if args.quick else 5)
     out = dict(generated_by="benchmarks/joints.py" + (" --quick" if args.quick else ""),
-               machine=machine(),
+               machine=provenance.machine(pysolver, PYSOLVER_ROOT),
                method=("one process; pysolver: first run (compiles the kernel) untimed, then "
                        f"pendulum best of {repeat} runs, A02 one run per tolerance; Exudyn: "
                        f"generalized-alpha fixed step, pendulum best of {repeat} SolveDynamic "
@@ -300,7 +260,7 @@ def main(argv=None):
         print_headline(name, prob["headline"])
     out["runtime_s"] = time.perf_counter() - t_start
     out["machine"]["load_average_at_end"] = list(os.getloadavg())
-    out["machine"]["commit_at_end"] = _git("rev-parse", "HEAD")
+    out["machine"]["commit_at_end"] = provenance.git(PYSOLVER_ROOT, "rev-parse", "HEAD")
     save(out, args.out)
     print(f"\nwrote {args.out} in {out['runtime_s']:.0f} s")
 
