@@ -229,6 +229,10 @@ TABLE = (
     Function("KE", "special", ("id",), None,
              "kinetic energy of body id (0: of every body), in force times length units",
              reads=_VEL, ids=("body",), py_sysfnc=True),
+    Function("ORIENT", "special", ("system", "comp", "i", "j"), None,
+             "component comp of the orientation of i relative to j in convention system (27: "
+             "the Euler parameters e0..e3 with e0 >= 0, the one pysolver computes)",
+             required=3, reads=_POS, ids=(None, None, "marker", "marker"), py_sysfnc=True),
     # orientation angles of i relative to j, lowered to dot products of their axes
     *(Function(name, "special", ("i", "j"), None, doc, required=1, reads=_POS,
                ids=("marker", "marker"), py_sysfnc=True) for name, doc in (

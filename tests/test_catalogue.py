@@ -128,13 +128,15 @@ def test_the_jacobian_deck_uses_every_function():
     MOTION and JOINT need sensors, motions and joints: test_sensors.py, test_motions.py, and
     all_joints.xml, also in test_jacobian.py, check them; KE and WDTX..WDTZ, which would take
     all_functions.xml past the size generated looped, are in springs.xml's and
-    nonholonomic.xml's forces, also in test_jacobian.py)."""
+    nonholonomic.xml's forces, also in test_jacobian.py; ORIENT, an output whose derivative is
+    singular where a parameter passes 0, in springs.xml's request)."""
     text = (TEST_DECKS / "all_functions.xml").read_text().upper()
     used = set(re.findall(r"\b([A-Z][A-Z0-9]*)\s*\(", text))
     assert set(catalogue.FUNCTIONS) - used == {"SENVAL", "MOTION", "JOINT", "KE", "WDTX",
-                                                "WDTY", "WDTZ"}
+                                                "WDTY", "WDTZ", "ORIENT"}
     assert "JOINT(" in (TEST_DECKS / "all_joints.xml").read_text()
     assert "KE(4)" in (TEST_DECKS / "springs.xml").read_text()
+    assert "ORIENT(27" in (TEST_DECKS / "springs.xml").read_text()
     assert all(f"WDT{c}(" in (TEST_DECKS / "nonholonomic.xml").read_text() for c in "XYZ")
 
 

@@ -218,3 +218,40 @@ def test_angular_accelerations_are_the_rates_of_the_angular_velocities():
         rate = np.gradient(q[:, :3], t, axis=0)
         assert np.abs(q[:, 3:6]).max() > 0.5
         assert np.abs(q[5:-5, 3:6] - rate[5:-5]).max() < 2e-5
+
+
+def test_initial_velocities_along_the_axes_of_vm_and_wm_markers():
+    """vm_id and wm_id give the axes of v_ic and w_ic (a ground marker turned 90 degrees about
+    z): x of that marker is global y, so the body starts along global y and spins about it."""
+    markers = ('<Reference_Marker id="7" body_id="1" psi="1.5707963267948966"/>'
+               '<Reference_Marker id="20" body_id="2"/>')
+    req = '<Post_Request id="1" expr1="VX(20)" expr2="VY(20)" expr3="WX(20)" expr4="WY(20)"/>'
+    text = _scene(markers, req, end="0.1").replace(
+        'w_ic_x="1" w_ic_y="0.3" w_ic_z="2" v_ic_x="0.5"',
+        'w_ic_x="0.2" v_ic_x="0.5" vm_id="7" wm_id="7"').replace(
+        'inertia_xx="0.2" inertia_yy="0.3" inertia_zz="0.4"',
+        'inertia_xx="0.3" inertia_yy="0.3" inertia_zz="0.3"').replace(
+        'grav_y="-9.81"', 'grav_y="0"')
+    res = pysolver.loads(text).run()
+    np.testing.assert_allclose(res.request(1)[:, :4], [[0, 0.5, 0, 0.2]] * 2, atol=1e-12)
+
+
+def test_orient_27_is_adams_euler_parameters():
+    """ORIENT(27, k, i[, j]): Adams' published example (REULER 180D, 90D, 180D prints
+    0.70711, -0.70711, 0, 0) and the parameters of A_J^T A_I for a turned pair, e0 >= 0;
+    other systems are refused."""
+    from pysolver.rotations import e_from_rot
+    markers = ('<Reference_Marker id="5" body_id="1" psi="3.141592653589793" '
+               'theta="1.5707963267948966" phi="3.141592653589793"/>'
+               '<Reference_Marker id="6" body_id="1" psi="0.4" theta="2.2" phi="-1.3"/>'
+               '<Reference_Marker id="20" body_id="2"/>')
+    req = ('<Post_Request id="1" ' + " ".join(f'expr{k}="ORIENT(27,{k},5)"' for k in range(1, 5))
+           + " " + " ".join(f'expr{k + 4}="ORIENT(27,{k},6,5)"' for k in range(1, 5)) + "/>")
+    res = pysolver.loads(_scene(markers, req, end="0.1")).run()
+    e = e_from_rot(rot_313(np.pi, np.pi / 2, np.pi).T @ rot_313(0.4, 2.2, -1.3))
+    e = e if e[0] >= 0 else -e
+    np.testing.assert_allclose(res.request(1)[0, :4], [0.5 ** 0.5, -0.5 ** 0.5, 0, 0],
+                               atol=1e-12)
+    np.testing.assert_allclose(res.request(1)[0, 4:], e, atol=1e-12)
+    with pytest.raises(DeckError, match="pysolver computes system 27"):
+        pysolver.loads(_scene(markers, '<Post_Request id="1" expr1="ORIENT(1,1,5)"/>'))

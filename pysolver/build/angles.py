@@ -11,6 +11,10 @@ relative rotation R = A_J^T A_I, whose entry R[a][b] is axis a of J dotted with 
   PSI = 0 and PHI = atan2(R33 R21, R11).
 - YAW = atan2(R21, R11), PITCH = atan2(R31, sqrt(R32^2 + R33^2)), ROLL = atan2(R32, R33);
   YAW and ROLL are not defined where PITCH = +-pi/2.
+- ORIENT(27, k, i, j), Adams' Euler parameters of R (e0 >= 0): e0 = sqrt(max(0, 1 + tr R))
+  / 2, e1 = SIGN(sqrt(max(0, 1 + R11 - R22 - R33)) / 2, R32 - R23), and likewise e2 (sign of
+  R13 - R31) and e3 (R21 - R12); exact values everywhere, derivatives singular where a
+  parameter passes 0.
 """
 from .bindings import lib
 
@@ -51,3 +55,24 @@ def lower_angle(comp, tape, name, ids):
     if name == "PITCH":
         return atan2(R(3, 1), hypot(R(3, 2), R(3, 3)))
     return atan2(R(3, 2), R(3, 3))       # ROLL
+
+
+def lower_orient(comp, tape, system, k, i, j=0):
+    """Slot of ORIENT(system, k, i, j): component k (1..4) of the Euler parameters of marker i
+    relative to marker j (system 27; the parser refuses others)."""
+    mi, si = comp.marker(tape, i)
+    mj, sj = comp.marker(tape, j)
+    op = tape.op
+
+    def R(a, b):
+        return tape.emit(lib.PS_OP_AXDOT, mi, b - 1, mj, a - 1, si, sj)
+    signs = [(1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1)][k - 1]
+    total = tape.const(1.0)
+    for n, sgn in enumerate(signs, 1):
+        total = op(lib.PS_OP_ADD if sgn > 0 else lib.PS_OP_SUB, total, R(n, n))
+    half = op(lib.PS_OP_MUL, tape.const(0.5),
+              op(lib.PS_OP_SQRT, op(lib.PS_OP_MAX, tape.const(0.0), total)))
+    if k == 1:
+        return half
+    a, b = [(3, 2), (1, 3), (2, 1)][k - 2]
+    return op(lib.PS_OP_SIGN, half, op(lib.PS_OP_SUB, R(a, b), R(b, a)))

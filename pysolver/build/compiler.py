@@ -341,6 +341,8 @@ class Compiler:
             return self.joint_measure(tape, *(int(a[1]) for a in args))
         if name in angles.NAMES:
             return angles.lower_angle(self, tape, name, [int(a[1]) for a in args])
+        if name == "ORIENT":
+            return angles.lower_orient(self, tape, *[int(a[1]) for a in args])
         if name == "KE":
             return energy.lower_energy(self, tape, int(args[0][1]))
         if name == "SENVAL":

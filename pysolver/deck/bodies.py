@@ -58,6 +58,9 @@ def add_bodies(model, bodies_raw, markers_raw):
             raise ctx.error("missing required attribute", "mass")
         cg = marker_of(ctx, a, "cg_id")
         vel = np.array([a["v_ic_x"], a["v_ic_y"], a["v_ic_z"]])
+        vm = _direction_marker(model, ctx, a, "vm_id")
+        if vm is not None:                   # v_ic along vm's axes
+            vel = vm.rot @ vel
         if ctx.tag == "Body_Point":
             model.bodies[a["id"]] = Body(a["id"], "point", a["mass"], None, cg.pos.copy(),
                                          np.eye(3), vel, np.zeros(3), a["label"], cg=cg.id)
@@ -78,9 +81,12 @@ def add_bodies(model, bodies_raw, markers_raw):
             raise ctx.error("inertia tensor must be positive definite and satisfy the "
                             "triangle inequality", "inertia_xx")
         Rb = cg.rot.T @ im.rot      # im axes in the body (cg) frame
+        omega = np.array([a["w_ic_x"], a["w_ic_y"], a["w_ic_z"]])
+        wm = _direction_marker(model, ctx, a, "wm_id")
+        if wm is not None:                   # w_ic along wm's axes, kept in the cg's
+            omega = cg.rot.T @ wm.rot @ omega
         model.bodies[a["id"]] = Body(a["id"], "rigid", a["mass"], Rb @ Iim @ Rb.T,
-                                     cg.pos.copy(), cg.rot.copy(), vel,
-                                     np.array([a["w_ic_x"], a["w_ic_y"], a["w_ic_z"]]),
+                                     cg.pos.copy(), cg.rot.copy(), vel, omega,
                                      a["label"], cg=cg.id, im_rot=Rb, inertia_im=Iim)
     for mid, (ctx, a) in markers_raw.items():
         ctx.id = mid
@@ -88,6 +94,16 @@ def add_bodies(model, bodies_raw, markers_raw):
             raise ctx.error(f"body {a['body_id']} does not exist (declare it with Body_Rigid, "
                             "Body_Point or a ground Body_Rigid isground=\"TRUE\")", "body_id")
 
+
+
+def _direction_marker(model, ctx, a, key):
+    """The marker (on any body) whose axes give a body's initial velocity components."""
+    mid = a.get(key)
+    if mid is None:
+        return None
+    if mid not in model.markers:
+        raise ctx.error(f"marker {mid} does not exist", key)
+    return model.markers[mid]
 
 
 def _orientation(ctx, a):

@@ -280,6 +280,9 @@ def _check(node):
                 if a[0] != "num" or a[1] != int(a[1]) or a[1] < 0:
                     raise ExpressionError(f"{name} expects {ID_ARGS[name]} ids as integer "
                                           "literals", col)
+            if name == "ORIENT" and (args[0][1] != 27 or not 1 <= args[1][1] <= 4):
+                raise ExpressionError("ORIENT(system, comp, i[, j]): pysolver computes system "
+                                      "27 (Euler parameters), comp 1..4", col)
             if name == "MOTION" and len(args) not in (1, 4):
                 raise ExpressionError("MOTION(id) is the reaction along the motion's axis; "
                                       "MOTION(id, jflag, comp, rm) a component", col)
