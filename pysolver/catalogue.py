@@ -229,6 +229,10 @@ TABLE = (
     Function("KE", "special", ("id",), None,
              "kinetic energy of body id (0: of every body), in force times length units",
              reads=_VEL, ids=("body",), py_sysfnc=True),
+    *(Function(f"A{c}U", "special", ("i", "j"), None,
+               f"A{c}(i, j) unwrapped: continuous through every turn from its value at the "
+               "start (in (-pi, pi])", required=1, reads=_POS, ids=("marker", "marker"),
+               py_sysfnc=True) for c in "XYZ"),
     Function("ORIENT", "special", ("system", "comp", "i", "j"), None,
              "component comp of the orientation of i relative to j in convention system (27: "
              "the Euler parameters e0..e3 with e0 >= 0, the one pysolver computes)",

@@ -255,3 +255,21 @@ def test_orient_27_is_adams_euler_parameters():
     np.testing.assert_allclose(res.request(1)[0, 4:], e, atol=1e-12)
     with pytest.raises(DeckError, match="pysolver computes system 27"):
         pysolver.loads(_scene(markers, '<Post_Request id="1" expr1="ORIENT(1,1,5)"/>'))
+
+
+def test_unwrapped_angles_count_every_turn():
+    """AXU, AYU, AZU (MotionSolve's unwrapped AX, AY, AZ; each a tracked angle): bodies spun
+    about x, y and z at 5 rad/s read 5 t through almost two turns, where AX..AZ wrap."""
+    markers = "".join(f'<Reference_Marker id="{30 + k}" body_id="{3 + k}" pos_x="{k}"/>'
+                      f'<Body_Rigid id="{3 + k}" cg_id="{30 + k}" mass="1" inertia_xx="0.3" '
+                      f'inertia_yy="0.3" inertia_zz="0.3" w_ic_{c}="5"/>'
+                      for k, c in enumerate("xyz")) + '<Reference_Marker id="20" body_id="2"/>'
+    req = ('<Post_Request id="1" expr1="AXU(30)" expr2="AYU(31,1)" expr3="AZU(32)" '
+           'expr4="AX(30)" expr5="AY(31)" expr6="AZ(32)"/>')
+    text = _scene(markers, req, end="2").replace('grav_y="-9.81"', 'grav_y="0"')
+    for kernel in ("tapes", "generated"):
+        res = pysolver.loads(text).run(kernel=kernel)
+        assert res.success, res.message
+        q, t = res.request(1), res.t
+        np.testing.assert_allclose(q[:, :3], np.outer(5 * t, [1, 1, 1]), rtol=0, atol=1e-8)
+        assert np.abs(q[:, 3:6]).max() <= np.pi + 1e-12

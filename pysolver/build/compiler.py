@@ -17,7 +17,7 @@ import numpy as np
 from .. import catalogue
 from ..deck import joints, motions
 from ..deck.expr import CONSTANTS
-from ..deck.references import velocity_level
+from ..deck.references import unwrapped_angles, velocity_level
 from ..errors import DeckError
 from ..rotations import e_from_rot
 from . import angles, energy
@@ -115,9 +115,11 @@ class Layout:
         keys += [("coupler", cid, k) for cid in sorted(model.couplers)
                  for k, f in enumerate(model.couplers[cid].freedoms) if f == "R"]
         keys += [("sforce", sid, 0) for sid in sorted(model.sforces) if model.sforces[sid].turns]
+        keys += [("unwrap", call, 0) for call in unwrapped_angles(model)]
         for key in keys:
             self.turns[key] = off
             owner = (f"springdamper{-key[1]}" if key[0] == "sforce" else
+                     "{}({},{})".format(*key[1]) if key[0] == "unwrap" else
                      f"{key[0]}{key[1]}")
             self.names.append(f"{owner}.angle" + (f"{key[2] + 1}" if key[0] == "coupler"
                                                   else ""))
@@ -341,6 +343,11 @@ class Compiler:
             return self.joint_measure(tape, *(int(a[1]) for a in args))
         if name in angles.NAMES:
             return angles.lower_angle(self, tape, name, [int(a[1]) for a in args])
+        if name in ("AXU", "AYU", "AZU"):
+            ids = [int(a[1]) for a in args] + [0]
+            key = ("unwrap", (name, ids[0], ids[1]), 0)
+            s, w = self.turn_error(tape, self.turned_angle(key), key)
+            return tape.op(lib.PS_OP_ADD, s, w)
         if name == "ORIENT":
             return angles.lower_orient(self, tape, *[int(a[1]) for a in args])
         if name == "KE":
@@ -669,6 +676,9 @@ class Compiler:
     def turned_angle(self, key):
         """The measured angle (in (-pi, pi]) that tracked angle `key` follows."""
         kind, eid, k = key
+        if kind == "unwrap":                      # AXU(i, j): AX's turns
+            name, i, j = eid
+            return ("call", name[:2], [("num", float(i)), ("num", float(j))], 0)
         if kind == "sforce":
             sf = self.model.sforces[eid]
             return ("call", "AZ", [("num", float(sf.i)), ("num", float(sf.j))], 0)

@@ -85,6 +85,18 @@ def _expressions(model):
                 yield ("request", r.id), r.usersub.attribute if r.usersub else f"expr{k + 1}", e
 
 
+def unwrapped_angles(model):
+    """The (name, i, j) of every AXU, AYU, AZU call in the model's expressions, sorted: each
+    is an angle tracked through its turns (one state each)."""
+    found = set()
+    for _, _, tree in _expressions(model):
+        for n in ex.nodes(tree):
+            if n[0] == "call" and n[1] in ("AXU", "AYU", "AZU"):
+                ids = [int(a[1]) for a in n[2]] + [0]
+                found.add((n[1], ids[0], ids[1]))
+    return sorted(found)
+
+
 def velocity_level(gc):
     """Whether Constraint_General `gc` names velocity measures: non-holonomic, held at the
     velocity level alone (csrc/elements/gcon.c)."""
