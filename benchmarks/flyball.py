@@ -138,9 +138,9 @@ def pysolver_sweep(tols, repeat, s_ref):
                          max_err_m=err if ok else None, success=ok, message=res.message,
                          reached_t=float(res.t[-1]) if len(res.t) else None,
                          load_1min=os.getloadavg()[0]))
-        print(f"  pysolver tol {tol:.0e}: {_fmt_row(rows[-1])}", flush=True)
+        print(f"  pysolver tol {tol:.0e}: {provenance.fmt_row(rows[-1])}", flush=True)
     return rows, dict(integr_tol=max(tols), wall_s_including_compile=warm_s,
-                      success=bool(warm.success), timing=_plain(warm.timing))
+                      success=bool(warm.success), timing=provenance.plain(warm.timing))
 
 
 # ---------------------------------------------------------------------------------------
@@ -308,7 +308,7 @@ def exudyn_row(name, h, repeat, s_ref):
                repeat=repeat, **stats, wall_s=best if ok else None,
                wall_s_until_failure=None if ok else best, max_err_m=err if ok else None,
                success=ok, message=msg, reached_t=reached, load_1min=os.getloadavg()[0])
-    print(f"  Exudyn {name} h {h:.0e}: {_fmt_row(row)}", flush=True)
+    print(f"  Exudyn {name} h {h:.0e}: {provenance.fmt_row(row)}", flush=True)
     return row
 
 
@@ -323,33 +323,8 @@ def convergence(rows):
 # ---------------------------------------------------------------------------------------
 # report
 def headline(py_rows, ex_rows):
-    """For each Exudyn point: the fastest successful pysolver run with error <= Exudyn's,
-    and Exudyn time / pysolver time (None when no pysolver run is that accurate)."""
-    out = []
-    for ex in ex_rows:
-        if not ex["success"]:
-            continue
-        ok = [r for r in py_rows if r["success"] and r["max_err_m"] <= ex["max_err_m"]]
-        best = min(ok, key=lambda r: r["wall_s"]) if ok else None
-        out.append(dict(exudyn_model=ex["model"], exudyn_h=ex["h"],
-                        exudyn_wall_s=ex["wall_s"], exudyn_max_err_m=ex["max_err_m"],
-                        pysolver_integr_tol=best and best["integr_tol"],
-                        pysolver_wall_s=best and best["wall_s"],
-                        pysolver_max_err_m=best and best["max_err_m"],
-                        ratio=best and ex["wall_s"] / best["wall_s"]))
-    return out
-
-
-def _fmt_row(r):
-    wall = "failed" if r["wall_s"] is None else f"{r['wall_s']:.4g} s"
-    err = "-" if r["max_err_m"] is None else f"{r['max_err_m']:.2e} m"
-    tail = "" if r["success"] else f"  ({r['message']}, reached t = {r.get('reached_t')})"
-    return f"{r['steps']:,} steps, {wall}, max error {err}{tail}"
-
-
-def _plain(d):
-    return {k: (float(v) if isinstance(v, (int, float, np.floating)) else v)
-            for k, v in dict(d or {}).items()}
+    """Each Exudyn point matched with the fastest pysolver run at equal or smaller error."""
+    return provenance.headline(py_rows, ex_rows, exudyn_model="model")
 
 
 def print_table(rows):

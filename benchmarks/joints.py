@@ -110,7 +110,7 @@ def pysolver_row(model, tol, repeat, ref, **options):
                reached_t=float(res.t[-1]) if len(res.t) else None,
                load_1min=os.getloadavg()[0])
     print(f"  pysolver tol {tol:.0e}{' ' + str(options) if options else ''}: "
-          f"{_fmt_row(row)}", flush=True)
+          f"{provenance.fmt_row(row)}", flush=True)
     return row
 
 
@@ -125,7 +125,7 @@ def pysolver_sweep(deck, tols, repeat, ref, probe=None):
     if probe:
         rows.append(pysolver_row(model, probe[0], 1, ref, max_num_steps=probe[1]))
     return rows, dict(integr_tol=max(tols), wall_s_including_compile=warm_s,
-                      success=bool(warm.success), timing=_plain(warm.timing))
+                      success=bool(warm.success), timing=provenance.plain(warm.timing))
 
 
 def exudyn_pendulum_sweep(hs, repeat):
@@ -135,7 +135,7 @@ def exudyn_pendulum_sweep(hs, repeat):
         rows.append(dict(method="Exudyn", h=h, steps=r["steps"], wall_s=r["wall_s"],
                          max_err_m=r["max_err_m"], end_err_m=r["end_err_m"], success=True,
                          message="", load_1min=os.getloadavg()[0]))
-        print(f"  Exudyn h {h:.1e}: {_fmt_row(rows[-1])}", flush=True)
+        print(f"  Exudyn h {h:.1e}: {provenance.fmt_row(rows[-1])}", flush=True)
     return rows
 
 
@@ -151,39 +151,13 @@ def exudyn_a02_sweep(hs):
                          end_err_m=r["end_err_m"],
                          success=ok, message=r["message"], reached_t=r["reached_t"],
                          load_1min=os.getloadavg()[0]))
-        print(f"  Exudyn h {h:.1e}: {_fmt_row(rows[-1])}", flush=True)
+        print(f"  Exudyn h {h:.1e}: {provenance.fmt_row(rows[-1])}", flush=True)
     return rows
 
 
 def headline(py_rows, ex_rows):
-    """For each Exudyn point: the fastest successful pysolver run with error <= Exudyn's,
-    and Exudyn time / pysolver time (None when no pysolver run is that accurate)."""
-    out = []
-    for ex in ex_rows:
-        if not ex["success"]:
-            continue
-        ok = [r for r in py_rows if r["success"] and r["max_err_m"] is not None
-              and r["max_err_m"] <= ex["max_err_m"]]
-        best = min(ok, key=lambda r: r["wall_s"]) if ok else None
-        out.append(dict(exudyn_h=ex["h"], exudyn_wall_s=ex["wall_s"],
-                        exudyn_max_err_m=ex["max_err_m"],
-                        pysolver_integr_tol=best and best["integr_tol"],
-                        pysolver_wall_s=best and best["wall_s"],
-                        pysolver_max_err_m=best and best["max_err_m"],
-                        ratio=best and ex["wall_s"] / best["wall_s"]))
-    return out
-
-
-def _fmt_row(r):
-    wall = "failed" if r["wall_s"] is None else f"{r['wall_s']:.4g} s"
-    err = "-" if r["max_err_m"] is None else f"{r['max_err_m']:.2e} m"
-    tail = "" if r["success"] else f"  ({r['message']}, reached t = {r.get('reached_t')})"
-    return f"{r['steps']:,} steps, {wall}, max error {err}{tail}"
-
-
-def _plain(d):
-    return {k: (float(v) if isinstance(v, (int, float, np.floating)) else v)
-            for k, v in dict(d or {}).items()}
+    """Each Exudyn point matched with the fastest pysolver run at equal or smaller error."""
+    return provenance.headline(py_rows, ex_rows)
 
 
 def print_table(title, rows):

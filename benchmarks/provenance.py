@@ -1,5 +1,6 @@
-"""What a benchmark run records about where it ran, and the words of its ratios: the one copy
-the Exudyn work-precision scripts (joints.py, flyball.py) share."""
+"""What the Exudyn work-precision scripts (joints.py, flyball.py) share: the headline match
+of each Exudyn point with the fastest pysolver run at equal or smaller error, the words of its
+ratio, how a row prints, and what a run records about where it ran."""
 import datetime
 import importlib.util
 import os
@@ -8,6 +9,40 @@ import subprocess
 import sys
 
 import numpy as np
+
+
+def headline(py_rows, ex_rows, **keys):
+    """For each successful Exudyn point: the fastest successful pysolver run whose error is at
+    most Exudyn's, and Exudyn time / pysolver time (None when no pysolver run is that
+    accurate); `keys` names extra fields of the Exudyn row to copy (e.g. exudyn_model="model")."""
+    out = []
+    for ex in ex_rows:
+        if not ex["success"]:
+            continue
+        ok = [r for r in py_rows if r["success"] and r["max_err_m"] is not None
+              and r["max_err_m"] <= ex["max_err_m"]]
+        best = min(ok, key=lambda r: r["wall_s"]) if ok else None
+        out.append(dict(**{k: ex[v] for k, v in keys.items()}, exudyn_h=ex["h"],
+                        exudyn_wall_s=ex["wall_s"], exudyn_max_err_m=ex["max_err_m"],
+                        pysolver_integr_tol=best and best["integr_tol"],
+                        pysolver_wall_s=best and best["wall_s"],
+                        pysolver_max_err_m=best and best["max_err_m"],
+                        ratio=best and ex["wall_s"] / best["wall_s"]))
+    return out
+
+
+def fmt_row(r):
+    """One result row in words: steps, wall time (or failed), max error, why it stopped."""
+    wall = "failed" if r["wall_s"] is None else f"{r['wall_s']:.4g} s"
+    err = "-" if r["max_err_m"] is None else f"{r['max_err_m']:.2e} m"
+    tail = "" if r["success"] else f"  ({r['message']}, reached t = {r.get('reached_t')})"
+    return f"{r['steps']:,} steps, {wall}, max error {err}{tail}"
+
+
+def plain(d):
+    """A dict of numbers as plain floats (for JSON)."""
+    return {k: (float(v) if isinstance(v, (int, float, np.floating)) else v)
+            for k, v in dict(d or {}).items()}
 
 
 def speed(ratio):
