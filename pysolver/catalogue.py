@@ -257,6 +257,15 @@ TABLE = (
              ids=("sforce", None, None, "marker"), py_sysfnc=True, c_sysfnc=True),
     _element("SENVAL", "evaluate", "the value Sensor_Evaluate id stored when its sensor last "
              "fired (0 before)", "stored", c="PS_OP_SENVAL"),
+    Function("SPDP", "special", _FORCE_ARGS, None,
+             "force of Force_SpringDamper id, as SFORCE's (a torque for a ROTATIONAL one)",
+             reads=frozenset({"forces"}), ids=("springdamper", None, None, "marker"),
+             py_sysfnc=True),
+    Function("BUSH", "special", _FORCE_ARGS, None,
+             "force and torque of Force_Bushing id: comp 1 |force|, 2-4 force in rm's axes, 5 "
+             "|torque|, 6-8 torque; on I's body at I (jflag 0) or on J's at J (1)",
+             reads=frozenset({"forces"}), ids=("bushing", None, None, "marker"),
+             py_sysfnc=True),
     Function("JOINT", "special", _FORCE_ARGS, None,
              "reaction of Constraint_Joint id from its equations' multipliers: comp 1 |force|, "
              "2-4 force in rm's axes, 5 |torque|, 6-8 torque; on I's body at I (jflag 0) or "

@@ -102,3 +102,28 @@ def test_a_component_the_type_does_not_have_is_a_deck_error():
         pysolver.loads(DECK.replace('type="TORQUEONLY"', 'type="TORQUEONLY" fx_expression="1"'))
     assert (err.value.element, err.value.attribute) == ("Force_Vector_OneBody",
                                                         "fx_expression")
+
+
+def test_bush_reports_the_bushings_force_and_torque_on_either_body():
+    """BUSH(1, 0, comp, 5): the law's six components in J's axes (1e-12 against the
+    expressions); BUSH(1, 1, comp, 5) on J's body at J: -F and -T - d x F (d = oI - oJ);
+    comp 1 and 5 the magnitudes."""
+    exprs = [BY_HAND.split(f'{c}_expression="')[1].split('"')[0]
+             for c in ("fx", "fy", "fz", "tx", "ty", "tz")]
+    reqs = ('<Post_Request id="7" ' + " ".join(f'expr{k + 1}="BUSH(1,0,{c},5)"' for k, c in
+                                               enumerate((2, 3, 4, 6, 7, 8, 1, 5))) + "/>"
+            '<Post_Request id="8" ' + " ".join(f'expr{k + 1}="{e}"' for k, e in enumerate(exprs))
+            + ' expr7="DX(21,5,5)" expr8="DY(21,5,5)"/>'
+            '<Post_Request id="9" ' + " ".join(f'expr{k + 1}="BUSH(1,1,{c},5)"' for k, c in
+                                               enumerate((2, 3, 4, 6, 7, 8))) +
+            ' expr7="DZ(21,5,5)"/>')
+    res = pysolver.loads(DECK.replace("</Model>", reqs + "</Model>")).run()
+    assert res.success, res.message
+    on_i, law_v, on_j = res.request(7), res.request(8), res.request(9)
+    np.testing.assert_allclose(on_i[:, :6], law_v[:, :6], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(on_i[:, 6], np.linalg.norm(law_v[:, :3], axis=1), atol=1e-12)
+    np.testing.assert_allclose(on_i[:, 7], np.linalg.norm(law_v[:, 3:6], axis=1), atol=1e-12)
+    d = np.c_[law_v[:, 6:8], on_j[:, 6]]
+    np.testing.assert_allclose(on_j[:, :3], -law_v[:, :3], atol=1e-12)
+    np.testing.assert_allclose(on_j[:, 3:6], -law_v[:, 3:6] - np.cross(d, law_v[:, :3]),
+                               atol=1e-12)

@@ -114,3 +114,22 @@ def test_a_bad_spring_is_a_deck_error(attrs, attribute, words):
     with pytest.raises(DeckError, match=words) as err:
         pysolver.loads(text)
     assert (err.value.element, err.value.attribute) == ("Force_SpringDamper", attribute)
+
+
+def test_spdp_reports_the_springs_force_and_torque():
+    """SPDP(1, jflag, comp, 0): the hung spring's force on the point (and its opposite on
+    ground) along the line, equal to the law written out; SPDP(2, 0, 8, 0): the torsion
+    spring's torque about z, -k AZU - c WZ, through its turns."""
+    text = (TEST_DECKS / "springs.xml").read_text().replace("</Model>", (
+        '<Post_Request id="7" expr1="SPDP(1,0,2,0)" expr2="SPDP(1,0,3,0)" expr3="SPDP(1,1,3,0)" '
+        'expr4="(-100*(DM(20,1) - 1) - 0.4*VR(20,1))*DY(20,1)/DM(20,1)" '
+        'expr5="SPDP(2,0,8,0)" expr6="-2*AZU(30,1) - 0.05*WZ(30,1,1)" expr7="SPDP(1,0,1,0)"/>'
+        "</Model>"))
+    res = pysolver.loads(text).run()
+    assert res.success, res.message
+    q = res.request(7)
+    np.testing.assert_allclose(q[:, 0], 0, atol=1e-9)
+    np.testing.assert_allclose(q[:, 1], q[:, 3], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(q[:, 2], -q[:, 3], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(q[:, 4], q[:, 5], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(q[:, 6], np.abs(q[:, 3]), rtol=1e-9, atol=1e-9)

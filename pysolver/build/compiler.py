@@ -337,6 +337,12 @@ class Compiler:
             return self.penalty_force(tape, int(args[0][1]))[1]
         if name == "SFORCE":
             return self.sforce_measure(tape, *(int(a[1]) for a in args))
+        if name == "SPDP":                # a spring-damper is a scalar force under -id
+            sid, *rest = (int(a[1]) for a in args)
+            return self.sforce_measure(tape, -sid, *rest)
+        if name == "BUSH":                # a bushing is a vector force under -id
+            bid, *rest = (int(a[1]) for a in args)
+            return self.vforce_measure(tape, -bid, *rest)
         if name == "MOTION":
             return self.motion_measure(tape, *(int(a[1]) for a in args))
         if name == "JOINT":
@@ -493,6 +499,44 @@ class Compiler:
             out = tape.op(mul, tape.const(sign), tape.op(mul, f, ax))
         self.stack.pop()
         return out
+
+    def vforce_measure(self, tape, vid, jflag, comp, rm):
+        """A vector force's force (comp 1-4) or torque (5-8) on I's body at I (jflag 0), or on
+        the floating marker's body at that marker (1: -F, and -T - d x F with d = oI - oJ), in
+        rm's axes (a bushing's BUSH())."""
+        vf = self.model.vforces[vid]
+        mul, add, sub = lib.PS_OP_MUL, lib.PS_OP_ADD, lib.PS_OP_SUB
+        mref, sref = self.marker(tape, vf.ref)
+        mr, sr = self.marker(tape, rm)
+        comps = [self.lower(tape, e) for e in vf.exprs]
+
+        def resolved(vals):
+            # sum_j f_j (axis j of ref) . (axis c of rm), for c = x, y, z
+            out = []
+            for c in range(3):
+                v = tape.const(0.0)
+                for j in range(3):
+                    v = tape.op(add, v, tape.op(mul, vals[j], tape.emit(
+                        lib.PS_OP_AXDOT, mref, j, mr, c, sref, sr)))
+                out.append(v)
+            return out
+        force, torque = resolved(comps[:3]), resolved(comps[3:])
+        if jflag:
+            d = [self.measure(tape, n, [vf.i, vf.j, rm]) for n in ("DX", "DY", "DZ")]
+            dxf = [tape.op(sub, tape.op(mul, d[(c + 1) % 3], force[(c + 2) % 3]),
+                           tape.op(mul, d[(c + 2) % 3], force[(c + 1) % 3])) for c in range(3)]
+            minus = tape.const(-1.0)
+            torque = [tape.op(mul, minus, tape.op(add, t, x)) for t, x in zip(torque, dxf)]
+            force = [tape.op(mul, minus, f) for f in force]
+        if comp in (2, 3, 4):
+            return force[comp - 2]
+        if comp in (6, 7, 8):
+            return torque[comp - 6]
+        parts = force if comp == 1 else torque
+        total = tape.op(add, tape.op(mul, parts[0], parts[0]),
+                        tape.op(add, tape.op(mul, parts[1], parts[1]),
+                                tape.op(mul, parts[2], parts[2])))
+        return tape.op(lib.PS_OP_SQRT, total)
 
     def motion_measure(self, tape, mid, jflag=None, comp=None, rm=0):
         """MOTION(id): the reaction along (about) the motion's axis of J; MOTION(id, jflag,

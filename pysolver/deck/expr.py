@@ -275,7 +275,8 @@ def _check(node):
             want = str(lo) if lo == hi else f"{lo} to {hi}"
             raise ExpressionError(f"{name} takes {want} arguments, got {len(args)}", col)
         if name in ID_ARGS:
-            nid = len(args) if name not in ("SFORCE", "MOTION", "JOINT") else 1
+            elements = ("SFORCE", "MOTION", "JOINT", "SPDP", "BUSH")
+            nid = len(args) if name not in elements else 1
             for a in args[:nid]:
                 if a[0] != "num" or a[1] != int(a[1]) or a[1] < 0:
                     raise ExpressionError(f"{name} expects {ID_ARGS[name]} ids as integer "
@@ -286,7 +287,7 @@ def _check(node):
             if name == "MOTION" and len(args) not in (1, 4):
                 raise ExpressionError("MOTION(id) is the reaction along the motion's axis; "
                                       "MOTION(id, jflag, comp, rm) a component", col)
-            if name in ("SFORCE", "MOTION", "JOINT") and len(args) == 4:
+            if name in elements and len(args) == 4:
                 for a, what in zip(args[1:], ("jflag (0 or 1)", "comp (1..8)", "rm marker id")):
                     if a[0] != "num" or a[1] != int(a[1]):
                         raise ExpressionError(f"SFORCE expects {what} as an integer literal", col)

@@ -10,7 +10,8 @@ def check_references(model):
     tables = {"marker": model.markers, "variable": model.variables,
               "penalty": model.penalties, "sforce": model.sforces,
               "evaluate": model.evaluates, "motion": model.motions, "joint": model.joints,
-              "body": model.bodies}
+              "body": model.bodies, "springdamper": model.springdampers,
+              "bushing": model.bushings}
     where = model._where
     for se in model.sensors.values():
         if se.evaluate_id is not None and se.evaluate_id not in model.evaluates:
