@@ -233,6 +233,12 @@ TABLE = (
                f"A{c}(i, j) unwrapped: continuous through every turn from its value at the "
                "start (in (-pi, pi])", required=1, reads=_POS, ids=("marker", "marker"),
                py_sysfnc=True) for c in "XYZ"),
+    *(Function(name, "special", ("x", "z", "id", "order"), None,
+               f"{what} of Reference_Spline id at x (z: 0, curves only), or its derivative of "
+               "order 1 or 2", required=3, ids=(None, None, "spline", None), py_sysfnc=False)
+      for name, what in (("AKISPL", "Akima's cubic spline"),
+                         ("CUBSPL", "the cubic spline (not-a-knot ends)"),
+                         ("LINSPL", "the broken line"), ("QUISPL", "the quintic spline"))),
     Function("ORIENT", "special", ("system", "comp", "i", "j"), None,
              "component comp of the orientation of i relative to j in convention system (27: "
              "the Euler parameters e0..e3 with e0 >= 0, the one pysolver computes)",
@@ -407,6 +413,8 @@ ELEMENTS = (
             "the tracked angle of a rotation held through any number of turns (a SCREW or "
             "RACK_PINION joint, a coupler's rotation): no deck element of its own",
             c="PS_EL_TURN", ints=("w:slot", "s:state"), values=1),
+    Element(("Reference_Spline",), "spline", "splines", "SPLINE",
+            "x-y data of a curve for AKISPL, CUBSPL, LINSPL, QUISPL"),
     Element(("Post_Graphic",), "graphic", "graphics", "GRAPHICS",
             "geometry kept for the 3-D view (no effect on the motion)"),
     Element(("LoadControl",), "loadcontrol", "controls", "LOADCONTROL",

@@ -28,6 +28,7 @@ from .records import (  # noqa: F401 - the records are the model's vocabulary
     Sensor,
     Simulate,
     Source,
+    Spline,
     Static,
     UserSub,
     Variable,

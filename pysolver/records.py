@@ -140,6 +140,17 @@ class VectorForce:
 
 
 @record
+class Spline:
+    """Reference_Spline: the curve through the points (x, y), x strictly increasing; outside
+    them a line (linear_extrap) or a parabola (pysolver.build.splines)."""
+    id: int
+    x: tuple
+    y: tuple
+    linear_extrap: bool = False
+    label: str = ""
+
+
+@record
 class Graphic:
     """Post_Graphic (Adams GRAPHICS): geometry for the 3-D view, `attrs` its other attributes
     as written (their marker references checked at load); no effect on the motion."""

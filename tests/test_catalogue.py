@@ -129,19 +129,23 @@ def test_the_jacobian_deck_uses_every_function():
     all_joints.xml, also in test_jacobian.py, check them; KE and WDTX..WDTZ, which would take
     all_functions.xml past the size generated looped, are in springs.xml's and
     nonholonomic.xml's forces, also in test_jacobian.py, and AXU..AZU, tracked angles, in
-    springs.xml's forces, as is SPDP; ORIENT, an output whose derivative is singular where a
+    springs.xml's forces, as are SPDP and the splines (LINSPL of TIME: its kinks are not in
+    the state); ORIENT, an output whose derivative is singular where a
     parameter passes 0, in springs.xml's request; BUSH, which would remove the bushing the
     bushing tests replace, is compared with the bushing's law in test_bushing.py)."""
     text = (TEST_DECKS / "all_functions.xml").read_text().upper()
     used = set(re.findall(r"\b([A-Z][A-Z0-9]*)\s*\(", text))
     assert set(catalogue.FUNCTIONS) - used == {"SENVAL", "MOTION", "JOINT", "KE", "WDTX",
                                                 "WDTY", "WDTZ", "ORIENT", "AXU", "AYU",
-                                                "AZU", "SPDP", "BUSH"}
+                                                "AZU", "SPDP", "BUSH", "AKISPL",
+                                                "CUBSPL", "LINSPL", "QUISPL"}
     assert "JOINT(" in (TEST_DECKS / "all_joints.xml").read_text()
     assert "KE(4)" in (TEST_DECKS / "springs.xml").read_text()
     assert "ORIENT(27" in (TEST_DECKS / "springs.xml").read_text()
     assert all(f"A{c}U(" in (TEST_DECKS / "springs.xml").read_text() for c in "XYZ")
     assert "SPDP(4" in (TEST_DECKS / "springs.xml").read_text()
+    assert all(f"{f}(" in (TEST_DECKS / "springs.xml").read_text() for f in
+               ("AKISPL", "CUBSPL", "LINSPL", "QUISPL"))
     assert all(f"WDT{c}(" in (TEST_DECKS / "nonholonomic.xml").read_text() for c in "XYZ")
 
 

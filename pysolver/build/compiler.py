@@ -20,7 +20,7 @@ from ..deck.expr import CONSTANTS
 from ..deck.references import unwrapped_angles, velocity_level
 from ..errors import DeckError
 from ..rotations import e_from_rot
-from . import angles, energy
+from . import angles, energy, splines
 from .bindings import lib
 
 W = lib.PS_INSTR_WIDTH
@@ -354,6 +354,10 @@ class Compiler:
             key = ("unwrap", (name, ids[0], ids[1]), 0)
             s, w = self.turn_error(tape, self.turned_angle(key), key)
             return tape.op(lib.PS_OP_ADD, s, w)
+        if name in splines.NAMES:
+            spline = self.model.splines[int(args[2][1])]
+            return splines.lower_spline(self, tape, name, self.lower(tape, args[0]), spline,
+                                        int(args[3][1]) if len(args) > 3 else 0)
         if name == "ORIENT":
             return angles.lower_orient(self, tape, *[int(a[1]) for a in args])
         if name == "KE":

@@ -30,6 +30,8 @@ MEASURES = {f.name: f.arity for f in catalogue.of_kind("measure")}
 FUNCTIONS = {name: f.arity for name, f in catalogue.FUNCTIONS.items()}
 #: Functions whose arguments are element ids (integer literals): the kind of the first.
 ID_ARGS = {name: f.ids[0] for name, f in catalogue.FUNCTIONS.items() if f.ids}
+#: The interpolation functions: x and z are expressions, the spline id and order literals.
+SPLINES = ("AKISPL", "CUBSPL", "LINSPL", "QUISPL")
 
 _TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eEdD][+-]?\d+)?|\.\d+(?:[eEdD][+-]?\d+)?)"
                     r"|([A-Za-z_][A-Za-z_0-9]*)|(\*\*|[-+*/(),:]))")
@@ -274,6 +276,16 @@ def _check(node):
         if not lo <= len(args) <= hi:
             want = str(lo) if lo == hi else f"{lo} to {hi}"
             raise ExpressionError(f"{name} takes {want} arguments, got {len(args)}", col)
+        if name in SPLINES:
+            _check(args[0])
+            _check(args[1])
+            for a, what in zip(args[2:], ("spline id", "derivative order (0, 1 or 2)")):
+                if a[0] != "num" or a[1] != int(a[1]) or a[1] < 0:
+                    raise ExpressionError(f"{name}(x, z, id[, order]) expects the {what} as "
+                                          "an integer literal", col)
+            if len(args) == 4 and args[3][1] > 2:
+                raise ExpressionError(f"{name}: the derivative order is 0, 1 or 2", col)
+            return
         if name in ID_ARGS:
             elements = ("SFORCE", "MOTION", "JOINT", "SPDP", "BUSH")
             nid = len(args) if name not in elements else 1

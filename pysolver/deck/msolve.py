@@ -1,5 +1,9 @@
 """Statement functions for Python-format decks, in the style of Adams/MotionSolve.
 
+Longer than 420 lines because it is the statement language itself: one short function per
+statement (forty of them), each a table from keywords to XML attributes; split by topic they
+would only import each other.
+
 A Python deck is a script that calls these functions::
 
     from pysolver.msolve import *
@@ -23,8 +27,8 @@ import threading
 _STATE = threading.local()
 
 __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "SPRINGDAMPER",
-           "VFORCE", "VTORQUE", "GFORCE", "BUSHING", "GRAPHICS", "MOTION", "JOINT", "JPRIM",
-           "GCON", "COUPLER",
+           "VFORCE", "VTORQUE", "GFORCE", "BUSHING", "GRAPHICS", "SPLINE", "MOTION", "JOINT",
+           "JPRIM", "GCON", "COUPLER",
            "LOADCONTROL", "VARIABLE",
            "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM",
            "py_sysfnc", "py_sysary", "py_errmes"]
@@ -193,31 +197,28 @@ def SPRINGDAMPER(id, I=None, J=None, TRANSLATION=False, ROTATION=False,  # noqa:
           id, I=I, J=J, **kw)
 
 
+def _vector(stmt, kind, comps, id, kw):
+    _emit(stmt, "Force_Vector_TwoBody",
+          {"I": "i_marker_id", "JFLOAT": "j_floating_marker_id", "RM": "ref_marker_id",
+           **{c: f"{c.lower()}_expression" for c in comps}, "LABEL": "label"}, id,
+          {"type": kind}, **kw)
+
+
 def VFORCE(id, **kw):
     """Vector force (Force_Vector_TwoBody): I (where it acts), JFLOAT (the body taking the
     reaction, at the same point), RM (the marker whose axes resolve FX, FY, FZ; global if
-    omitted), FX, FY, FZ, LABEL."""
-    _emit("VFORCE", "Force_Vector_TwoBody",
-          {"I": "i_marker_id", "JFLOAT": "j_floating_marker_id", "RM": "ref_marker_id",
-           "FX": "fx_expression", "FY": "fy_expression", "FZ": "fz_expression",
-           "LABEL": "label"}, id, **kw)
+    omitted), FX, FY, FZ, LABEL. VTORQUE takes TX, TY, TZ instead, GFORCE all six."""
+    _vector("VFORCE", "FORCEONLY", ("FX", "FY", "FZ"), id, kw)
 
 
 def VTORQUE(id, **kw):
     """Vector torque (Force_Vector_TwoBody, TORQUEONLY): I, JFLOAT, RM, TX, TY, TZ, LABEL."""
-    _emit("VTORQUE", "Force_Vector_TwoBody",
-          {"I": "i_marker_id", "JFLOAT": "j_floating_marker_id", "RM": "ref_marker_id",
-           "TX": "tx_expression", "TY": "ty_expression", "TZ": "tz_expression",
-           "LABEL": "label"}, id, {"type": "TORQUEONLY"}, **kw)
+    _vector("VTORQUE", "TORQUEONLY", ("TX", "TY", "TZ"), id, kw)
 
 
 def GFORCE(id, **kw):
-    """General force (Force_Vector_TwoBody, FORCEANDTORQUE): I, JFLOAT, RM, FX, FY, FZ, TX,
-    TY, TZ, LABEL."""
-    _emit("GFORCE", "Force_Vector_TwoBody",
-          {"I": "i_marker_id", "JFLOAT": "j_floating_marker_id", "RM": "ref_marker_id",
-           **{f"{c}": f"{c.lower()}_expression" for c in ("FX", "FY", "FZ", "TX", "TY", "TZ")},
-           "LABEL": "label"}, id, {"type": "FORCEANDTORQUE"}, **kw)
+    """General force (FORCEANDTORQUE): I, JFLOAT, RM, FX, FY, FZ, TX, TY, TZ, LABEL."""
+    _vector("GFORCE", "FORCEANDTORQUE", ("FX", "FY", "FZ", "TX", "TY", "TZ"), id, kw)
 
 
 def _triple(prefix):
@@ -245,6 +246,18 @@ def GRAPHICS(id, TYPE=None, **kw):
     _emit("GRAPHICS", "Post_Graphic", {"TYPE": "type", "LABEL": "label",
                                        **{k.upper(): k.lower() for k in kw}},
           id, TYPE=TYPE, **kw)
+
+
+def SPLINE(id, X=None, Y=None, LINEAR_EXTRAPOLATE=False, LABEL=""):
+    """Curve data (Reference_Spline) for AKISPL, CUBSPL, LINSPL, QUISPL: X (strictly
+    increasing) and Y, LINEAR_EXTRAPOLATE, LABEL."""
+    pairs = " ".join(f"{float(a)!r} {float(b)!r}" for a, b in zip(X or (), Y or ()))
+    if len(X or ()) != len(Y or ()):
+        pairs += " 0"                     # an odd count: the loader says x and y differ
+    _emit("SPLINE", "Reference_Spline", {"LINEAR_EXTRAPOLATE": "linear_extrap",
+                                         "LABEL": "label"},
+          id, {"#text": pairs} if pairs else None, LINEAR_EXTRAPOLATE=LINEAR_EXTRAPOLATE,
+          LABEL=LABEL)
 
 
 def _motion_type(val):

@@ -3,6 +3,7 @@ cycles of VARVAL, PFORCE and SFORCE references, and penalty constraints g(q, t) 
 displacement measures only."""
 from .. import catalogue
 from . import expr as ex
+from .splinedata import FEWEST
 
 
 def check_references(model):
@@ -11,7 +12,7 @@ def check_references(model):
               "penalty": model.penalties, "sforce": model.sforces,
               "evaluate": model.evaluates, "motion": model.motions, "joint": model.joints,
               "body": model.bodies, "springdamper": model.springdampers,
-              "bushing": model.bushings}
+              "bushing": model.bushings, "spline": model.splines}
     where = model._where
     for se in model.sensors.values():
         if se.evaluate_id is not None and se.evaluate_id not in model.evaluates:
@@ -27,6 +28,16 @@ def check_references(model):
                 if i not in tables[kind]:
                     raise ctx.error(f"the expression refers to {kind} id {i}, which does not "
                                     "exist", attr)
+    # each interpolation function has the points it needs
+    for key, attr, tree in items:
+        for n in ex.nodes(tree):
+            if n[0] == "call" and n[1] in FEWEST:
+                sp = model.splines[int(n[2][2][1])]
+                if len(sp.x) < FEWEST[n[1]]:
+                    ctx = where[key]
+                    ctx.id = key[1]
+                    raise ctx.error(f"{n[1]} needs at least {FEWEST[n[1]]} points; "
+                                    f"Reference_Spline {sp.id} has {len(sp.x)}", attr)
     # variable cycles and penalty dependence on velocities
     for key, attr, tree in items:
         ctx = where[key]

@@ -176,6 +176,11 @@ SCHEMA = {
                         "type": (("EXPRESSION", "USERSUB"), OPT, "EXPRESSION"),
                         "expr": ("expr", OPT, None), **_USERSUB},
     "Stop": {},
+    "Reference_Spline": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                         "num_xy_pair": ("id", OPT, None),
+                         "linear_extrap": ("bool", OPT, False),
+                         "linear_extrapolate": ("bool", OPT, False),
+                         "#text": ("str", OPT, None)},
     # kept for the 3-D view and the output settings: the attributes named are checked, the
     # rest ("*") kept as written (docs/deck-language.md, "Kept, not simulated")
     "Post_Graphic": {"id": ("id", REQ, None), "label": ("str", OPT, ""),

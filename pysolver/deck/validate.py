@@ -19,6 +19,7 @@ from ..model import (
     ScalarForce,
     Sensor,
     Simulate,
+    Spline,
     Static,
     Variable,
 )
@@ -31,6 +32,7 @@ from .motions import add_joint_motion, add_motion
 from .references import check_references, velocity_level
 from .requests import marker_channels
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
+from .splinedata import check_points, parse_points
 from .springs import add_springdamper
 from .tasks import add_loadcontrol
 from .vectors import add_bushing, add_vforce
@@ -144,6 +146,22 @@ def _check_static_motions(model, source):
                         f"displacement, and {what}, or run the scene as a transient",
                         file=source.file, line=static[0].line, element="Simulate",
                         attribute="analysis_type")
+
+
+def add_spline(model, ctx, a):
+    """A Reference_Spline: x y pairs as its text (or X, Y from the SPLINE statement)."""
+    ctx.id = a["id"]
+    if a.get("#text") is None:
+        raise ctx.error("a Reference_Spline holds its x y pairs as the element's text", "#text")
+    x, y = parse_points(ctx, a["#text"], "#text")
+    if a["num_xy_pair"] is not None and a["num_xy_pair"] != len(x):
+        raise ctx.error(f"num_xy_pair is {a['num_xy_pair']} but the text has {len(x)} pairs",
+                        "num_xy_pair")
+    check_points(ctx, x, y, "#text")
+    model.splines[a["id"]] = Spline(a["id"], x, y,
+                                    bool(a["linear_extrap"] or a["linear_extrapolate"]),
+                                    a["label"])
+    model._where[("spline", a["id"])] = ctx
 
 
 def _once(ctx, once, tag):
@@ -329,6 +347,8 @@ def _force_like(model, ctx, a):
                                              a["j_marker_id"], tree, text, a["label"], sub,
                                              action_only=a["is_action_only"])
         model._where[("sforce", a["id"])] = ctx
+    elif tag == "Reference_Spline":
+        add_spline(model, ctx, a)
     elif tag == "Post_Graphic":
         for key, v in a.items():             # every *marker_id / *_id names a marker
             if key.endswith("marker_id") and v is not None:

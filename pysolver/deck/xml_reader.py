@@ -104,4 +104,6 @@ def _element(el, file):
                             line=el.sourceline, element=tag, attribute=key)
         attrs[low] = val
         names[low] = etree.QName(key).localname
+    if tag.lower() == "reference_spline" and el.text and el.text.strip():
+        attrs["#text"], names["#text"] = el.text, "(the element's text)"
     return tag, attrs, el.sourceline, names

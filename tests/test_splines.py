@@ -1,0 +1,103 @@
+"""Reference_Spline and AKISPL, CUBSPL, LINSPL, QUISPL: values and derivatives against SciPy
+on the same knots, Adams' extrapolation, the statement, bad input."""
+import numpy as np
+import pytest
+from scipy.interpolate import Akima1DInterpolator, CubicSpline, make_interp_spline
+
+import pysolver
+from pysolver import DeckError
+
+X = np.array([0, 0.4, 1.0, 1.3, 2.0, 2.8, 3.5])
+Y = np.sin(X) * 2 + 0.3 * X ** 2
+POINTS = "\n".join(f"{a!r} {b!r}" for a, b in zip(X.tolist(), Y.tolist()))
+
+
+def deck(requests, spline_attrs='num_xy_pair="7"', points=POINTS):
+    """A point moving at 1 m/s along x from -0.5 through the data and past its end, so x =
+    DX(20) sweeps the spline, both extrapolations included."""
+    return f"""<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+      <Reference_Marker id="1" body_id="1"/><Reference_Marker id="20" body_id="2" pos_x="-0.5"/>
+      <Body_Point id="2" cg_id="20" mass="1" v_ic_x="1"/>
+      <Reference_Spline id="7" {spline_attrs}>
+      {points}
+      </Reference_Spline>{requests}</Model>
+      <Simulate analysis_type="Transient" end_time="4.5" print_interval="0.01"/></MotionSolve>"""
+
+
+@pytest.mark.parametrize("kernel", ["tapes", "generated"])
+def test_each_function_is_scipys_interpolant_with_its_derivatives(kernel):
+    """Inside the data, every function and derivative order equals SciPy's (interp1d-like
+    broken line, CubicSpline not-a-knot, Akima1DInterpolator, quintic make_interp_spline) to
+    1e-13."""
+    calls = [(f, n) for f in ("LINSPL", "CUBSPL", "AKISPL", "QUISPL") for n in (0, 1, 2)]
+    reqs = "".join(f'<Post_Request id="{10 + k}" ' + " ".join(
+        f'expr{j + 1}="{f}(DX(20),0,7,{n})"' for j, (f, n) in enumerate(calls[4 * k:4 * k + 4]))
+        + "/>" for k in range(3))
+    res = pysolver.loads(deck(reqs)).run(kernel=kernel)
+    assert res.success, res.message
+    xs = -0.5 + res.t
+    inside = (xs > 0) & (xs < 3.5)
+    ref = {"LINSPL": make_interp_spline(X, Y, k=1), "CUBSPL": CubicSpline(X, Y),
+           "AKISPL": Akima1DInterpolator(X, Y), "QUISPL": make_interp_spline(X, Y, k=5)}
+    got = np.hstack([res.request(10 + k)[:, :4] for k in range(3)])
+    for j, (f, n) in enumerate(calls):
+        want = ref[f](xs[inside], n) if not (f == "LINSPL" and n == 2) else 0 * xs[inside]
+        np.testing.assert_allclose(got[inside, j], want, rtol=0, atol=1e-13, err_msg=(f, n))
+
+
+@pytest.mark.parametrize("linear", [False, True])
+def test_outside_the_data_a_parabola_or_a_line(linear):
+    """Adams' extrapolation: the parabola through the first (last) three points, or with
+    linear_extrap the line through the first (last) two."""
+    attrs = 'linear_extrap="TRUE"' if linear else ""
+    res = pysolver.loads(deck('<Post_Request id="1" expr1="CUBSPL(DX(20),0,7)"/>',
+                              attrs)).run()
+    xs, q = -0.5 + res.t, res.request(1)[:, 0]
+    k = 2 if linear else 3
+    left, right = xs < 0, xs > 3.5
+    np.testing.assert_allclose(q[left], np.polyval(np.polyfit(X[:k], Y[:k], k - 1), xs[left]),
+                               rtol=0, atol=1e-12)
+    np.testing.assert_allclose(q[right], np.polyval(np.polyfit(X[-k:], Y[-k:], k - 1),
+                                                    xs[right]), rtol=0, atol=1e-12)
+
+
+def test_the_statement(tmp_path):
+    path = tmp_path / "s.py"
+    path.write_text("from pysolver.msolve import *\nPART(1, GROUND=True)\nMARKER(1, PART=1)\n"
+                    "MARKER(20, PART=2, QP=[0.5, 0, 0])\nPOINT_MASS(2, MASS=1, CM=20)\n"
+                    f"SPLINE(7, X={X.tolist()}, Y={Y.tolist()})\n"
+                    "REQUEST(1, F1='AKISPL(DX(20), 0, 7)')\n"
+                    "SIMULATE(TYPE='TRANSIENT', END=0.1, DTOUT=0.1)\n")
+    res = pysolver.load(path).run()
+    assert res.request(1)[0, 0] == pytest.approx(float(Akima1DInterpolator(X, Y)(0.5)),
+                                                 abs=1e-14)
+
+
+@pytest.mark.parametrize("spline, request_, attribute, words", [
+    ('num_xy_pair="3"', 'expr1="LINSPL(DX(20),0,7)"', "num_xy_pair", "the text has 7"),
+    ("", 'expr1="CUBSPL(DX(20),0,9)"', "expr1", "spline id 9, which does not exist"),
+    ("", 'expr1="CUBSPL(DX(20),0,7,3)"', "expr1", "order is 0, 1 or 2"),
+])
+def test_bad_spline_use_is_a_deck_error(spline, request_, attribute, words):
+    with pytest.raises(DeckError, match=words) as err:
+        pysolver.loads(deck(f'<Post_Request id="1" {request_}/>', spline))
+    assert err.value.attribute == attribute
+
+
+@pytest.mark.parametrize("points, words", [
+    ("0 1 2 3 1 4", "x must be strictly increasing; x\\[2\\] = 1 follows x\\[1\\] = 2"),
+    ("0 1 2", "x y pairs; got 3 numbers"),
+    ("0 1", "at least 2 points"),
+])
+def test_bad_spline_data_is_a_deck_error(points, words):
+    with pytest.raises(DeckError, match=words) as err:
+        pysolver.loads(deck("", "", points))
+    assert err.value.element == "Reference_Spline"
+
+
+def test_too_few_points_for_a_function_is_a_deck_error():
+    with pytest.raises(DeckError, match="QUISPL needs at least 6 points; Reference_Spline 7 "
+                                        "has 4") as err:
+        pysolver.loads(deck('<Post_Request id="1" expr1="QUISPL(DX(20),0,7)"/>', "",
+                            "0 0 1 1 2 4 3 9"))
+    assert err.value.attribute == "expr1"
