@@ -49,7 +49,6 @@ h = 1e-3 only. Writes benchmarks/data/flyball_work_precision.json (every number,
 machine, the versions and the commit pysolver was imported from) and prints the tables.
 """
 import argparse
-import json
 import math
 import os
 import pathlib
@@ -400,14 +399,14 @@ def main(argv=None):
     print("pysolver: integr_tol sweep", flush=True)
     py, warm = pysolver_sweep(TOLS[q], repeat, s_ref)
     out["pysolver"], out["pysolver_warmup"] = py, warm
-    save(out, args.out)                      # so far, in case the run is stopped
+    provenance.save(out, args.out)                      # so far, in case the run is stopped
 
     out["exudyn"], conv = {}, {}
     for name, hs in (("bodies", BODIES_H[q]), ("kinematic_tree", TREE_H[q])):
         print(f"Exudyn {name}: step sweep", flush=True)
         out["exudyn"][name] = [exudyn_row(name, h, ex_repeat, s_ref) for h in hs]
         conv[name] = convergence(out["exudyn"][name])
-        save(out, args.out)
+        provenance.save(out, args.out)
     out["exudyn_convergence"] = conv
     ex_rows = [r for rows in out["exudyn"].values() for r in rows]
     out["headline"] = headline(py, ex_rows)
@@ -415,18 +414,7 @@ def main(argv=None):
     print_table(py + ex_rows)
     print_headline(out["headline"])
     print_convergence(conv)
-    out["runtime_s"] = time.perf_counter() - t_start
-    out["machine"]["load_average_at_end"] = list(os.getloadavg())
-    out["machine"]["commit_at_end"] = provenance.git(PYSOLVER_ROOT, "rev-parse", "HEAD")
-    save(out, args.out)
-    print(f"\nwrote {args.out} in {out['runtime_s']:.0f} s")
-
-
-def save(out, path):
-    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-    with open(path, "w") as f:
-        json.dump(out, f, indent=1)
-        f.write("\n")
+    provenance.finish(out, args.out, t_start, PYSOLVER_ROOT)
 
 
 if __name__ == "__main__":

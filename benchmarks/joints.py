@@ -217,14 +217,14 @@ def main(argv=None):
     ex = exudyn_pendulum_sweep(PEND_H[q], repeat)
     out["problems"]["pendulum_revolute"] = dict(pysolver=py, exudyn=ex, warmup=warm,
                                                 headline=headline(py, ex))
-    save(out, args.out)                    # so far, in case the run is stopped
+    provenance.save(out, args.out)                    # so far, in case the run is stopped
 
     print("iftomm_a02_fourbar (N = 40, 20 s): B0 position error", flush=True)
     ref = reference("iftomm_a02_fourbar", "B0_x", "B0_y")
     py, warm = pysolver_sweep(DECKS / "iftomm_a02_fourbar.xml", A02_TOLS[q], 1, ref,
                               probe=None if args.quick else A02_PROBE)
     out["problems"]["iftomm_a02_fourbar"] = dict(pysolver=py, warmup=warm)
-    save(out, args.out)
+    provenance.save(out, args.out)
     ex = exudyn_a02_sweep(A02_H[q])
     out["problems"]["iftomm_a02_fourbar"] = dict(pysolver=py, exudyn=ex, warmup=warm,
                                                  headline=headline(py, ex))
@@ -232,18 +232,7 @@ def main(argv=None):
     for name, prob in out["problems"].items():
         print_table(name, prob["pysolver"] + prob["exudyn"])
         print_headline(name, prob["headline"])
-    out["runtime_s"] = time.perf_counter() - t_start
-    out["machine"]["load_average_at_end"] = list(os.getloadavg())
-    out["machine"]["commit_at_end"] = provenance.git(PYSOLVER_ROOT, "rev-parse", "HEAD")
-    save(out, args.out)
-    print(f"\nwrote {args.out} in {out['runtime_s']:.0f} s")
-
-
-def save(out, path):
-    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-    with open(path, "w") as f:
-        json.dump(out, f, indent=1)
-        f.write("\n")
+    provenance.finish(out, args.out, t_start, PYSOLVER_ROOT)
 
 
 if __name__ == "__main__":

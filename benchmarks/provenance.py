@@ -3,10 +3,12 @@ of each Exudyn point with the fastest pysolver run at equal or smaller error, th
 ratio, how a row prints, and what a run records about where it ran."""
 import datetime
 import importlib.util
+import json
 import os
 import platform
 import subprocess
 import sys
+import time
 
 import numpy as np
 
@@ -85,3 +87,20 @@ def machine(pysolver, root):
                 kernel_module=importlib.util.find_spec("pysolver._kernel").origin,
                 platform=platform.platform(), cpu=cpu, cpus=os.cpu_count(),
                 load_average_at_start=list(os.getloadavg()))
+
+
+def save(out, path):
+    """Write the report's JSON (its folder made)."""
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    with open(path, "w") as f:
+        json.dump(out, f, indent=1)
+        f.write("\n")
+
+
+def finish(out, path, t_start, root):
+    """Stamp the run's length, the load and the commit at its end, save it and say so."""
+    out["runtime_s"] = time.perf_counter() - t_start
+    out["machine"]["load_average_at_end"] = list(os.getloadavg())
+    out["machine"]["commit_at_end"] = git(root, "rev-parse", "HEAD")
+    save(out, path)
+    print(f"\nwrote {path} in {out['runtime_s']:.0f} s")
