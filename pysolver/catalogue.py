@@ -239,6 +239,14 @@ TABLE = (
       for name, what in (("AKISPL", "Akima's cubic spline"),
                          ("CUBSPL", "the cubic spline (not-a-knot ends)"),
                          ("LINSPL", "the broken line"), ("QUISPL", "the quintic spline"))),
+    *(Function(name, "special", ("i", "j", "k"), None,
+               f"{what} acting at marker i (from the elements between i and j when j is not 0), "
+               "in k's axes: forces and constraint forces (pysolver.build.netforce)",
+               required=1, reads=frozenset({"forces"}), ids=("marker",) * 3, py_sysfnc=True)
+      for name, what in (("FX", "x of the net force"), ("FY", "y of the net force"),
+                         ("FZ", "z of the net force"), ("FM", "magnitude of the net force"),
+                         ("TX", "x of the net torque"), ("TY", "y of the net torque"),
+                         ("TZ", "z of the net torque"), ("TM", "magnitude of the net torque"))),
     Function("ORIENT", "special", ("system", "comp", "i", "j"), None,
              "component comp of the orientation of i relative to j in convention system (27: "
              "the Euler parameters e0..e3 with e0 >= 0, the one pysolver computes)",

@@ -132,13 +132,15 @@ def test_the_jacobian_deck_uses_every_function():
     springs.xml's forces, as are SPDP and the splines (LINSPL of TIME: its kinks are not in
     the state); ORIENT, an output whose derivative is singular where a
     parameter passes 0, in springs.xml's request; BUSH, which would remove the bushing the
-    bushing tests replace, is compared with the bushing's law in test_bushing.py)."""
+    bushing tests replace, is compared with the bushing's law in test_bushing.py; FX..TM, sums
+    of the element force functions, are compared with them in test_netforce.py)."""
     text = (TEST_DECKS / "all_functions.xml").read_text().upper()
     used = set(re.findall(r"\b([A-Z][A-Z0-9]*)\s*\(", text))
     assert set(catalogue.FUNCTIONS) - used == {"SENVAL", "MOTION", "JOINT", "KE", "WDTX",
                                                 "WDTY", "WDTZ", "ORIENT", "AXU", "AYU",
                                                 "AZU", "SPDP", "BUSH", "AKISPL",
-                                                "CUBSPL", "LINSPL", "QUISPL"}
+                                                "CUBSPL", "LINSPL", "QUISPL", "FX", "FY",
+                                                "FZ", "FM", "TX", "TY", "TZ", "TM"}
     assert "JOINT(" in (TEST_DECKS / "all_joints.xml").read_text()
     assert "KE(4)" in (TEST_DECKS / "springs.xml").read_text()
     assert "ORIENT(27" in (TEST_DECKS / "springs.xml").read_text()

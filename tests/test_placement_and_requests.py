@@ -161,7 +161,6 @@ def test_a_marker_request_is_its_eight_expressions(kind, exprs):
     ('type="MARKER_VELOCITY"', "i_marker_id", "needs i_marker_id"),
     ('type="MARKER_DISPLACEMENT" i_marker_id="21" expr1="DX(21)"', "expr1",
      "computes its channels"),
-    ('type="MARKER_FORCE" i_marker_id="21"', "type", "not supported yet"),
 ])
 def test_a_bad_marker_request_is_a_deck_error(attrs, attribute, words):
     with pytest.raises(DeckError, match=words) as err:

@@ -20,7 +20,7 @@ from ..deck.expr import CONSTANTS
 from ..deck.references import unwrapped_angles, velocity_level
 from ..errors import DeckError
 from ..rotations import e_from_rot
-from . import angles, energy, splines
+from . import angles, energy, netforce, splines
 from .bindings import lib
 
 W = lib.PS_INSTR_WIDTH
@@ -358,6 +358,8 @@ class Compiler:
             spline = self.model.splines[int(args[2][1])]
             return splines.lower_spline(self, tape, name, self.lower(tape, args[0]), spline,
                                         int(args[3][1]) if len(args) > 3 else 0)
+        if name in netforce.NAMES:
+            return netforce.lower_net(self, tape, name, [int(a[1]) for a in args])
         if name == "ORIENT":
             return angles.lower_orient(self, tape, *[int(a[1]) for a in args])
         if name == "KE":

@@ -14,7 +14,7 @@ radians, as every angle pysolver reports:
 """
 
 #: Marker request types pysolver does not compute yet, and why.
-NOT_YET = {"MARKER_FORCE": "it needs the net force functions FX..TZ"}
+NOT_YET = {}
 
 #: Channel names and functions of each marker request type (None: the unused channel).
 CHANNELS = {
@@ -24,6 +24,9 @@ CHANNELS = {
     "MARKER_VELOCITY": (("vm", "VM", "ij"), ("vx", "VX", "ijr"), ("vy", "VY", "ijr"),
                         ("vz", "VZ", "ijr"), ("wm", "WM", "ij"), ("wx", "WX", "ijr"),
                         ("wy", "WY", "ijr"), ("wz", "WZ", "ijr")),
+    "MARKER_FORCE": (("fm", "FM", "ij"), ("fx", "FX", "ijr"), ("fy", "FY", "ijr"),
+                     ("fz", "FZ", "ijr"), ("tm", "TM", "ij"), ("tx", "TX", "ijr"),
+                     ("ty", "TY", "ijr"), ("tz", "TZ", "ijr")),
     "MARKER_ACCELERATION": (("accm", "ACCM", "ij"), ("accx", "ACCX", "ijr"),
                             ("accy", "ACCY", "ijr"), ("accz", "ACCZ", "ijr"),
                             ("wdtm", "WDTM", "ij"), ("wdtx", "WDTX", "ijr"),
