@@ -73,15 +73,7 @@ void ps_hold_position(const psModel* m, psData* d, const psuHD* c, int tape, con
   double* gj = ps_tmp(m, d, F_CI);
   int badr = m->tape_basis_adr[tape], nq = m->tape_nh[tape] - 1;
   double mv = y[mu];
-  as->res[mu] = g[0] + m->compliance[mu] * mv;
-  if (as->deriv) {
-    jadd(as, mu, mu, m->compliance[mu]);
-    for (int j = 0; j < c->n; j++) {
-      int kind = m->basis_kind[badr + j];
-      if (kind == PS_BASIS_T) continue;
-      jadd(as, mu, m->basis_idx[badr + j], g[1 + j] * (kind == PS_BASIS_YP ? as->cj : 1.0));
-    }
-  }
+  ps_hold_row(m, c, tape, mu, g, y, as);
   /* the leading nq basis entries are the positions q of the tape's bodies */
   for (int j = 0; j < nq; j++) {
     int row = m->basis_idx[badr + j];
@@ -98,13 +90,5 @@ void ps_hold_rate(const psModel* m, psData* d, const psuHD* c, int tape, const d
   double* L = ps_tmp(m, d, F_LEN);
   psu_hd_const(c, L, y[lam]);
   ps_rate_force(m, d, c, g, tape, L, lam, as);
-  as->res[lam] = gd[0] + m->compliance[lam] * y[lam];
-  if (!as->deriv) return;
-  jadd(as, lam, lam, m->compliance[lam]);
-  int badr = m->tape_basis_adr[tape];
-  for (int j = 0; j < c->n; j++) {
-    int bk = m->basis_kind[badr + j];
-    if (bk == PS_BASIS_T) continue;
-    jadd(as, lam, m->basis_idx[badr + j], gd[1 + j] * (bk == PS_BASIS_YP ? as->cj : 1.0));
-  }
+  ps_hold_row(m, c, tape, lam, gd, y, as);
 }

@@ -53,19 +53,34 @@ static inline void jadd(Assembly* as, int row, int col, double v) {
   as->k++;
 }
 
-/* Subtract force_scale * Q from residual row `row`, and its derivatives from the Jacobian. */
-static inline void ps_scatter(const psModel* m, const psuHD* c, int tape, int row,
-                              const double* Q, Assembly* as) {
-  double cf = m->force_scale;
-  as->res[row] -= cf * Q[0];
-  if (!as->deriv) return;
+/* Add scale * (dg/dy + cj dg/dyp) of the hyper-dual g, over its tape's basis, to row `row` of
+ * the iteration matrix. */
+static inline void ps_row_gradient(const psModel* m, const psuHD* c, int tape, int row,
+                                   const double* g, double scale, Assembly* as) {
   int badr = m->tape_basis_adr[tape];
   for (int j = 0; j < c->n; j++) {
     int kind = m->basis_kind[badr + j];
     if (kind == PS_BASIS_T) continue;
     jadd(as, row, m->basis_idx[badr + j],
-         -cf * Q[1 + j] * (kind == PS_BASIS_YP ? as->cj : 1.0));
+         scale * g[1 + j] * (kind == PS_BASIS_YP ? as->cj : 1.0));
   }
+}
+
+/* Subtract force_scale * Q from residual row `row`, and its derivatives from the Jacobian. */
+static inline void ps_scatter(const psModel* m, const psuHD* c, int tape, int row,
+                              const double* Q, Assembly* as) {
+  double cf = m->force_scale;
+  as->res[row] -= cf * Q[0];
+  if (as->deriv) ps_row_gradient(m, c, tape, row, Q, -cf, as);
+}
+
+/* The row of a constraint state x (a reaction lam or mu): g + c_x x, with its derivatives. */
+static inline void ps_hold_row(const psModel* m, const psuHD* c, int tape, int x,
+                               const double* g, const double* y, Assembly* as) {
+  as->res[x] = g[0] + m->compliance[x] * y[x];
+  if (!as->deriv) return;
+  jadd(as, x, x, m->compliance[x]);
+  ps_row_gradient(m, c, tape, x, g, 1.0, as);
 }
 
 /* Generalized forces on the body in tape slot `slot` (-1: none) of a global force F at the

@@ -15,15 +15,7 @@ static void hold_velocities(const psModel* m, psData* d, const psuHD* c, int tap
   int badr = m->tape_basis_adr[tape], adr = m->tape_body_adr[tape];
   double L = y[lam], cf = m->force_scale;
   double* gj = ps_tmp(m, d, F_CI);
-  as->res[lam] = g[0] + m->compliance[lam] * L;
-  if (as->deriv) {
-    jadd(as, lam, lam, m->compliance[lam]);
-    for (int j = 0; j < c->n; j++) {
-      int kind = m->basis_kind[badr + j];
-      if (kind == PS_BASIS_T) continue;
-      jadd(as, lam, m->basis_idx[badr + j], g[1 + j] * (kind == PS_BASIS_YP ? as->cj : 1.0));
-    }
-  }
+  ps_hold_row(m, c, tape, lam, g, y, as);
   for (int slot = 0; slot < m->tape_nbody[tape]; slot++) {
     int up = m->tbody_u[adr + slot];
     if (up < 0) continue;

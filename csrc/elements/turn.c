@@ -12,11 +12,5 @@ void ps_el_turn(const psModel* m, psData* d, const psuHD* c, int tape, const int
   const double* w = ps_slot(m, d, I[0]);
   int s = I[1];
   as->res[s] = w[0];
-  if (!as->deriv) return;
-  int badr = m->tape_basis_adr[tape];
-  for (int j = 0; j < c->n; j++) {
-    int kind = m->basis_kind[badr + j];
-    if (kind == PS_BASIS_T) continue;
-    jadd(as, s, m->basis_idx[badr + j], w[1 + j] * (kind == PS_BASIS_YP ? as->cj : 1.0));
-  }
+  if (as->deriv) ps_row_gradient(m, c, tape, s, w, 1.0, as);
 }

@@ -22,6 +22,7 @@ import math
 import numpy as np
 
 from ..build.compiler import FROZEN_TIME
+from ..deck.expr import nodes
 from ..rotations import G
 from .pyida import PyIDA
 
@@ -396,17 +397,7 @@ def solve_static(model, t, y, params, tol, kind=None):
 
 def _calls_routine(tree):
     """Whether an expression tree calls a user subroutine from the kernel."""
-    stack = [tree]
-    while stack:
-        node = stack.pop()
-        if node is None:
-            continue
-        if node[0] == "user":
-            return True
-        stack.extend(c for c in node[1:] if isinstance(c, tuple))
-        stack.extend(a for c in node[1:] if isinstance(c, list) for a in c
-                     if isinstance(a, tuple))
-    return False
+    return tree is not None and any(n[0] == "user" for n in nodes(tree))
 
 
 def finished(prob, t, y, params, res):
