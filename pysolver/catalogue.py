@@ -223,6 +223,15 @@ TABLE = (
                f"{c.lower()} of the angular acceleration of i relative to j, in k's axes, seen "
                "from l's frame", required=1, reads=_ACC, ids=("marker",) * 4, py_sysfnc=True)
       for c in "XYZ"),
+    # magnitudes of the angular velocity, acceleration and angular acceleration (0 at rest,
+    # with zero derivatives there, like DM and VM)
+    *(Function(name, "special", args, None, doc, required=1, reads=reads,
+               ids=("marker",) * len(args), py_sysfnc=True) for name, args, reads, doc in (
+        ("WM", ("i", "j"), _VEL, "magnitude of the angular velocity of i relative to j"),
+        ("ACCM", ("i", "j", "l"), _ACC, "magnitude of the acceleration of i relative to j, "
+         "seen from l's frame"),
+        ("WDTM", ("i", "j", "l"), _ACC, "magnitude of the angular acceleration of i relative "
+         "to j, seen from l's frame"))),
     _measure("AX", "ij", _POS, "angle of i's axes about j's x axis"),
     _measure("AY", "ij", _POS, "angle of i's axes about j's y axis"),
     _measure("AZ", "ij", _POS, "angle of i's axes about j's z axis"),
@@ -234,8 +243,9 @@ TABLE = (
                "start (in (-pi, pi])", required=1, reads=_POS, ids=("marker", "marker"),
                py_sysfnc=True) for c in "XYZ"),
     *(Function(name, "special", ("x", "z", "id", "order"), None,
-               f"{what} of Reference_Spline id at x (z: 0, curves only), or its derivative of "
-               "order 1 or 2", required=3, ids=(None, None, "spline", None), py_sysfnc=False)
+               f"{what} of Reference_Spline id at x (a surface: at x and z, linear in z), or "
+               "a curve's derivative of order 1 or 2", required=3,
+               ids=(None, None, "spline", None), py_sysfnc=False)
       for name, what in (("AKISPL", "Akima's cubic spline"),
                          ("CUBSPL", "the cubic spline (not-a-knot ends)"),
                          ("LINSPL", "the broken line"), ("QUISPL", "the quintic spline"))),
@@ -300,6 +310,10 @@ TABLE = (
 )
 
 #: Callable functions of the deck language by name (not names, arithmetic or instructions).
+#: WM, ACCM and WDTM: the three components whose norm each is (in the global axes).
+MAGNITUDES = {"WM": ("WX", "WY", "WZ"), "ACCM": ("ACCX", "ACCY", "ACCZ"),
+              "WDTM": ("WDTX", "WDTY", "WDTZ")}
+
 FUNCTIONS = {f.name: f for f in TABLE if f.kind not in ("name", "arithmetic", "internal")}
 #: Names (TIME and the named numbers) by name.
 NAMES = {f.name: f for f in TABLE if f.kind == "name"}

@@ -142,12 +142,21 @@ class VectorForce:
 @record
 class Spline:
     """Reference_Spline: the curve through the points (x, y), x strictly increasing; outside
-    them a line (linear_extrap) or a parabola (pysolver.build.splines)."""
+    them a line (linear_extrap) or a parabola (pysolver.build.splines). A surface has z
+    values (strictly increasing) and y holds one curve per z value, curve after curve
+    (len(x) * len(z) values)."""
     id: int
     x: tuple
     y: tuple
     linear_extrap: bool = False
     label: str = ""
+    z: tuple = ()
+
+    def curve(self, k):
+        """The curve at z[k] of a surface, as a Spline of its own."""
+        n = len(self.x)
+        return Spline(self.id, self.x, self.y[k * n:(k + 1) * n], self.linear_extrap,
+                      self.label)
 
 
 @record

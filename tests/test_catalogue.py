@@ -126,7 +126,8 @@ def test_records_are_well_formed():
 def test_the_jacobian_deck_uses_every_function():
     """tests/decks/all_functions.xml (test_jacobian.py) calls every function (SENVAL,
     MOTION and JOINT need sensors, motions and joints: test_sensors.py, test_motions.py, and
-    all_joints.xml, also in test_jacobian.py, check them; KE and WDTX..WDTZ, which would take
+    all_joints.xml, also in test_jacobian.py, check them; KE, WDTX..WDTZ, WM, ACCM and
+    WDTM, which would take
     all_functions.xml past the size generated looped, are in springs.xml's and
     nonholonomic.xml's forces, also in test_jacobian.py, and AXU..AZU, tracked angles, in
     springs.xml's forces, as are SPDP and the splines (LINSPL of TIME: its kinks are not in
@@ -140,7 +141,8 @@ def test_the_jacobian_deck_uses_every_function():
                                                 "WDTY", "WDTZ", "ORIENT", "AXU", "AYU",
                                                 "AZU", "SPDP", "BUSH", "AKISPL",
                                                 "CUBSPL", "LINSPL", "QUISPL", "FX", "FY",
-                                                "FZ", "FM", "TX", "TY", "TZ", "TM"}
+                                                "FZ", "FM", "TX", "TY", "TZ", "TM", "WM", "ACCM",
+                                                "WDTM"}
     assert "JOINT(" in (TEST_DECKS / "all_joints.xml").read_text()
     assert "KE(4)" in (TEST_DECKS / "springs.xml").read_text()
     assert "ORIENT(27" in (TEST_DECKS / "springs.xml").read_text()

@@ -109,6 +109,7 @@ def test_varval_and_force_measures():
     ("DX(1,2,3,4)", "DX takes 1 to 3 arguments"), ("BAR + 1", "unknown name 'BAR'"),
     ("1 $ 2", "unexpected character '$'"), ("2 3", "unexpected 3.0"), ("", "empty"),
     ("IF(1, 2, 3, 4)", "expected ':'"),
+    ("DELAY(TIME, 0.1, 0)", "DELAY is not supported: MotionSolve interpolates its history"),
 ])
 def test_syntax_errors(text, msg):
     with pytest.raises(ExpressionError, match=msg.replace("(", r"\(").replace(")", r"\)")

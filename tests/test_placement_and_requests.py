@@ -219,6 +219,22 @@ def test_angular_accelerations_are_the_rates_of_the_angular_velocities():
         assert np.abs(q[5:-5, 3:6] - rate[5:-5]).max() < 2e-5
 
 
+def test_magnitude_functions_are_the_norms_of_their_components():
+    """WM(i, j), ACCM(i, j, l), WDTM(i, j, l) equal the norms of WX..WZ, ACCX..ACCZ and
+    WDTX..WDTZ (1e-12), relative to another tumbling body and seen from its frame."""
+    def norm(f, ids):
+        return "SQRT(" + " + ".join(f"{f}{c}({ids})**2" for c in "XYZ") + ")"
+    req = ('<Post_Request id="1" expr1="WM(21,40)" expr2="ACCM(21,40,40)" '
+           'expr3="WDTM(21,40,40)" expr4="ACCM(21)" '
+           f'expr5="{norm("W", "21,40")}" expr6="{norm("ACC", "21,40,0,40")}" '
+           f'expr7="{norm("WDT", "21,40,0,40")}" expr8="{norm("ACC", "21")}"/>')
+    res = pysolver.loads(_scene(MARKERS + WDT, req)).run()
+    assert res.success, res.message
+    q = res.request(1)
+    assert q[:, :4].min() > 0.1
+    np.testing.assert_allclose(q[:, :4], q[:, 4:], rtol=1e-12, atol=1e-12)
+
+
 def test_initial_velocities_along_the_axes_of_vm_and_wm_markers():
     """vm_id and wm_id give the axes of v_ic and w_ic (a ground marker turned 90 degrees about
     z): x of that marker is global y, so the body starts along global y and spins about it."""
@@ -252,8 +268,29 @@ def test_orient_27_is_adams_euler_parameters():
     np.testing.assert_allclose(res.request(1)[0, :4], [0.5 ** 0.5, -0.5 ** 0.5, 0, 0],
                                atol=1e-12)
     np.testing.assert_allclose(res.request(1)[0, 4:], e, atol=1e-12)
-    with pytest.raises(DeckError, match="pysolver computes system 27"):
-        pysolver.loads(_scene(markers, '<Post_Request id="1" expr1="ORIENT(1,1,5)"/>'))
+    for bad in ("ORIENT(13,1,5)", "ORIENT(3,4,5)", "ORIENT(27,5,5)"):
+        with pytest.raises(DeckError, match="pysolver computes systems 1..12"):
+            pysolver.loads(_scene(markers, f'<Post_Request id="1" expr1="{bad}"/>'))
+
+
+@pytest.mark.parametrize("system", range(1, 13))
+def test_orient_body_fixed_sequences_are_scipys_intrinsic_euler_angles(system):
+    """ORIENT(1..12, k, i, j): Adams' body-fixed sequences (1-2-3 ... 3-2-3) of A_J^T A_I
+    equal SciPy's as_euler with intrinsic axes (1e-12), and rebuild the rotation."""
+    from scipy.spatial.transform import Rotation
+
+    from pysolver.build.angles import SEQUENCES
+    markers = ('<Reference_Marker id="5" body_id="1" psi="1.1" theta="0.3" phi="2.5"/>'
+               '<Reference_Marker id="6" body_id="1" psi="0.4" theta="2.2" phi="-1.3"/>'
+               '<Reference_Marker id="20" body_id="2"/>')
+    req = '<Post_Request id="1" ' + " ".join(
+        f'expr{k}="ORIENT({system},{k},6,5)"' for k in (1, 2, 3)) + "/>"
+    res = pysolver.loads(_scene(markers, req, end="0.1")).run()
+    R = rot_313(1.1, 0.3, 2.5).T @ rot_313(0.4, 2.2, -1.3)
+    axes = "".join("XYZ"[a - 1] for a in SEQUENCES[system - 1])
+    got = res.request(1)[0, :3]
+    np.testing.assert_allclose(got, Rotation.from_matrix(R).as_euler(axes), atol=1e-12)
+    np.testing.assert_allclose(Rotation.from_euler(axes, got).as_matrix(), R, atol=1e-12)
 
 
 def test_unwrapped_angles_count_every_turn():

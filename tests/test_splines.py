@@ -7,6 +7,8 @@ from scipy.interpolate import Akima1DInterpolator, CubicSpline, make_interp_spli
 import pysolver
 from pysolver import DeckError
 
+from helpers import fd_iteration_matrix
+
 X = np.array([0, 0.4, 1.0, 1.3, 2.0, 2.8, 3.5])
 Y = np.sin(X) * 2 + 0.3 * X ** 2
 POINTS = "\n".join(f"{a!r} {b!r}" for a, b in zip(X.tolist(), Y.tolist()))
@@ -101,3 +103,91 @@ def test_too_few_points_for_a_function_is_a_deck_error():
         pysolver.loads(deck('<Post_Request id="1" expr1="QUISPL(DX(20),0,7)"/>', "",
                             "0 0 1 1 2 4 3 9"))
     assert err.value.attribute == "expr1"
+
+
+# a surface: three curves at z = -1, 0.5, 2 (MotionView's table layout: z values, then rows)
+ZS = np.array([-1.0, 0.5, 2.0])
+YS = np.array([Y, 0.5 * Y + X, np.cos(X)])             # one curve per z value
+
+
+def surface_deck(requests, extra=""):
+    """The point of deck(), now also moving along y at 1.5 m/s from -2, so z = DY(20) passes
+    below the first curve, between all of them and above the last."""
+    table = " ".join(map(repr, ZS.tolist())) + "\n" + "\n".join(
+        " ".join(map(repr, [x, *YS[:, i].tolist()])) for i, x in enumerate(X.tolist()))
+    return deck(requests, f'num_z="3" {extra}', table).replace(
+        'pos_x="-0.5"', 'pos_x="-0.5" pos_y="-2"').replace('v_ic_x="1"', 'v_ic_x="1" v_ic_y="1.5"')
+
+
+def surface_reference(f, x, z):
+    """Each curve by SciPy, then the line in z through the two curves around z (the nearest
+    two outside)."""
+    make = {"CUBSPL": CubicSpline, "AKISPL": Akima1DInterpolator,
+            "LINSPL": lambda a, b: make_interp_spline(a, b, k=1)}[f]
+    curves = np.array([make(X, ys)(x) for ys in YS])
+    k = np.clip(np.searchsorted(ZS, z, side="right") - 1, 0, len(ZS) - 2)
+    s = (z - ZS[k]) / (ZS[k + 1] - ZS[k])
+    cols = np.arange(len(x))
+    return curves[k, cols] + s * (curves[k + 1, cols] - curves[k, cols])
+
+
+@pytest.mark.parametrize("kernel", ["tapes", "generated"])
+def test_a_surface_is_each_curve_in_x_and_linear_in_z(kernel):
+    """AKISPL, CUBSPL, LINSPL on a three-curve surface equal each curve's SciPy interpolant
+    blended linearly in z (1e-13), below, between and above the z values."""
+    names = ("AKISPL", "CUBSPL", "LINSPL")
+    req = '<Post_Request id="1" ' + " ".join(
+        f'expr{j + 1}="{f}(DX(20),DY(20),7)"' for j, f in enumerate(names)) + "/>"
+    res = pysolver.loads(surface_deck(req)).run(kernel=kernel)
+    assert res.success, res.message
+    xs, zs = -0.5 + res.t, -2 + 1.5 * res.t
+    inside = (xs > 0) & (xs < 3.5)
+    assert zs[inside].min() < ZS[0] and zs[inside].max() > ZS[-1]
+    for j, f in enumerate(names):
+        np.testing.assert_allclose(res.request(1)[inside, j],
+                                   surface_reference(f, xs[inside], zs[inside]),
+                                   rtol=0, atol=1e-13, err_msg=f)
+
+
+def test_a_force_from_a_surface_has_an_exact_jacobian():
+    """A force of both spline arguments, positions and velocities: the iteration matrix equals
+    central differences."""
+    force = ('<Force_Vector_OneBody id="5" marker_id="20" ref_marker_id="1" '
+             'fx_expression="CUBSPL(DX(20), VY(20), 7)" '
+             'fy_expression="-AKISPL(DX(20) + VX(20), DY(20), 7)" fz_expression="0"/>')
+    k = pysolver.loads(surface_deck(force)).compile().kernel
+    rng = np.random.default_rng(3)
+    for _ in range(3):
+        y, yp = rng.normal(size=k.ny), rng.normal(size=k.ny)
+        J = k.jacobian_array(0.4, y, yp, 3.0)
+        fd = fd_iteration_matrix(k, 0.4, y, yp, 3.0)
+        assert np.abs(J - fd).max() <= 1e-6 * np.abs(fd).max()
+
+
+def test_the_statement_builds_a_surface(tmp_path):
+    """SPLINE(..., Z=) with Y curve after curve equals the XML table."""
+    path = tmp_path / "s.py"
+    path.write_text("from pysolver.msolve import *\nPART(1, GROUND=True)\nMARKER(1, PART=1)\n"
+                    "MARKER(20, PART=2, QP=[0.7, 1.1, 0])\nPOINT_MASS(2, MASS=1, CM=20)\n"
+                    f"SPLINE(7, X={X.tolist()}, Y={YS.tolist()}, Z={ZS.tolist()})\n"
+                    "REQUEST(1, F1='AKISPL(DX(20), DY(20), 7)')\n"
+                    "SIMULATE(TYPE='TRANSIENT', END=0.1, DTOUT=0.1)\n")
+    res = pysolver.load(path).run()
+    assert res.request(1)[0, 0] == pytest.approx(
+        float(surface_reference("AKISPL", np.array([0.7]), np.array([1.1]))[0]), abs=1e-14)
+
+
+TEXT = "(the element's text)"
+
+
+@pytest.mark.parametrize("table, request_, attribute, words", [
+    ("0 1 0 1 1 2 2 2 3 3", "", TEXT, "its 2 z values, then rows of an x value and 2 y"),
+    ("1 0 0 1 1 1 2 2 2 3 3 3 4 4", "", TEXT, "z must be strictly increasing"),
+    ("0 1 0 1 1 1 2 2 2 3 3 3 4 4", 'expr1="CUBSPL(DX(20),0,7,1)"', "expr1",
+     "no derivative order on a surface"),
+])
+def test_bad_surfaces_are_deck_errors(table, request_, attribute, words):
+    with pytest.raises(DeckError, match=words) as err:
+        pysolver.loads(deck(f'<Post_Request id="1" {request_}/>' if request_ else "",
+                            'num_z="2"', table))
+    assert err.value.attribute == attribute

@@ -11,6 +11,15 @@ relative rotation R = A_J^T A_I, whose entry R[a][b] is axis a of J dotted with 
   PSI = 0 and PHI = atan2(R33 R21, R11).
 - YAW = atan2(R21, R11), PITCH = atan2(R31, sqrt(R32^2 + R33^2)), ROLL = atan2(R32, R33);
   YAW and ROLL are not defined where PITCH = +-pi/2.
+- ORIENT(system, k, i, j) for systems 1..12, Adams' body-fixed sequences (1..6: 1-2-3,
+  2-3-1, 3-1-2, 1-3-2, 2-1-3, 3-2-1; 7..12: 1-2-1, 1-3-1, 2-1-2, 2-3-2, 3-1-3, 3-2-3), the
+  angles (k = 1, 2, 3) with R = R_a(alpha) R_b(beta) R_c(gamma): for three different axes,
+  beta = atan2(e R[a][c], sqrt(R[a][a]^2 + R[a][b]^2)) in [-pi/2, pi/2], alpha =
+  atan2(-e R[b][c], R[c][c]), gamma = atan2(-e R[a][b], R[a][a]) (e = +1 for a cyclic order,
+  -1 otherwise); for a repeated axis (a, b, a) with d the third, beta = atan2(sqrt(R[a][b]^2
+  + R[a][d]^2), R[a][a]) in [0, pi], alpha = atan2(R[b][a], -e R[d][a]), gamma =
+  atan2(R[a][b], e R[a][d]) (e of (a, b, d)). As SciPy's Rotation.as_euler with upper-case
+  (intrinsic) axes; alpha and gamma are not defined at the singular beta.
 - ORIENT(27, k, i, j), Adams' Euler parameters of R (e0 >= 0): e0 = sqrt(max(0, 1 + tr R))
   / 2, e1 = SIGN(sqrt(max(0, 1 + R11 - R22 - R33)) / 2, R32 - R23), and likewise e2 (sign of
   R13 - R31) and e3 (R21 - R12); exact values everywhere, derivatives singular where a
@@ -57,15 +66,23 @@ def lower_angle(comp, tape, name, ids):
     return atan2(R(3, 2), R(3, 3))       # ROLL
 
 
+#: ORIENT's body-fixed sequences (systems 1..12), axes from 1.
+SEQUENCES = ((1, 2, 3), (2, 3, 1), (3, 1, 2), (1, 3, 2), (2, 1, 3), (3, 2, 1),
+             (1, 2, 1), (1, 3, 1), (2, 1, 2), (2, 3, 2), (3, 1, 3), (3, 2, 3))
+
+
 def lower_orient(comp, tape, system, k, i, j=0):
-    """Slot of ORIENT(system, k, i, j): component k (1..4) of the Euler parameters of marker i
-    relative to marker j (system 27; the parser refuses others)."""
+    """Slot of ORIENT(system, k, i, j): component k of the orientation of marker i relative
+    to marker j, an angle of a body-fixed sequence (systems 1..12, k 1..3) or an Euler
+    parameter (system 27, k 1..4); the parser refuses others."""
     mi, si = comp.marker(tape, i)
     mj, sj = comp.marker(tape, j)
     op = tape.op
 
     def R(a, b):
         return tape.emit(lib.PS_OP_AXDOT, mi, b - 1, mj, a - 1, si, sj)
+    if system != 27:
+        return _sequence_angle(tape, R, SEQUENCES[system - 1], k)
     signs = [(1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1)][k - 1]
     total = tape.const(1.0)
     for n, sgn in enumerate(signs, 1):
@@ -76,3 +93,32 @@ def lower_orient(comp, tape, system, k, i, j=0):
         return half
     a, b = [(3, 2), (1, 3), (2, 1)][k - 2]
     return op(lib.PS_OP_SIGN, half, op(lib.PS_OP_SUB, R(a, b), R(b, a)))
+
+
+def _sequence_angle(tape, R, seq, k):
+    """Angle k (1..3) of the body-fixed sequence seq of R (see the module's formulas)."""
+    op = tape.op
+    a, b, c = seq
+
+    def neg(x):
+        return op(lib.PS_OP_NEG, x)
+
+    def hypot(x, y):
+        return op(lib.PS_OP_SQRT, op(lib.PS_OP_ADD, op(lib.PS_OP_MUL, x, x),
+                                     op(lib.PS_OP_MUL, y, y)))
+    if a != c:
+        e = 1 if (a, b, c) in ((1, 2, 3), (2, 3, 1), (3, 1, 2)) else -1
+        sgn = (lambda x: x) if e > 0 else neg
+        if k == 2:
+            return op(lib.PS_OP_ATAN2, sgn(R(a, c)), hypot(R(a, a), R(a, b)))
+        if k == 1:
+            return op(lib.PS_OP_ATAN2, neg(sgn(R(b, c))), R(c, c))
+        return op(lib.PS_OP_ATAN2, neg(sgn(R(a, b))), R(a, a))
+    d = 6 - a - b
+    e = 1 if (a, b, d) in ((1, 2, 3), (2, 3, 1), (3, 1, 2)) else -1
+    sgn = (lambda x: x) if e > 0 else neg
+    if k == 2:
+        return op(lib.PS_OP_ATAN2, hypot(R(a, b), R(a, d)), R(a, a))
+    if k == 1:
+        return op(lib.PS_OP_ATAN2, R(b, a), neg(sgn(R(d, a))))
+    return op(lib.PS_OP_ATAN2, R(a, b), sgn(R(a, d)))

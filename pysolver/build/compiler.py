@@ -354,9 +354,15 @@ class Compiler:
             key = ("unwrap", (name, ids[0], ids[1]), 0)
             s, w = self.turn_error(tape, self.turned_angle(key), key)
             return tape.op(lib.PS_OP_ADD, s, w)
+        if name in catalogue.MAGNITUDES:
+            return self.magnitude(tape, name, [int(a[1]) for a in args])
         if name in splines.NAMES:
             spline = self.model.splines[int(args[2][1])]
-            return splines.lower_spline(self, tape, name, self.lower(tape, args[0]), spline,
+            x = self.lower(tape, args[0])
+            if spline.z:
+                return splines.lower_surface(self, tape, name, x, self.lower(tape, args[1]),
+                                             spline)
+            return splines.lower_spline(self, tape, name, x, spline,
                                         int(args[3][1]) if len(args) > 3 else 0)
         if name in netforce.NAMES:
             return netforce.lower_net(self, tape, name, [int(a[1]) for a in args])
@@ -397,6 +403,20 @@ class Compiler:
         row = (id(tape), k, adr, channel)
         cache = self._user_cache.setdefault(row, len(self._user_cache))
         return tape.emit(lib.PS_OP_USER, k, adr, len(slots), channel, cache)
+
+    def magnitude(self, tape, name, ids):
+        """WM, ACCM, WDTM: the norm of the three components in the global axes; 0, with zero
+        derivatives, where they all vanish (as DM and VM in C)."""
+        f = catalogue.FUNCTIONS[name]
+        roles = dict(zip(f.args, ids))
+        total = None
+        for comp in catalogue.MAGNITUDES[name]:
+            c = self.measure(tape, comp, [roles.get(r, 0) if r != "k" else 0
+                                          for r in catalogue.FUNCTIONS[comp].args])
+            sq = tape.op(lib.PS_OP_MUL, c, c)
+            total = sq if total is None else tape.op(lib.PS_OP_ADD, total, sq)
+        zero = tape.const(0.0)
+        return tape.op(lib.PS_OP_IF, total, zero, zero, tape.op(lib.PS_OP_SQRT, total))
 
     def measure(self, tape, name, ids):
         f = catalogue.FUNCTIONS[name]

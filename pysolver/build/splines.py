@@ -16,6 +16,12 @@ Outside the data (Adams' rule): the parabola through the first (last) three poin
 balanced tree of IF instructions that picks the piece and a Horner polynomial in x - knot,
 so values and derivatives (of any order the tape takes) are exact, on the tapes and in
 generated C alike. ``order`` 0, 1, 2 is the value, the first or the second derivative.
+
+A surface (z values, one curve per z) is the function's curve in x at each z value,
+interpolated linearly in z between the two curves around z (Adams' AKISPL and CUBSPL on
+surfaces: cubic in x, linear in z); below the first z value and above the last, the line
+through the two nearest curves continues (one curve: constant in z). No derivative order
+on surfaces (as in Adams); the kernel's own derivatives in x and z are exact.
 """
 import numpy as np
 
@@ -100,3 +106,27 @@ def lower_spline(comp, tape, name, x, spline, order):
         return tape.op(lib.PS_OP_IF, tape.op(lib.PS_OP_SUB, x, tape.const(float(knots[mid - 1]))),
                        select(lo, mid - 1), right, right)
     return select(0, len(polys) - 1)
+
+
+def lower_surface(comp, tape, name, x, z, spline):
+    """Slot of `name` on the surface `spline` at the slots x and z."""
+    from .bindings import lib
+    zs = spline.z
+    curves = [lower_spline(comp, tape, name, x, spline.curve(k), 0) for k in range(len(zs))]
+    if len(zs) == 1:
+        return curves[0]
+
+    def blend(k):                           # the line through curves k and k + 1
+        s = tape.op(lib.PS_OP_MUL, tape.op(lib.PS_OP_SUB, z, tape.const(float(zs[k]))),
+                    tape.const(1.0 / (zs[k + 1] - zs[k])))
+        return tape.op(lib.PS_OP_ADD, curves[k], tape.op(
+            lib.PS_OP_MUL, s, tape.op(lib.PS_OP_SUB, curves[k + 1], curves[k])))
+
+    def select(lo, hi):                     # segment k serves z up to zs[k + 1]
+        if lo == hi:
+            return blend(lo)
+        mid = (lo + hi + 1) // 2
+        right = select(mid, hi)
+        return tape.op(lib.PS_OP_IF, tape.op(lib.PS_OP_SUB, z, tape.const(float(zs[mid]))),
+                       select(lo, mid - 1), right, right)
+    return select(0, len(zs) - 2)

@@ -30,6 +30,11 @@ MEASURES = {f.name: f.arity for f in catalogue.of_kind("measure")}
 FUNCTIONS = {name: f.arity for name, f in catalogue.FUNCTIONS.items()}
 #: Functions whose arguments are element ids (integer literals): the kind of the first.
 ID_ARGS = {name: f.ids[0] for name, f in catalogue.FUNCTIONS.items() if f.ids}
+#: Functions of MotionSolve or Adams that pysolver refuses, and why (docs/deck-language.md).
+REFUSED = {"DELAY": "MotionSolve interpolates its history between the points where the "
+                    "solver happened to evaluate it, which is not exact and makes a run "
+                    "depend on its steps; pysolver keeps no history of past states"}
+
 #: The interpolation functions: x and z are expressions, the spline id and order literals.
 SPLINES = ("AKISPL", "CUBSPL", "LINSPL", "QUISPL")
 
@@ -270,6 +275,8 @@ def _check(node):
         _check(node[3])
     elif tag == "call":
         name, args, col = node[1], node[2], node[3]
+        if name in REFUSED:
+            raise ExpressionError(f"{name} is not supported: {REFUSED[name]}", col)
         if name not in FUNCTIONS:
             raise ExpressionError(f"unknown function {name}", col)
         lo, hi = FUNCTIONS[name]
@@ -293,9 +300,11 @@ def _check(node):
                 if a[0] != "num" or a[1] != int(a[1]) or a[1] < 0:
                     raise ExpressionError(f"{name} expects {ID_ARGS[name]} ids as integer "
                                           "literals", col)
-            if name == "ORIENT" and (args[0][1] != 27 or not 1 <= args[1][1] <= 4):
-                raise ExpressionError("ORIENT(system, comp, i[, j]): pysolver computes system "
-                                      "27 (Euler parameters), comp 1..4", col)
+            if name == "ORIENT" and not (1 <= args[0][1] <= 12 and 1 <= args[1][1] <= 3 or
+                                         args[0][1] == 27 and 1 <= args[1][1] <= 4):
+                raise ExpressionError("ORIENT(system, comp, i[, j]): pysolver computes systems "
+                                      "1..12 (body-fixed angles, comp 1..3) and 27 (Euler "
+                                      "parameters, comp 1..4)", col)
             if name == "MOTION" and len(args) not in (1, 4):
                 raise ExpressionError("MOTION(id) is the reaction along the motion's axis; "
                                       "MOTION(id, jflag, comp, rm) a component", col)

@@ -24,6 +24,8 @@ import inspect
 import os
 import threading
 
+import numpy as np
+
 _STATE = threading.local()
 
 __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "SPRINGDAMPER",
@@ -248,16 +250,27 @@ def GRAPHICS(id, TYPE=None, **kw):
           id, TYPE=TYPE, **kw)
 
 
-def SPLINE(id, X=None, Y=None, LINEAR_EXTRAPOLATE=False, LABEL=""):
+def SPLINE(id, X=None, Y=None, Z=None, LINEAR_EXTRAPOLATE=False, LABEL=""):
     """Curve data (Reference_Spline) for AKISPL, CUBSPL, LINSPL, QUISPL: X (strictly
-    increasing) and Y, LINEAR_EXTRAPOLATE, LABEL."""
-    pairs = " ".join(f"{float(a)!r} {float(b)!r}" for a, b in zip(X or (), Y or ()))
-    if len(X or ()) != len(Y or ()):
-        pairs += " 0"                     # an odd count: the loader says x and y differ
+    increasing) and Y, LINEAR_EXTRAPOLATE, LABEL. A surface: Z (strictly increasing) and Y
+    one curve per z value, curve after curve (len(X) * len(Z) values, or a list of lists)."""
+    X = list(X or ())
+    if Z is not None:
+        Z = [float(z) for z in (Z if np.ndim(Z) else [Z])]
+        ys = np.asarray(Y if Y is not None else [], float).ravel()
+        if ys.size != len(X) * len(Z):
+            text = " ".join(map(repr, Z + X + ys.tolist())) + " 0"   # the loader says how
+        else:
+            table = np.column_stack([X, ys.reshape(len(Z), len(X)).T])
+            text = " ".join(map(repr, Z + table.ravel().tolist()))
+    else:
+        text = " ".join(f"{float(a)!r} {float(b)!r}" for a, b in zip(X, Y or ()))
+        if len(X) != len(Y or ()):
+            text += " 0"                  # an odd count: the loader says x and y differ
     _emit("SPLINE", "Reference_Spline", {"LINEAR_EXTRAPOLATE": "linear_extrap",
-                                         "LABEL": "label"},
-          id, {"#text": pairs} if pairs else None, LINEAR_EXTRAPOLATE=LINEAR_EXTRAPOLATE,
-          LABEL=LABEL)
+                                         "LABEL": "label", "Z": lambda z: {"num_z": len(z)}},
+          id, {"#text": text} if text else None, LINEAR_EXTRAPOLATE=LINEAR_EXTRAPOLATE,
+          LABEL=LABEL, Z=Z)
 
 
 def _motion_type(val):

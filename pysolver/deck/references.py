@@ -33,11 +33,14 @@ def check_references(model):
         for n in ex.nodes(tree):
             if n[0] == "call" and n[1] in FEWEST:
                 sp = model.splines[int(n[2][2][1])]
+                ctx = where[key]
+                ctx.id = key[1]
                 if len(sp.x) < FEWEST[n[1]]:
-                    ctx = where[key]
-                    ctx.id = key[1]
                     raise ctx.error(f"{n[1]} needs at least {FEWEST[n[1]]} points; "
                                     f"Reference_Spline {sp.id} has {len(sp.x)}", attr)
+                if sp.z and len(n[2]) > 3:
+                    raise ctx.error(f"{n[1]} takes no derivative order on a surface "
+                                    f"(Reference_Spline {sp.id} has z values)", attr)
     # variable cycles and penalty dependence on velocities
     for key, attr, tree in items:
         ctx = where[key]

@@ -32,22 +32,10 @@ CHANNELS = {
                             ("wdtm", "WDTM", "ij"), ("wdtx", "WDTX", "ijr"),
                             ("wdty", "WDTY", "ijr"), ("wdtz", "WDTZ", "ijr")),
 }
-#: The magnitudes, from their three components in the global axes.
-MAGNITUDES = {"WM": ("WX", "WY", "WZ"), "ACCM": ("ACCX", "ACCY", "ACCZ"),
-              "WDTM": ("WDTX", "WDTY", "WDTZ")}
 
 
 def _call(name, ids):
     return ("call", name, [("num", float(i)) for i in ids], 0)
-
-
-def _magnitude(names, ids):
-    """sqrt of the sum of the squares of three measures."""
-    total = None
-    for n in names:
-        sq = ("bin", "*", _call(n, ids), _call(n, ids))
-        total = sq if total is None else ("bin", "+", total, sq)
-    return ("call", "SQRT", [total], 0)
 
 
 def marker_channels(ctx, a, markers):
@@ -76,12 +64,8 @@ def marker_channels(ctx, a, markers):
             continue
         name, fn, roles = channel
         ids = [role[r] for r in roles]
-        if fn in MAGNITUDES:
-            tree = _magnitude(MAGNITUDES[fn], ids)
-            text = f"{fn}({ids[0]},{ids[1]})"
-        else:
-            tree = _call(fn, ids)
-            text = f"{fn}({','.join(str(i) for i in ids)})"
+        tree = _call(fn, ids)
+        text = f"{fn}({','.join(str(i) for i in ids)})"
         trees.append(tree)
         texts.append(text)
         names.append(a.get(f"name{k + 1}") or name)

@@ -177,7 +177,7 @@ SCHEMA = {
                         "expr": ("expr", OPT, None), **_USERSUB},
     "Stop": {},
     "Reference_Spline": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
-                         "num_xy_pair": ("id", OPT, None),
+                         "num_xy_pair": ("id", OPT, None), "num_z": ("id", OPT, None),
                          "linear_extrap": ("bool", OPT, False),
                          "linear_extrapolate": ("bool", OPT, False),
                          "#text": ("str", OPT, None)},

@@ -1,18 +1,22 @@
-"""The data of a Reference_Spline (or a SPLINE statement): x y pairs, checked at load; the
-interpolation itself is pysolver.build.splines."""
+"""The data of a Reference_Spline (or a SPLINE statement): x y pairs, or a surface's table,
+checked at load; the interpolation itself is pysolver.build.splines."""
 import numpy as np
 
 #: The fewest points each interpolation function takes.
 FEWEST = {"LINSPL": 2, "CUBSPL": 4, "AKISPL": 4, "QUISPL": 6}
 
 
-def parse_points(ctx, text, attribute):
-    """x and y (tuples) from element text of x y pairs; DeckError on bad data."""
+def _numbers(ctx, text, attribute, what):
     try:
-        vals = [float(v.replace("d", "e").replace("D", "e"))
+        return [float(v.replace("d", "e").replace("D", "e"))
                 for v in text.replace(",", " ").split()]
     except ValueError:
-        raise ctx.error("the spline's data are x y pairs of numbers", attribute) from None
+        raise ctx.error(f"the spline's data are {what} of numbers", attribute) from None
+
+
+def parse_points(ctx, text, attribute):
+    """x and y (tuples) from element text of x y pairs; DeckError on bad data."""
+    vals = _numbers(ctx, text, attribute, "x y pairs")
     if len(vals) % 2:
         raise ctx.error(f"the spline's data are x y pairs; got {len(vals)} numbers",
                         attribute)
@@ -32,3 +36,27 @@ def check_points(ctx, x, y, attribute):
         k = int(np.argmax(d <= 0))
         raise ctx.error(f"x must be strictly increasing; x[{k + 1}] = {x[k + 1]:g} follows "
                         f"x[{k}] = {x[k]:g}", attribute)
+
+
+def parse_table(ctx, text, nz, attribute):
+    """x, y and z (tuples) of a surface from element text laid out as MotionView's 3-D
+    spline table: the nz z values, then one row per x value, x followed by y at each z.
+    y comes back curve after curve (the nz curves, each len(x) long)."""
+    vals = _numbers(ctx, text, attribute, "a table")
+    if len(vals) < nz or (len(vals) - nz) % (nz + 1):
+        raise ctx.error(f"a surface's text is its {nz} z values, then rows of an x value and "
+                        f"{nz} y values; got {len(vals)} numbers", attribute)
+    z = tuple(vals[:nz])
+    rows = np.asarray(vals[nz:], float).reshape(-1, nz + 1)
+    return tuple(rows[:, 0].tolist()), tuple(rows[:, 1:].T.ravel().tolist()), z
+
+
+def check_surface(ctx, z, attribute):
+    """DeckError unless the z values are finite and strictly increasing."""
+    if len(z) < 1 or not np.all(np.isfinite(z)):
+        raise ctx.error("a surface needs at least one finite z value", attribute)
+    d = np.diff(z)
+    if np.any(d <= 0):
+        k = int(np.argmax(d <= 0))
+        raise ctx.error(f"z must be strictly increasing; z[{k + 1}] = {z[k + 1]:g} follows "
+                        f"z[{k}] = {z[k]:g}", attribute)
