@@ -11,8 +11,28 @@ from .deck.loader import load
 from .errors import DeckError
 
 
+def _command_line_simulate(args, parser):
+    """--end, --steps, --dtout: the attributes of one transient command from 0 that replaces
+    the deck's commands (None without them)."""
+    if args.end is None and args.steps is None and args.dtout is None:
+        return None
+    if args.end is None:
+        parser.error("--steps and --dtout need --end")
+    if args.steps is not None and args.dtout is not None:
+        parser.error("give --steps or --dtout, not both")
+    if not args.end > 0:
+        parser.error(f"--end must be > 0, got {args.end:g}")
+    sim = {"analysis_type": "TRANSIENT", "end_time": args.end}
+    if args.dtout is not None:
+        sim["print_interval"] = args.dtout
+    else:
+        sim["num_step"] = args.steps if args.steps is not None else 100
+    return sim
+
+
 def _run(args):
-    model = load(args.deck, user_code=not args.no_user_code)
+    model = load(args.deck, user_code=not args.no_user_code,
+                 simulate=_command_line_simulate(args, args.parser))
     out = args.output or os.path.splitext(os.path.basename(args.deck))[0] + "_out"
     os.makedirs(out, exist_ok=True)
     # the rows go to the CSV as they are made (a crashing C subroutine loses none of them); it
@@ -58,27 +78,52 @@ def _check(args):
     return 0
 
 
+def _convert(args):
+    from .deck.loader import deck_elements
+    from .deck.writer import to_xml
+    if not args.output.lower().endswith(".xml"):
+        raise DeckError("pysolver convert writes MotionSolve XML: name the output .xml",
+                        file=args.output)
+    elements, title = deck_elements(args.deck, user_code=not args.no_user_code)
+    text = to_xml(elements, args.deck, title=f"converted by pysolver from {args.deck}"
+                  + (f": {title}" if title else ""))
+    with open(args.output, "w", encoding="utf-8") as fh:
+        fh.write(text)
+    print(f"wrote {args.output}")
+    return 0
+
+
 def main(argv=None):
     """Entry point of the ``pysolver`` command; returns the exit status."""
     parser = argparse.ArgumentParser(prog="pysolver", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="run a deck and write requests.csv, requests.png, stats.json")
-    run.add_argument("deck", help="deck file (.xml or .py)")
+    run.add_argument("deck", help="deck file (.xml, .py, .adm or .acf)")
     run.add_argument("-o", "--output", help="output directory (default: DECKNAME_out)")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     run.add_argument("--no-plot", action="store_true", help="do not write requests.png")
+    run.add_argument("--end", type=float, help="run one transient command to this time "
+                     "instead of the deck's commands (with --steps or --dtout)")
+    run.add_argument("--steps", type=int, help="output steps of that command (default 100)")
+    run.add_argument("--dtout", type=float, help="output interval of that command")
+    convert = sub.add_parser("convert", help="write a deck (.adm, .acf, .py or .xml) as "
+                             "MotionSolve XML")
+    convert.add_argument("deck")
+    convert.add_argument("-o", "--output", required=True, help="the XML file to write")
     check = sub.add_parser("check", help="validate a deck and list what it contains (compiles "
                            "it: runs its user subroutine scripts and loads its C libraries)")
     check.add_argument("deck")
-    for cmd in (run, check):
+    for cmd in (run, check, convert):
         cmd.add_argument("--no-user-code", action="store_true",
                          help="refuse a deck that runs code of its own (a .py deck, a user "
                               "subroutine's script or C library)")
     run.set_defaults(func=_run)
     check.set_defaults(func=_check)
+    convert.set_defaults(func=_convert)
     from .batch.cli import add_parser
     add_parser(sub)
     args = parser.parse_args(argv)
+    args.parser = parser
     try:
         return args.func(args)
     except DeckError as err:

@@ -247,10 +247,10 @@ class Model:
 
     def __reduce__(self):
         return (_rebuild, (self.source.file, self.source.text, self.source.fmt,
-                           self.source.user_code))
+                           self.source.user_code, self.source.simulate))
 
 
-def _rebuild(file, text, fmt, user_code=True):
+def _rebuild(file, text, fmt, user_code=True, simulate=None):
     from .deck.loader import loads
-    return loads(text, fmt=fmt, file=file, user_code=user_code)
+    return loads(text, fmt=fmt, file=file, user_code=user_code, simulate=simulate)
 

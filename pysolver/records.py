@@ -365,6 +365,7 @@ class Source:
     text: str
     fmt: str
     user_code: bool = True      # False: loaded with user_code=False (it names no code to run)
+    simulate: dict = None       # Simulate attributes that replace the deck's commands
 
     @functools.cached_property
     def sha256(self):

@@ -39,8 +39,9 @@ def referenced_files(model):
 
 def reusable(model):
     """True when a worker that ran this model may run another deck next: an XML deck without
-    user subroutine files (a C library stays loaded, a script's imports stay imported)."""
-    return model.source.fmt == "xml" and not referenced_files(model)
+    user subroutine files (a C library stays loaded, a script's imports stay imported); an
+    Adams dataset is data too."""
+    return model.source.fmt in ("xml", "adm") and not referenced_files(model)
 
 
 def fingerprint(model, outputs):

@@ -10,19 +10,27 @@ import traceback
 
 from ..errors import DeckError
 from ..model import Model, Source
-from . import msolve
+from . import adams, msolve
 from .validate import build_model
 from .xml_reader import read_elements
 
 
-def load(path: str | os.PathLike, user_code: bool = True) -> Model:
+def load(path: str | os.PathLike, user_code: bool = True,
+         simulate: dict | None = None) -> Model:
     """Load and validate a deck.
 
     Parameters
     ----------
     path : str or os.PathLike
-        ``.xml`` (MotionSolve XML; data only, never executes code) or ``.py`` (a Python script
-        of :mod:`pysolver.msolve` statements; it is executed).
+        ``.xml`` (MotionSolve XML; data only, never executes code), ``.py`` (a Python script
+        of :mod:`pysolver.msolve` statements; it is executed), ``.adm`` (an Adams dataset,
+        with the commands of the ``.acf`` of the same name beside it when there is one) or
+        ``.acf`` (an Adams command file: the dataset its first line names, then its
+        commands). docs/adams.md says what of the Adams language is read.
+    simulate : dict, optional
+        The attributes of one ``Simulate`` command that replaces the deck's commands
+        (``{"analysis_type": "TRANSIENT", "end_time": 5, "num_step": 500}``; the command
+        line's ``--end``, ``--steps``, ``--dtout``).
     user_code : bool, default True
         False refuses a deck that would run code of its own: a ``.py`` deck, and any element
         with a user subroutine (a Python script or a C library), each a DeckError naming it.
@@ -43,10 +51,49 @@ def load(path: str | os.PathLike, user_code: bool = True) -> Model:
     path = os.fspath(path)
     if os.path.isdir(path):
         raise DeckError("is a folder, not a deck file", file=path)
+    ext = os.path.splitext(path)[1].lower()
+    if ext == ".acf":
+        return _load_acf(path, user_code, simulate)
     with open(path, "rb") as fh:
         raw = fh.read()
-    fmt = "py" if path.lower().endswith(".py") else "xml"
-    return loads(_decode(raw, fmt, path), fmt=fmt, file=path, user_code=user_code)
+    fmt = {".py": "py", ".adm": "adm", ".xml": "xml"}.get(ext) or _sniff(raw, path)
+    text = _decode(raw, fmt, path)
+    if fmt == "adm":
+        acf = os.path.splitext(path)[0] + ".acf"
+        if os.path.isfile(acf):         # the command file beside the dataset
+            return _load_acf(acf, user_code, simulate, dataset=(path, text))
+    return loads(text, fmt=fmt, file=path, user_code=user_code, simulate=simulate)
+
+
+def _sniff(raw, path):
+    """The format of a deck whose name does not say: XML when it starts with '<', an Adams
+    dataset when a line starts like one of its statements; else a DeckError naming the
+    formats pysolver reads."""
+    head = raw.lstrip()[:1]
+    if head == b"<":
+        return "xml"
+    lines = raw.decode("latin-1").splitlines()[1:50]
+    if any(re.match(r"\s*(PART|MARKER|UNITS|JOINT|ACCGRAV|SFORCE|REQUEST)\s*/", ln, re.I)
+           for ln in lines):
+        return "adm"
+    raise DeckError("not a deck pysolver reads: expected MotionSolve XML (.xml), a Python "
+                    "deck of pysolver.msolve statements (.py), an Adams dataset (.adm) or an "
+                    "Adams command file (.acf)", file=path, line=1)
+
+
+def _load_acf(path, user_code, simulate=None, dataset=None):
+    """An Adams command file: its dataset (first line) with its commands."""
+    with open(path, "rb") as fh:
+        acf = _decode(fh.read(), "adm", path)
+    if dataset is None:
+        data_path = adams.acf_dataset(acf, path)
+        if not os.path.isfile(data_path):
+            raise DeckError(f"the dataset {data_path} named on the first line does not exist",
+                            file=path, line=1)
+        with open(data_path, "rb") as fh:
+            dataset = (data_path, _decode(fh.read(), "adm", data_path))
+    text = adams.with_commands(dataset[1], acf, path)
+    return loads(text, fmt="adm", file=dataset[0], user_code=user_code, simulate=simulate)
 
 
 _XML_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*?encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
@@ -55,6 +102,11 @@ _XML_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*?encoding\s*=\s*["']([A-Za-z0-9._
 def _decode(raw, fmt, path):
     """A deck's text: XML in the encoding its declaration names (UTF-8 without one), Python
     by its coding line (PEP 263)."""
+    if fmt == "adm":                    # Adams writes ASCII; older files may be Latin-1
+        try:
+            return raw.decode("utf-8")
+        except UnicodeDecodeError:
+            return raw.decode("latin-1")
     if fmt == "py":
         try:
             encoding = tokenize.detect_encoding(io.BytesIO(raw).readline)[0]
@@ -75,19 +127,42 @@ def _decode(raw, fmt, path):
                         file=path, line=line) from None
 
 
+def deck_elements(path, user_code=True):
+    """(elements, title) of a deck file before they are checked: the list every format is
+    read into (pysolver.deck.writer writes it as XML); title is an Adams dataset's first
+    line (else None)."""
+    model = load(path, user_code=user_code)
+    text, fmt = model.source.text, model.source.fmt
+    title = text.splitlines()[0].strip() if fmt == "adm" and text else None
+    return _elements(text, fmt, model.source.file, user_code), title
+
+
 def loads(text: str, fmt: str = "xml", file: str = "<string>",
-          user_code: bool = True) -> Model:
-    """Load a deck from text; ``fmt`` is ``"xml"`` or ``"py"``. See :func:`load`."""
+          user_code: bool = True, simulate: dict | None = None) -> Model:
+    """Load a deck from text; ``fmt`` is ``"xml"``, ``"py"`` or ``"adm"`` (an Adams
+    dataset). See :func:`load`."""
+    elements = _elements(text, fmt, file, user_code)
+    if simulate:
+        elements = [e for e in elements if e[0].lower() not in ("simulate", "stop")]
+        elements.append(("Simulate", dict(simulate), None,
+                         {k: f"--{k}" for k in simulate}))
+    return build_model(elements, Source(file, text, fmt, user_code,
+                                        dict(simulate) if simulate else None))
+
+
+def _elements(text, fmt, file, user_code):
     if fmt == "xml":
         elements = read_elements(text, file)
+    elif fmt == "adm":
+        elements = adams.read_elements(text, file)
     elif fmt == "py":
         if not user_code:
             raise DeckError("a Python deck is a program, and user_code=False refuses code "
                             "(--no-user-code): write the deck as XML", file=file)
         elements = _run_python_deck(text, file)
     else:
-        raise ValueError(f"unknown deck format {fmt!r}; expected 'xml' or 'py'")
-    return build_model(elements, Source(file, text, fmt, user_code))
+        raise ValueError(f"unknown deck format {fmt!r}; expected 'xml', 'py' or 'adm'")
+    return elements
 
 
 def _deck_line(file):

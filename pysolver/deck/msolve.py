@@ -55,6 +55,8 @@ def _recorder():
 
 
 def _line(rec):
+    if getattr(rec, "line", None) is not None:     # set by the .adm reader
+        return rec.line
     for frame in inspect.stack()[2:]:
         if os.path.abspath(frame.filename) == os.path.abspath(rec.file):
             return frame.lineno
@@ -114,7 +116,8 @@ def ACCGRAV(**kw):
 
 def PART(id, **kw):
     """Rigid body (or ground with GROUND=True): MASS, CM, IM, LPRF, IP=[ixx, iyy, izz
-    (, ixy, iyz, ixz)], VX VY VZ (global), WX WY WZ (in the CM marker's axes), LABEL."""
+    (, ixy, iyz, ixz)], VX VY VZ (global), WX WY WZ (in the CM marker's axes), VM and WM
+    (markers whose axes VX.. and WX.. are along instead), LABEL."""
     def ip(val):
         vals = [float(v) for v in val]
         if len(vals) not in (3, 6):
@@ -125,7 +128,8 @@ def PART(id, **kw):
     _emit("PART", "Body_Rigid", {"GROUND": "isground", "MASS": "mass", "CM": "cg_id",
                                  "IM": "im_id", "LPRF": "lprf_id", "IP": ip, "VX": "v_ic_x",
                                  "VY": "v_ic_y", "VZ": "v_ic_z", "WX": "w_ic_x",
-                                 "WY": "w_ic_y", "WZ": "w_ic_z", "LABEL": "label"}, id, **kw)
+                                 "WY": "w_ic_y", "WZ": "w_ic_z", "VM": "vm_id", "WM": "wm_id",
+                                 "LABEL": "label"}, id, **kw)
 
 
 def POINT_MASS(id, **kw):
@@ -392,7 +396,9 @@ def VARIABLE(id, **kw):
 
 def REQUEST(id, FUNCTION=None, **kw):
     """Output request: F1..F8 (or FUNCTION=[up to 8 expressions]), LABEL, COMMENT; or
-    FUNCTION="USER(...)" with ROUTINE (REQSUB returning 8 values), SCRIPT, INTERPRETER."""
+    FUNCTION="USER(...)" with ROUTINE (REQSUB returning 8 values), SCRIPT, INTERPRETER; or
+    TYPE (MARKER_DISPLACEMENT, MARKER_VELOCITY, MARKER_ACCELERATION, MARKER_FORCE) with the
+    markers I, J and RM (the axes of the components)."""
     if isinstance(FUNCTION, str):         # FUNCTION="USER(...)" with ROUTINE (REQSUB)
         kw["PARAMS"] = FUNCTION
     elif FUNCTION is not None:
@@ -401,6 +407,7 @@ def REQUEST(id, FUNCTION=None, **kw):
     mapping = {f"F{k}": f"expr{k}" for k in range(1, 9)}
     mapping.update({f"NAME{k}": f"name{k}" for k in range(1, 9)})
     mapping.update({"LABEL": "label", "COMMENT": "comment", "PARAMS": "usrsub_param_string",
+                    "I": "i_marker_id", "J": "j_marker_id", "RM": "ref_marker_id",
                     **_USERSUB})
     _usersub(kw)
     _emit("REQUEST", "Post_Request", mapping, id, **kw)

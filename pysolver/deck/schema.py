@@ -206,11 +206,14 @@ class Ctx:
 
     def error(self, msg, attribute=None):
         shown = self.names.get(attribute, attribute) if attribute else None
-        return DeckError(msg, file=self.file, line=self.line, element=self.tag, id=self.id,
-                         attribute=shown)
+        return DeckError(msg, **self.where(), attribute=shown)
 
     def where(self):
-        return dict(file=self.file, line=self.line, element=self.tag, id=self.id)
+        # an .adm statement shows as written (MARKER/9), the element it became after it
+        shown = self.names.get("#element")
+        element = f"{shown} ({self.tag})" if shown else self.tag
+        return dict(file=self.file, line=self.line, element=element, id=None if shown
+                    else self.id)
 
     def warn(self, msg, attribute=None):
         """Issue a DeckWarning located at this element."""
@@ -218,8 +221,7 @@ class Ctx:
 
         from ..errors import DeckWarning
         shown = self.names.get(attribute, attribute) if attribute else None
-        warnings.warn(DeckWarning(msg, file=self.file, line=self.line, element=self.tag,
-                                  id=self.id, attribute=shown), stacklevel=4)
+        warnings.warn(DeckWarning(msg, **self.where(), attribute=shown), stacklevel=4)
 
 
 def convert(ctx, name, kind, raw):

@@ -2,6 +2,8 @@
 checked at load; the interpolation itself is pysolver.build.splines."""
 import numpy as np
 
+from ..records import Spline
+
 #: The fewest points each interpolation function takes.
 FEWEST = {"LINSPL": 2, "CUBSPL": 4, "AKISPL": 4, "QUISPL": 6}
 
@@ -60,3 +62,27 @@ def check_surface(ctx, z, attribute):
         k = int(np.argmax(d <= 0))
         raise ctx.error(f"z must be strictly increasing; z[{k + 1}] = {z[k + 1]:g} follows "
                         f"z[{k}] = {z[k]:g}", attribute)
+
+
+def add_spline(model, ctx, a):
+    """A Reference_Spline: x y pairs as its text (or X, Y from the SPLINE statement), or with
+    num_z a surface's table (pysolver.deck.splinedata.parse_table)."""
+    ctx.id = a["id"]
+    if a.get("#text") is None:
+        raise ctx.error("a Reference_Spline holds its x y pairs as the element's text", "#text")
+    nz = a["num_z"]
+    if nz is None:
+        x, y = parse_points(ctx, a["#text"], "#text")
+        z = ()
+    else:
+        x, y, z = parse_table(ctx, a["#text"], nz, "#text")
+        check_surface(ctx, z, "#text")
+    if a["num_xy_pair"] is not None and a["num_xy_pair"] != len(x):
+        raise ctx.error(f"num_xy_pair is {a['num_xy_pair']} but the text has {len(x)} "
+                        f"{'rows' if z else 'pairs'}", "num_xy_pair")
+    spline = Spline(a["id"], x, y, bool(a["linear_extrap"] or a["linear_extrapolate"]),
+                    a["label"], z)
+    for k in range(max(len(z), 1)):
+        check_points(ctx, x, spline.curve(k).y if z else y, "#text")
+    model.splines[a["id"]] = spline
+    model._where[("spline", a["id"])] = ctx

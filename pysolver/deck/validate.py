@@ -19,7 +19,6 @@ from ..model import (
     ScalarForce,
     Sensor,
     Simulate,
-    Spline,
     Static,
     Variable,
 )
@@ -32,7 +31,7 @@ from .motions import add_joint_motion, add_motion
 from .references import check_references, velocity_level
 from .requests import marker_channels
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
-from .splinedata import check_points, check_surface, parse_points, parse_table
+from .splinedata import add_spline
 from .springs import add_springdamper
 from .tasks import add_loadcontrol
 from .vectors import add_bushing, add_vforce
@@ -146,30 +145,6 @@ def _check_static_motions(model, source):
                         f"displacement, and {what}, or run the scene as a transient",
                         file=source.file, line=static[0].line, element="Simulate",
                         attribute="analysis_type")
-
-
-def add_spline(model, ctx, a):
-    """A Reference_Spline: x y pairs as its text (or X, Y from the SPLINE statement), or with
-    num_z a surface's table (pysolver.deck.splinedata.parse_table)."""
-    ctx.id = a["id"]
-    if a.get("#text") is None:
-        raise ctx.error("a Reference_Spline holds its x y pairs as the element's text", "#text")
-    nz = a["num_z"]
-    if nz is None:
-        x, y = parse_points(ctx, a["#text"], "#text")
-        z = ()
-    else:
-        x, y, z = parse_table(ctx, a["#text"], nz, "#text")
-        check_surface(ctx, z, "#text")
-    if a["num_xy_pair"] is not None and a["num_xy_pair"] != len(x):
-        raise ctx.error(f"num_xy_pair is {a['num_xy_pair']} but the text has {len(x)} "
-                        f"{'rows' if z else 'pairs'}", "num_xy_pair")
-    spline = Spline(a["id"], x, y, bool(a["linear_extrap"] or a["linear_extrapolate"]),
-                    a["label"], z)
-    for k in range(max(len(z), 1)):
-        check_points(ctx, x, spline.curve(k).y if z else y, "#text")
-    model.splines[a["id"]] = spline
-    model._where[("spline", a["id"])] = ctx
 
 
 def _once(ctx, once, tag):
