@@ -124,9 +124,8 @@ def _items(rest):
         start = k
         m = re.match(r"\s*([A-Za-z_][A-Za-z0-9_]*)\s*=", rest[k:])
         if m and _is_function_key(m.group(1)):
-            end = rest.find("\\", k)
-            end = n if end < 0 else end
-            out.append((start, rest[start:end].replace(_SEP, ""), True))
+            end, text = _function_end(rest, k + m.end())
+            out.append((start, rest[start:k + m.end()] + text, True))
             k = end + 1
             continue
         depth, quote = 0, None
@@ -145,6 +144,33 @@ def _items(rest):
             k += 1
         out.append((start, rest[start:k].strip(), False))
     return out
+
+
+def _function_end(rest, k):
+    """(end, text) of the expression starting at rest[k]: it runs to a backslash, or to a
+    comma outside parentheses (Adams wants a backslash or the statement's end; a top-level
+    comma cannot be part of an expression). A continuation line continues it inside
+    parentheses or after an operator, and ends it otherwise."""
+    depth, out, n = 0, [], len(rest)
+    while k < n:
+        ch = rest[k]
+        if ch == "\\":
+            break
+        if ch in "([":
+            depth += 1
+        elif ch in ")]":
+            depth -= 1
+        elif ch == "," and depth == 0:
+            break
+        elif ch == _SEP:
+            so_far = "".join(out).rstrip()
+            if depth == 0 and so_far and so_far[-1] not in "+-*/(:,^=<>":
+                break
+            k += 1
+            continue
+        out.append(ch)
+        k += 1
+    return k, "".join(out)
 
 
 #: Keywords whose value is an expression (up to a backslash or the statement's end).
@@ -219,6 +245,8 @@ class _Reader:
         self.file, self.acf = file, acf or file
         self.parts = {}             # part id -> (origin, axes) of its BCS
         self.markers = {}           # marker id -> (statement, values)
+        self.spaces = {}            # pysolver id space -> [(statement name, statement)]
+        self.ids = {}               # (statement name, Adams id) -> pysolver id, on a clash
         self.units_seen = False
 
     def warn(self, stmt, msg, line=None):
@@ -360,14 +388,48 @@ class _Reader:
                 continue                        # reported in order by emit
             if name == "END":
                 break
+            if name in _SHARED and stmt.id is not None:
+                self.spaces.setdefault(_SHARED[name], []).append((name, stmt))
+        for space in self.spaces.values():
+            self.renumber(space)
+        for stmt in stmts:
+            try:
+                name = self.statement_name(stmt, DATASET)
+            except DeckError:
+                continue
+            if name == "END":
+                break
             if name in ("PART", "POINT_MASS"):
                 vals, lines = self.values(stmt, DATASET[name][0])
                 self.need_id(stmt)
-                self.parts[stmt.id] = self.frame(stmt, vals, lines, "QG", "REULER", "ZG", "XG")
+                self.parts[self.id(stmt)] = self.frame(stmt, vals, lines, "QG", "REULER", "ZG", "XG")
             elif name == "MARKER":
                 vals, lines = self.values(stmt, DATASET[name][0])
                 self.need_id(stmt)
                 self.markers[stmt.id] = (stmt, vals, lines)
+
+    def renumber(self, space):
+        """Adams keeps point masses apart from parts, joint primitives apart from joints,
+        VTORQUE and GFORCE apart from VFORCE; pysolver has one id space for each group: a
+        clash gets the next free id (a DeckWarning says which)."""
+        primary = {st.id for name, st in space if name in _PRIMARY}
+        nxt = max([st.id for _, st in space] + [0]) + 1
+        taken = set(primary)
+        for name, stmt in space:
+            if name in _PRIMARY:
+                continue
+            if stmt.id in taken:
+                self.ids[(name, stmt.id)] = nxt
+                self.warn(stmt, f"{name}/{stmt.id} has the id of another statement that "
+                          f"pysolver counts with it; pysolver numbers it {nxt}")
+                nxt += 1
+            taken.add(self.ids.get((name, stmt.id), stmt.id))
+
+    def id(self, stmt, name=None):
+        """The pysolver id of a statement (or of statement `name`'s id `stmt`)."""
+        if name is not None:
+            return self.ids.get((name, stmt), stmt)
+        return self.ids.get((stmt.name, stmt.id), stmt.id)
 
     def need_id(self, stmt):
         if stmt.id is None:
@@ -378,10 +440,11 @@ class _Reader:
         stmt, vals, lines = self.markers[mid]
         if mid in seen:
             raise self.error(stmt, "RM markers refer to each other in a loop", "RM")
-        body = vals.get("PART", vals.get("POINT_MASS"))
+        key = "PART" if "PART" in vals else "POINT_MASS"
+        body = self.id(vals[key], key)
         if body not in self.parts:
-            raise self.error(stmt, f"part {body} does not exist",
-                             "PART" if "PART" in vals else "POINT_MASS", lines.get("PART"))
+            raise self.error(stmt, f"{key.lower().replace('_', ' ')} {vals[key]} does not "
+                             "exist", key, lines.get(key))
         ref = self.parts[body]
         if "RM" in vals and not vals.get("FLOATING"):
             if vals["RM"] not in self.markers:
@@ -456,7 +519,7 @@ def _part(r, stmt, vals, lines):
 
 def _point_mass(r, stmt, vals, lines):
     r.need_id(stmt)
-    msolve.POINT_MASS(stmt.id, **_pick(vals, {"MASS": "MASS", "CM": "CM", "VX": "VX",
+    msolve.POINT_MASS(r.id(stmt), **_pick(vals, {"MASS": "MASS", "CM": "CM", "VX": "VX",
                                               "VY": "VY", "VZ": "VZ"}), **_label(stmt))
 
 
@@ -465,7 +528,9 @@ def _marker(r, stmt, vals, lines):
     if "PART" not in vals and "POINT_MASS" not in vals:
         raise r.error(stmt, "a marker needs PART= (or POINT_MASS=)")
     o, A = r.marker_pose(stmt.id)
-    msolve.MARKER(stmt.id, PART=vals.get("PART", vals.get("POINT_MASS")), QP=o.tolist(),
+    key = "PART" if "PART" in vals else "POINT_MASS"
+    body = r.id(vals[key], key)
+    msolve.MARKER(stmt.id, PART=body, QP=o.tolist(),
                   AXES=A.T.ravel().tolist(), **_label(stmt))
 
 
@@ -487,7 +552,7 @@ def _joint(r, stmt, vals, lines):
 def _jprim(r, stmt, vals, lines):
     r.need_id(stmt)
     kind = _one_flag(r, stmt, vals, _JPRIM_TYPES, "the primitive")
-    msolve.JPRIM(stmt.id, TYPE=kind, **_pick(vals, {"I": "I", "J": "J"}), **_label(stmt))
+    msolve.JPRIM(r.id(stmt), TYPE=kind, **_pick(vals, {"I": "I", "J": "J"}), **_label(stmt))
 
 
 def _routine(vals):
@@ -566,7 +631,7 @@ def _vector(function, comps):
         if "FUNCTION" in vals:
             raise r.error(stmt, "FUNCTION=USER(...) (a VFOSUB, VTOSUB or GFOSUB) is not "
                           "supported yet: give the components", "FUNCTION", lines["FUNCTION"])
-        function(stmt.id, **kw, **_label(stmt))
+        function(r.id(stmt), **kw, **_label(stmt))
     return emit
 
 
@@ -654,13 +719,11 @@ _INTEGRATORS = ("GSTIFF", "WSTIFF", "CONSTANT_BDF", "HHT", "NEWMARK", "HASTIFF",
 
 
 def _integrator(r, stmt, vals, lines):
-    other = [k for k in _INTEGRATORS + ("MAXIT", "KMAX", "PATTERN", "CORRECTOR",
-                                        "INTERPOLATE", "ALPHA", "BETA", "GAMMA")
-             if k in vals]
+    other = [k for k in ("HHT", "NEWMARK", "HASTIFF", "ABAM", "RKF45") if k in vals]
     if other:
-        r.warn(stmt, f"{', '.join(other)} set aside: pysolver integrates with IDA's "
-               "variable-order BDF and its own index reduction (docs/numerics.md); ERROR, "
-               "HMAX, HMIN and HINIT are used")
+        r.warn(stmt, f"{other[0]} is not pysolver's integrator: it integrates with IDA's "
+               "variable-order BDF (as GSTIFF) and its own formulation (docs/numerics.md); "
+               "ERROR, HMAX, HMIN and HINIT are used")
     msolve.INTEGRATOR(**_pick(vals, {"ERROR": "ERROR", "HMAX": "HMAX", "HMIN": "HMIN",
                                      "HINIT": "HINIT"}))
 
@@ -686,6 +749,10 @@ def _simulate(r, stmt, vals, lines):
 
 
 _FUNCS = ("ROUTINE",)
+#: Statements that share one pysolver id space, and the one of each that keeps its ids.
+_SHARED = {"PART": "body", "POINT_MASS": "body", "JOINT": "joint", "JPRIM": "joint",
+           "VFORCE": "vforce", "VTORQUE": "vforce", "GFORCE": "vforce"}
+_PRIMARY = ("PART", "JOINT", "VFORCE")
 #: Statement -> (its keywords, its translation).
 DATASET = {
     "UNITS": (("FORCE", "MASS", "LENGTH", "TIME", "SYSTEM", "UCF"), _units),

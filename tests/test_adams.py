@@ -1,0 +1,178 @@
+"""Adams datasets (.adm) and command files (.acf): a dataset of every statement pysolver reads
+against the same model written by hand as XML, the lexical rules, the commands, conversion to
+XML, and bad input."""
+import shutil
+import warnings
+
+import numpy as np
+import pytest
+
+import pysolver
+from pysolver import DeckError, DeckWarning
+from pysolver.cli import main
+
+from helpers import TEST_DECKS
+
+ADAMS = TEST_DECKS / "adams"
+
+
+def _load(path, **kw):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeckWarning)
+        return pysolver.load(path, **kw)
+
+
+def _rel(a, b):
+    """Largest difference of two request tables over each channel's largest value (>= 1)."""
+    assert np.array_equal(np.isnan(a), np.isnan(b))        # the same unused channels
+    used = ~np.all(np.isnan(b), axis=0)
+    a, b = a[:, used], b[:, used]
+    return float(np.max(np.abs(a - b) / np.maximum(1.0, np.abs(b).max(axis=0))))
+
+
+def test_every_statement_builds_the_model_written_by_hand_in_xml():
+    """Markers at their global places from part frames (QG/REULER, XG/ZG), part-relative
+    QP/REULER in degrees, ZP/XP and an RM chain; inertia; equal to the hand-written XML to
+    1e-12 (relative to the model's size)."""
+    a, x = _load(ADAMS / "every_statement.adm"), _load(ADAMS / "every_statement.xml")
+    assert sorted(a.markers) == sorted(x.markers)
+    for mid, m in x.markers.items():
+        assert a.markers[mid].body == m.body
+        assert np.abs(a.markers[mid].pos - m.pos).max() <= 1e-12 * 600, mid
+        assert np.abs(a.markers[mid].rot - m.rot).max() <= 1e-12, mid
+    for bid, b in x.bodies.items():
+        assert a.bodies[bid].kind == b.kind and a.bodies[bid].mass == b.mass
+        if b.inertia is not None:
+            assert np.abs(a.bodies[bid].inertia - b.inertia).max() <= 1e-12 * 4000
+            np.testing.assert_allclose(a.bodies[bid].omega, b.omega, atol=1e-12)
+            np.testing.assert_allclose(a.bodies[bid].vel, b.vel, atol=1e-12)
+    for table in ("joints", "motions", "gcons", "couplers", "scalar_forces", "vector_forces",
+                  "bushings", "variables", "splines", "sensors", "requests"):
+        if hasattr(x, table):
+            assert sorted(getattr(a, table)) == sorted(getattr(x, table)), table
+    assert [c.end_time for c in a.commands] == [c.end_time for c in x.commands] == [1.0]
+
+
+def test_every_statement_runs_as_its_xml_translation_to_the_integration_error():
+    """Both forms halt at the sensor (t = 0.8) with every request channel equal to 1e-9 of
+    its scale at integr_tol 1e-11 (measured 1.3e-10; the two differ by rounding in the last
+    bit of their inputs, so their steps differ within the tolerance)."""
+    a, x = _load(ADAMS / "every_statement.adm"), _load(ADAMS / "every_statement.xml")
+    ra, rx = a.run(integr_tol=1e-11), x.run(integr_tol=1e-11)
+    assert ra.success and rx.success, (ra.message, rx.message)
+    assert ra.t[-1] == rx.t[-1] == pytest.approx(0.8)
+    assert any("Sensor_Event 1 fired" in line for line in ra.log)
+    for rid in range(1, 6):
+        assert _rel(ra.request(rid), rx.request(rid)) <= 1e-9, rid
+    # the coupler turns the wheel (joint 4) by half the crank's driven angle
+    az_crank = 2 * ra.t + 0.1 * np.sin(3 * ra.t)
+    np.testing.assert_allclose(np.unwrap(ra.request(5)[:, 3]), az_crank / 2, atol=1e-8)
+
+
+def test_convert_writes_the_xml_that_runs_identically(tmp_path):
+    """pysolver convert: the XML it writes builds the same elements, so its run equals the
+    dataset's bit for bit."""
+    out = tmp_path / "every.xml"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeckWarning)
+        assert main(["convert", str(ADAMS / "every_statement.adm"), "-o", str(out)]) == 0
+    ra = _load(ADAMS / "every_statement.adm").run()
+    rc = _load(out).run()
+    for rid in range(1, 6):
+        np.testing.assert_array_equal(ra.request(rid), rc.request(rid))
+    assert "<Simulate" in out.read_text() and "num_step=\"100\"" in out.read_text()
+
+
+def test_commands_from_the_command_file(tmp_path):
+    """The .acf beside the dataset gives its commands (here 1 s, 100 steps, ERROR=1e-8);
+    loading the .acf does the same; alone, the dataset gets the default command; the command
+    line's --end and --steps replace them."""
+    beside = _load(ADAMS / "every_statement.adm")
+    direct = _load(ADAMS / "every_statement.acf")
+    for m in (beside, direct):
+        assert [(c.analysis, c.end_time, c.print_interval) for c in m.commands] == \
+            [("TRANSIENT", 1.0, 0.01)]
+        assert m.transient.integr_tol == 1e-8
+    alone = tmp_path / "alone.adm"
+    shutil.copy(ADAMS / "every_statement.adm", alone)
+    default = pysolver.loads('<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>'
+                             '</Model></MotionSolve>')
+    assert [(c.end_time, c.print_interval) for c in _load(alone).commands] == \
+        [(c.end_time, c.print_interval) for c in default.commands]
+    cli = _load(alone, simulate={"analysis_type": "TRANSIENT", "end_time": 0.3,
+                                 "num_step": 3})
+    assert [(c.end_time, c.print_interval) for c in cli.commands] == [(0.3, pytest.approx(0.1))]
+
+
+def test_the_lexical_rules(tmp_path):
+    """Comments, continuation lines (inside a function too), abbreviated statement and
+    keyword names, D for degrees in numbers and in functions, backslash-separated functions,
+    a function ended by a comma, leading zeros in ids, the view name as a label."""
+    text = """a title line that is not read: PART/1, MASS=oops
+! adams_view_name='the ground'
+PART/001, GROUND   ! a comment
+MARK/1, PART = 1
+MARKER/2, PART = 1, QP = 0, 0, 0,
+, REU = 90D, 0,
+, 0
+PA/2, MASS = 1, CM = 3, IP = 1, 1, 1, QG = 1, 0, 0
+MARKER/3, PART = 2
+ACC/JGRAV = -9.81
+REQUEST/1, F1 = STEP(TIME, 0, 0,
+, 1, 90D)\\F2 = 2 *
+, DX(3)\\, F3 = AX(2), COMMENT = after a function ended by a comma
+SENSOR/1, FUNCTION = TIME, VALUE = 0.5, GE, HALT
+END
+PART/9, this is after END and is not read
+"""
+    path = tmp_path / "lex.adm"
+    path.write_text(text)
+    m = _load(path)
+    assert m.bodies[1].label == "the ground"
+    np.testing.assert_allclose(m.markers[2].rot, [[0, -1, 0], [1, 0, 0], [0, 0, 1]],
+                               atol=1e-15)
+    res = m.run()
+    assert res.success and res.t[-1] == pytest.approx(0.5)
+    q = res.request(1)
+    np.testing.assert_allclose(q[:, 0], np.pi / 2 * np.clip(res.t, 0, 1) ** 2
+                               * (3 - 2 * np.clip(res.t, 0, 1)), atol=1e-12)
+    np.testing.assert_allclose(q[:, 1], 2.0, atol=1e-12)       # the body falls along y
+
+
+@pytest.mark.parametrize("stmt, words, attribute", [
+    ("MARKER/5, PART = 2, QP = 0, 0", "QP takes three numbers", "QP"),
+    ("MARKER/5, PART = 2, QPP = 0, 0, 0", "unknown keyword QPP; did you mean QP?", "QPP"),
+    ("MARKER/5, PART = 7", "part 7 does not exist", "PART"),
+    ("MARKER/5, PART = 2, R = 1", "R is ambiguous: it abbreviates REULER, RM", "R"),
+    ("CONTACT/1, I = 3, J = 1", "CONTACT is not supported by pysolver", None),
+    ("SFORCE/1, I = 3, J = 1, TRANSLATION, FUNCTION = 1 +", "bad expression", "FUNCTION"),
+    ("PART/5, MASS = 2x, CM = 3", "got '2x'; expected a real number", "MASS"),
+    ("JOINT/1, I = 3, J = 1", "give one of CONVEL", None),
+    ("FOO/1, BAR = 2", "unknown keyword FOO", "FOO"),
+])
+def test_bad_statements_are_deck_errors_naming_file_line_and_statement(tmp_path, stmt, words,
+                                                                     attribute):
+    path = tmp_path / "bad.adm"
+    path.write_text("title\nPART/1, GROUND\nMARKER/1, PART = 1\nPART/2, MASS = 1, CM = 3, "
+                    f"IP = 1, 1, 1\nMARKER/3, PART = 2\n{stmt}\nEND\n")
+    with pytest.raises(DeckError, match=words) as err:
+        _load(path)
+    assert err.value.file == str(path) and err.value.line == 6
+    if attribute:
+        assert err.value.attribute == attribute
+
+
+def test_a_file_in_no_known_format_says_which_formats_exist(tmp_path):
+    path = tmp_path / "model.dat"
+    path.write_text("some notes\nnot a deck\n")
+    with pytest.raises(DeckError, match="expected MotionSolve XML .* an Adams dataset"):
+        pysolver.load(path)
+    path.write_text("title\nPART/1, GROUND\nMARKER/1, PART = 1\nEND\n")
+    assert pysolver.load(path).source.fmt == "adm"      # a dataset under another name
+
+
+def test_a_command_file_naming_a_missing_dataset(tmp_path):
+    acf = tmp_path / "run.acf"
+    acf.write_text("nowhere\nout\nSIMULATE/DYNAMICS, END = 1, STEPS = 10\nSTOP\n")
+    with pytest.raises(DeckError, match="nowhere.adm named on the first line does not exist"):
+        pysolver.load(acf)
