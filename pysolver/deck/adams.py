@@ -402,7 +402,8 @@ class _Reader:
             if name in ("PART", "POINT_MASS"):
                 vals, lines = self.values(stmt, DATASET[name][0])
                 self.need_id(stmt)
-                self.parts[self.id(stmt)] = self.frame(stmt, vals, lines, "QG", "REULER", "ZG", "XG")
+                self.parts[self.id(stmt)] = self.frame(stmt, vals, lines, "QG", "REULER",
+                                                       "ZG", "XG")
             elif name == "MARKER":
                 vals, lines = self.values(stmt, DATASET[name][0])
                 self.need_id(stmt)
