@@ -5,6 +5,7 @@
 >>> res = model.run()                                  # doctest: +SKIP
 >>> res.request(1)[:, 0]                               # doctest: +SKIP
 """
+from . import msolve as _msolve  # noqa: F401,E402  (the namespace Python decks run in)
 from ._version import __version__
 from .batch import Sweep, grid, sample, sweep
 from .deck.loader import load, loads

@@ -176,3 +176,19 @@ def test_a_command_file_naming_a_missing_dataset(tmp_path):
     acf.write_text("nowhere\nout\nSIMULATE/DYNAMICS, END = 1, STEPS = 10\nSTOP\n")
     with pytest.raises(DeckError, match="nowhere.adm named on the first line does not exist"):
         pysolver.load(acf)
+
+
+def test_the_command_line_runs_a_dataset_for_the_time_it_is_told(tmp_path, capsys):
+    """pysolver run model.adm --end 0.2 --steps 4: five rows from 0 to 0.2, in place of the
+    command file's 1 s; --steps without --end is a usage error (exit 2)."""
+    out = tmp_path / "out"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeckWarning)
+        assert main(["run", str(ADAMS / "every_statement.adm"), "--end", "0.2", "--steps", "4",
+                     "-q", "--no-plot", "-o", str(out)]) == 0
+    rows = (out / "requests.csv").read_text().splitlines()
+    assert len(rows) == 6 and rows[-1].startswith("0.2")
+    with pytest.raises(SystemExit) as exit_:
+        main(["run", str(ADAMS / "every_statement.adm"), "--steps", "4"])
+    assert exit_.value.code == 2
+    assert "--steps and --dtout need --end" in capsys.readouterr().err

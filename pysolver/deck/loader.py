@@ -175,14 +175,27 @@ def _deck_line(file):
 
 
 def _run_python_deck(text, file):
+    """Execute a Python deck: its statements (pysolver.deck.msolve) are recorded; or, a
+    script of msolve classes (pysolver.modeling), its last Model (simulate() records its
+    command and runs nothing). The script runs as __main__ (its main block too), except
+    inside another deck's load."""
     rec = msolve._Recorder(file)
-    namespace = {"__name__": "__pysolver_deck__", "__file__": file}
-    namespace.update({name: getattr(msolve, name) for name in msolve.__all__})
     prev = getattr(msolve._STATE, "rec", None)
+    public = msolve.PUBLIC                  # pysolver.msolve, registered when it is imported
+    namespace = {"__name__": "__pysolver_deck__" if prev else "__main__", "__file__": file}
+    namespace.update({name: getattr(public, name) for name in public.__all__})
+    shim = "msolve" not in sys.modules
+    if shim:                                # a script's own `from msolve import *`
+        sys.modules["msolve"] = public
     msolve._STATE.rec = rec
     try:
         code = compile(text, file, "exec")
         exec(code, namespace)
+        if rec.models and rec.elements:
+            raise DeckError("the script builds a msolve Model and also calls statement "
+                            "functions (PART(...)); use one style", file=file)
+        if rec.models:
+            return rec.models[-1].elements()
     except DeckError:
         raise
     except SyntaxError as err:
@@ -196,4 +209,6 @@ def _run_python_deck(text, file):
                         line=_deck_line(file)) from None
     finally:
         msolve._STATE.rec = prev
+        if shim:
+            sys.modules.pop("msolve", None)
     return rec.elements

@@ -41,10 +41,17 @@ _USERSUB = {"ROUTINE": "usrsub_fnc_name", "SCRIPT": "script_name",
             "INTERPRETER": "interpreter", "TYPE": "type"}
 
 
+#: The public module pysolver.msolve (statements and msolve classes), set when it is imported:
+#: the namespace a Python deck runs in.
+PUBLIC = None
+
+
 class _Recorder:
     def __init__(self, file):
         self.file = file
         self.elements = []
+        self.models = []            # msolve class Models the script creates
+        self.line = None            # the statement's line when the .adm reader calls
 
 
 def _recorder():
