@@ -8,8 +8,7 @@ import pytest
 
 import pysolver
 from pysolver import DeckError
-from pysolver.msolve import (Accgrav, Joint, Marker, Model, Part, Point, Request, Sforce,
-                             Units)
+from pysolver.msolve import Accgrav, Joint, Marker, Model, Part, Point, Request, Sforce, Units
 
 from helpers import DECKS, TEST_DECKS
 
