@@ -148,7 +148,8 @@ PART/9, this is after END and is not read
     ("SFORCE/1, I = 3, J = 1, TRANSLATION, FUNCTION = 1 +", "bad expression", "FUNCTION"),
     ("PART/5, MASS = 2x, CM = 3", "got '2x'; expected a real number", "MASS"),
     ("JOINT/1, I = 3, J = 1", "give one of CONVEL", None),
-    ("FOO/1, BAR = 2", "unknown keyword FOO", "FOO"),
+    ("FOO/1, BAR = 2", "unknown statement FOO", None),
+    ("MOTOIN/1, JOINT = 1", "unknown statement MOTOIN; did you mean MOTION", None),
 ])
 def test_bad_statements_are_deck_errors_naming_file_line_and_statement(tmp_path, stmt, words,
                                                                      attribute):

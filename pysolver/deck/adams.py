@@ -374,9 +374,20 @@ class _Reader:
             names["#element"] = where
 
     def statement_name(self, stmt, table):
+        """The statement `stmt` names (a unique prefix will do)."""
         known = tuple(table) + UNSUPPORTED + SET_ASIDE + QUIET + ("END", "STOP")
-        return _resolve(stmt.name, known, _Statement("statement", None, [], stmt.line, ""),
-                        self.file, stmt.line)
+        w = stmt.name.upper()
+        hits = [k for k in known if k == w] or [k for k in known if k.startswith(w)]
+        if len(hits) == 1:
+            return hits[0]
+        what = "command" if table is COMMANDS else "statement"
+        if hits:
+            raise DeckError(f"{stmt.name} is ambiguous: it abbreviates {', '.join(sorted(hits))}",
+                            file=self.file, line=stmt.line, element=stmt.name)
+        close = difflib.get_close_matches(w, tuple(table), n=1)
+        hint = f"; did you mean {close[0]}?" if close else ""
+        raise DeckError(f"unknown {what} {stmt.name}{hint} (docs/adams.md lists what pysolver "
+                        "reads)", file=self.file, line=stmt.line, element=stmt.name)
 
     def first_pass(self, stmts):
         """The frames of parts and point masses, and the raw values of markers (a marker's
