@@ -193,3 +193,24 @@ def test_the_command_line_runs_a_dataset_for_the_time_it_is_told(tmp_path, capsy
         main(["run", str(ADAMS / "every_statement.adm"), "--steps", "4"])
     assert exit_.value.code == 2
     assert "--steps and --dtout need --end" in capsys.readouterr().err
+
+
+def test_spellings_adams_accepts(tmp_path):
+    """TRANSLATIONAL/ROTATIONAL for TRANSLATION/ROTATION, D V A F on REQUEST (V is also a
+    prefix of VARIABLES), GRAPHICS with any keyword, & continuing a command."""
+    path = tmp_path / "s.adm"
+    path.write_text("title\nPART/1, GROUND\nMARKER/1, PART = 1\nMARKER/2, PART = 1\n"
+                    "PART/2, MASS = 1, CM = 3, IP = 1, 1, 1\nMARKER/3, PART = 2\n"
+                    "SFORCE/1, ROTATIONAL, I = 3, J = 2, FUNCTION = 2\n"
+                    "REQUEST/1, V, I = 3\nREQUEST/2, A, I = 3\n"
+                    "GRAPHICS/1, CYLINDER, CM = 3, RANGLE = 360, ANYTHING = 2\nEND\n")
+    (tmp_path / "s.acf").write_text("s\n\nsim/dyn, end = 0.5, &\n dtout = 0.25\nstop\n")
+    m = _load(path)
+    assert [(c.end_time, c.print_interval) for c in m.commands] == [(0.5, 0.25)]
+    res = m.run()
+    np.testing.assert_allclose(res.request(1)[:, 7], 2 * res.t, atol=1e-12)   # wz = T t / I
+    np.testing.assert_allclose(res.request(2)[:, 7], 2.0, atol=1e-12)
+    (tmp_path / "s.acf").write_text("s\n\nDEACTIVATE/SENSOR, ID = 1\nstop\n")
+    with pytest.raises(DeckError, match="the command DEACTIVATE is not supported") as err:
+        _load(path)
+    assert err.value.file.endswith("s.acf") and err.value.line == 3

@@ -29,6 +29,9 @@ UNSUPPORTED = ("CONTACT", "FLEX_BODY", "BEAM", "FIELD", "DIFF", "LSE", "GSE", "T
 #: Statements that only shape output or diagnostics: read and set aside with a DeckWarning.
 SET_ASIDE = ("LIST", "NOLIST", "DEBUG", "MREQUEST", "PINPUT", "POUTPUT", "FEMDATA_OUTPUT",
              "PREFERENCES", "FILE", "SHOW", "INFO", "HELP", "MENU", "RETURN", "TIME")
+#: Commands that change the model or run what pysolver does not: a DeckError.
+_OTHER_COMMANDS = ("DEACTIVATE", "ACTIVATE", "LINEAR", "SAVE", "RELOAD", "CONTROL", "DEBUG",
+                   "BUSHING", "SHOW", "SWITCH")
 #: Statements read quietly and not used (output settings; graphics are kept).
 QUIET = ("OUTPUT", "RESULTS")
 
@@ -64,7 +67,7 @@ def statements(text, file, first=1, title=True):
     statements whose continuation lines start with a comma; `first` is the line number of
     the text's first line."""
     lines = text.splitlines()
-    out, cur, label = [], None, ""
+    out, cur, label, joined = [], None, "", False
     for k, raw in enumerate(lines[1 if title else 0:], first + (1 if title else 0)):
         body, comment = _strip_comment(raw)
         found = _VIEW_NAME.search(comment)
@@ -72,15 +75,20 @@ def statements(text, file, first=1, title=True):
             label = found.group(1)
         if not body.strip():
             continue
-        if body.lstrip().startswith(","):
+        ampersand = body.rstrip().endswith("&")     # the command language's continuation
+        if ampersand:
+            body = body.rstrip()[:-1]
+        if body.lstrip().startswith(",") or joined:
             if cur is None:
                 raise DeckError("a continuation line (starting with a comma) with no statement "
                                 "before it", file=file, line=k)
-            cur[0].append((k, _SEP + body.lstrip()[1:]))
-            continue
-        cur = ([(k, body)], label)
-        label = ""
-        out.append(cur)
+            text = body.lstrip()
+            cur[0].append((k, _SEP + (text[1:] if text.startswith(",") else text)))
+        else:
+            cur = ([(k, body)], label)
+            label = ""
+            out.append(cur)
+        joined = ampersand
     return [_split(segments, lab, file) for segments, lab in out]
 
 
@@ -163,8 +171,9 @@ def _function_end(rest, k):
         elif ch == "," and depth == 0:
             break
         elif ch == _SEP:
-            so_far = "".join(out).rstrip()
-            if depth == 0 and so_far and so_far[-1] not in "+-*/(:,^=<>":
+            so_far, after = "".join(out).rstrip(), rest[k + 1:].lstrip()
+            if depth == 0 and so_far and so_far[-1] not in "+-*/(:,^=<>" and \
+                    after[:1] not in ("+", "-", "*", "/", "^"):
                 break
             k += 1
             continue
@@ -201,11 +210,20 @@ def _args(stmt, file):
     return out
 
 
+#: Spellings Adams accepts besides the keyword and its prefixes (REQUEST/1, V, ...).
+_ALIASES = {"TRANSLATIONAL": "TRANSLATION", "ROTATIONAL": "ROTATION"}
+_REQUEST_ALIASES = {"D": "DISPLACEMENT", "V": "VELOCITY", "A": "ACCELERATION", "F": "FORCE"}
+
+
 def _resolve(word, known, stmt, file, line):
-    """The keyword `word` abbreviates among `known` (an exact name or a unique prefix)."""
+    """The keyword `word` abbreviates among `known` (an exact name or a unique prefix); None
+    for `known` takes any keyword (GRAPHICS, kept as written)."""
     w = word.upper()
-    if w in known:
+    if known is None or w in known:
         return w
+    alias = (_REQUEST_ALIASES if stmt.name == "REQUEST" else {}).get(w, _ALIASES.get(w))
+    if alias in known:
+        return alias
     hits = [k for k in known if k.startswith(w)]
     if len(hits) == 1:
         return hits[0]
@@ -381,6 +399,13 @@ class _Reader:
         if len(hits) == 1:
             return hits[0]
         what = "command" if table is COMMANDS else "statement"
+        if table is COMMANDS:
+            other = [k for k in tuple(DATASET) + _OTHER_COMMANDS if k.startswith(w)]
+            if other:
+                raise DeckError(f"the command {other[0]} is not supported: pysolver runs the "
+                                "dataset as written, with SIMULATE, INTEGRATOR and "
+                                "EQUILIBRIUM commands only (docs/adams.md)", file=self.file,
+                                line=stmt.line, element=stmt.name)
         if hits:
             raise DeckError(f"{stmt.name} is ambiguous: it abbreviates {', '.join(sorted(hits))}",
                             file=self.file, line=stmt.line, element=stmt.name)
@@ -536,7 +561,8 @@ def _point_mass(r, stmt, vals, lines):
 
 
 def _marker(r, stmt, vals, lines):
-    _refuse(r, stmt, vals, lines, ("FLEX_BODY", "NODE_ID"), "pysolver has rigid bodies only")
+    _refuse(r, stmt, vals, lines, ("FLEX_BODY", "FE_PART", "NODE_ID"), "pysolver has rigid "
+            "bodies only")
     if "PART" not in vals and "POINT_MASS" not in vals:
         raise r.error(stmt, "a marker needs PART= (or POINT_MASS=)")
     o, A = r.marker_pose(stmt.id)
@@ -772,7 +798,7 @@ DATASET = {
               "VZ", "WX", "WY", "WZ", "VM", "WM", "EXACT", "MATERIAL", "PLANAR"), _part),
     "POINT_MASS": (("MASS", "CM", "QG", "REULER", "XG", "ZG", "VX", "VY", "VZ", "EXACT"),
                    _point_mass),
-    "MARKER": (("PART", "POINT_MASS", "FLEX_BODY", "NODE_ID", "QP", "REULER", "ZP", "XP",
+    "MARKER": (("PART", "POINT_MASS", "FLEX_BODY", "FE_PART", "NODE_ID", "QP", "REULER", "ZP", "XP",
                 "USEXP", "RM", "FLOATING"), _marker),
     "JOINT": (_JOINT_TYPES + ("I", "J", "PD", "PITCH", "IC", "ICTRAN", "ICROT"), _joint),
     "JPRIM": (_JPRIM_TYPES + ("I", "J"), _jprim),
@@ -801,11 +827,7 @@ DATASET = {
                                          "VARIABLES", *(f"F{k}" for k in range(1, 9)))
                 + _FUNCS, _request),
     "ACCGRAV": (("IGRAV", "JGRAV", "KGRAV"), _accgrav),
-    "GRAPHICS": (_GRAPHIC_TYPES + ("CM", "LENGTH", "RADIUS", "SIDES", "SEG", "RANGE",
-                                   "CORNER", "X", "Y", "Z", "TOP", "BOTTOM", "I", "J",
-                                   "XSCALE", "YSCALE", "ZSCALE", "ANGLE", "TWIST",
-                                   "ETYPE", "EID", "EMARKER", "DA", "DB", "COILS", "FILE",
-                                   "CRADIUS", "RM"), _graphics),
+    "GRAPHICS": (None, _graphics),          # kept as written, for the 3-D view
     "INTEGRATOR": (_INTEGRATORS + ("ERROR", "HMAX", "HMIN", "HINIT", "MAXIT", "KMAX",
                                    "PATTERN", "CORRECTOR", "INTERPOLATE", "ALPHA", "BETA",
                                    "GAMMA"), _integrator),
