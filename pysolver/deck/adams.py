@@ -561,8 +561,8 @@ def _point_mass(r, stmt, vals, lines):
 
 
 def _marker(r, stmt, vals, lines):
-    _refuse(r, stmt, vals, lines, ("FLEX_BODY", "FE_PART", "NODE_ID"), "pysolver has rigid "
-            "bodies only")
+    _refuse(r, stmt, vals, lines, ("FLEX_BODY", "FE_PART", "NODE_ID", "NODE_LABEL"),
+            "pysolver has rigid bodies only")
     if "PART" not in vals and "POINT_MASS" not in vals:
         raise r.error(stmt, "a marker needs PART= (or POINT_MASS=)")
     o, A = r.marker_pose(stmt.id)
@@ -798,8 +798,8 @@ DATASET = {
               "VZ", "WX", "WY", "WZ", "VM", "WM", "EXACT", "MATERIAL", "PLANAR"), _part),
     "POINT_MASS": (("MASS", "CM", "QG", "REULER", "XG", "ZG", "VX", "VY", "VZ", "EXACT"),
                    _point_mass),
-    "MARKER": (("PART", "POINT_MASS", "FLEX_BODY", "FE_PART", "NODE_ID", "QP", "REULER", "ZP", "XP",
-                "USEXP", "RM", "FLOATING"), _marker),
+    "MARKER": (("PART", "POINT_MASS", "FLEX_BODY", "FE_PART", "NODE_ID", "NODE_LABEL", "QP",
+                "REULER", "ZP", "XP", "USEXP", "RM", "FLOATING"), _marker),
     "JOINT": (_JOINT_TYPES + ("I", "J", "PD", "PITCH", "IC", "ICTRAN", "ICROT"), _joint),
     "JPRIM": (_JPRIM_TYPES + ("I", "J"), _jprim),
     "MOTION": (("JOINT", "I", "J", "TRANSLATION", "ROTATION", "X", "Y", "Z", "B1", "B2", "B3",
