@@ -214,3 +214,12 @@ def test_spellings_adams_accepts(tmp_path):
     with pytest.raises(DeckError, match="the command DEACTIVATE is not supported") as err:
         _load(path)
     assert err.value.file.endswith("s.acf") and err.value.line == 3
+
+
+def test_a_command_file_that_names_its_dataset_with_file_model(tmp_path):
+    """A blank first line, then FILE/MODEL=name (the layout adamspy writes)."""
+    shutil.copy(ADAMS / "every_statement.adm", tmp_path / "m.adm")
+    (tmp_path / "run.acf").write_text("\nfile/model=m\n! commands:\n"
+                                      "SIMULATE/DYNAMIC, END=0.4, DTOUT=0.1\nstop\n")
+    m = _load(tmp_path / "run.acf")
+    assert [(c.end_time, c.print_interval) for c in m.commands] == [(0.4, 0.1)]

@@ -25,10 +25,12 @@ COMMANDS_MARK = "!pysolver: commands of"
 UNSUPPORTED = ("CONTACT", "FLEX_BODY", "BEAM", "FIELD", "DIFF", "LSE", "GSE", "TFSISO",
                "NFORCE", "CVCV", "PTCV", "CURVE", "SURFACE", "FRICTION", "GEAR", "MFORCE",
                "FEMDATA", "IC", "ARRAY", "STRING", "MATRIX", "PSTATE", "EXTERNAL_SYSTEM",
-               "COUSUB", "CLEARANCE", "ENVIRONMENT", "USER")
+               "COUSUB", "CLEARANCE", "ENVIRONMENT", "USER", "SECTION", "FE_PART", "FE_NODE",
+               "FE_LOAD")
 #: Statements that only shape output or diagnostics: read and set aside with a DeckWarning.
 SET_ASIDE = ("LIST", "NOLIST", "DEBUG", "MREQUEST", "PINPUT", "POUTPUT", "FEMDATA_OUTPUT",
-             "PREFERENCES", "FILE", "SHOW", "INFO", "HELP", "MENU", "RETURN", "TIME")
+             "PREFERENCES", "FILE", "SHOW", "INFO", "HELP", "MENU", "RETURN", "TIME",
+             "MATERIAL")
 #: Commands that change the model or run what pysolver does not: a DeckError.
 _OTHER_COMMANDS = ("DEACTIVATE", "ACTIVATE", "LINEAR", "SAVE", "RELOAD", "CONTROL", "DEBUG",
                    "BUSHING", "SHOW", "SWITCH")
@@ -869,8 +871,15 @@ def acf_dataset(acf_text, acf_file):
     extension), relative to the command file's folder."""
     lines = acf_text.splitlines()
     name = lines[0].strip() if lines else ""
+    if not name:            # a blank first line, then FILE/MODEL=name (as adamspy writes)
+        for line in lines[1:3]:
+            found = re.match(r"\s*FILE\s*/\s*MODEL\s*=\s*([^\s,!]+)", line, re.I)
+            if found:
+                name = found.group(1)
+                break
     if not name:
-        raise DeckError("a command file's first line names its dataset", file=acf_file, line=1)
+        raise DeckError("a command file's first line names its dataset (or is blank and "
+                        "the second is FILE/MODEL=name)", file=acf_file, line=1)
     if not os.path.splitext(name)[1]:
         name += ".adm"
     return os.path.join(os.path.dirname(os.path.abspath(acf_file)), name)
