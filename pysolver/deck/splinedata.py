@@ -33,11 +33,16 @@ def check_points(ctx, x, y, attribute):
         raise ctx.error(f"a spline needs at least 2 points; got {len(x)}", attribute)
     if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
         raise ctx.error("the spline's data must be finite numbers", attribute)
-    d = np.diff(x)
+    _increasing(ctx, x, "x", attribute)
+
+
+def _increasing(ctx, v, name, attribute):
+    """DeckError naming the first value of v that does not follow its predecessor upwards."""
+    d = np.diff(v)
     if np.any(d <= 0):
         k = int(np.argmax(d <= 0))
-        raise ctx.error(f"x must be strictly increasing; x[{k + 1}] = {x[k + 1]:g} follows "
-                        f"x[{k}] = {x[k]:g}", attribute)
+        raise ctx.error(f"{name} must be strictly increasing; {name}[{k + 1}] = {v[k + 1]:g} "
+                        f"follows {name}[{k}] = {v[k]:g}", attribute)
 
 
 def parse_table(ctx, text, nz, attribute):
@@ -57,11 +62,7 @@ def check_surface(ctx, z, attribute):
     """DeckError unless the z values are finite and strictly increasing."""
     if len(z) < 1 or not np.all(np.isfinite(z)):
         raise ctx.error("a surface needs at least one finite z value", attribute)
-    d = np.diff(z)
-    if np.any(d <= 0):
-        k = int(np.argmax(d <= 0))
-        raise ctx.error(f"z must be strictly increasing; z[{k + 1}] = {z[k + 1]:g} follows "
-                        f"z[{k}] = {z[k]:g}", attribute)
+    _increasing(ctx, z, "z", attribute)
 
 
 def add_spline(model, ctx, a):
