@@ -33,7 +33,8 @@
   X(4, IDAGetNumNonlinSolvConvFails) X(4, IDAGetNumGEvals) X(4, IDAGetLastStep) X(4, IDAFree)   \
   X(4, IDASetId) X(4, IDASetSuppressAlg) X(4, IDAGetCurrentStep) X(7, SUNSparseMatrix)          \
   X(7, SUNSparseMatrix_Data) X(7, SUNSparseMatrix_IndexValues)                                \
-  X(7, SUNSparseMatrix_IndexPointers) X(8, SUNLinSol_SuperLUMT)
+  X(7, SUNSparseMatrix_IndexPointers) X(8, SUNLinSol_SuperLUMT) X(0, SUNLinSolNewEmpty)          \
+  X(3, SUNLinSolGetType_Dense) X(3, SUNLinSolSetup_Dense) X(3, SUNLinSolSolve_Dense)
 
 /* A step shorter than this times |t| is at rounding level. */
 #define PS_IDA_ROUNDING 1e-10
@@ -49,8 +50,10 @@ static const struct { int lib; const char* name; } FNS[F_COUNT] = {SUNDIALS_FNS(
 #define PS_NLIBS 9
 
 /* Libraries from this index on are optional (the sparse matrix and SuperLU_MT): without them
- * the C driver does dense and band only. */
+ * the C driver does dense and band only. The functions from SUNLinSolNewEmpty on are optional
+ * too: without them there is no sparse LU of pysolver's own (csrc/sparselu.c). */
 #define PS_FIRST_OPTIONAL 7
+#define PS_OPTIONAL_FN(k) (FNS[k].lib >= PS_FIRST_OPTIONAL || (k) >= F_SUNLinSolNewEmpty)
 
 /* Steps per window over which watch() counts IDA's error-test failures. */
 #define PS_IDA_WINDOW 50
@@ -68,7 +71,12 @@ struct psIDA {
                              requested time (ps_ida_solve) and leaves them out of
                              its tests (weights)                                    */
   double rtol, atol;      /* the tolerances                                         */
-  int sparse;             /* 1: CSC matrix (SuperLU_MT) filled through map          */
+  int sparse;             /* CSC matrix filled through map: 1 factored by lu,
+                             2 by SuperLU_MT (0: dense or band)                     */
+  psLU* lu;               /* the sparse LU of a sparse integration (sparse == 1)    */
+  int slot[4];            /* the word of a linear solver object that points to its
+                             operations, and where gettype, setup and solve sit in
+                             that table (-1: unknown, no solver of pysolver's own)  */
   const int* map;         /* (ntrip x 1) band or CSC storage index of each triplet  */
   const int* colptr;      /* (ny + 1) CSC column pointers of the fixed pattern      */
   const int* rowind;      /* (nnz) CSC row indices of the fixed pattern             */
@@ -87,6 +95,88 @@ struct psIDA {
   char msg[256];          /* message of the last error                              */
   void (*set_threads)(int); /* SuperLU_MT's libgomp omp_set_num_threads (NULL: none)    */
 };
+
+/* A linear solver object: its content first, its table of operations at word s->slot[0]
+ * (SUNDIALS 7.5 put a field between the two). */
+#define LS_CONTENT(ls) (*(void**)(ls))
+#define LS_OPS(s, ls) (((void***)(ls))[(s)->slot[0]])
+
+/* Find where a linear solver object keeps its table of operations, and where gettype, setup
+ * and solve sit in that table (both changed between SUNDIALS versions): an empty solver holds
+ * nothing but the table and its context, and a dense solver's table holds the dense solver's
+ * exported functions at those places. s->slot stays -1 (no sparse LU of pysolver's own) when
+ * the functions are missing or the layout is not recognised. */
+static void find_slots(psIDA* s) {
+  void* want[3] = {s->fn[F_SUNLinSolGetType_Dense], s->fn[F_SUNLinSolSetup_Dense],
+                   s->fn[F_SUNLinSolSolve_Dense]};
+  for (int j = 0; j < 4; j++) s->slot[j] = -1;
+  if (!want[0] || !want[1] || !want[2] || !s->fn[F_SUNLinSolNewEmpty]) return;
+  SUNContext ctx = NULL;
+  if (CALL(s, SUNContext_Create)(0, &ctx) != 0) return;
+  /* the table: the one non-NULL word before the context's in an empty solver */
+  int at = -1, found_ctx = 0;
+  SUNLinearSolver empty = CALL(s, SUNLinSolNewEmpty)(ctx);
+  for (int i = 0; empty && i < 4 && !found_ctx; i++) {
+    void* w = ((void**)empty)[i];
+    if (w == (void*)ctx) found_ctx = 1;
+    else if (w && at < 0) at = i;
+  }
+  if (empty) CALL(s, SUNLinSolFree)(empty);
+  N_Vector v = CALL(s, N_VNew_Serial)(1, ctx);
+  SUNMatrix a = v ? CALL(s, SUNDenseMatrix)(1, 1, ctx) : NULL;
+  SUNLinearSolver ls = a && found_ctx && at > 0 ? CALL(s, SUNLinSol_Dense)(v, a, ctx) : NULL;
+  int slot[4] = {at, -1, -1, -1}, found = 0;
+  void** ops = ls ? ((void***)ls)[at] : NULL;
+  /* scan no further than the last of the three (slot 9 in SUNDIALS 7.5's table) */
+  for (int i = 0; ops && i < 16 && found < 3; i++)
+    for (int j = 0; j < 3; j++)
+      if (slot[j + 1] < 0 && ops[i] == want[j]) {
+        slot[j + 1] = i;
+        found++;
+      }
+  if (found == 3 && slot[1] < slot[2] && slot[2] < slot[3]) memcpy(s->slot, slot, sizeof(slot));
+  if (ls) CALL(s, SUNLinSolFree)(ls);
+  if (a) CALL(s, SUNMatDestroy)(a);
+  if (v) CALL(s, N_VDestroy)(v);
+  CALL(s, SUNContext_Free)(&ctx);
+}
+
+/* The sparse linear solver's operations: a direct solver over csrc/sparselu.c. */
+static int ls_type(SUNLinearSolver ls) {
+  (void)ls;
+  return 0; /* SUNLINEARSOLVER_DIRECT */
+}
+
+/* Factor the matrix IDA just filled (jac_fn): replay the last pivots, else choose anew; a
+ * singular matrix is a recoverable failure (IDA retries with a smaller step). */
+static int ls_setup(SUNLinearSolver ls, SUNMatrix a) {
+  psIDA* s = LS_CONTENT(ls);
+  const double* v = CALL(s, SUNSparseMatrix_Data)(a);
+  if (ps_lu_refactor(s->lu, v) == 0) return 0;
+  int rc = ps_lu_factor(s->lu, v);
+  return rc == 0 ? 0 : rc > 0 ? 808 /* SUNLS_LUFACT_FAIL */ : -1;
+}
+
+static int ls_solve(SUNLinearSolver ls, SUNMatrix a, N_Vector x, N_Vector b, sunrealtype tol) {
+  (void)a;
+  (void)tol;
+  psIDA* s = LS_CONTENT(ls);
+  __typeof__(&N_VGetArrayPointer) data = CALL(s, N_VGetArrayPointer);
+  memcpy(data(x), data(b), sizeof(double) * (size_t)s->m->ny);
+  ps_lu_solve(s->lu, data(x));
+  return 0;
+}
+
+/* A linear solver object for IDA that factors with s->lu, or NULL. */
+static SUNLinearSolver own_solver(psIDA* s) {
+  SUNLinearSolver ls = CALL(s, SUNLinSolNewEmpty)(s->ctx);
+  if (!ls) return NULL;
+  LS_CONTENT(ls) = s;
+  LS_OPS(s, ls)[s->slot[1]] = (void*)ls_type;
+  LS_OPS(s, ls)[s->slot[2]] = (void*)ls_setup;
+  LS_OPS(s, ls)[s->slot[3]] = (void*)ls_solve;
+  return ls;
+}
 
 psIDA* ps_ida_load(const char* const* paths, char* msg, int msglen) {
   psIDA* s = calloc(1, sizeof(*s));
@@ -110,13 +200,14 @@ psIDA* ps_ida_load(const char* const* paths, char* msg, int msglen) {
     /* a function may sit in another library of the set in other SUNDIALS builds */
     for (int i = 0; i < PS_NLIBS && !s->fn[k]; i++)
       if (s->lib[i]) s->fn[k] = dlsym(s->lib[i], FNS[k].name);
-    if (!s->fn[k] && FNS[k].lib >= PS_FIRST_OPTIONAL) continue;
+    if (!s->fn[k] && PS_OPTIONAL_FN(k)) continue;
     if (!s->fn[k]) {
       snprintf(msg, (size_t)msglen, "SUNDIALS function %s not found", FNS[k].name);
       free(s);
       return NULL;
     }
   }
+  find_slots(s);
   return s;
 }
 
@@ -125,17 +216,22 @@ psIDA* ps_ida_new(const psIDA* loaded) {
   if (!s) return NULL;
   memcpy(s->lib, loaded->lib, sizeof(s->lib));
   memcpy(s->fn, loaded->fn, sizeof(s->fn));
+  memcpy(s->slot, loaded->slot, sizeof(s->slot));
   s->set_threads = loaded->set_threads;
   return s;
 }
 
 const char* ps_ida_message(const psIDA* s) { return s->msg; }
 
-int ps_ida_has_sparse(const psIDA* s) {
+/* Whether the sparse matrix's functions are there. */
+static int has_csc(const psIDA* s) {
   return s->fn[F_SUNSparseMatrix] && s->fn[F_SUNSparseMatrix_Data] &&
-         s->fn[F_SUNSparseMatrix_IndexValues] && s->fn[F_SUNSparseMatrix_IndexPointers] &&
-         s->fn[F_SUNLinSol_SuperLUMT];
+         s->fn[F_SUNSparseMatrix_IndexValues] && s->fn[F_SUNSparseMatrix_IndexPointers];
 }
+
+int ps_ida_has_sparse(const psIDA* s) { return has_csc(s) && s->slot[3] >= 0; }
+
+int ps_ida_has_superlumt(const psIDA* s) { return has_csc(s) && s->fn[F_SUNLinSol_SuperLUMT]; }
 
 static int res_fn(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* ud) {
   psIDA* s = (psIDA*)ud;
@@ -223,7 +319,11 @@ static int root_fn(sunrealtype t, N_Vector yy, N_Vector yp, sunrealtype* g, void
 /* Free the current integration's SUNDIALS objects; s itself and its table stay. */
 static void release(psIDA* s) {
   if (s->mem) CALL(s, IDAFree)(&s->mem);
+  /* the own solver's content is s itself: not SUNDIALS' to free */
+  if (s->LS && s->sparse == 1) LS_CONTENT(s->LS) = NULL;
   if (s->LS) CALL(s, SUNLinSolFree)(s->LS);
+  ps_lu_free(s->lu);
+  s->lu = NULL;
   if (s->A) CALL(s, SUNMatDestroy)(s->A);
   if (s->y) CALL(s, N_VDestroy)(s->y);
   if (s->yp) CALL(s, N_VDestroy)(s->yp);
@@ -277,7 +377,7 @@ static int weights(N_Vector y, N_Vector ewt, void* user_data) {
 int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* y0,
                 const double* yp0, double rtol, double atol, double hmax, double hmin, double h0,
                 long mxsteps, const int* rootdir, int mu, int ml, const int* map, int ntrip,
-                const int* colptr, const int* rowind, int nnz) {
+                const int* colptr, const int* rowind, int nnz, const int* colorder) {
   int n = m->ny;
   release(s);
   s->m = m;
@@ -303,21 +403,29 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   else
     SET(s, CALL(s, IDASStolerances)(s->mem, rtol, atol), "IDASStolerances");
   s->band = mu >= 0 && ml >= 0;
-  s->sparse = mu == PS_IDA_SPARSE;
+  s->sparse = mu == PS_IDA_SPARSE ? 1 : mu == PS_IDA_SUPERLU_MT ? 2 : 0;
   /* SuperLU_MT's OpenMP (the wheel's own copy of libgomp, private to SUNDIALS) runs one
    * thread, set in the calling thread (the setting is per thread): IDA's sparse systems are
    * small next to a team's start-up, whose idle threads spin on a core another process of a
    * batch needs (A02, N = 40: 0.33 s alone, 1.8 s beside one busy process) */
-  if (s->sparse && s->set_threads) s->set_threads(1);
+  if (s->sparse == 2 && s->set_threads) s->set_threads(1);
   if (s->sparse) {
-    if (!ps_ida_has_sparse(s)) return fail(s, "SuperLU_MT (not in this SUNDIALS build)", -1);
+    if (s->sparse == 1 && !ps_ida_has_sparse(s))
+      return fail(s, "the sparse LU (no SUNLinSolNewEmpty in this SUNDIALS build)", -1);
+    if (s->sparse == 2 && !ps_ida_has_superlumt(s))
+      return fail(s, "SuperLU_MT (not in this SUNDIALS build)", -1);
     s->map = map;
     s->ntrip = ntrip;
     s->colptr = colptr;
     s->rowind = rowind;
     s->nnz = nnz;
     s->A = CALL(s, SUNSparseMatrix)(n, n, nnz, 0, s->ctx);
-    if (s->A) s->LS = CALL(s, SUNLinSol_SuperLUMT)(s->y, s->A, 1, s->ctx);
+    if (s->A && s->sparse == 1) {
+      s->lu = ps_lu_new(n, colptr, rowind, colorder);
+      s->LS = s->lu ? own_solver(s) : NULL;
+    } else if (s->A) {
+      s->LS = CALL(s, SUNLinSol_SuperLUMT)(s->y, s->A, 1, s->ctx);
+    }
   } else if (s->band) {
     int smu = mu + ml < n - 1 ? mu + ml : n - 1;
     s->map = map;
@@ -393,6 +501,7 @@ int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0) {
   for (int i = 0; i < 6; i++) s->acc[i] += c[i];
   memset(s->win, 0, sizeof(s->win));
   s->win_h[0] = s->win_h[1] = 0.0;
+  if (s->lu) ps_lu_forget(s->lu);
   return CALL(s, IDAReInit)(s->mem, t0, s->y, s->yp);
 }
 
@@ -467,7 +576,7 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
 }
 
 int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0) {
-  if (!s->mem || s->limited_at || s->sparse) return 1;
+  if (!s->mem || s->limited_at || s->sparse == 2) return 1;
   int flag = ps_ida_reinit(s, t0, y0, yp0);
   memset(s->acc, 0, sizeof(s->acc));
   return flag;

@@ -44,6 +44,12 @@ sunrealtype* SUNSparseMatrix_Data(SUNMatrix a);
 sunindextype* SUNSparseMatrix_IndexValues(SUNMatrix a);
 sunindextype* SUNSparseMatrix_IndexPointers(SUNMatrix a);
 SUNLinearSolver SUNLinSol_SuperLUMT(N_Vector y, SUNMatrix a, int num_threads, SUNContext ctx);
+/* a linear solver of one's own: an empty object whose operations the caller fills in; the dense
+ * solver's operations, exported, locate those slots (csrc/ida.c) */
+SUNLinearSolver SUNLinSolNewEmpty(SUNContext ctx);
+int SUNLinSolGetType_Dense(SUNLinearSolver s);
+int SUNLinSolSetup_Dense(SUNLinearSolver s, SUNMatrix a);
+int SUNLinSolSolve_Dense(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b, sunrealtype tol);
 /* IDA */
 void* IDACreate(SUNContext ctx);
 int IDAInit(void* mem, IDAResFn res, sunrealtype t0, N_Vector y0, N_Vector yp0);

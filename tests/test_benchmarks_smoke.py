@@ -65,3 +65,10 @@ def test_usersub_report_runs():
     mod = _module("usersubs")
     out = _output(lambda: mod.call_cost(mod.forms(1, tols=(1e-4,))[0], 1))
     assert "untraceable" in out and "us per call" in out
+
+
+def test_sparse_lu_report_runs(monkeypatch):
+    mod = _module("sparse_lu")
+    monkeypatch.setattr(sys, "argv", ["sparse_lu.py", "--quick"])
+    out = _output(mod.main)
+    assert "ratio SuperLU_MT / LU" in out and "| True |" in out

@@ -106,10 +106,11 @@ def test_actors_take_the_driver_and_a_progress_bar_does_not(capsys, monkeypatch)
     _same(res, _general(model, monkeypatch))
 
 
-@pytest.mark.parametrize("linsolver", ["dense", "auto", "sparse"])
+@pytest.mark.parametrize("linsolver", ["dense", "auto", "sparse", "superlu_mt"])
 def test_every_linear_solver_restarts_to_the_bit(linsolver, monkeypatch):
-    """A chain of 60 bodies (360 states): dense, band ("auto" picks it) and SuperLU_MT (whose
-    IDA object is set up again each run) give the driver's rows on every run."""
+    """A chain of 60 bodies (360 states): dense, band ("auto" picks it), the sparse LU (kept
+    between runs, its pivots forgotten at each start) and SuperLU_MT (whose IDA object is set
+    up again each run) give the driver's rows on every run."""
     from scenes import chain_deck
     model = pysolver.loads(chain_deck(60, end_time=0.2))
     runs = [model.run(progress=False, linsolver=linsolver) for _ in range(2)]

@@ -20,18 +20,26 @@ REFERENCE = json.loads((ROOT / "benchmarks" / "data" / "joint_references.json").
 def test_a02_four_bar_passes_its_singular_configurations_on_the_branch():
     """N = 40 (81 links, 121 revolutes, 120 redundant equations removed), the first 2.5 s:
     the mechanism passes the horizontal, where its constraints lose rank, at 0.72 s and
-    1.24 s. At integr_tol 1e-8 and 1e-9 point B0 stays within 1e-6 m of the exact 1-DOF
-    solution of the parallelogram branch (measured 9.4e-8 and 3.4e-7 m; a solver that
-    switches branch is off by metres) in fewer than 3,000 steps (measured 1,120 and 1,526;
-    before the position rows' compliance was 1e-9 s, 1e-9 took 87,721 steps to 1 s)."""
+    1.24 s. Before the first crossing point B0 follows the exact 1-DOF solution of the
+    parallelogram branch to the tolerance's order (below 2e-7 m at integr_tol 1e-8 and 1e-9;
+    measured up to 8.1e-8 m). Each crossing turns rounding-size differences into an error
+    that the phase of this motion, close to its separatrix, then amplifies: a 1 % change of
+    the tolerance, or another factorization of the same matrices (SuperLU_MT), moves the
+    error at 2.5 s between 9.4e-8 and 1.3e-5 m at 1e-8 and between 2.5e-7 and 1.5e-6 m at
+    1e-9 (docs/numerics.md, "Constraints"). Over the 2.5 s the error stays below 1e-4 m and
+    2e-5 m (a solver that switches branch is off by metres), in fewer than 3,000 steps
+    (measured 1,049-1,182 and 1,495-1,659; before the position rows' compliance was 1e-9 s,
+    1e-9 took 87,721 steps to 1 s)."""
     ref = REFERENCE["iftomm_a02_fourbar"]
+    assert ref["horizontal_crossing_times_s"][0] > 0.7
     assert ref["horizontal_crossing_times_s"][1] < 2.5
     text = re.sub(r'end_time="[^"]*"', 'end_time="2.5"',
                   (JOINTS / "iftomm_a02_fourbar.xml").read_text())
     model = pysolver.loads(text)
     times = np.array(ref["times"])
     n = np.searchsorted(times, 2.5, side="right")
-    for tol in (1e-8, 1e-9):
+    before = times[:n] < 0.7
+    for tol, bound in ((1e-8, 1e-4), (1e-9, 2e-5)):
         res = model.run(integr_tol=tol)
         assert res.success, res.message
         assert any("redundant constraints removed (120)" in line for line in res.log)
@@ -39,7 +47,8 @@ def test_a02_four_bar_passes_its_singular_configurations_on_the_branch():
         assert np.allclose(res.t[rows], times[:n], rtol=0, atol=1e-12)
         b0 = res.request(1)[rows]
         err = np.hypot(b0[:, 0] - ref["B0_x"][:n], b0[:, 1] - ref["B0_y"][:n])
-        assert err.max() < 1e-6
+        assert err[before].max() < 2e-7
+        assert err.max() < bound
         assert res.stats["steps"] < 3000
 
 

@@ -337,6 +337,46 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
 int ps_penalty_loads(const psModel* m, psData* d, double t, const double* y, const double* yp,
                      double* q);
 
+/* A sparse LU factorization of square matrices in compressed sparse columns whose pattern
+ * stays fixed (csrc/sparselu.c): IDA's sparse linear solver on the C driver. Opaque; made by
+ * ps_lu_new, freed by ps_lu_free. */
+typedef struct psLU psLU;
+
+/* Return a factorization object for n x n matrices with the pattern colptr (n + 1), rowind
+ * (colptr[n]), which must outlive it, factored in the column order colorder (n entries, a
+ * permutation: step k factors column colorder[k]; NULL: natural order), or NULL when out of
+ * memory or n <= 0. */
+psLU* ps_lu_new(int n, const int* colptr, const int* rowind, const int* colorder);
+
+/* Free a factorization object. NULL is allowed. */
+void ps_lu_free(psLU* f);
+
+/* Factor the matrix with values values (in the pattern's order) with threshold partial
+ * pivoting that prefers the diagonal. Returns 0; k + 1 when step k finds no nonzero finite
+ * pivot (the matrix is singular to working precision, or not finite); -1 when out of
+ * memory. */
+int ps_lu_factor(psLU* f, const double* values);
+
+/* Factor new values with the pivots and the patterns of L and U of the last successful
+ * ps_lu_factor. Returns 0; 1 when a pivot is no longer acceptable (zero, not finite, or below
+ * 1e-3 of the largest entry under it): call ps_lu_factor; -1 when there is no factorization
+ * to replay. */
+int ps_lu_refactor(psLU* f, const double* values);
+
+/* Forget the pivots: the next ps_lu_refactor returns -1, so a run that restarts factors as a
+ * fresh one would, and gives the same answer. */
+void ps_lu_forget(psLU* f);
+
+/* Solve A x = b in place (b: n entries) with the last successful factorization. */
+void ps_lu_solve(const psLU* f, double* b);
+
+/* Entries of L and U of the last factorization (0 if none). */
+long ps_lu_nnz(const psLU* f);
+
+/* Write the factorization's counts: full factorizations, replays (ps_lu_refactor), and
+ * replays that found a stale pivot (out: 3 entries). */
+void ps_lu_counts(const psLU* f, long* out);
+
 /* SUNDIALS IDA opened at run time from shared libraries, and one integration with it
  * (csrc/ida.c). Opaque: made by ps_ida_load (the libraries, once per process) and ps_ida_new
  * (one integration object sharing them), freed by ps_ida_delete. */
@@ -352,12 +392,17 @@ typedef struct psStream psStream;
  * libraries stay open for the process's life), or NULL with a message in msg (msglen bytes). */
 psIDA* ps_ida_load(const char* const* paths, char* msg, int msglen);
 
-/* Whether a table from ps_ida_load has the sparse matrix and SuperLU_MT (ps_ida_init's
- * mu = PS_IDA_SPARSE). */
+/* Whether a table from ps_ida_load has the sparse matrix and can give IDA pysolver's own
+ * sparse LU (ps_ida_init's mu = PS_IDA_SPARSE). */
 int ps_ida_has_sparse(const psIDA* s);
 
-/* ps_ida_init's mu selecting the sparse solver. */
-enum { PS_IDA_SPARSE = -2 };
+/* Whether a table from ps_ida_load has the sparse matrix and SuperLU_MT (ps_ida_init's
+ * mu = PS_IDA_SUPERLU_MT). */
+int ps_ida_has_superlumt(const psIDA* s);
+
+/* ps_ida_init's mu selecting a sparse solver: pysolver's sparse LU (csrc/sparselu.c), or
+ * SUNDIALS' SuperLU_MT on one thread (kept for comparison). */
+enum { PS_IDA_SPARSE = -2, PS_IDA_SUPERLU_MT = -3 };
 
 /* Return a new integration object using the functions of a table from ps_ida_load (not
  * started; see ps_ida_init), or NULL when out of memory. Free it with ps_ida_delete. */
@@ -379,15 +424,16 @@ const char* ps_ida_message(const psIDA* s);
  * has sensors, its root functions with directions rootdir (length m->nsensor). hmax, hmin,
  * h0 <= 0 mean IDA's defaults. mu, ml >= 0 select a band solver with those bandwidths, whose
  * matrix is filled from the kernel's triplets (ps_jacobian_pattern order) at the band storage
- * indices map (ntrip entries); mu = PS_IDA_SPARSE selects a compressed-sparse-column matrix
- * with the fixed pattern colptr (ny + 1) and rowind (nnz), filled from the triplets at the
- * value indices map, factored by SuperLU_MT on one thread; otherwise dense. map, colptr and
- * rowind must outlive the integration. Returns PS_OK, or -1 with a message (ps_ida_message);
- * a failed set-up frees what it built. */
+ * indices map (ntrip entries); mu = PS_IDA_SPARSE or PS_IDA_SUPERLU_MT selects a
+ * compressed-sparse-column matrix with the fixed pattern colptr (ny + 1) and rowind (nnz),
+ * filled from the triplets at the value indices map, factored by pysolver's sparse LU in the
+ * column order colorder (ny entries; NULL: natural order) or by SuperLU_MT on one thread;
+ * otherwise dense. map, colptr, rowind and colorder must outlive the integration. Returns
+ * PS_OK, or -1 with a message (ps_ida_message); a failed set-up frees what it built. */
 int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* y0,
                 const double* yp0, double rtol, double atol, double hmax, double hmin, double h0,
                 long mxsteps, const int* rootdir, int mu, int ml, const int* map, int ntrip,
-                const int* colptr, const int* rowind, int nnz);
+                const int* colptr, const int* rowind, int nnz, const int* colorder);
 
 /* Tune IDA's step control for stiff penalties. eta_max > 0 limits how fast IDA may grow its
  * step (IDA's default 2); nlconv > 0 sets the Newton convergence coefficient (IDA's default
@@ -419,8 +465,8 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
 /* Start a new run of the integration set up by ps_ida_init at (t0, y0, yp0), keeping its IDA
  * object and linear solver: IDA's state and the counters of ps_ida_stats start from zero.
  * Returns 1 when the object cannot be reused as it is (never set up, its step-growth limit
- * switched on by ps_ida_tune's auto_eta, or a sparse solver, whose factorization is kept
- * between runs): call ps_ida_init instead; else IDA's flag. */
+ * switched on by ps_ida_tune's auto_eta, or SuperLU_MT, whose factorization is kept between
+ * runs): call ps_ida_init instead; else IDA's flag. */
 int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
 
 /* IDA's counters over the whole run, restarts included: steps, residual evaluations, Jacobian

@@ -12,6 +12,7 @@ import os
 import numpy as np
 
 from ..build.bindings import ffi, lib
+from ..build.ordering import column_order
 from .step import ROOT_RETURN, Step
 
 #: The SUNDIALS libraries, in the order ps_ida_load takes their paths; the last two (the
@@ -59,9 +60,11 @@ def available():
     return _loaded() is not None
 
 
-def sparse_available():
-    """True when the C driver can also use SUNDIALS' sparse matrix and SuperLU_MT."""
-    return available() and bool(lib.ps_ida_has_sparse(_loaded()))
+def sparse_available(solver="lu"):
+    """True when the C driver can also use SUNDIALS' sparse matrix with `solver`: "lu",
+    pysolver's sparse LU (csrc/sparselu.c), or "superlu_mt", SUNDIALS' SuperLU_MT."""
+    has = lib.ps_ida_has_sparse if solver == "lu" else lib.ps_ida_has_superlumt
+    return available() and bool(has(_loaded()))
 
 
 class CIDA:
@@ -77,9 +80,10 @@ class CIDA:
         IDA's limit per call.
     band : tuple (mu, ml) or None
         Use a band solver with these bandwidths instead of the dense one.
-    sparse : bool
-        Use SUNDIALS' compressed-sparse-column matrix and SuperLU_MT, with the kernel's
-        Jacobian pattern (``kernel.sparsity()``) fixed for the integration.
+    sparse : {False, "lu", "superlu_mt"}
+        Use SUNDIALS' compressed-sparse-column matrix with the kernel's Jacobian pattern
+        (``kernel.sparsity()``) fixed for the integration, factored by pysolver's sparse LU
+        in the column order of :func:`pysolver.build.ordering.column_order` or by SuperLU_MT.
     tune : tuple (eta_max, nlconv, auto_eta) or None
         See ``ps_ida_tune``: a fixed step-growth limit, the Newton convergence coefficient and
         the limit switched on when the error test fails most steps (0: IDA's defaults).
@@ -104,11 +108,15 @@ class CIDA:
         self.counts = ffi.new("long[7]")
         self.started = False
         self.tune = tune
-        self.colptr = self.rowind = np.zeros(1, dtype=np.int32)
+        self.colptr = self.rowind = self.colorder = np.zeros(1, dtype=np.int32)
         self.nnz = 0
         if sparse:
             pattern = kernel.sparsity()
-            self.band = (lib.PS_IDA_SPARSE, -1)
+            if sparse == "superlu_mt":
+                self.band = (lib.PS_IDA_SUPERLU_MT, -1)
+            else:
+                self.band = (lib.PS_IDA_SPARSE, -1)
+                self.colorder = column_order(kernel)
             self.map = kernel.csc_map()
             self.ntrip = len(self.map)
             self.colptr = np.ascontiguousarray(pattern.indptr, dtype=np.int32)
@@ -138,7 +146,8 @@ class CIDA:
                                  ffi.cast("int *", fb(self.rootdir)), self.band[0], self.band[1],
                                  ffi.cast("int *", fb(self.map)), self.ntrip,
                                  ffi.cast("int *", fb(self.colptr)),
-                                 ffi.cast("int *", fb(self.rowind)), self.nnz)
+                                 ffi.cast("int *", fb(self.rowind)), self.nnz,
+                                 ffi.cast("int *", fb(self.colorder)))
             if rc != 0 or (self.tune and lib.ps_ida_tune(self.s, *self.tune) != 0):
                 raise self._error()
             self.started = True

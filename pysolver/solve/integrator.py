@@ -30,12 +30,15 @@ from .pyida import PyIDA
 class Plan:
     """How a scene is integrated: backend and linear solver, chosen once per run."""
     use_c: bool
-    sparse: bool
+    sparse: object            # False; True (scikit-sundae); "lu" or "superlu_mt" (C driver)
     band: tuple = None        # (mu, ml) for IDA's band solver
 
     @property
     def linsolver(self):
-        return "band" if self.band else "sparse" if self.sparse else "dense"
+        if self.band:
+            return "band"
+        return "superlu_mt" if self.sparse == "superlu_mt" else "sparse" if self.sparse \
+            else "dense"
 
 
 def cached_plan(compiled, options):
@@ -52,8 +55,9 @@ def cached_plan(compiled, options):
 def plan(kernel, options):
     """Choose backend and linear solver for `kernel` under `options` (see Options)."""
     backend = options.resolved_backend()
-    sparse = options.linsolver == "sparse" or (options.linsolver == "auto"
-                                               and kernel.ny >= SPARSE_THRESHOLD)
+    sparse = options.linsolver in ("sparse", "superlu_mt") or (
+        options.linsolver == "auto" and kernel.ny >= SPARSE_THRESHOLD)
+    solver = "superlu_mt" if options.linsolver == "superlu_mt" else "lu"
     # a large scene whose Jacobian is a narrow band gets IDA's band solver, from C
     band = None
     if sparse and options.linsolver == "auto":
@@ -62,7 +66,7 @@ def plan(kernel, options):
             band = (mu, ml)
     want_c = backend in ("auto", "c") and options.jacobian == "exact"
     use_c = want_c and cida.available() and (not sparse or band is not None or
-                                             cida.sparse_available())
+                                             cida.sparse_available(solver))
     if backend == "c" and not use_c:
         raise ValueError("backend='c' needs the dense exact-Jacobian path and SUNDIALS "
                          "libraries from the scikit-sundae wheel")
@@ -73,7 +77,7 @@ def plan(kernel, options):
                              "C (dense or band scenes, exact Jacobian, the scikit-sundae "
                              "wheel's SUNDIALS libraries)")
     if use_c:
-        return Plan(True, sparse and band is None, band)
+        return Plan(True, solver if sparse and band is None else False, band)
     return Plan(False, sparse, None)
 
 
