@@ -36,8 +36,9 @@ _RULES = {
     "max_step_growth": (lambda v: v > 1, "> 1"),
     "nonlin_conv_coef": (lambda v: 0 < v < 1, "in (0, 1)"),
 }
-_CHOICES = {"linsolver": ("auto", "dense", "sparse", "superlu_mt"), "jacobian": ("exact", "dq"),
-            "backend": ("auto", "c", "sksundae"), "kernel": ("auto", "generated", "tapes")}
+_CHOICES = {"linsolver": ("auto", "dense", "band", "sparse", "superlu_mt"),
+            "jacobian": ("exact", "dq"), "backend": ("auto", "c", "sksundae"),
+            "kernel": ("auto", "generated", "tapes")}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -66,11 +67,13 @@ class Options:
     nonlin_conv_coef : float or None
         IDA's Newton convergence coefficient in (0, 1). None: 0.033 on the C driver, IDA's
         0.33 on scikit-sundae.
-    linsolver : {"auto", "dense", "sparse", "superlu_mt"}
-        "auto": dense below 300 states, band (narrow-band Jacobians) or sparse above.
-        "sparse": compressed sparse columns factored by pysolver's sparse LU on the C
-        driver (SciPy's SuperLU through scikit-sundae); "superlu_mt": SUNDIALS' SuperLU_MT
-        instead (for comparison).
+    linsolver : {"auto", "dense", "band", "sparse", "superlu_mt"}
+        "auto": dense below 300 states, sparse above. "sparse": compressed sparse columns
+        factored by pysolver's sparse LU on the C driver (SciPy's SuperLU through
+        scikit-sundae); "band": IDA's band solver with the Jacobian's bandwidths (C
+        driver); "superlu_mt": SUNDIALS' SuperLU_MT (C driver). The last two for
+        comparison: the sparse LU is as fast as the band solver on chains and faster
+        than SuperLU_MT (docs/numerics.md, "The sparse LU").
     jacobian : {"exact", "dq"}
         The kernel's exact iteration matrix, or IDA's difference quotients (comparison only).
     backend : {"auto", "c", "sksundae"} or None

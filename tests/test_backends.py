@@ -37,17 +37,21 @@ def test_backend_option_is_checked(decks):
         model.run(backend="c", jacobian="dq")
 
 
-def test_band_solver_for_a_chain_matches_the_sparse_one():
-    """A large chain has a narrow-band Jacobian: the C driver uses IDA's band solver, filled
-    from the kernel's triplets; scikit-sundae's sparse solver gives the same solution."""
+def test_band_and_sparse_solvers_for_a_chain_match_scikit_sundaes():
+    """A large chain has a narrow-band Jacobian: from C, IDA's band solver (filled from the
+    kernel's triplets) and the sparse LU give the solution scikit-sundae's sparse solver
+    gives, in the same steps."""
     from scenes import chain_deck
     model = pysolver.loads(chain_deck(60, end_time=0.1))
     k = model.compile().kernel
     mu, ml = k.bandwidths()
     assert 4 * (mu + ml + 1) <= k.ny
-    band = model.run(backend="c", nonlin_conv_coef=0.33, max_step_growth=2)
+    ida = dict(backend="c", nonlin_conv_coef=0.33, max_step_growth=2)
+    band = model.run(linsolver="band", **ida)
+    lu = model.run(**ida)
     sparse = model.run(backend="sksundae")
     assert band.meta["options"]["linsolver"] == "band"
-    assert sparse.meta["options"]["linsolver"] == "sparse"
-    assert band.stats["steps"] == sparse.stats["steps"]
-    assert np.nanmax(np.abs(band.request(1) - sparse.request(1))) < 1e-10
+    assert lu.meta["options"]["linsolver"] == sparse.meta["options"]["linsolver"] == "sparse"
+    for res in (band, lu):
+        assert res.stats["steps"] == sparse.stats["steps"]
+        assert np.nanmax(np.abs(res.request(1) - sparse.request(1))) < 1e-10

@@ -51,12 +51,13 @@ def _closed_chain(n):
     return text.replace("<Post_Request", tie, 1)
 
 
-def test_auto_picks_a_structured_solver_for_large_scenes():
-    """From 300 states: IDA's band solver from C when the Jacobian is a narrow band (a chain),
-    otherwise SUNDIALS' sparse matrix and SuperLU_MT, also from C (scikit-sundae on request)."""
+def test_auto_picks_the_sparse_lu_for_large_scenes():
+    """From 300 states the sparse LU from C, for a chain (a narrow band) and a closed chain
+    (no band) alike; scikit-sundae's sparse solver on request; dense below."""
     from pysolver.options import SPARSE_THRESHOLD
     model = pysolver.loads(chain_deck(SPARSE_THRESHOLD // 6 + 1, end_time=0.02))
-    assert model.run(backend="c").meta["options"]["linsolver"] == "band"
+    res = model.run()
+    assert (res.meta["options"]["linsolver"], res.meta["options"]["backend"]) == ("sparse", "c")
     res = model.run(backend="sksundae")
     assert res.success and res.meta["options"]["linsolver"] == "sparse"
     assert pysolver.loads(chain_deck(3, end_time=0.02)).run().meta["options"]["linsolver"] == "dense"

@@ -55,30 +55,31 @@ def cached_plan(compiled, options):
 def plan(kernel, options):
     """Choose backend and linear solver for `kernel` under `options` (see Options)."""
     backend = options.resolved_backend()
-    sparse = options.linsolver in ("sparse", "superlu_mt") or (
-        options.linsolver == "auto" and kernel.ny >= SPARSE_THRESHOLD)
-    solver = "superlu_mt" if options.linsolver == "superlu_mt" else "lu"
-    # a large scene whose Jacobian is a narrow band gets IDA's band solver, from C
-    band = None
-    if sparse and options.linsolver == "auto":
-        mu, ml = kernel.bandwidths()
-        if 4 * (mu + ml + 1) <= kernel.ny:
-            band = (mu, ml)
     want_c = backend in ("auto", "c") and options.jacobian == "exact"
-    use_c = want_c and cida.available() and (not sparse or band is not None or
-                                             cida.sparse_available(solver))
+    ls = options.linsolver
+    if ls == "auto":
+        ls = "sparse" if kernel.ny >= SPARSE_THRESHOLD else "dense"
+        # a SUNDIALS build without the sparse LU's hooks: a narrow band still runs from C
+        if ls == "sparse" and want_c and cida.available() and not cida.sparse_available():
+            mu, ml = kernel.bandwidths()
+            ls = "band" if 4 * (mu + ml + 1) <= kernel.ny else ls
+    band = kernel.bandwidths() if ls == "band" else None
+    sparse = ls in ("sparse", "superlu_mt")
+    solver = "superlu_mt" if ls == "superlu_mt" else "lu"
+    use_c = want_c and cida.available() and (not sparse or cida.sparse_available(solver))
     if backend == "c" and not use_c:
-        raise ValueError("backend='c' needs the dense exact-Jacobian path and SUNDIALS "
-                         "libraries from the scikit-sundae wheel")
+        raise ValueError("backend='c' needs the exact Jacobian and SUNDIALS libraries from "
+                         "the scikit-sundae wheel")
     # scikit-sundae runs IDA's own step control: only its default values can be asked for
     for key, ida_default in (("max_step_growth", 2.0), ("nonlin_conv_coef", 0.33)):
         if getattr(options, key) not in (None, ida_default) and not use_c:
             raise ValueError(f"{key} other than IDA's {ida_default:g} needs IDA driven from "
-                             "C (dense or band scenes, exact Jacobian, the scikit-sundae "
-                             "wheel's SUNDIALS libraries)")
+                             "C (exact Jacobian, the scikit-sundae wheel's SUNDIALS "
+                             "libraries)")
     if use_c:
-        return Plan(True, solver if sparse and band is None else False, band)
-    return Plan(False, sparse, None)
+        return Plan(True, solver if sparse else False, band)
+    # through scikit-sundae: its dense solver, or SciPy's sparse LU for the rest
+    return Plan(False, ls != "dense", None)
 
 
 def make(kernel, options, the_plan, bounds):
