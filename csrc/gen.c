@@ -34,5 +34,13 @@ const psGen* ps_gen_open(const char* path, const char* scene, const psModel* m, 
     dlclose(lib);
     return NULL;
   }
+  /* user subroutines called from the generated code go through this kernel */
+  void** hook = (void**)dlsym(lib, "psg_user_point");
+  if (!hook) {
+    snprintf(msg, (size_t)msglen, "%s has no psg_user_point", path);
+    dlclose(lib);
+    return NULL;
+  }
+  *hook = (void*)ps_user_point;
   return gen;
 }

@@ -228,7 +228,7 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
   }
   d->last_t = t;
   if (m->gen)
-    m->gen->residual(m, d->senval, t, y, yp, 0.0, res);
+    m->gen->residual(m, d, t, y, yp, 0.0, res);
   else
     assemble(m, d, t, y, yp, &as);
   return check_finite(m, d, t, y, yp, res, m->ny, 0, 1);
@@ -260,7 +260,7 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
     trow = m->gen->trow;
     tcol = m->gen->tcol;
     ntrip = m->gen->ntrip;
-    m->gen->jacobian(m, d->senval, t, y, yp, 0.0, d->trip);
+    m->gen->jacobian(m, d, t, y, yp, 0.0, d->trip);
   } else {
     Assembly as = {d->res, NULL, d->trip, NULL, NULL, 0, 1, 0.0, n};
     assemble(m, d, t, y, yp, &as);
@@ -276,7 +276,7 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
   /* the forces each row carries, in the residual's units: the net of every force but
    * reactions (the residual at yp = 0 without them) */
   if (m->gen)
-    m->gen->residual(m, d->senval, t, free_y, zero, 0.0, net);
+    m->gen->residual(m, d, t, free_y, zero, 0.0, net);
   else {
     Assembly as = {net, NULL, NULL, NULL, NULL, 0, 0, 0.0, n};
     assemble(m, d, t, free_y, zero, &as);
@@ -311,7 +311,7 @@ int ps_jacobian(const psModel* m, psData* d, double t, const double* y, const do
   if (m->gen) {
     const psGen* gen = m->gen;
     memset(jac, 0, sizeof(double) * (size_t)m->ny * (size_t)m->ny);
-    gen->jacobian(m, d->senval, t, y, yp, cj, d->trip);
+    gen->jacobian(m, d, t, y, yp, cj, d->trip);
     for (int k = 0; k < gen->ntrip; k++) jac[(long)gen->trow[k] * m->ny + gen->tcol[k]] = d->trip[k];
   } else {
     assemble(m, d, t, y, yp, &as);
@@ -343,7 +343,7 @@ int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, cons
   Assembly as = {d->res, NULL, d->trip, NULL, NULL, 0, 1, cj, m->ny};
   d->njac++;
   if (m->gen)
-    m->gen->jacobian(m, d->senval, t, y, yp, cj, d->trip);
+    m->gen->jacobian(m, d, t, y, yp, cj, d->trip);
   else
     assemble(m, d, t, y, yp, &as);
   for (int i = 0; i < nnz; i++) data[i] = 0.0;
@@ -355,7 +355,7 @@ int ps_jacobian_csc(const psModel* m, psData* d, double t, const double* y, cons
 static void sensor_values(const psModel* m, psData* d, double t, const double* y,
                           const double* yp) {
   if (m->gen) {
-    m->gen->sensors(m, d->senval, t, y, yp, 0.0, d->sensor_f);
+    m->gen->sensors(m, d, t, y, yp, 0.0, d->sensor_f);
     return;
   }
   int last = -1;
@@ -425,7 +425,7 @@ double ps_power(const psModel* m, const double* y, const double* yp) {
 int ps_outputs(const psModel* m, psData* d, double t, const double* y, const double* yp,
                double* out) {
   if (m->gen) {
-    m->gen->outputs(m, d->senval, t, y, yp, 0.0, out);
+    m->gen->outputs(m, d, t, y, yp, 0.0, out);
     return PS_OK;
   }
   int last = -1;

@@ -282,25 +282,15 @@ static double eval_at(const psModel* m, int k, UserCtx* ctx, double* z, int nin,
   return f;
 }
 
-void ps_user_call(const psModel* m, psData* d, const psuHD* c, double* out, const int* a,
-                  double t) {
-  int k = a[0], nin = a[2], chan = a[3], n = nin + 1;   /* inputs, then time */
-  const int* in = m->user_in + a[1];
-  double* cache = d->user_cache + (long)a[4] * PS_USER_CACHE;
+int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
+                  const double* zin, int nin, int order, double* out) {
+  int n = nin + 1;   /* inputs, then time */
+  double* cache = d->user_cache + (long)cache_index * PS_USER_CACHE;
   double *cz = cache + 2, *cfi = cz + n, *cflat = cfi + n;
-  const double* arg[PS_USER_MAXIN + 1];
-  double z[PS_USER_MAXIN + 1], fi[PS_USER_MAXIN + 1];
-  double fij[(PS_USER_MAXIN + 1) * (PS_USER_MAXIN + 1)];
+  double z[PS_USER_MAXIN + 1], *fi = out + 1, *fij = out + 1 + n;
   double fp[PS_USER_MAXIN + 1], fm[PS_USER_MAXIN + 1], H[PS_USER_MAXIN + 1];
   int flat[PS_USER_MAXIN + 1];   /* the routine gave exactly f0 a step away in input i */
-  double* tvar = ps_tmp(m, d, PS_TMP_TAPE - 1);   /* time as a hyper-dual */
-  psu_hd_var(c, tvar, t, c->order >= 1 ? c->nh - 1 : -1);
-  for (int i = 0; i < nin; i++) {
-    arg[i] = ps_slot(m, d, in[i]);
-    z[i] = arg[i][0];
-  }
-  arg[nin] = tvar;
-  z[nin] = t;
+  memcpy(z, zin, sizeof(double) * (size_t)n);
   UserCtx ctx;
   ctx.recording = 0;
   ctx.error = 0;
@@ -313,31 +303,46 @@ void ps_user_call(const psModel* m, psData* d, const psuHD* c, double* out, cons
   current = &ctx;
   /* the value and first partials of the last call at the same inputs (the residual before a
    * Jacobian) are reused */
-  int need = c->order >= 1 ? 2 : 1, hit = cache[0] >= need;
+  int need = order >= 1 ? 2 : 1, hit = cache[0] >= need;
   for (int i = 0; hit && i < n; i++) hit = cz[i] == z[i];
   double f0 = hit ? cache[1] : eval(m, k, &ctx, z, nin, 0, chan);
-  /* first partials by central differences (step ~ cbrt(eps)); an input whose forward step
-   * leaves the value exactly unchanged (time, usually) is taken as not read: no backward call */
-  for (int i = 0; c->order >= 1 && i < n; i++) {
+  /* first partials by fourth-order central differences (Richardson's combination of the
+   * steps h and 2h, h ~ eps^(1/5) relative): truncation and rounding both near 1e-13
+   * relative. Second-order differences at the step ~ cbrt(eps) that balances their errors
+   * carry rounding noise of about eps |f| / h, 1e-11 of a position of 100 mm: enough to fail
+   * IDA's corrector at tight tolerances (seed 3's penalties as routines at integr_tol 1e-10:
+   * 1.1-2.3x the expression version's steps, 5-50x its convergence failures; fourth order:
+   * its steps), and they take half the calls: runs at loose tolerances use them
+   * (d->user_coarse). An input whose first step leaves the value exactly unchanged (time,
+   * usually) is taken as not read. */
+  for (int i = 0; order >= 1 && i < n; i++) {
     if (hit) {
       fi[i] = cfi[i];
       flat[i] = cflat[i] != 0.0;
       continue;
     }
-    double h = step(6e-6, z[i]);
+    double h = step(d->user_coarse ? 6e-6 : 1e-3, z[i]);
     double f1 = eval_at(m, k, &ctx, z, nin, chan, i, h, -1, 0.0);
     flat[i] = f1 == f0;
-    fi[i] = flat[i] ? 0.0 : (f1 - eval_at(m, k, &ctx, z, nin, chan, i, -h, -1, 0.0)) / (2.0 * h);
+    if (flat[i]) {
+      fi[i] = 0.0;
+      continue;
+    }
+    fi[i] = (f1 - eval_at(m, k, &ctx, z, nin, chan, i, -h, -1, 0.0)) / (2.0 * h);
+    if (d->user_coarse) continue;
+    double d2 = (eval_at(m, k, &ctx, z, nin, chan, i, 2.0 * h, -1, 0.0) -
+                 eval_at(m, k, &ctx, z, nin, chan, i, -2.0 * h, -1, 0.0)) / (4.0 * h);
+    fi[i] = (4.0 * fi[i] - d2) / 3.0;
   }
   /* second partials with a larger step (~ eps^(1/4)): the diagonal from +/- steps, the rest
    * from one diagonal pair of steps each and the diagonal values */
-  for (int i = 0; c->order >= 2 && i < n; i++) {
+  for (int i = 0; order >= 2 && i < n; i++) {
     if (flat[i]) continue;
     H[i] = step(1e-4, z[i]);
     fp[i] = eval_at(m, k, &ctx, z, nin, chan, i, H[i], -1, 0.0);
     fm[i] = eval_at(m, k, &ctx, z, nin, chan, i, -H[i], -1, 0.0);
   }
-  for (int i = 0; c->order >= 2 && i < n; i++)
+  for (int i = 0; order >= 2 && i < n; i++)
     for (int j = i; j < n; j++) {
       double v = 0.0;
       if (flat[i] || flat[j]) v = 0.0;
@@ -354,8 +359,8 @@ void ps_user_call(const psModel* m, psData* d, const psuHD* c, double* out, cons
     cache[0] = 0.0;
     d->user_error = 1;
     snprintf(d->msg, sizeof(d->msg), "user subroutine (id %d): %s", m->user_id[k], ctx.msg);
-    psu_hd_const(c, out, NAN);
-    return;
+    out[0] = NAN;
+    return -1;
   }
   if (!hit) {
     cache[0] = need;
@@ -367,5 +372,27 @@ void ps_user_call(const psModel* m, psData* d, const psuHD* c, double* out, cons
       cflat[i] = flat[i];
     }
   }
-  psu_hd_nary(c, out, arg, n, f0, fi, fij);
+  out[0] = f0;
+  return 0;
+}
+
+void ps_user_call(const psModel* m, psData* d, const psuHD* c, double* out, const int* a,
+                  double t) {
+  int k = a[0], nin = a[2], chan = a[3], n = nin + 1;   /* inputs, then time */
+  const int* in = m->user_in + a[1];
+  const double* arg[PS_USER_MAXIN + 1];
+  double z[PS_USER_MAXIN + 1], point[1 + (PS_USER_MAXIN + 1) * (PS_USER_MAXIN + 2)];
+  double* tvar = ps_tmp(m, d, PS_TMP_TAPE - 1);   /* time as a hyper-dual */
+  psu_hd_var(c, tvar, t, c->order >= 1 ? c->nh - 1 : -1);
+  for (int i = 0; i < nin; i++) {
+    arg[i] = ps_slot(m, d, in[i]);
+    z[i] = arg[i][0];
+  }
+  arg[nin] = tvar;
+  z[nin] = t;
+  if (ps_user_point(m, d, a[4], k, chan, z, nin, c->order, point) != 0) {
+    psu_hd_const(c, out, NAN);
+    return;
+  }
+  psu_hd_nary(c, out, arg, n, point[0], point + 1, point + 1 + n);
 }

@@ -81,8 +81,8 @@ class Options:
         ``PYSOLVER_BACKEND`` environment variable, else "auto" (C where the scene allows).
     kernel : {"auto", "generated", "tapes"} or None
         The scene's generated C (compiled once per deck, cached on disk; "auto" and
-        "generated" fall back to the tapes, with a log line, when no C compiler works or the
-        scene calls a user subroutine from the kernel), or the tape interpreter. None: the
+        "generated" fall back to the tapes, with a log line, when no C compiler works), or the
+        tape interpreter. None: the
         ``PYSOLVER_KERNEL`` environment variable, else "auto".
     """
     integr_tol: float = 1e-3

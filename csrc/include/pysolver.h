@@ -122,11 +122,12 @@ struct psModel;
  * matrix triplet values, sensor expressions or request channels at (t, y, yp) into out, reading
  * the sweep parameters from m's arrays and stored Sensor_Evaluate values from sv; cj is the
  * iteration matrix's coefficient (read by the Jacobian only). */
-typedef void (*psGenFn)(const struct psModel* m, const double* sv, double t, const double* y,
+struct psData;
+typedef void (*psGenFn)(const struct psModel* m, struct psData* d, double t, const double* y,
                         const double* yp, double cj, double* out);
 
 /* Version of the psGen layout; a generated library with another one is not used. */
-#define PS_GEN_VERSION 1
+#define PS_GEN_VERSION 2
 
 /* The table a generated library exports as ps_gen_table: straight-line C for one compiled scene
  * (same results as its tapes to rounding), the iteration matrix as ntrip (row, col) triplets
@@ -263,6 +264,9 @@ typedef struct psData {
   long nfail;             /* failed step attempts (a new time below the last)   */
   double last_t;          /* time of the last residual evaluation              */
   int user_error;         /* 1 after a user subroutine reported an error        */
+  int user_coarse;        /* 1: user routines' first partials by second-order
+                             central differences (runs at loose tolerances, half
+                             the calls), 0: fourth-order (ps_user_point)        */
   double* user_cache;     /* (nusercache x PS_USER_CACHE) the last evaluation of
                              each PS_OP_USER instruction, reused by the Jacobian
                              at the same state; zero it to forget               */
@@ -521,6 +525,16 @@ const psGen* ps_gen_open(const char* path, const char* scene, const psModel* m, 
  * (msglen bytes). The kernel's own symbols (c_sysfnc, c_sysary, c_errmes) are made global
  * first, so that a library built without linking against pysolver finds them. */
 void* ps_user_open(const char* path, const char* name, char* msg, int msglen);
+
+/* Evaluate the routine of PS_OP_USER instruction cache_index (routine k, result channel chan)
+ * at its nin inputs and time, z (nin + 1 values), with its partials in them to order `order`
+ * (0, 1 or 2) by central differences: out[0] the value, out[1 + i] the first partials,
+ * out[1 + n + i n + j] the second (n = nin + 1; out holds 1 + n + n n doubles). The value and
+ * first partials at the same inputs are reused from d->user_cache. Returns 0, or -1 after the
+ * routine reported an error (d->user_error and d->msg set, out[0] NaN). Tapes (csrc/tape.c)
+ * and generated C call it. */
+int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
+                  const double* z, int nin, int order, double* out);
 
 /* Call user routine fn (argument list form, PS_USER_*) once with iflag = 1, as Adams does to
  * learn its dependencies: each c_sysfnc / c_sysary call it makes is recorded as a canonical key

@@ -17,6 +17,15 @@ from ..deck.usersubs import CONVENTIONS, elements, set_trees
 from ..errors import ExpressionError
 from .bindings import ffi, lib
 
+#: Runs at integr_tol of at least this take the routines' first partials by second-order
+#: central differences, tighter runs by fourth-order ones (ps_user_point, psData.user_coarse):
+#: the rounding noise of second-order differences, about 1e-11 relative, fails IDA's
+#: corrector at tight tolerances (seed 3's penalties as C routines: the expression version's
+#: steps and convergence failures down to 1e-9 in either order; at 1e-10 1.3-1.8x its steps
+#: with second-order differences, its steps with fourth-order ones), and fourth-order ones
+#: take twice the calls.
+COARSE_TOL = 1e-9
+
 _SIGNATURE = {lib.PS_USER_DFLAG: "void(int *, double *, double *, int *, int *, int *, double *)",
               lib.PS_USER_IORD: "void(int *, double *, double *, int *, int *, int *, double *)",
               lib.PS_USER_PLAIN: "void(int *, double *, double *, int *, int *, double *)"}

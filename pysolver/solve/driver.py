@@ -15,6 +15,7 @@ import time
 
 import numpy as np
 
+from ..build import usercalls
 from ..build.bindings import ffi, lib
 from ..build.consistent import AssemblyError, set_tolerance
 from ..build.kernel import UserFailure
@@ -58,6 +59,7 @@ def start_state(model, kernel, tol):
     """(t0, y0, yp0) of a run at integr_tol `tol`: the bodies' initial state and rates
     consistent with it (Stop when they cannot be had)."""
     set_tolerance(kernel, tol, (UserFailure,))
+    kernel.d.user_coarse = int(tol >= usercalls.COARSE_TOL)
     t0, y0 = 0.0, kernel.layout.initial_state()
     kernel.d.last_t = t0
     kernel.d.bad_kind = 0

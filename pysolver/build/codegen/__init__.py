@@ -3,10 +3,12 @@ straight-line C with exact symbolic derivatives, compiled once and cached on dis
 
 :func:`attach` gives a compiled :class:`~pysolver.build.kernel.Kernel` its generated library;
 the kernel then calls it in place of the tape interpreter (csrc/residual.c). The tapes stay as
-the fallback (no compiler, ``kernel="tapes"``, a scene with user subroutines called from the
-kernel, one larger than :data:`LIMIT` or whose C would cost more than :data:`COMPILE_LIMIT` to
-compile, an unusable cache or compiler: :mod:`.cache`) and as the reference the diagnosis of a
-non-finite value runs.
+the fallback (no compiler, ``kernel="tapes"``, a scene larger than :data:`LIMIT` or whose C
+would cost more than :data:`COMPILE_LIMIT` to compile, an unusable cache or compiler:
+:mod:`.cache`) and as the reference the diagnosis of a non-finite value runs. User
+subroutines the kernel calls (C libraries, untraceable Python) are called from the generated
+code through the kernel's ``ps_user_point`` (the ``psg_user_point`` hook csrc/gen.c sets),
+their differenced partials chained with the exact derivatives of what they read.
 """
 import functools
 import hashlib
@@ -165,9 +167,6 @@ def attach(kernel, lib, ffi):
         or ``{"kernel": "tapes", "why": message}`` when the tapes run (no compiler, a scene
         the generator does not translate or too large to compile, an unusable cache).
     """
-    a = kernel.arrays
-    if a["nuser"]:
-        return {"kernel": "tapes", "why": "not generated: a user subroutine called from the kernel"}
     spent = []
 
     def make(record):

@@ -49,6 +49,7 @@ class Part:
         self.tables = [[], [], [], [], []]
         self._ids = {}, {}
         self.qadr, self.uadr, self.mbody, self.code, self.ntbody = [], [], [], [], 0
+        self.user_in = []       # the input slots of its user subroutine calls
         self.extra = []         # sensor or channel indices of a sensors' or requests' part
 
     def state(self, i):
@@ -114,7 +115,11 @@ class Part:
                 self.tables[4].append(code[i + 1])
                 code[i + 1] = len(self.tables[4]) - 1
             elif op == OP["USER"]:
-                raise Unsupported("a user subroutine called from the kernel")
+                # its inputs' slots move into the part; routine and cache entry stay global,
+                # so a part that calls a routine is a template of its own
+                adr, nin = code[i + 2], code[i + 3]
+                code[i + 2] = len(self.user_in)
+                self.user_in.extend(int(v) for v in a["user_in"][adr:adr + nin])
         self.code = code
         return 0
 
@@ -126,7 +131,7 @@ class Part:
         self.element = bool(element)
         self.arrays = m = dict(_NO_ELEMENTS)
         m.update(
-            nuser=0, ny=len(self.tables[0]), force_scale=a["force_scale"],
+            nuser=0, user_in=self.user_in, ny=len(self.tables[0]), force_scale=a["force_scale"],
             nbody=len(self.tables[1]), body_qadr=self.qadr, body_uadr=self.uadr,
             body_type=[int(a["body_type"][b]) for b in self.tables[1]],
             marker_body=self.mbody,
@@ -184,7 +189,7 @@ class Template:
         if op in ("y", "yp"):
             return f"{op}[I[{arg}]]"
         if op == "sv":
-            return f"sv[I[{nq + nb + nm + nc + arg}]]"
+            return f"d->senval[I[{nq + nb + nm + nc + arg}]]"
         array, obj, comp = arg
         if array == "gravity":
             return f"m->gravity[{comp}]"
@@ -222,8 +227,6 @@ def channels(a):
 def generate(kernel, limit=None):
     """The looped C source of a compiled kernel (raises Unsupported past `limit` nodes)."""
     a = kernel.arrays
-    if a["nuser"]:
-        raise Unsupported("a user subroutine called from the kernel")
     # parts by family (r the residual and iteration matrix, o outputs, s sensors) and key
     groups = {"r": {}, "o": {}, "s": {}}
     for family, part, key in [("r", p, k) for p, k in parts(a)] + channels(a):
@@ -260,11 +263,11 @@ def generate(kernel, limit=None):
                                    ("psg_sensors", "s", "s", "0, 0.0")):
         size, value = fill.split(", ")
         loops = "\n".join(f"  for (int k = 0; k < {len(tpl.rows)}; k++) "
-                          f"psg_{fn}{i}(m, sv, t, y, yp, cj, out, psg_i{family}{i}[k]);"
+                          f"psg_{fn}{i}(m, d, t, y, yp, cj, out, psg_i{family}{i}[k]);"
                           for i, tpl in enumerate(families[family].values()))
-        em.parts.append(f"static void {name}(const psModel* m, const double* sv, double t, "
+        em.parts.append(f"static void {name}(const psModel* m, psData* d, double t, "
                         f"const double* y, const double* yp, double cj, double* out) {{\n"
-                        f"  (void)m; (void)sv; (void)t; (void)y; (void)yp; (void)cj;\n"
+                        f"  (void)m; (void)d; (void)t; (void)y; (void)yp; (void)cj;\n"
                         f"  for (int i = 0; i < {size}; i++) out[i] = {value};\n{loops}\n}}\n")
     em.table(ny, trip, int(a["nsensor"]), int(a["nout"]))
     return em.source()

@@ -42,8 +42,6 @@ class Scene:
 
     def __init__(self, arrays, params=(), limit=None, rotations_at_run_time=False):
         self.a = a = arrays
-        if a["nuser"]:
-            raise Unsupported("a user subroutine called from the kernel")
         self.g = Graph(limit)
         self.params = set(params)
         self.rot_par = rotations_at_run_time
@@ -243,6 +241,10 @@ class Scene:
                 v = g.step(x[5], 0, s[x[0]], [self.const(k) for k in x[1:5]])
             elif op == OP["STATE"]:
                 v = self.y[x[0]]
+            elif op == OP["USER"]:
+                k, adr, nin, chan, entry = x[:5]
+                inputs = [s[int(slot)] for slot in self.a["user_in"][adr:adr + nin]]
+                v = g.user((entry, k, chan), inputs + [self.time])
             else:
                 raise Unsupported(f"tape instruction {op}")
             out.append(v)

@@ -193,6 +193,20 @@ class Graph:
     def atan2(self, y, x):
         return self._new("atan2", y, x)
 
+    def user(self, call, inputs):
+        """A user subroutine's value at its inputs (nodes: the system values it declared,
+        then time); `call` = (cache entry, routine, result channel). Its partials in the
+        inputs are the routine's own (central differences at run time, ps_user_point): the
+        derivative is their sum against the inputs' exact derivatives."""
+        return self._new(("user",) + tuple(call), *inputs)
+
+    def upart(self, u, i, j=None):
+        """The first partial of user node u in its input i (or the second, in i and j)."""
+        if j is None:
+            return self._node(("upart", i), (u,), self.deps[u])
+        i, j = min(i, j), max(i, j)
+        return self._node(("uhess", i, j), (u,), self.deps[u])
+
     def pow(self, a, b):
         return self._new("pow", a, b)
 
@@ -271,6 +285,19 @@ class Graph:
             if rule is None:
                 return self.zero
             return self.mul(rule(self, x, a), d(x, v))
+        if isinstance(op, tuple) and op[0] == "user":
+            out = self.zero
+            for i, z in enumerate(args):
+                out = self.add(out, self.mul(self.upart(a, i), d(z, v)))
+            return out
+        if isinstance(op, tuple) and op[0] == "upart":
+            u = args[0]
+            out = self.zero
+            for j, z in enumerate(self.args[u]):
+                out = self.add(out, self.mul(self.upart(u, op[1], j), d(z, v)))
+            return out
+        if isinstance(op, tuple) and op[0] == "uhess":
+            raise Unsupported("a third derivative of a user subroutine")
         if isinstance(op, tuple) and op[0] == "step":
             x = args[0]
             return self.mul(self._node(("step", op[1], op[2] + 1), args, self.deps[x])
