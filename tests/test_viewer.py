@@ -195,3 +195,15 @@ def test_the_vendored_three_is_what_its_readme_says():
         "The MIT License\n\nCopyright © 2010-2026 three.js authors")
     assert f"THREE={page.THREE_VERSION}" in (vendor / "fetch.sh").read_text()
     assert page.THREE_VERSION in (vendor / "README.md").read_text()
+
+
+def test_pysolver_run_writes_scene_html_unless_told_not_to(tmp_path):
+    from pysolver.cli import main
+    out = tmp_path / "out"
+    assert main(["run", str(README_DECK), "-o", str(out), "-q", "--no-plot"]) == 0
+    text = (out / "scene.html").read_text(encoding="utf-8")
+    assert '"title":"particle_between_lines.xml"' in text and '"n":601' in text
+    bare = tmp_path / "bare"
+    assert main(["run", str(README_DECK), "-o", str(bare), "-q", "--no-plot",
+                 "--no-animation"]) == 0
+    assert sorted(p.name for p in bare.iterdir()) == ["requests.csv", "stats.json"]

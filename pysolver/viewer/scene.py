@@ -109,8 +109,7 @@ class Scene:
         for sid, sf in sorted(scene.sforces.items()):
             if sid > 0 and not sf.torque and not sf.action_only:
                 self.items += shapes.scalar_force(sf)
-        for pen in scene.penalties.values():
-            self.items += shapes.penalty_plane(pen, scene, p, g)
+        self.items += shapes.penalty_planes(scene.penalties.values(), scene, p, g)
         self.bodies = []
         for k, bid in enumerate(sorted(p.pos)):
             b = scene.bodies[bid]
@@ -130,7 +129,8 @@ class Scene:
         used = set()
         for jo in scene.joints.values():
             used.update((jo.i, jo.j))
-        for el in list(scene.springdampers.values()) + list(scene.bushings.values()):
+        for el in [*scene.springdampers.values(), *scene.bushings.values(),
+                   *scene.sforces.values()]:
             used.update((el.i, el.j))
         pts += [p.marker_position(mid)[:1] for mid in sorted(used) if mid in p.local]
         pts = np.concatenate(pts) if pts else np.zeros((1, 3))

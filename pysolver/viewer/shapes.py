@@ -279,25 +279,40 @@ def _displacement(name, args, model):
     return -float(a @ origin), i, a
 
 
-def penalty_plane(pen, model, poses, g):
-    """A Force_Penalty whose expression is a plane in one marker's position: the patch of the
-    plane g = 0 under that marker's path (its path projected onto it, 3 glyphs around it, at
-    least 12 across)."""
-    got = affine(pen.expr, model) if pen.expr is not None else None
-    if got is None or got[1] is None or not np.any(got[2]):
-        return []
-    c, mid, a = got
-    n = a / np.linalg.norm(a)
-    path = poses.marker_position(mid)
-    on = path - ((path @ a + c) / (a @ a))[:, None] * a      # projections onto the plane
+def penalty_planes(penalties, model, poses, g):
+    """The Force_Penalty elements whose expression is a plane in one marker's position: per
+    plane (penalties on one plane drawn once), the patch of g = 0 under the markers' paths
+    (projected onto it, 3 glyphs more each side, at least 12 glyphs across)."""
+    planes = {}
+    for pen in sorted(penalties, key=lambda p: p.id):
+        got = affine(pen.expr, model) if pen.expr is not None else None
+        if got is None or got[1] is None or not np.any(got[2]):
+            continue
+        c, mid, a = got
+        n, d = a / np.linalg.norm(a), c / np.linalg.norm(a)      # the plane n . p + d = 0
+        if n[np.flatnonzero(np.abs(n) > 1e-12)[0]] < 0:
+            n, d = -n, -d
+        key = tuple(np.round(n, 9)) + (round(d / g, 6),)
+        plane = planes.setdefault(key, {"n": n, "d": d, "paths": [], "pens": []})
+        plane["paths"].append(poses.marker_position(mid))
+        plane["pens"].append(pen)
+    return [_patch(pl["n"], pl["d"], np.concatenate(pl["paths"]), pl["pens"], g)
+            for pl in planes.values()]
+
+
+def _patch(n, d, path, pens, g):
+    on = path - (path @ n + d)[:, None] * n             # the paths projected onto the plane
     u = np.cross(n, [1.0, 0, 0] if abs(n[0]) < 0.9 else [0, 1.0, 0])
     u /= np.linalg.norm(u)
     v = np.cross(n, u)
     pu, pv = on @ u, on @ v
-    # the path's span on the plane, 3 g more each side, and at least 12 g across
     w, h = (max(x.max() - x.min() + 6 * g, 12 * g) for x in (pu, pv))
     centre = (on[0] - (pu[0] - (pu.min() + pu.max()) / 2) * u
               - (pv[0] - (pv.min() + pv.max()) / 2) * v)
-    return [dict(kind="plane", centre=centre.tolist(), u=u.tolist(), v=v.tolist(),
-                 w=w, h=h, color=PLANE,
-                 label=f"Force_Penalty {pen.id}" + (f" {pen.label}" if pen.label else ""))]
+    if len(pens) == 1:
+        label = f"Force_Penalty {pens[0].id}" + (f" {pens[0].label}" if pens[0].label else "")
+    else:
+        ids = ", ".join(str(p.id) for p in pens[:3]) + (", ..." if len(pens) > 3 else "")
+        label = f"Force_Penalty {ids} ({len(pens)} on one plane)"
+    return dict(kind="plane", centre=centre.tolist(), u=u.tolist(), v=v.tolist(), w=w, h=h,
+                color=PLANE, label=label)
