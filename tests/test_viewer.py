@@ -207,3 +207,14 @@ def test_pysolver_run_writes_scene_html_unless_told_not_to(tmp_path):
     assert main(["run", str(README_DECK), "-o", str(bare), "-q", "--no-plot",
                  "--no-animation"]) == 0
     assert sorted(p.name for p in bare.iterdir()) == ["requests.csv", "stats.json"]
+
+
+@pytest.mark.parametrize("processes", [0, 1])
+def test_a_sweep_case_is_drawn_with_its_numbers(pendulum, processes):
+    """sweep.result(i) knows its model and case, in this process or from a worker's pickle:
+    the tip drawn where that case's run had it."""
+    model, _ = pendulum
+    study = pysolver.sweep(model, [{"Reference_Marker/32/pos_x": 1.5}], processes=processes)
+    res = study.result(0)
+    _close(res.animate(max_frames=None).scene.poses.marker_position(32), res.request(1)[:, :3])
+    assert res.request(1)[0, 0] == pytest.approx(1.5)
