@@ -165,7 +165,7 @@ class Scene:
         right = np.cross(-normal, up)
         if right.sum() < 0:
             normal = -normal
-        d = normal + 0.35 * up + 0.2 * np.cross(-normal, up)
+        d = normal + 0.3 * up + 0.15 * np.cross(-normal, up)
         return d / np.linalg.norm(d)
 
     # the page's data ------------------------------------------------------------------------
