@@ -157,6 +157,9 @@ def test_a_result_without_its_model():
 
 
 def test_rows_kept():
+    import inspect
+    assert inspect.signature(pysolver.Result.animate).parameters["max_frames"].default == \
+        scene.MAX_FRAMES
     np.testing.assert_array_equal(scene.rows_kept(5, 10), np.arange(5))
     np.testing.assert_array_equal(scene.rows_kept(10, 4), [0, 3, 6, 9])
     np.testing.assert_array_equal(scene.rows_kept(11, 4), [0, 4, 8, 10])
@@ -218,3 +221,15 @@ def test_a_sweep_case_is_drawn_with_its_numbers(pendulum, processes):
     res = study.result(0)
     _close(res.animate(max_frames=None).scene.poses.marker_position(32), res.request(1)[:, :3])
     assert res.request(1)[0, 0] == pytest.approx(1.5)
+
+
+def test_non_finite_rows_do_not_break_the_page(pendulum):
+    """A run that failed on a NaN keeps rows with non-finite states: the page is still made,
+    its sizes from the finite rows."""
+    model, res = pendulum
+    broken = pickle.loads(pickle.dumps(res))
+    broken.y[-5:] = np.nan
+    anim = broken.animate(model)
+    assert anim.scene.radius == pytest.approx(res.animate().scene.radius, rel=0.05)
+    data = json.loads(re.search(r'id="scene-data">(.*?)</script>', anim.html(), re.S).group(1))
+    assert data["n"] == len(res.t)

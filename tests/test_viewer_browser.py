@@ -85,3 +85,17 @@ def test_a_frame_fragment_opens_the_same_picture_as_its_time(page, tmp_path):
     assert res.t[60] == pytest.approx(0.6)
     a, b = _shot(path, "frame=60", tmp_path), _shot(path, "t=0.6", tmp_path)
     assert np.abs(a - b).max() <= 2
+
+
+def test_the_notebook_iframe_draws_the_scene(tmp_path):
+    """Result.animate()'s _repr_html_ (an iframe with the page as its srcdoc) inside another
+    page, as a notebook shows it: the frame draws the scene (it plays from its start, so the
+    red tip and the blue link are somewhere on their paths)."""
+    model = pysolver.load(ROOT / "tests" / "decks" / "graphics.xml")
+    cell = tmp_path / "notebook.html"
+    cell.write_text("<!DOCTYPE html><html><body style='margin:0'>"
+                    + model.run(progress=False).animate()._repr_html_() + "</body></html>",
+                    encoding="utf-8")
+    pixels = _shot(cell, "", tmp_path)
+    (_, n), (_, m) = _where(pixels, (200, 60, 40)), _where(pixels, (70, 110, 170))
+    assert n > 300 and m > 300, (n, m)

@@ -57,7 +57,8 @@ class Animation:
     def _repr_html_(self):
         """Jupyter: the page in an iframe of its own (srcdoc: no server, no file)."""
         return (f'<iframe srcdoc="{_html.escape(self.html(), quote=True)}" '
-                f'style="width: 100%; height: 520px; border: 1px solid #cfd6dd;" '
+                f'style="width: 100%; height: 520px; border: 1px solid #cfd6dd; '
+                f'box-sizing: border-box;" '
                 f'title="{_html.escape(self.scene.title)}: animation"></iframe>')
 
     def __repr__(self):

@@ -32,6 +32,11 @@ def rows_kept(n, max_frames):
     return rows if rows[-1] == n - 1 else np.append(rows, n - 1)
 
 
+def _finite(points):
+    """The rows of `points` (k, 3) without NaN or infinity (a failed run's last rows)."""
+    return points[np.all(np.isfinite(points), axis=1)]
+
+
 def _b64(a, dtype):
     return base64.b64encode(np.ascontiguousarray(a, dtype=dtype).tobytes()).decode("ascii")
 
@@ -133,7 +138,9 @@ class Scene:
                    *scene.sforces.values()]:
             used.update((el.i, el.j))
         pts += [p.marker_position(mid)[:1] for mid in sorted(used) if mid in p.local]
-        pts = np.concatenate(pts) if pts else np.zeros((1, 3))
+        pts = _finite(np.concatenate(pts)) if pts else np.zeros((0, 3))
+        if not len(pts):                # no finite position at all (a run that diverged)
+            pts = np.zeros((1, 3))
         lo, hi = pts.min(axis=0), pts.max(axis=0)
         radius = float(np.linalg.norm(hi - lo)) / 2
         if radius == 0:     # nothing moves and one point: one unit of the deck's lengths
@@ -152,7 +159,7 @@ class Scene:
                if bid not in p.ground]
         normal = None
         if pts:
-            pts = np.concatenate(pts)
+            pts = _finite(np.concatenate(pts))
             if len(pts) >= 3 and np.ptp(pts, axis=0).max() > 1e-9 * self.radius:
                 w, vecs = np.linalg.eigh(np.cov((pts - pts.mean(axis=0)).T))
                 normal = vecs[:, 0]

@@ -141,7 +141,8 @@ def travel(poses, i, j):
     """Range (min, max) of DZ(I, J, J) over the rows: where a slider has been along zJ."""
     d = np.einsum("ni,ni->n", poses.marker_position(i) - poses.marker_position(j),
                   poses.marker_axes(j)[:, :, 2])
-    return float(d.min()), float(d.max())
+    d = d[np.isfinite(d)]
+    return (float(d.min()), float(d.max())) if len(d) else (0.0, 0.0)
 
 
 def joint(jo, poses, g, driven=False):
@@ -301,6 +302,9 @@ def penalty_planes(penalties, model, poses, g):
 
 
 def _patch(n, d, path, pens, g):
+    path = path[np.all(np.isfinite(path), axis=1)]
+    if not len(path):
+        path = np.zeros((1, 3)) - d * n
     on = path - (path @ n + d)[:, None] * n             # the paths projected onto the plane
     u = np.cross(n, [1.0, 0, 0] if abs(n[0]) < 0.9 else [0, 1.0, 0])
     u /= np.linalg.norm(u)
