@@ -233,3 +233,42 @@ def test_non_finite_rows_do_not_break_the_page(pendulum):
     assert anim.scene.radius == pytest.approx(res.animate().scene.radius, rel=0.05)
     data = json.loads(re.search(r'id="scene-data">(.*?)</script>', anim.html(), re.S).group(1))
     assert data["n"] == len(res.t)
+
+
+def test_each_joint_type_is_drawn_as_its_table_says():
+    """The shapes of every joint type (tests/decks/all_joints.xml, lead_joints.xml), on I's
+    or J's marker, as docs/animation.md lists them; FREE holds nothing and has none."""
+    drawn = {}
+    for deck in ("all_joints.xml", "lead_joints.xml"):
+        model = pysolver.load(ROOT / "tests" / "decks" / deck)
+        for it in model.run(progress=False).animate().scene.items:
+            if it["label"].startswith("Constraint_Joint"):
+                jo = model.joints[int(it["label"].split()[1])]
+                drawn.setdefault(jo.type, []).append(
+                    (it["kind"], "J" if it["marker"] == jo.j else "I"))
+    pins, axes = [("cylinder", "J"), ("cylinder", "I")], [("axis", "J"), ("axis", "I")]
+    assert drawn == {
+        "REVOLUTE": [("cylinder", "J")] * 2, "SPHERICAL": [("sphere", "I")],
+        "ATPOINT": [("sphere", "I")], "FIXED": [("box", "I")],
+        "TRANSLATIONAL": [("cylinder", "J"), ("box", "I")] * 2, "CYLINDRICAL": pins * 2,
+        "UNIVERSAL": pins, "HOOKE": pins, "CONSTANT_VELOCITY": pins,
+        "PLANAR": [("square", "J"), ("sphere", "I")], "INPLANE": [("square", "J"), ("sphere", "I")],
+        "INLINE": [("axis", "J"), ("sphere", "I")], "ORIENTATION": axes, "PARALLEL_AXES": axes,
+        "PERPENDICULAR": axes, "SCREW": [("cylinder", "J"), ("helix", "J"), ("cylinder", "I")],
+        "RACK_PINION": pins}
+
+
+def test_a_translational_rail_spans_the_slider_travel():
+    """The slider-crank's rail runs along zJ over DZ(42, 3, 3) of the run (its channel 7), two
+    glyphs more at each end; the pinned joints' pins are 3 glyphs long."""
+    model = pysolver.load(ROOT / "decks" / "joints" / "slider_crank.xml")
+    res = model.run(progress=False)
+    sc = res.animate().scene
+    (rail,) = [it for it in sc.items if it["label"].startswith("Constraint_Joint 4")
+               and it["kind"] == "cylinder"]
+    dz = res.request(1)[:, 6]
+    assert rail["marker"] == 3
+    assert rail["z0"] == pytest.approx(dz.min() - 2 * sc.glyph, abs=1e-12)
+    assert rail["z1"] == pytest.approx(dz.max() + 2 * sc.glyph, abs=1e-12)
+    (pin,) = [it for it in sc.items if it["label"].startswith("Constraint_Joint 2")]
+    assert pin["z1"] - pin["z0"] == pytest.approx(3 * sc.glyph)

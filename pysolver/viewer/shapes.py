@@ -101,6 +101,8 @@ def graphic(gr, markers, poses, g):
             r, scale = _number(a, "radius"), [1.0, 1.0, 1.0]
         else:           # xscale.. are the diameters along the marker's axes
             d = [_number(a, f"{x}scale", f"{x}_scale") for x in "xyz"]
+            if min(d) <= 0:
+                raise Skip(f"its diameters must be > 0, got {d}")
             r, scale = max(d) / 2, [v / max(d) for v in d]
         return [dict(base, kind="sphere", marker=_marker(a, markers, *CENTER), c=[0, 0, 0],
                      r=r, scale=scale)]
@@ -119,10 +121,11 @@ def graphic(gr, markers, poses, g):
         text = next((a[k] for k in ("outline", "marker_id_list", "marker_ids", "markers")
                      if a.get(k) not in (None, "")), None)
         if text is None:
-            raise Skip("no list of markers (outline=)")
-        ids = []
-        for part in re.split(r"[,\s]+", str(text).strip()):
-            ids.append(_marker({"outline": part}, markers, "outline"))
+            raise Skip("no list of markers (marker_id_list=, or Adams OUTLINE=)")
+        ids = [_marker({"outline": part}, markers, "outline")
+               for part in re.split(r"[,\s]+", str(text).strip()) if part]
+        if len(ids) < 2:
+            raise Skip("an outline joins two markers or more")
         return [dict(base, kind="polyline", markers=ids)]
     if kind == "SPDP":
         i = _marker(a, markers, "i_marker_id", "i")
