@@ -272,3 +272,19 @@ def test_a_translational_rail_spans_the_slider_travel():
     assert rail["z1"] == pytest.approx(dz.max() + 2 * sc.glyph, abs=1e-12)
     (pin,) = [it for it in sc.items if it["label"].startswith("Constraint_Joint 2")]
     assert pin["z1"] - pin["z0"] == pytest.approx(3 * sc.glyph)
+
+
+def test_sensor_events_and_a_failed_run_are_on_screen():
+    """Sensor firings become ticks on the slider (their times and sensors); a failed run's
+    page says so with its message; a deck from text is titled so."""
+    model = pysolver.load(ROOT / "decks" / "sensor_halt_acceleration.xml")
+    res = model.run(progress=False)
+    data = res.animate().scene.data()
+    assert [e["t"] for e in data["events"]] == list(res.t_events) and len(res.events) >= 1
+    assert data["events"][0]["label"].startswith(f"Sensor_Event {res.events[0].sensor}")
+    failed = pickle.loads(pickle.dumps(res))
+    failed.success, failed.message = False, "IDA failed: the corrector did not converge"
+    assert failed.animate(model).scene.data()["status"] == {
+        "success": False, "message": "IDA failed: the corrector did not converge"}
+    text = pysolver.loads(README_DECK.read_text())
+    assert text.run(progress=False).animate().scene.title == "deck text"

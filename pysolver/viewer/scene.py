@@ -86,7 +86,8 @@ class Scene:
     # what is drawn --------------------------------------------------------------------------
     def _gather(self, scene, result):
         p = self.poses
-        self.title = os.path.basename(scene.source.file) if scene.source.file else "deck"
+        name = scene.source.file
+        self.title = os.path.basename(name) if name and name != "<string>" else "deck text"
         self.length = LENGTH.get(scene.units["length"], scene.units["length"].lower())
         self.time = TIME.get(scene.units["time"], scene.units["time"].lower())
         grav = np.asarray(scene.gravity, float)
