@@ -288,3 +288,46 @@ def test_sensor_events_and_a_failed_run_are_on_screen():
         "success": False, "message": "IDA failed: the corrector did not converge"}
     text = pysolver.loads(README_DECK.read_text())
     assert text.run(progress=False).animate().scene.title == "deck text"
+
+
+def test_graphics_by_adams_keywords_and_the_other_types():
+    """The Adams GRAPHICS keywords (lower case in a dataset's attributes) and the types the
+    double pendulum lacks, read as docs/animation.md's table says; bad ones are notes."""
+    from pysolver.records import Graphic
+    model = pysolver.load(README_DECK)
+    poses = model.run(progress=False).animate().scene.poses
+
+    def draw(kind, **attrs):
+        (it,) = shapes.graphic(Graphic(7, kind, {k: str(v) for k, v in attrs.items()}),
+                               model.markers, poses, 2.0)
+        return {k: v for k, v in it.items() if k not in ("color", "label")}
+
+    assert draw("CYLINDER", cm=10, length=-5, radius=1) == dict(
+        kind="cylinder", marker=10, r0=1.0, r1=1.0, z0=0.0, z1=-5.0, open=False)
+    assert draw("FRUSTUM", cm=10, length=4, top=1, bottom=2) == dict(
+        kind="cylinder", marker=10, r0=2.0, r1=1.0, z0=0.0, z1=4.0, open=False)
+    assert draw("BOX", corner=1, x=2, y=-4, z=6) == dict(kind="box", marker=1,
+                                                         c=[1.0, -2.0, 3.0], s=[2.0, 4.0, 6.0])
+    assert draw("ELLIPSOID", cm=10, xscale=4, yscale=2, zscale=1) == dict(
+        kind="sphere", marker=10, c=[0, 0, 0], r=2.0, scale=[1.0, 0.5, 0.25])
+    assert draw("CIRCLE", cm=1, rm=10) == dict(kind="arc", marker=1, r=pytest.approx(
+        np.hypot(100, 120)), a0=0.0, a1=2 * np.pi)
+    assert draw("ARC", cm=1, radius=3, rangle=1.5) == dict(kind="arc", marker=1, r=3.0,
+                                                           a0=0.0, a1=1.5)
+    assert draw("OUTLINE", outline="1, 10 1") == dict(kind="polyline", markers=[1, 10, 1])
+    assert draw("SPDP", i=10, j=1, da=3, coils=5) == dict(kind="coil", markers=[10, 1],
+                                                          r=1.5, turns=5.0)
+    assert draw("Point", marker_id=10) == dict(kind="sphere", marker=10, c=[0, 0, 0], r=0.6,
+                                               scale=[1, 1, 1])
+    for kind, attrs, why in [
+            ("CYLINDER", {"cm": 99, "length": 1, "radius": 1}, "cm: marker 99 does not exist"),
+            ("Sphere", {"center_marker_id": 10, "radius": "big"}, "radius='big' is not a number"),
+            ("Sphere", {"center_marker_id": 10}, "no radius"),
+            ("OUTLINE", {"outline": "10"}, "an outline joins two markers or more"),
+            ("ELLIPSOID", {"cm": 10, "xscale": 0, "yscale": 1, "zscale": 1},
+             "its diameters must be > 0, got [0.0, 1.0, 1.0]"),
+            ("TORUS", {"cm": 10}, "type TORUS is not drawn (meshes, CAD files, curves and "
+                                  "surfaces are not read)")]:
+        with pytest.raises(shapes.Skip) as err:
+            shapes.graphic(Graphic(7, kind, attrs), model.markers, poses, 2.0)
+        assert str(err.value) == why
