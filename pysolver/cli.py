@@ -52,6 +52,13 @@ def _run(args):
             written.append(png_path)
         except ImportError as err:
             print(f"pysolver: no plot ({err})", file=sys.stderr)
+    if not args.no_animation:
+        html_path = os.path.join(out, "scene.html")
+        try:
+            res.animate(model).save(html_path)
+            written.append(html_path)
+        except ValueError as err:           # no output rows to show
+            print(f"pysolver: no animation ({err})", file=sys.stderr)
     stats_path = os.path.join(out, "stats.json")
     with open(stats_path, "w") as fh:
         json.dump({"success": res.success, "status": res.status, "message": res.message,
@@ -97,11 +104,14 @@ def main(argv=None):
     """Entry point of the ``pysolver`` command; returns the exit status."""
     parser = argparse.ArgumentParser(prog="pysolver", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
-    run = sub.add_parser("run", help="run a deck and write requests.csv, requests.png, stats.json")
+    run = sub.add_parser("run", help="run a deck and write requests.csv, requests.png, "
+                         "scene.html, stats.json")
     run.add_argument("deck", help="deck file (.xml, .py, .adm or .acf)")
     run.add_argument("-o", "--output", help="output directory (default: DECKNAME_out)")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     run.add_argument("--no-plot", action="store_true", help="do not write requests.png")
+    run.add_argument("--no-animation", action="store_true",
+                     help="do not write scene.html (the 3-D animation)")
     run.add_argument("--end", type=float, help="run one transient command to this time "
                      "instead of the deck's commands (with --steps or --dtout)")
     run.add_argument("--steps", type=int, help="output steps of that command (default 100)")

@@ -137,9 +137,11 @@ class Model:
         if not (moving if moving is not None else
                 any(b.kind != "ground" for b in self.bodies.values())):
             self.check()                  # the DeckError saying there is nothing to run
-        return self.compile(options.get("kernel")).run(
+        res = self.compile(options.get("kernel")).run(
             progress=progress, stream=None if stream is None else os.fspath(stream),
             params=params, **options)
+        res._origin = (self, params)    # what res.animate() draws: no copy, no cost
+        return res
 
     def compile(self, kernel: str | None = None):
         """The :class:`~pysolver.solve.compiled.CompiledModel` for a kind of kernel (as the

@@ -288,6 +288,43 @@ class Result:
             plt.close(fig)
         return fig
 
+    def animate(self, model=None, params=None, max_frames: int | None = 4000):
+        """The 3-D animation of this run: in Jupyter it shows itself, ``.save(path)`` writes
+        it as one HTML file that works offline (docs/animation.md).
+
+        Parameters
+        ----------
+        model : pysolver.Model, optional
+            The model that made this Result; by default the one whose ``run`` did (a Result
+            read back from a pickle or a sweep's folder does not keep it).
+        params : dict, optional
+            The run's numbers, by default those ``model.run(params=...)`` was given.
+        max_frames : int or None, optional
+            Output rows kept at most (every k-th row and the last beyond; None: all).
+
+        Returns
+        -------
+        pysolver.viewer.Animation
+
+        Raises
+        ------
+        ValueError
+            No model is known, or the run has no output rows.
+        """
+        from .viewer import Animation
+        origin = self.__dict__.get("_origin")
+        if model is None:
+            if origin is None:
+                raise ValueError("this Result does not know the model that made it (read "
+                                 "back from a file or made outside Model.run): pass it, "
+                                 "res.animate(model)")
+            model, params = origin[0], params if params is not None else origin[1]
+        return Animation(self, model, params=params, max_frames=max_frames)
+
+    def __getstate__(self):
+        # the model stays behind: a pickled Result is data (sweep folders, workers)
+        return {k: v for k, v in self.__dict__.items() if k != "_origin"}
+
     def summary(self) -> str:
         """Return the run's outcome and statistics as text."""
         s = self.stats

@@ -159,4 +159,5 @@ def test_run_with_no_plot_does_not_import_matplotlib(tmp_path):
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          cwd=tmp_path, env=env)
     assert out.stdout.strip().splitlines()[-1] == "0 False", out.stderr[-2000:]
-    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["requests.csv", "stats.json"]
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["requests.csv", "scene.html",
+                                                                    "stats.json"]

@@ -67,7 +67,7 @@ class Sweep:
         if self.directory:
             res = self._store.load(self.keys[i])
             if res is not None:
-                return res
+                return self._with_origin(res, i)
         if self._in_process:
             if self._runner is None:
                 self._runner = CaseRunner(self.model)
@@ -75,7 +75,14 @@ class Sweep:
         else:
             got = list(Pool(self._payload, 1).run([(i, self.cases[i])], want=True))
             res = pickle.loads(got[0][2]) if got and got[0][2] is not None else None
-        self._results[i] = res
+        self._results[i] = res = self._with_origin(res, i)
+        return res
+
+    def _with_origin(self, res, i):
+        """`res` knowing its model and case, for res.animate() (a Result leaves them behind
+        when pickled)."""
+        if res is not None:
+            res._origin = (self.model, dict(self.cases[i]))
         return res
 
     def __repr__(self):
