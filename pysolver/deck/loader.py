@@ -127,11 +127,11 @@ def _decode(raw, fmt, path):
                         file=path, line=line) from None
 
 
-def deck_elements(path, user_code=True):
+def deck_elements(path, user_code=True, model=None):
     """(elements, title) of a deck file before they are checked: the list every format is
     read into (pysolver.deck.writer writes it as XML); title is an Adams dataset's first
-    line (else None)."""
-    model = load(path, user_code=user_code)
+    line (else None). `model`: the deck already loaded."""
+    model = model if model is not None else load(path, user_code=user_code)
     text, fmt = model.source.text, model.source.fmt
     title = text.splitlines()[0].strip() if fmt == "adm" and text else None
     return _elements(text, fmt, model.source.file, user_code), title
