@@ -21,7 +21,7 @@ from .deck.writer import to_xml
 from .errors import DeckError
 
 #: The output formats, by extension.
-FORMATS = {".xml": "MotionSolve XML", ".adm": "an Adams dataset (and its .acf)",
+FORMATS = {".xml": "MotionSolve XML", ".adm": "an Adams dataset with its command file",
            ".py": "a script of msolve classes"}
 
 
@@ -61,8 +61,9 @@ def forms(deck, output, user_code=True):
     deck, output = os.fspath(deck), os.fspath(output)
     stem, ext = os.path.splitext(output)
     if ext.lower() not in FORMATS:
-        raise DeckError(f"pysolver convert writes {', '.join(f'{v} ({k})' for k, v in FORMATS.items())}: "
-                        f"name the output by one of these extensions", file=output)
+        kinds = ", ".join(f"{v} ({k})" for k, v in FORMATS.items())
+        raise DeckError(f"unknown output format {ext or '(no extension)'!r}: pysolver convert "
+                        f"writes {kinds}", file=output)
     model = load(deck, user_code=user_code)
     elements, _ = deck_elements(deck, user_code=user_code, model=model)
     name = os.path.basename(deck)
@@ -234,8 +235,8 @@ def script(dataset, commands, output, about="", source=""):
         The deck's file name, for the docstring.
     """
     doc = (about + "\n\n" if about else "") + \
-        f"pysolver convert wrote this script of msolve classes from {source}: " \
-        "pysolver.load() reads it, `python` runs it."
+        f"pysolver convert wrote this script of msolve classes from {source}:\n" \
+        "pysolver.load() reads it, python runs it."
     doc = doc.replace("\\", "\\\\").replace('"""', '\\"\\"\\"')
     lines = [f'"""{doc}\n"""', "from pysolver.msolve import *", "",
              f"model = Model(output={output!r})"]

@@ -305,6 +305,9 @@ class _Reader:
             elif name == "Y":
                 vals.setdefault("Y", []).append(
                     [_number(v, stmt, key, self.file, line) for v in val])
+            elif not val[0].strip():
+                raise self.error(stmt, f"{key} = has no value (the statement is cut short?)",
+                                 key, line)
             else:
                 conv = [_number(v, stmt, key, self.file, line, integer=True)
                         if _NUMBER.match(v) else v.strip().strip("\"'") for v in val]

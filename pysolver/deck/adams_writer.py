@@ -1,5 +1,9 @@
 """A deck's elements written as an Adams dataset (.adm) and its command file (.acf).
 
+Longer than 420 lines because it is the Adams reader's table read backwards: one small
+translation per element (thirty), then the dataset's text (lines packed to 80 columns where
+a statement may break, exact numbers, quoting).
+
 Each element becomes the statement pysolver/deck/adams_statements.py reads back into the same
 element, attribute for attribute: numbers with their shortest exact digits (``repr``),
 markers placed as the deck placed them (every part's frame is the global frame, so QP is
@@ -47,6 +51,11 @@ class Statement:
     args: list
     label: str = ""
     line: object = None
+    file: object = None
+
+    def error(self, message, attribute=None):
+        return DeckError(message, file=self.file, line=self.line, element=self.name, id=self.id,
+                         attribute=attribute)
 
 
 def statements(elements, model, file, out_dir=None):
@@ -73,7 +82,7 @@ def statements(elements, model, file, out_dir=None):
             raise DeckError(str(err), file=file, line=el.line, element=el.tag,
                             id=el.a.get("id")) from None
         for st in out:
-            st.line = el.line
+            st.line, st.file = el.line, file
             _subroutine(st, el, file, out_dir)
             (commands if st.name in ("SIMULATE", "STOP") else dataset).append(st)
     return dataset, commands
@@ -518,9 +527,9 @@ def command_text(commands, dataset_name):
 def _view_name(st):
     quote = "'" if "'" not in st.label else '"'
     if quote in st.label or "\n" in st.label or "\r" in st.label:
-        raise DeckError(f"the label {st.label!r} cannot be written to a dataset's "
-                        "adams_view_name comment (it holds both quotes or a line break)",
-                        line=st.line, element=st.name, id=st.id, attribute="label")
+        raise st.error(f"the label {st.label!r} cannot be written to a dataset's "
+                       "adams_view_name comment (it holds both quotes or a line break)",
+                       "label")
     return f"! adams_view_name={quote}{st.label}{quote}"
 
 
@@ -553,8 +562,7 @@ def _pieces(key, value, st):
     if isinstance(value, Function):
         text = function_text(value)
         if "\\" in text or "!" in text:
-            raise DeckError(f"the expression {text!r} holds a backslash or '!'", line=st.line,
-                            element=st.name, id=st.id, attribute=key)
+            raise st.error(f"the expression {text!r} holds a backslash or '!'", key)
         parts = _breaks(text)
         parts[0] = f"{key} = {parts[0]}"
         parts[-1] += "\\"
@@ -579,8 +587,8 @@ def _value(v, st, key):
         return text
     quote = '"' if '"' not in text else "'"
     if quote in text or "\n" in text:
-        raise DeckError(f"{text!r} holds both quotes or a line break: it cannot be written "
-                        "to a dataset", line=st.line, element=st.name, id=st.id, attribute=key)
+        raise st.error(f"{text!r} holds both quotes or a line break: it cannot be written to "
+                       "a dataset", key)
     return quote + text + quote
 
 
@@ -604,22 +612,22 @@ def function_text(text):
 
 
 def _breaks(text):
-    """The expression split where a continuation line may continue it: inside
-    parentheses between tokens, or beside an operator (the dataset reader's rule)."""
-    cuts, depth = [], 0
-    for k, ch in enumerate(text):
-        if ch == "(":
-            depth += 1
-        elif ch == ")":
-            depth -= 1
-        if ch != " " or k == 0 or text[k - 1] == " ":
-            continue                # cut before a run of spaces, never inside it
-        before, after = text[:k].rstrip()[-1:], text[k:].lstrip()[:1]
-        if depth > 0 or (before and before in "+-*/(,:") or (after and after in "+-*/"):
-            cuts.append(k)
-    pieces, start = [], 0
-    for cut in cuts:
-        pieces.append(text[start:cut])
-        start = cut
-    pieces.append(text[start:])
+    """The expression split where a continuation line may continue it (the dataset
+    reader's rule): between tokens inside parentheses, or beside an operator; a piece takes
+    the spaces before its token, so no line ends in one."""
+    cuts, depth, prev, pos = [], 0, None, 0
+    while pos < len(text):
+        m = _TOKEN.match(text, pos)
+        if not m or m.end() == pos:
+            break                   # not the expression language: no more cuts
+        tok = m.group(m.lastindex)
+        op = m.lastindex == 3
+        if prev is not None and tok not in (",", ")", ":") and \
+                (depth > 0 or prev in ("+", "-", "*", "/", "**", ",", ":")
+                 or (op and tok in ("+", "-", "*", "/", "**"))):
+            cuts.append(pos)
+        depth += (tok == "(") - (tok == ")") if op else 0
+        prev = tok if op else ""
+        pos = m.end()
+    pieces = [text[a:b] for a, b in zip([0] + cuts, cuts + [len(text)])]
     return [p for p in pieces if p]

@@ -57,6 +57,9 @@ def load(path: str | os.PathLike, user_code: bool = True,
     with open(path, "rb") as fh:
         raw = fh.read()
     fmt = {".py": "py", ".adm": "adm", ".xml": "xml"}.get(ext) or _sniff(raw, path)
+    if fmt == "xml" and raw.lstrip()[:1] != b"<" and _dataset_like(raw):
+        raise DeckError("not XML: the file reads as an Adams dataset (PART/, MARKER/ ... "
+                        "statements); name it .adm", file=path, line=1)
     text = _decode(raw, fmt, path)
     if fmt == "adm":
         acf = os.path.splitext(path)[0] + ".acf"
@@ -72,9 +75,7 @@ def _sniff(raw, path):
     head = raw.lstrip()[:1]
     if head == b"<":
         return "xml"
-    lines = raw.decode("latin-1").splitlines()[1:50]
-    if any(re.match(r"\s*(PART|MARKER|UNITS|JOINT|ACCGRAV|SFORCE|REQUEST)\s*/", ln, re.I)
-           for ln in lines):
+    if _dataset_like(raw):
         return "adm"
     raise DeckError("not a deck pysolver reads: expected MotionSolve XML (.xml), a Python "
                     "deck of pysolver.msolve statements (.py), an Adams dataset (.adm) or an "
@@ -94,6 +95,13 @@ def _load_acf(path, user_code, simulate=None, dataset=None):
             dataset = (data_path, _decode(fh.read(), "adm", data_path))
     text = adams.with_commands(dataset[1], acf, path)
     return loads(text, fmt="adm", file=dataset[0], user_code=user_code, simulate=simulate)
+
+
+def _dataset_like(raw):
+    """True when a line after the first starts like an Adams dataset statement."""
+    lines = raw.decode("latin-1").splitlines()[1:50]
+    return any(re.match(r"\s*(PART|MARKER|UNITS|JOINT|ACCGRAV|SFORCE|REQUEST)\s*/", ln, re.I)
+               for ln in lines)
 
 
 _XML_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*?encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
