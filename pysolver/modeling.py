@@ -187,6 +187,9 @@ def _plain(key, val):
         return Function(text)
     if isinstance(val, _Element):
         return val.id
+    if callable(val):
+        raise ValueError(f"{key}: a routine given as a Python function is not taken yet; "
+                         "name it in a script (script=, routine=\"name\")")
     if isinstance(val, (bool, np.bool_)):
         raise ValueError(f"{key}: {val!r} is not a number")
     if isinstance(val, (list, tuple, np.ndarray)):

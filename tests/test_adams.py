@@ -150,6 +150,12 @@ PART/9, this is after END and is not read
     ("JOINT/1, I = 3, J = 1", "give one of CONVEL", None),
     ("FOO/1, BAR = 2", "unknown statement FOO", None),
     ("MOTOIN/1, JOINT = 1", "unknown statement MOTOIN; did you mean MOTION", None),
+    # cut short: a keyword with no value, a function with no end
+    ("PART/5, MASS =", "MASS = has no value", "MASS"),
+    ("REQUEST/1, F1 = DX(3", r"bad expression 'DX\(3': expected '\)'", "F1"),
+    # pysolver's extensions are checked as Adams' statements are
+    ("PFORCE/1, FUNCTION = DZ(3)\\, PENALTY = 1, UNILATERL",
+     "unknown keyword UNILATERL; did you mean UNILATERAL?", "UNILATERL"),
 ])
 def test_bad_statements_are_deck_errors_naming_file_line_and_statement(tmp_path, stmt, words,
                                                                      attribute):
@@ -159,8 +165,18 @@ def test_bad_statements_are_deck_errors_naming_file_line_and_statement(tmp_path,
     with pytest.raises(DeckError, match=words) as err:
         _load(path)
     assert err.value.file == str(path) and err.value.line == 6
+    assert err.value.element.split(" ")[0] == stmt.split(",")[0]       # MARKER/5, FOO
     if attribute:
         assert err.value.attribute == attribute
+
+
+def test_an_xml_file_holding_a_dataset_says_so(tmp_path):
+    path = tmp_path / "model.xml"
+    path.write_text("title\nPART/1, GROUND\nMARKER/1, PART = 1\nEND\n")
+    with pytest.raises(DeckError, match="not XML: the file reads as an Adams dataset .*; "
+                                        "name it .adm") as err:
+        pysolver.load(path)
+    assert (err.value.file, err.value.line) == (str(path), 1)
 
 
 def test_a_file_in_no_known_format_says_which_formats_exist(tmp_path):

@@ -432,6 +432,7 @@ class _Reader:
         pysolver's own are named in full)."""
         known = tuple(table) + UNSUPPORTED + SET_ASIDE + QUIET + ("END", "STOP")
         w = stmt.name.upper()
+        where = f"{stmt.name}/{stmt.id}" if stmt.id is not None else stmt.name
         hits = [k for k in known if k == w] or \
             [k for k in known if k.startswith(w) and k not in EXTENSIONS]
         if len(hits) == 1:
@@ -443,14 +444,14 @@ class _Reader:
                 raise DeckError(f"the command {other[0]} is not supported: pysolver runs the "
                                 "dataset as written, with SIMULATE, INTEGRATOR and "
                                 "EQUILIBRIUM commands only (docs/adams.md)", file=self.file,
-                                line=stmt.line, element=stmt.name)
+                                line=stmt.line, element=where)
         if hits:
             raise DeckError(f"{stmt.name} is ambiguous: it abbreviates {', '.join(sorted(hits))}",
-                            file=self.file, line=stmt.line, element=stmt.name)
+                            file=self.file, line=stmt.line, element=where)
         close = difflib.get_close_matches(w, tuple(table), n=1)
         hint = f"; did you mean {close[0]}?" if close else ""
         raise DeckError(f"unknown {what} {stmt.name}{hint} (docs/adams.md lists what pysolver "
-                        "reads)", file=self.file, line=stmt.line, element=stmt.name)
+                        "reads)", file=self.file, line=stmt.line, element=where)
 
     def first_pass(self, stmts):
         """The frames of parts and point masses, and the raw values of markers (a marker's
