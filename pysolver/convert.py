@@ -199,9 +199,7 @@ def _source(value):
         return "[" + ", ".join(_source(v) for v in value) + "]"
     if isinstance(value, Function):
         return repr(str(value))
-    if isinstance(value, float):
-        return repr(value)
-    return repr(value)
+    return repr(value)              # numbers with their exact digits, strings quoted
 
 
 def _call(target, name, args):

@@ -33,7 +33,7 @@ import threading
 
 import numpy as np
 
-from .deck.adams_writer import Function, Statement, statement_lines
+from .deck.adams_writer import SHAPES, Function, Raw, Statement, statement_lines
 from .errors import DeckError
 
 __all__ = ["Model", "Units", "Accgrav", "Part", "PointMass", "Marker", "Point", "Vector",
@@ -159,8 +159,12 @@ class _Element:
                 out.append((key, None))
             else:
                 out.append((key, _plain(key, val)))
-        return out + [(k.upper(), _plain(k.upper(), v)) for k, v in self._extra.items()
-                      if v is not None]
+        out += [(k.upper(), _plain(k.upper(), v)) for k, v in self._extra.items()
+                if v is not None]
+        if self._any:               # kept as written: the text of each value
+            out = [(k, v if v is None or isinstance(v, (list, Function)) else Raw(v))
+                   for k, v in out]
+        return out
 
     def _adm(self):
         """The element's Adams statement lines."""
@@ -450,12 +454,9 @@ class Graphics(_Element):
     def _arguments(self):
         out = super()._arguments()
         kind = str(self.type or "OUTLINE")
-        shapes = ("CYLINDER", "BOX", "FRUSTUM", "SPHERE", "ELLIPSOID", "CIRCLE", "ARC",
-                  "OUTLINE", "PLANE", "TORUS", "LINK", "EXTERNAL", "POINT", "FORCE")
-        if kind in shapes:          # Adams' shape flag; MotionSolve's types as TYPE=
+        if kind in SHAPES:          # Adams' shape flag; MotionSolve's types as TYPE=
             out = [(kind, None) if k == "TYPE" else (k, v) for k, v in out]
-        return [(k, v if v is None or isinstance(v, (list, Function)) else str(v))
-                for k, v in out]
+        return out
 
 
 class ResOutput(_Settings):

@@ -189,7 +189,7 @@ def test_the_dataset_holds_adams_statements_and_pysolver_extensions(tmp_path):
                  "SENSOR_EVALUATE/7, FUNCTION = DY(30)\\",
                  ", CNAMES = height, \"\", \"1e5\"",
                  ", FUNCTION = USER(30, -1)\\, ROUTINE = floor, INTERPRETER = PYTHON",
-                 "GRAPHICS/1, TYPE = Cylinder, CENTER_MARKER_ID = \"20\", RADIUS = \"1.50\""):
+                 "GRAPHICS/1, TYPE = Cylinder, CENTER_MARKER_ID = 20, RADIUS = 1.50"):
         assert line in text.splitlines(), line
     assert max(len(ln) for ln in text.splitlines() if not ln.startswith("!")) <= 80
     assert (tmp_path / "every.acf").read_text().splitlines() == [

@@ -13,9 +13,6 @@ import sys
 
 HERE = pathlib.Path(__file__).resolve().parent
 DECKS = HERE.parent
-sys.path.insert(0, str(DECKS.parent))      # this checkout's pysolver
-
-from pysolver.convert import forms  # noqa: E402
 
 
 def sources():
@@ -34,6 +31,7 @@ def outputs(deck, sub):
 
 def all_forms():
     """{path: text} of every form of every example deck."""
+    from pysolver.convert import forms
     out = {}
     for deck, sub in sources():
         for target in outputs(deck, sub):
@@ -42,6 +40,7 @@ def all_forms():
 
 
 if __name__ == "__main__":
+    sys.path.insert(0, str(DECKS.parent))      # this checkout's pysolver
     for path, text in all_forms().items():
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text)

@@ -223,7 +223,8 @@ def _args(stmt, file):
 
 #: Spellings Adams accepts besides the keyword and its prefixes (REQUEST/1, V, ...).
 _ALIASES = {"TRANSLATIONAL": "TRANSLATION", "ROTATIONAL": "ROTATION"}
-_REQUEST_ALIASES = {"D": "DISPLACEMENT", "V": "VELOCITY", "A": "ACCELERATION", "F": "FORCE"}
+_REQUEST_ALIASES = {"D": "DISPLACEMENT", "V": "VELOCITY", "A": "ACCELERATION", "F": "FORCE",
+                    "C": "COMMENT"}
 
 
 def _resolve(word, known, stmt, file, line, extensions=()):
@@ -416,7 +417,8 @@ class _Reader:
         if name in QUIET or name == "END":
             return
         known, extensions, handler = table[name]
-        vals, lines = self.values(stmt, known, extensions)
+        # a statement that takes any keyword reads its text as written (raw_values)
+        vals, lines = self.values(stmt, known, extensions) if known is not None else ({}, {})
         start = len(rec.elements)
         rec.line = stmt.line
         try:

@@ -21,7 +21,7 @@ import numpy as np
 from ..errors import DeckError
 from . import usersubs
 from .adams import axes_from_points
-from .adams_statements import JPRIM_TYPES, UNIT_NAMES
+from .adams_statements import JPRIM_TYPES
 from .expr import _TOKEN
 from .writer import relocate, typed
 
@@ -31,6 +31,11 @@ WIDTH = 80
 
 class Function(str):
     """An expression: written after its keyword and ended by a backslash."""
+
+
+class Raw(str):
+    """Text a statement kept as written reads back as written (GRAPHICS, RESOUTPUT): a
+    plain token (a number too) goes bare, anything else in quotes."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -107,8 +112,12 @@ def _label(el):
     return el.a.get("label") or ""
 
 
+#: pysolver's unit names Adams spells otherwise.
+_ADAMS_UNITS = {"KILONEWTON": "KNEWTON"}
+
+
 def _units(el, model, els, k):
-    names = {v: k for k, v in UNIT_NAMES.items() if k == "KNEWTON"}
+    names = _ADAMS_UNITS
     return [Statement("UNITS", None, [(key.upper(), names.get(el.a[key], el.a[key]))
                                       for key in ("force", "mass", "length", "time")
                                       if key in el.given], _label(el))]
@@ -363,9 +372,14 @@ def _inline_evaluate(el, els, k):
     return None
 
 
+_USER_ATTRS = ("usrsub_dll_name", "usrsub_fnc_name", "usrsub_param_string", "script_name",
+               "interpreter")
+
+
 def _is_user(el):
+    """The element calls a user subroutine."""
     return el.a.get("type") == "USERSUB" or \
-        any(el.a.get(k) is not None for k in usersubs._ATTRS) or \
+        any(el.a.get(k) is not None for k in _USER_ATTRS) or \
         str(el.a.get("expr") or "").strip().upper().startswith("USER")
 
 
@@ -439,22 +453,22 @@ def _stop(el, model, els, k):
 
 
 #: Adams' GRAPHICS shapes, written as its flag when a Post_Graphic's type is one of them.
-_SHAPES = ("CYLINDER", "BOX", "FRUSTUM", "SPHERE", "ELLIPSOID", "CIRCLE", "ARC", "OUTLINE",
+SHAPES = ("CYLINDER", "BOX", "FRUSTUM", "SPHERE", "ELLIPSOID", "CIRCLE", "ARC", "OUTLINE",
            "PLANE", "TORUS", "LINK", "EXTERNAL", "POINT", "FORCE", "SPDP", "BLOCK",
            "REVOLUTION", "EXTRUSION")
 
 
 def _graphic(el, model, els, k):
     kind = str(el.a["type"])
-    args = [(kind, None)] if kind in _SHAPES else [("TYPE", kind)]
-    args += [(key.upper(), str(v)) for key, v in el.raw.items()
+    args = [(kind, None)] if kind in SHAPES else [("TYPE", kind)]
+    args += [(key.upper(), Raw(v)) for key, v in el.raw.items()
              if key not in ("id", "type", "label") and v is not None]
     return [Statement("GRAPHICS", el.a["id"], args, _label(el))]
 
 
 def _settings(name):
     def translate(el, model, els, k):
-        return [Statement(name, None, [(key.upper(), str(v)) for key, v in el.raw.items()
+        return [Statement(name, None, [(key.upper(), Raw(v)) for key, v in el.raw.items()
                                        if v is not None])]
     return translate
 
@@ -503,7 +517,7 @@ def _subroutine(st, el, file, out_dir):
 def dataset_text(dataset, title, description=""):
     """The .adm text: the title line, the description as comments, the statements, END."""
     lines = [title.replace("\n", " ")]
-    # the description as comments (never read as a label: see statements())
+    # the description as comments (one naming adams_view_name would label a statement)
     lines += [f"! {ln}".rstrip().replace("adams_view_name", "adams view name")
               for ln in description.splitlines()]
     for st in dataset:
@@ -583,7 +597,8 @@ def _value(v, st, key):
     if isinstance(v, (float, np.floating)):
         return repr(float(v))
     text = str(v)
-    if re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.:/\-]*", text):
+    if re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.:/\-]*", text) or \
+            (isinstance(v, Raw) and re.fullmatch(r"[A-Za-z0-9_.+\-]+", text)):
         return text
     quote = '"' if '"' not in text else "'"
     if quote in text or "\n" in text:
