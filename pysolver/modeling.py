@@ -33,7 +33,7 @@ import threading
 
 import numpy as np
 
-from .deck.adams_writer import SHAPES, Function, Raw, Statement, statement_lines
+from .deck.adams_writer import SHAPES, Function, Raw, Statement, statement_lines, view_name
 from .errors import DeckError
 
 __all__ = ["Model", "Units", "Accgrav", "Part", "PointMass", "Marker", "Point", "Vector",
@@ -168,17 +168,8 @@ class _Element:
 
     def _adm(self):
         """The element's Adams statement lines."""
-        st = Statement(self._statement, self.id, self._arguments(), self.label or "")
-        lines = [f"! adams_view_name={_quoted(self.label)}"] if self.label else []
-        return lines + statement_lines(st)
-
-
-def _quoted(label):
-    label = str(label)
-    quote = "'" if "'" not in label else '"'
-    if quote in label or "\n" in label:
-        raise ValueError(f"label {label!r} holds both quotes or a line break")
-    return quote + label + quote
+        st = Statement(self._statement, self.id, self._arguments(), str(self.label or ""))
+        return ([view_name(st)] if st.label else []) + statement_lines(st)
 
 
 def _plain(key, val):

@@ -522,7 +522,7 @@ def dataset_text(dataset, title, description=""):
               for ln in description.splitlines()]
     for st in dataset:
         if st.label:
-            lines.append(_view_name(st))
+            lines.append(view_name(st))
         lines += statement_lines(st)
     lines.append("END")
     return "\n".join(lines) + "\n"
@@ -538,7 +538,8 @@ def command_text(commands, dataset_name):
     return "\n".join(lines + ["STOP"]) + "\n"
 
 
-def _view_name(st):
+def view_name(st):
+    """The adams_view_name comment line of a statement's label."""
     quote = "'" if "'" not in st.label else '"'
     if quote in st.label or "\n" in st.label or "\r" in st.label:
         raise st.error(f"the label {st.label!r} cannot be written to a dataset's "
