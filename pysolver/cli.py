@@ -86,17 +86,9 @@ def _check(args):
 
 
 def _convert(args):
-    from .deck.loader import deck_elements
-    from .deck.writer import to_xml
-    if not args.output.lower().endswith(".xml"):
-        raise DeckError("pysolver convert writes MotionSolve XML: name the output .xml",
-                        file=args.output)
-    elements, title = deck_elements(args.deck, user_code=not args.no_user_code)
-    text = to_xml(elements, args.deck, title=f"converted by pysolver from {args.deck}"
-                  + (f": {title}" if title else ""))
-    with open(args.output, "w", encoding="utf-8") as fh:
-        fh.write(text)
-    print(f"wrote {args.output}")
+    from .convert import convert
+    written = convert(args.deck, args.output, user_code=not args.no_user_code)
+    print(f"wrote {', '.join(written)}")
     return 0
 
 
@@ -116,10 +108,12 @@ def main(argv=None):
                      "instead of the deck's commands (with --steps or --dtout)")
     run.add_argument("--steps", type=int, help="output steps of that command (default 100)")
     run.add_argument("--dtout", type=float, help="output interval of that command")
-    convert = sub.add_parser("convert", help="write a deck (.adm, .acf, .py or .xml) as "
-                             "MotionSolve XML")
+    convert = sub.add_parser("convert", help="write a deck (.xml, .py, .adm or .acf) as "
+                             "MotionSolve XML (-o x.xml), an Adams dataset and its command "
+                             "file (-o x.adm) or a script of msolve classes (-o x.py)")
     convert.add_argument("deck")
-    convert.add_argument("-o", "--output", required=True, help="the XML file to write")
+    convert.add_argument("-o", "--output", required=True, help="the file to write; its "
+                         "extension (.xml, .adm, .py) chooses the format")
     check = sub.add_parser("check", help="validate a deck and list what it contains (compiles "
                            "it: runs its user subroutine scripts and loads its C libraries)")
     check.add_argument("deck")

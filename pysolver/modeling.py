@@ -1,7 +1,7 @@
 """The msolve class API: build a model from Python objects, as Altair's msolve does.
 
-Longer than 420 lines because it is an API: one small class per model element (thirty of
-them), each a table from its attributes to the Adams statement it stands for.
+Longer than 420 lines because it is an API: one small class per model element (thirty-five
+of them), each a table from its attributes to the Adams statement it stands for.
 
 ::
 
@@ -21,21 +21,26 @@ Each element registers with the model created last; ids are given in creation or
 kind unless an ``id`` is passed. The model is written as an Adams dataset (``model.adm()``),
 which pysolver.deck.adams reads like any other, so placement (markers in their part's frame,
 ``qp``/``zp``/``xp``/``reuler``/``rm``), checks and messages are the dataset's. A DeckError
-names the line of the Python script that created the element.
+names the line of the Python script that created the element. Each class's ``_keys`` maps an
+attribute to its Adams keyword, or, for an attribute written as a flag (``type="REVOLUTE"``
+is the flag ``REVOLUTE``), to the table of its values and flags; pysolver/convert.py reads
+the same tables to write a deck as a script of these classes.
 """
-import inspect
 import itertools
 import os
+import sys
 import threading
 
 import numpy as np
 
+from .deck.adams_writer import SHAPES, Function, Raw, Statement, statement_lines, view_name
 from .errors import DeckError
 
 __all__ = ["Model", "Units", "Accgrav", "Part", "PointMass", "Marker", "Point", "Vector",
            "Joint", "Jprim", "Gcon", "Coupler", "Motion", "Sforce", "SpringDamper",
            "Bushing", "Vforce", "Vtorque", "Gforce", "Variable", "Spline", "Sensor",
-           "Request", "Output", "Integrator", "DaeIntegrator", "Equilibrium", "Graphics"]
+           "SensorEvaluate", "Request", "Output", "Integrator", "DaeIntegrator", "Equilibrium",
+           "Graphics", "Pforce", "LoadControl", "ResOutput", "H3DOutput"]
 
 _STATE = threading.local()
 _COMMANDS = "<simulate commands>"        # the file the commands' errors name, then mapped
@@ -66,34 +71,55 @@ class Vector(Point):
     """A vector (x, y, z)."""
 
 
+_HERE = os.path.dirname(os.path.abspath(__file__))
+
+
 def _caller():
-    """(file, line) of the user's code that created an element."""
-    here = os.path.dirname(os.path.abspath(__file__))
-    for frame in inspect.stack()[2:]:
-        if not os.path.abspath(frame.filename).startswith(here):
-            return frame.filename, frame.lineno
+    """(file, line) of the user's code that created an element (the first frame outside
+    pysolver)."""
+    frame = sys._getframe(2)
+    while frame is not None:
+        if not os.path.abspath(frame.f_code.co_filename).startswith(_HERE):
+            return frame.f_code.co_filename, frame.f_lineno
+        frame = frame.f_back
     return None, None
+
+
+def _choices(*names, **aliases):
+    """An attribute written as a flag: {value: FLAG} for each name (its own flag) and alias
+    (value=FLAG; None writes nothing)."""
+    return {**{n: n for n in names}, **aliases}
+
+
+#: Keywords whose value is an expression (written up to a backslash).
+_FUNCTION_KEYS = {"FUNCTION", "FX", "FY", "FZ", "TX", "TY", "TZ", "EVALUATE", "LOAD_FUNCTION",
+                  *(f"F{k}" for k in range(1, 9))}
 
 
 class _Element:
     """An element of the model: its Adams statement, its id and its attributes."""
     _statement = ""                # the Adams statement it becomes
-    _keys = {}                     # attribute -> Adams keyword (or a function of the value)
-    _counter = None
+    _keys = {}                     # attribute -> Adams keyword, or {value: flag}
+    _also = {}                     # keywords read back into an attribute (convert.py)
+    _numbered = True               # has an id
+    _any = False                   # takes any keyword (kept as written)
 
     def __init__(self, id=None, label="", **kw):
-        unknown = sorted(set(kw) - set(self._keys) - {"id", "label"})
+        unknown = sorted(set(kw) - set(self._keys)) if not self._any else []
         file, line = _caller()
         if unknown:
             raise DeckError(f"unknown attribute {unknown[0]!r}; {type(self).__name__} takes "
                             f"{', '.join(sorted(self._keys))}", file=file, line=line,
                             element=type(self).__name__, attribute=unknown[0])
         object.__setattr__(self, "_where", (file, line))
+        object.__setattr__(self, "_extra", {})
         self.__dict__.update({k: None for k in self._keys})
-        self.__dict__.update(kw)
+        for key, value in kw.items():
+            setattr(self, key, value)
         self.label = label
         self.model = _current()
-        self.id = id if id is not None else self.model._next_id(self._kind())
+        self.id = None if not self._numbered else \
+            id if id is not None else self.model._next_id(self._kind())
         self.model._add(self)
 
     @classmethod
@@ -101,10 +127,19 @@ class _Element:
         return cls._statement
 
     def __setattr__(self, name, value):
+        if self._any and name not in self._keys and name not in ("id", "label", "model"):
+            self._extra[name] = value
+            return
         if name not in self._keys and name not in ("id", "label", "model"):
             raise AttributeError(f"{type(self).__name__} has no attribute {name!r}; it takes "
                                  f"{', '.join(sorted(self._keys))}")
         object.__setattr__(self, name, value)
+
+    def __getattr__(self, name):
+        extra = self.__dict__.get("_extra") or {}
+        if name in extra:
+            return extra[name]
+        raise AttributeError(name)
 
     def _arguments(self):
         """[(Adams keyword, value)] of the statement (value None: a flag)."""
@@ -113,99 +148,103 @@ class _Element:
             val = getattr(self, attr)
             if val is None or val is False:
                 continue
-            if callable(key):
-                out.extend(key(val))
+            if isinstance(key, dict):
+                flag = key.get(str(val).upper(), "")
+                if flag == "":
+                    raise ValueError(f"{attr}={val!r}; expected one of "
+                                     f"{', '.join(v for v in key if key[v] is not None)}")
+                if flag is not None:
+                    out.append((flag, None))
             elif val is True:
                 out.append((key, None))
             else:
-                out.append((key, val))
+                out.append((key, _plain(key, val)))
+        out += [(k.upper(), _plain(k.upper(), v)) for k, v in self._extra.items()
+                if v is not None]
+        if self._any:               # kept as written: the text of each value
+            out = [(k, v if v is None or isinstance(v, (list, Function)) else Raw(v))
+                   for k, v in out]
         return out
 
     def _adm(self):
         """The element's Adams statement lines."""
-        lines = [f"! adams_view_name='{self.label}'"] if self.label else []
-        head = f"{self._statement}/{self.id}" if self.id is not None else f"{self._statement}/"
-        parts = [head]
-        for key, val in self._arguments():
-            parts.append(key if val is None else f"{key} = {_value(key, val)}")
-        lines.append(parts[0] + (", " + parts[1] if len(parts) > 1 else ""))
-        lines.extend(", " + p for p in parts[2:])
-        return lines
+        st = Statement(self._statement, self.id, self._arguments(), str(self.label or ""))
+        return ([view_name(st)] if st.label else []) + statement_lines(st)
 
 
-_FUNCTION_KEYS = {"FUNCTION", "FX", "FY", "FZ", "TX", "TY", "TZ", "EVALUATE",
-                  *(f"F{k}" for k in range(1, 9))}
-
-
-def _value(key, val):
-    """An attribute value as dataset text."""
+def _plain(key, val):
+    """An attribute value as the statement writer takes it: elements as their ids, points
+    as lists, expressions as Function."""
     if key in _FUNCTION_KEYS:
         text = str(val)
         if "\\" in text or "\n" in text:
             raise ValueError(f"{key}: a function holds no backslash or line break")
-        return text + "\\"
+        return Function(text)
     if isinstance(val, _Element):
-        return str(val.id)
-    if isinstance(val, str):
-        return val
+        return val.id
+    if callable(val):
+        raise ValueError(f"{key}: a routine given as a Python function is not taken yet; "
+                         "name it in a script (script=, routine=\"name\")")
     if isinstance(val, (bool, np.bool_)):
         raise ValueError(f"{key}: {val!r} is not a number")
-    arr = np.atleast_1d(np.asarray([v.id if isinstance(v, _Element) else v for v in val]
-                                   if isinstance(val, (list, tuple)) else val))
-    if arr.dtype.kind not in "iuf":
-        return ", ".join(str(v) for v in arr)
-    return ", ".join(repr(float(v)) if arr.dtype.kind == "f" else str(int(v))
-                     for v in arr.ravel())
+    if isinstance(val, (list, tuple, np.ndarray)):
+        return [_plain("", v) for v in (val.tolist() if isinstance(val, np.ndarray) else val)]
+    if isinstance(val, np.generic):
+        return val.item()
+    return val
 
 
-def _pair(name):
-    return lambda v: [(name, v)]
+class _Settings(_Element):
+    """An element with no id (UNITS/, ACCGRAV/, INTEGRATOR/, ...)."""
+    _numbered = False
 
 
-class Units(_Element):
+class Units(_Settings):
     """Units: mass, length, time, force (Adams names: KILOGRAM, MILLIMETER, ...) or system
     (MKS, MMKS, CGS, FPS, IPS); SI without arguments."""
     _statement = "UNITS"
-    _keys = {"mass": "MASS", "length": "LENGTH", "time": "TIME", "force": "FORCE",
+    _keys = {"force": "FORCE", "mass": "MASS", "length": "LENGTH", "time": "TIME",
              "system": "SYSTEM"}
 
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self.id = None
 
-
-class Accgrav(_Element):
+class Accgrav(_Settings):
     """Gravity: igrav, jgrav, kgrav (global x, y, z)."""
     _statement = "ACCGRAV"
     _keys = {"igrav": "IGRAV", "jgrav": "JGRAV", "kgrav": "KGRAV"}
-
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self.id = None
 
 
 class Part(_Element):
     """A rigid body (or ground=True): mass, ip=[ixx, iyy, izz(, ixy, ixz, iyz)], cm (its
     centre-of-mass Marker), im, qg and reuler (its frame in ground; or zg and xg), vx, vy,
-    vz, wx, wy, wz, vm, wm."""
+    vz, wx, wy, wz, vm, wm; lprf (pysolver: MotionSolve's lprf_id, kept)."""
     _statement = "PART"
-    _keys = {"ground": "GROUND", "mass": "MASS", "cm": "CM", "im": "IM", "ip": "IP",
-             "qg": "QG", "reuler": "REULER", "zg": "ZG", "xg": "XG", "vx": "VX", "vy": "VY",
-             "vz": "VZ", "wx": "WX", "wy": "WY", "wz": "WZ", "vm": "VM", "wm": "WM"}
+    _keys = {"ground": "GROUND", "mass": "MASS", "cm": "CM", "im": "IM", "lprf": "LPRF",
+             "ip": "IP", "qg": "QG", "reuler": "REULER", "zg": "ZG", "xg": "XG", "vx": "VX",
+             "vy": "VY", "vz": "VZ", "wx": "WX", "wy": "WY", "wz": "WZ", "vm": "VM",
+             "wm": "WM"}
 
 
 class PointMass(_Element):
-    """A point mass: mass, cm, qg, vx, vy, vz."""
+    """A point mass: mass, cm, qg, vx, vy, vz, vm (pysolver: the marker whose axes vx, vy,
+    vz are along)."""
     _statement = "POINT_MASS"
-    _keys = {"mass": "MASS", "cm": "CM", "qg": "QG", "vx": "VX", "vy": "VY", "vz": "VZ"}
+    _keys = {"mass": "MASS", "cm": "CM", "qg": "QG", "vx": "VX", "vy": "VY", "vz": "VZ",
+             "vm": "VM"}
+
+    @classmethod
+    def _kind(cls):
+        return "PART"               # parts and point masses share pysolver's body ids
 
 
 class Marker(_Element):
     """A marker on `body` (or `part`): qp, and reuler or zp and xp (usexp), in its part's
-    frame or in rm's; floating=True for a floating marker."""
+    frame or in rm's; floating=True for a floating marker; pysolver's ypr (3-2-1 angles),
+    ep (Euler parameters) and axes (the nine numbers of the columns x, y, z)."""
     _statement = "MARKER"
     _keys = {"body": "PART", "part": "PART", "qp": "QP", "reuler": "REULER", "zp": "ZP",
-             "xp": "XP", "usexp": "USEXP", "rm": "RM", "floating": "FLOATING"}
+             "xp": "XP", "usexp": "USEXP", "ypr": "YPR", "ep": "EP", "axes": "AXES",
+             "rm": "RM", "floating": "FLOATING"}
+    _also = {"POINT_MASS": "body"}
 
     def _arguments(self):
         out = super()._arguments()
@@ -215,15 +254,19 @@ class Marker(_Element):
 
 
 _JPRIMS = ("ATPOINT", "INLINE", "INPLANE", "ORIENTATION", "PARALLEL_AXES", "PERPENDICULAR")
-_ADAMS_JOINT = {"CONSTANT_VELOCITY": "CONVEL", "RACK_PINION": "RACKPIN"}
+_JOINTS = _choices("REVOLUTE", "TRANSLATIONAL", "SPHERICAL", "CYLINDRICAL", "UNIVERSAL",
+                   "HOOKE", "FIXED", "PLANAR", "SCREW", "FREE", *_JPRIMS,
+                   CONSTANT_VELOCITY="CONVEL", CONVEL="CONVEL", RACK_PINION="RACKPIN",
+                   RACKPIN="RACKPIN")
 
 
 class Joint(_Element):
     """A joint: type (REVOLUTE, TRANSLATIONAL, SPHERICAL, CYLINDRICAL, UNIVERSAL, HOOKE,
-    FIXED, PLANAR, CONSTANT_VELOCITY, SCREW, RACK_PINION), i, j, pitch, pd."""
+    FIXED, PLANAR, CONSTANT_VELOCITY, SCREW, RACK_PINION, the primitives; pysolver's FREE),
+    i, j, pitch, pd, virtual."""
     _statement = "JOINT"
-    _keys = {"type": lambda v: [(_ADAMS_JOINT.get(str(v).upper(), str(v).upper()), None)],
-             "i": "I", "j": "J", "pitch": "PITCH", "pd": "PD"}
+    _keys = {"type": _JOINTS, "i": "I", "j": "J", "pitch": "PITCH", "pd": "PD",
+             "virtual": "VIRTUAL"}
 
     def _adm(self):
         # MotionSolve's joint types include the primitives: Adams writes them as JPRIM
@@ -235,50 +278,62 @@ class Joint(_Element):
 
 class Jprim(_Element):
     """A joint primitive: type (ATPOINT, INLINE, INPLANE, ORIENTATION, PARALLEL_AXES,
-    PERPENDICULAR), i, j."""
+    PERPENDICULAR), i, j, virtual."""
     _statement = "JPRIM"
-    _keys = {"type": lambda v: [(str(v).upper(), None)], "i": "I", "j": "J"}
+    _keys = {"type": _choices(*_JPRIMS), "i": "I", "j": "J", "virtual": "VIRTUAL"}
+
+    @classmethod
+    def _kind(cls):
+        return "JOINT"              # joints and primitives share pysolver's joint ids
+
+
+_SUB = {"routine": "ROUTINE", "script": "SCRIPT", "interpreter": "INTERPRETER"}
 
 
 class Gcon(_Element):
-    """A general constraint: function (held at zero), i."""
+    """A general constraint: function (held at zero), i, virtual; routine, script,
+    interpreter (a GCOSUB: function="USER(...)")."""
     _statement = "GCON"
-    _keys = {"function": "FUNCTION", "i": "I"}
+    _keys = {"function": "FUNCTION", "i": "I", "virtual": "VIRTUAL", **_SUB}
 
 
 class Coupler(_Element):
-    """A coupler: joints (two or three Joints), type (["R", "T", ...] or "R:T"), scales."""
+    """A coupler: joints (two or three Joints), type (["R", "T", ...] or "R:T"), scales,
+    virtual."""
     _statement = "COUPLER"
-    _keys = {"joints": "JOINTS", "scales": "SCALES",
-             "type": lambda v: [("TYPE", v if isinstance(v, str) else ":".join(v))]}
+    _keys = {"joints": "JOINTS", "type": "TYPE", "scales": "SCALES", "virtual": "VIRTUAL"}
+
+
+_TR = _choices("TRANSLATION", "ROTATION", TRANSLATIONAL="TRANSLATION", ROTATIONAL="ROTATION",
+               T="TRANSLATION", R="ROTATION")
 
 
 class Motion(_Element):
     """A motion: on a joint (joint, jtype TRANSLATION or ROTATION) or of marker i relative
     to j (direction X, Y, Z, B1, B2, B3); dtype DISPLACEMENT, VELOCITY, ACCELERATION;
-    function, icdisp, icvel."""
+    function, icdisp, icvel; routine, script, interpreter (a MOTSUB)."""
     _statement = "MOTION"
-    _keys = {"joint": "JOINT", "i": "I", "j": "J",
-             "jtype": lambda v: [(str(v).upper(), None)],
-             "direction": lambda v: [(str(v).upper(), None)],
-             "dtype": lambda v: [(str(v).upper(), None)],
-             "function": "FUNCTION", "icdisp": "ICDISP", "icvel": "ICVEL"}
+    _keys = {"joint": "JOINT", "i": "I", "j": "J", "jtype": _TR,
+             "direction": _choices("X", "Y", "Z", "B1", "B2", "B3"),
+             "dtype": _choices("DISPLACEMENT", "VELOCITY", "ACCELERATION", D="DISPLACEMENT",
+                               V="VELOCITY", A="ACCELERATION"),
+             "function": "FUNCTION", "icdisp": "ICDISP", "icvel": "ICVEL", **_SUB}
 
 
 class Sforce(_Element):
-    """A scalar force: type TRANSLATION or ROTATION, i, j, actiononly, function."""
+    """A scalar force: type TRANSLATION or ROTATION, i, j, actiononly, function; routine,
+    script, interpreter (an SFOSUB)."""
     _statement = "SFORCE"
-    _keys = {"type": lambda v: [(str(v).upper(), None)], "i": "I", "j": "J",
-             "actiononly": "ACTIONONLY", "function": "FUNCTION"}
+    _keys = {"type": _TR, "i": "I", "j": "J", "actiononly": "ACTIONONLY",
+             "function": "FUNCTION", **_SUB}
 
 
 class SpringDamper(_Element):
     """A spring-damper: type TRANSLATION (k, c, length, force) or ROTATION (kt, ct, angle,
     torque), i, j."""
     _statement = "SPRINGDAMPER"
-    _keys = {"type": lambda v: [(str(v).upper(), None)], "i": "I", "j": "J", "k": "K",
-             "c": "C", "length": "LENGTH", "force": "FORCE", "kt": "KT", "ct": "CT",
-             "angle": "ANGLE", "torque": "TORQUE"}
+    _keys = {"type": _TR, "i": "I", "j": "J", "k": "K", "c": "C", "length": "LENGTH",
+             "force": "FORCE", "kt": "KT", "ct": "CT", "angle": "ANGLE", "torque": "TORQUE"}
 
 
 class Bushing(_Element):
@@ -289,28 +344,40 @@ class Bushing(_Element):
 
 
 class Vforce(_Element):
-    """A vector force: i, jfloat, rm, fx, fy, fz."""
+    """A vector force: i, jfloat, rm, fx, fy, fz; actiononly=True (pysolver: no jfloat, on
+    i's body alone)."""
     _statement = "VFORCE"
-    _keys = {"i": "I", "jfloat": "JFLOAT", "rm": "RM", "fx": "FX", "fy": "FY", "fz": "FZ"}
+    _keys = {"i": "I", "jfloat": "JFLOAT", "rm": "RM", "fx": "FX", "fy": "FY", "fz": "FZ",
+             "actiononly": "ACTIONONLY"}
 
 
 class Vtorque(_Element):
-    """A vector torque: i, jfloat, rm, tx, ty, tz."""
+    """A vector torque: i, jfloat, rm, tx, ty, tz; actiononly."""
     _statement = "VTORQUE"
-    _keys = {"i": "I", "jfloat": "JFLOAT", "rm": "RM", "tx": "TX", "ty": "TY", "tz": "TZ"}
+    _keys = {"i": "I", "jfloat": "JFLOAT", "rm": "RM", "tx": "TX", "ty": "TY", "tz": "TZ",
+             "actiononly": "ACTIONONLY"}
+
+    @classmethod
+    def _kind(cls):
+        return "VFORCE"
 
 
 class Gforce(_Element):
-    """A force and torque: i, jfloat, rm, fx, fy, fz, tx, ty, tz."""
+    """A force and torque: i, jfloat, rm, fx, fy, fz, tx, ty, tz; actiononly."""
     _statement = "GFORCE"
     _keys = {"i": "I", "jfloat": "JFLOAT", "rm": "RM", "fx": "FX", "fy": "FY", "fz": "FZ",
-             "tx": "TX", "ty": "TY", "tz": "TZ"}
+             "tx": "TX", "ty": "TY", "tz": "TZ", "actiononly": "ACTIONONLY"}
+
+    @classmethod
+    def _kind(cls):
+        return "VFORCE"
 
 
 class Variable(_Element):
-    """A variable read with VARVAL(id): function, ic."""
+    """A variable read with VARVAL(id): function, ic; routine, script, interpreter (a
+    VARSUB)."""
     _statement = "VARIABLE"
-    _keys = {"function": "FUNCTION", "ic": "IC"}
+    _keys = {"function": "FUNCTION", "ic": "IC", **_SUB}
 
 
 class Spline(_Element):
@@ -319,80 +386,137 @@ class Spline(_Element):
     _keys = {"x": "X", "y": "Y", "z": "Z", "linear_extrapolate": "LINEAR_EXTRAPOLATE"}
 
     def _arguments(self):
-        out = [("X", self.x)]
+        out = [("X", _plain("X", self.x))]
         if self.z is None:
-            out.append(("Y", self.y))
+            out.append(("Y", _plain("Y", self.y)))
         else:
             ys = np.asarray(self.y, float).reshape(len(self.z), -1)
-            out.extend(("Y", [z, *row]) for z, row in zip(self.z, ys))
+            out.extend(("Y", [float(z), *row]) for z, row in zip(self.z, ys.tolist()))
         return out + ([("LINEAR_EXTRAPOLATE", None)] if self.linear_extrapolate else [])
 
 
+_COMPARE = _choices("GE", "EQ", "LE", LT="LE")
+
+
 class Sensor(_Element):
-    """An event sensor: function, value, error, compare (GE, EQ, LE), halt, print, restart,
-    return_, stepsize, evaluate."""
+    """An event sensor: function, value, error, operator (GE, EQ, LE; compare= too), halt,
+    print_ (print= too), restart, return_, stepsize, dt, hmax, zero_crossing, evaluate (an
+    expression SENVAL(id) reads), routine, script, interpreter (a SENSUB); pysolver's
+    verbose and evaluate_id (a SensorEvaluate instead of evaluate)."""
     _statement = "SENSOR"
     _keys = {"function": "FUNCTION", "value": "VALUE", "error": "ERROR",
-             "compare": lambda v: [(str(v).upper(), None)], "halt": "HALT",
+             "operator": _COMPARE, "compare": _COMPARE, "halt": "HALT", "print_": "PRINT",
              "print": "PRINT", "restart": "RESTART", "return_": "RETURN",
-             "stepsize": "STEPSIZE", "evaluate": "EVALUATE"}
+             "stepsize": "STEPSIZE", "dt": "DT", "hmax": "HMAX",
+             "zero_crossing": "ZERO_CROSSING", "verbose": "VERBOSE", "evaluate": "EVALUATE",
+             "evaluate_id": "EVALUATE_ID", **_SUB}
+
+
+class SensorEvaluate(_Element):
+    """pysolver: a Sensor_Evaluate of its own (a Sensor's evaluate= makes one with the
+    sensor's id): function, routine, script, interpreter (a SEVSUB); a Sensor names it with
+    evaluate_id."""
+    _statement = "SENSOR_EVALUATE"
+    _keys = {"function": "FUNCTION", **_SUB}
 
 
 class Request(_Element):
     """An output request: type DISPLACEMENT, VELOCITY, ACCELERATION or FORCE with i, j, rm;
-    or f1..f8 (expressions); comment."""
+    or f1..f8 (expressions), or function="USER(...)" with routine, script, interpreter (a
+    REQSUB); comment; cnames (the channels' names)."""
     _statement = "REQUEST"
-    _keys = {"type": lambda v: [] if str(v).upper() == "EXPRESSION" else
-             [(str(v).upper(), None)], "i": "I", "j": "J", "rm": "RM", "comment": "COMMENT",
-             **{f"f{k}": f"F{k}" for k in range(1, 9)}}
+    _keys = {"type": _choices("DISPLACEMENT", "VELOCITY", "ACCELERATION", "FORCE",
+                              EXPRESSION=None, USERSUB=None,
+                              MARKER_DISPLACEMENT="DISPLACEMENT",
+                              MARKER_VELOCITY="VELOCITY", MARKER_ACCELERATION="ACCELERATION",
+                              MARKER_FORCE="FORCE"),
+             "i": "I", "j": "J", "rm": "RM", **{f"f{k}": f"F{k}" for k in range(1, 9)},
+             "function": "FUNCTION", "comment": "COMMENT", "cnames": "CNAMES", **_SUB}
 
 
 class Graphics(_Element):
-    """Geometry kept for the 3-D view: type (CYLINDER, BOX, SPHERE, ...), cm, length,
-    radius, corner, x, y, z."""
+    """Geometry kept for the 3-D view: type (Adams' CYLINDER, BOX, SPHERE, ... or
+    MotionSolve's Post_Graphic types) and any other attribute (cm, length, radius, ...),
+    kept as written."""
     _statement = "GRAPHICS"
-    _keys = {"type": lambda v: [(str(v).upper(), None)], "cm": "CM", "length": "LENGTH",
-             "radius": "RADIUS", "corner": "CORNER", "x": "X", "y": "Y", "z": "Z"}
+    _keys = {"type": "TYPE"}
+    _any = True
+
+    def _arguments(self):
+        out = super()._arguments()
+        kind = str(self.type or "OUTLINE")
+        if kind in SHAPES:          # Adams' shape flag; MotionSolve's types as TYPE=
+            out = [(kind, None) if k == "TYPE" else (k, v) for k, v in out]
+        return out
 
 
-class Output(_Element):
+class ResOutput(_Settings):
+    """pysolver: MotionSolve's ResOutput settings, any attribute, kept (not used)."""
+    _statement = "RESOUTPUT"
+    _any = True
+
+
+class H3DOutput(_Settings):
+    """pysolver: MotionSolve's H3DOutput settings, any attribute, kept (not used)."""
+    _statement = "H3DOUTPUT"
+    _any = True
+
+
+class Output(_Settings):
     """Output settings (reqsave, grsave): accepted, not used (pysolver writes its own)."""
     _statement = "OUTPUT"
     _keys = {"reqsave": "REQSAVE", "grsave": "GRSAVE"}
 
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self.id = None
 
-
-class Integrator(_Element):
+class Integrator(_Settings):
     """Integrator settings: type (DSTIFF, GSTIFF, ...: pysolver integrates with IDA's BDF),
-    error, hmax, hmin, hinit."""
+    error, hmax, hmin, hinit; pysolver's max_num_steps, max_step_growth, nonlin_conv_coef,
+    dae_constr_tol."""
     _statement = "INTEGRATOR"
-    _keys = {"type": lambda v: [], "error": "ERROR", "hmax": "HMAX", "hmin": "HMIN",
-             "hinit": "HINIT"}
-
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self.id = None
+    _keys = {"type": _choices("IDA", "DSTIFF", "VSTIFF", "MSTIFF", "GSTIFF", "WSTIFF", "ABAM",
+                              "I3", "SI2"),
+             "error": "ERROR", "hmax": "HMAX", "hmin": "HMIN", "hinit": "HINIT",
+             "max_num_steps": "MAX_NUM_STEPS", "max_step_growth": "MAX_STEP_GROWTH",
+             "nonlin_conv_coef": "NONLIN_CONV_COEF", "dae_constr_tol": "DAE_CONSTR_TOL"}
 
 
 DaeIntegrator = Integrator
 
 
-class Equilibrium(_Element):
-    """Static settings: error, imbalance, maxit, stability."""
+class Equilibrium(_Settings):
+    """Static settings: error, imbalance, maxit, stability, tlimit, alimit; pysolver's
+    method (FIM_D, FIM_S, MKEAM), max_ke_tol, max_dq_tol, compliance_delta."""
     _statement = "EQUILIBRIUM"
     _keys = {"error": "ERROR", "imbalance": "IMBALANCE", "maxit": "MAXIT",
-             "stability": "STABILITY"}
+             "stability": "STABILITY", "tlimit": "TLIMIT", "alimit": "ALIMIT",
+             "method": "METHOD", "max_ke_tol": "MAX_KE_TOL", "max_dq_tol": "MAX_DQ_TOL",
+             "compliance_delta": "COMPLIANCE_DELTA"}
 
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self.id = None
+
+class Pforce(_Element):
+    """pysolver: a penalty force (Force_Penalty, the PFORCE statement): function (g),
+    penalty, penalty1, unilateral, smoothing_factor; routine, script, interpreter (a
+    PFOSUB)."""
+    _statement = "PFORCE"
+    _keys = {"function": "FUNCTION", "penalty": "PENALTY", "penalty1": "PENALTY1",
+             "unilateral": "UNILATERAL", "smoothing_factor": "SMOOTHING_FACTOR", **_SUB}
+
+
+class LoadControl(_Element):
+    """pysolver: the LoadControl task (MotionSolve XML's <CustomTasks>, the LOADCONTROL
+    statement): material (the Part or PointMass driven), direction (1, 2, 3), velocity,
+    maxvelocity, load_function, kp, ki (numbers or "AUTO"), smooth, updatetime,
+    median_window, load ("REACTION" or "CONTACT")."""
+    _statement = "LOADCONTROL"
+    _keys = {"velocity": "VELOCITY", "material": "MATERIAL", "direction": "DIRECTION",
+             "maxvelocity": "MAXVELOCITY", "load_function": "LOAD_FUNCTION", "kp": "KP",
+             "ki": "KI", "smooth": "SMOOTH", "updatetime": "UPDATETIME",
+             "median_window": "MEDIAN_WINDOW", "load": "LOAD"}
 
 
 _ANALYSES = {"DYNAMICS": "DYNAMICS", "TRANSIENT": "DYNAMICS", "KINEMATICS": "KINEMATICS",
-             "STATICS": "STATICS", "STATIC": "STATICS", "ASSEMBLY": "INITIAL_CONDITIONS"}
+             "STATICS": "STATICS", "STATIC": "STATICS", "QUASI-STATIC": "STATICS",
+             "QUASISTATIC": "STATICS", "ASSEMBLY": "INITIAL_CONDITIONS"}
 
 
 class Model:
@@ -434,9 +558,10 @@ class Model:
         for el in self.entities:
             try:
                 text = el._adm()
-            except ValueError as err:
-                raise DeckError(str(err), file=el._where[0], line=el._where[1],
-                                element=type(el).__name__, id=el.id) from None
+            except (ValueError, DeckError) as err:
+                raise DeckError(getattr(err, "reason", str(err)), file=el._where[0],
+                                line=el._where[1], element=type(el).__name__,
+                                id=el.id) from None
             for _ in text:
                 self._lines[len(lines) + 1] = el._where
                 lines.append(_)
@@ -475,16 +600,20 @@ class Model:
                             attribute=err.attribute) from None
 
     def simulate(self, type="DYNAMICS", end=None, dtout=None, steps=None, duration=None,
-                 returnResults=True, **options):
+                 start=None, print_increment=None, returnResults=True, **options):
         """Add a simulation command and run every command so far from the start.
 
         Parameters
         ----------
         type : {"DYNAMICS", "TRANSIENT", "KINEMATICS", "STATICS", "ASSEMBLY"}
+            STATICS with dtout or steps is a quasi-static analysis (as Adams' SIMULATE).
         end, duration : float
             The end time (or the duration after the previous command's end).
         dtout, steps : float, int
             The output interval, or the number of output steps.
+        start, print_increment : float, int
+            pysolver: MotionSolve's start_time (the previous command's end) and
+            print_increment (accepted, not used).
         returnResults : bool
             Return the Result (else None).
         **options
@@ -502,12 +631,17 @@ class Model:
             raise DeckError(f"unknown simulate type {type!r}; expected "
                             f"{', '.join(_ANALYSES)}", file=file, line=line,
                             element="simulate", attribute="type")
-        args = [f"SIMULATE/{kind}"]
-        for key, val in (("END", end), ("DURATION", duration), ("DTOUT", dtout),
-                         ("STEPS", steps)):
+        args = [(kind, None)]
+        for key, val in (("START", start), ("END", end), ("DURATION", duration),
+                         ("DTOUT", dtout), ("STEPS", steps),
+                         ("PRINT_INCREMENT", print_increment)):
             if val is not None:
-                args.append(f"{key} = {val!r}")
-        self.commands.append((", ".join(args), (file, line)))
+                args.append((key, _plain(key, val)))
+        try:
+            text = statement_lines(Statement("SIMULATE", None, args))
+        except DeckError as err:
+            raise DeckError(err.reason, file=file, line=line, element="simulate") from None
+        self.commands.append((" ".join(text), (file, line)))
         if _loading() is not None:
             return None
         res = self.load().run(**options)

@@ -150,6 +150,12 @@ PART/9, this is after END and is not read
     ("JOINT/1, I = 3, J = 1", "give one of CONVEL", None),
     ("FOO/1, BAR = 2", "unknown statement FOO", None),
     ("MOTOIN/1, JOINT = 1", "unknown statement MOTOIN; did you mean MOTION", None),
+    # cut short: a keyword with no value, a function with no end
+    ("PART/5, MASS =", "MASS = has no value", "MASS"),
+    ("REQUEST/1, F1 = DX(3", r"bad expression 'DX\(3': expected '\)'", "F1"),
+    # pysolver's extensions are checked as Adams' statements are
+    ("PFORCE/1, FUNCTION = DZ(3)\\, PENALTY = 1, UNILATERL",
+     "unknown keyword UNILATERL; did you mean UNILATERAL?", "UNILATERL"),
 ])
 def test_bad_statements_are_deck_errors_naming_file_line_and_statement(tmp_path, stmt, words,
                                                                      attribute):
@@ -159,8 +165,18 @@ def test_bad_statements_are_deck_errors_naming_file_line_and_statement(tmp_path,
     with pytest.raises(DeckError, match=words) as err:
         _load(path)
     assert err.value.file == str(path) and err.value.line == 6
+    assert err.value.element.split(" ")[0] == stmt.split(",")[0]       # MARKER/5, FOO
     if attribute:
         assert err.value.attribute == attribute
+
+
+def test_an_xml_file_holding_a_dataset_says_so(tmp_path):
+    path = tmp_path / "model.xml"
+    path.write_text("title\nPART/1, GROUND\nMARKER/1, PART = 1\nEND\n")
+    with pytest.raises(DeckError, match="not XML: the file reads as an Adams dataset .*; "
+                                        "name it .adm") as err:
+        pysolver.load(path)
+    assert (err.value.file, err.value.line) == (str(path), 1)
 
 
 def test_a_file_in_no_known_format_says_which_formats_exist(tmp_path):
@@ -196,17 +212,21 @@ def test_the_command_line_runs_a_dataset_for_the_time_it_is_told(tmp_path, capsy
 
 
 def test_spellings_adams_accepts(tmp_path):
-    """TRANSLATIONAL/ROTATIONAL for TRANSLATION/ROTATION, D V A F on REQUEST (V is also a
-    prefix of VARIABLES), GRAPHICS with any keyword, & continuing a command."""
+    """TRANSLATIONAL/ROTATIONAL for TRANSLATION/ROTATION, D V A F and C (COMMENT, also a
+    prefix of CNAMES) on REQUEST (V is also a prefix of VARIABLES), GRAPHICS with any
+    keyword, & continuing a command."""
     path = tmp_path / "s.adm"
     path.write_text("title\nPART/1, GROUND\nMARKER/1, PART = 1\nMARKER/2, PART = 1\n"
                     "PART/2, MASS = 1, CM = 3, IP = 1, 1, 1\nMARKER/3, PART = 2\n"
                     "SFORCE/1, ROTATIONAL, I = 3, J = 2, FUNCTION = 2\n"
-                    "REQUEST/1, V, I = 3\nREQUEST/2, A, I = 3\n"
-                    "GRAPHICS/1, CYLINDER, CM = 3, RANGLE = 360, ANYTHING = 2\nEND\n")
+                    "REQUEST/1, V, I = 3, C = velocity: x y z\nREQUEST/2, A, I = 3\n"
+                    "GRAPHICS/1, CYLINDER, CM = 3, RANGLE = 360, ANYTHING = 2\n"
+                    "GRAPHICS/2, BOX, CORNER = 3, X = 0.2, Y = .2, Z = 4\nEND\n")
     (tmp_path / "s.acf").write_text("s\n\nsim/dyn, end = 0.5, &\n dtout = 0.25\nstop\n")
     m = _load(path)
     assert [(c.end_time, c.print_interval) for c in m.commands] == [(0.5, 0.25)]
+    assert (m.graphics[2].type, m.graphics[2].attrs) == \
+        ("BOX", {"corner": "3", "x": "0.2", "y": ".2", "z": "4"})      # kept as written
     res = m.run()
     np.testing.assert_allclose(res.request(1)[:, 7], 2 * res.t, atol=1e-12)   # wz = T t / I
     np.testing.assert_allclose(res.request(2)[:, 7], 2.0, atol=1e-12)

@@ -16,7 +16,8 @@ PKG = pathlib.Path(pysolver.__file__).resolve().parent
 #: The viewer ranks with results (Result.animate calls it).
 RANK = {"_version": 0, "headers": 0, "errors": 0, "options": 0, "rotations": 0, "results": 4,
         "catalogue": 0, "settings": 0, "records": 1, "model": 1,
-        "deck": 2, "build": 3, "_kernel": 3, "solve": 4, "viewer": 4, "batch": 5, "cli": 5, "msolve": 5, "modeling": 5,
+        "deck": 2, "build": 3, "_kernel": 3, "solve": 4, "viewer": 4, "batch": 5, "cli": 5,
+        "msolve": 5, "modeling": 5, "convert": 5,
         "__init__": 5,
         "__main__": 5, "_build_ffi": 5}
 

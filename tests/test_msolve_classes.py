@@ -8,7 +8,23 @@ import pytest
 
 import pysolver
 from pysolver import DeckError
-from pysolver.msolve import Accgrav, Joint, Marker, Model, Part, Point, Request, Sforce, Units
+from pysolver.msolve import (
+    Accgrav,
+    Graphics,
+    Integrator,
+    Joint,
+    LoadControl,
+    Marker,
+    Model,
+    Part,
+    Pforce,
+    Point,
+    PointMass,
+    Request,
+    Sensor,
+    Sforce,
+    Units,
+)
 
 from helpers import DECKS, TEST_DECKS
 
@@ -82,3 +98,65 @@ def test_errors_name_the_python_line_that_made_the_element():
     with pytest.raises(DeckError, match="bad expression") as err:
         model.simulate(end=1, dtout=0.1)
     assert (err.value.file, err.value.line) == (__file__, line)
+
+
+def test_altairs_attribute_names_and_pysolvers_classes_build_the_xml_deck_exactly():
+    """decks/sensor_halt_acceleration.xml written with the classes as Altair names their
+    attributes (Sensor operator, evaluate; Sforce type) builds the XML deck's model and run,
+    number for number; pysolver's Pforce and LoadControl classes the LoadControl deck's."""
+    from test_formats import model_differences
+
+    model = Model()
+    ground = Part(id=1, ground=True)
+    m11 = Marker(id=11, body=ground)
+    block = Part(id=2, mass=1, ip=[0.1, 0.1, 0.1])
+    block.cm = m21 = Marker(id=21, body=block, qp=[1, 0, 0])
+    Sforce(id=1, type="TRANSLATION", i=m21, j=m11, function="2*TIME")
+    Sensor(id=100, function="ABS( ACCX(21,11,21,11) )", operator="GE", value=5, error=1e-4,
+           halt=True, evaluate="VX(21,11,11)")
+    Request(id=1, f1="DX(21,11)", f2="VX(21,11)", f3="ACCX(21,11,21,11)", f4="SENVAL(100)",
+            cnames=["x", "vx", "ax", "stored_vx"])
+    Integrator(error=1e-8)
+    model.simulate(type="TRANSIENT", end=10, dtout=0.1, returnResults=False)
+    xml = pysolver.load(DECKS / "sensor_halt_acceleration.xml")
+    assert model_differences(xml, model.load()) == []
+
+    model = Model()
+    Units(mass="KILOGRAM", length="MILLIMETER", time="SECOND", force="NEWTON")
+    ground = Part(id=1, ground=True)
+    Marker(id=1, body=ground)
+    tip = PointMass(id=2, mass=0.01)
+    tip.cm = Marker(id=10, body=tip)
+    Pforce(id=1, function="-DZ(10)", penalty=100, penalty1=0, unilateral=True,
+           smoothing_factor=1e-4, label="floor z >= 0")
+    Request(id=1, f1="DZ(10)", f2="PFORCE(1)", cnames=["z", "floor_force"])
+    Integrator(error=1e-8)
+    LoadControl(velocity=-0.1, material=tip, direction=3, maxvelocity=10,
+                load_function="IF(t-1: 20*t, 20, IF(t-2: 20, 40, 40))", kp="auto",
+                ki="auto", smooth=0.8, updatetime=0.01)
+    model.simulate(type="TRANSIENT", end=3, dtout=0.01, returnResults=False)
+    xml = pysolver.load(DECKS / "loadcontrol_indenter.xml")
+    assert model_differences(xml, model.load()) == []
+
+
+def test_a_value_the_class_does_not_know_is_an_error_at_the_python_line():
+    model = Model()
+    ground = Part(ground=True)
+    pin = Marker(body=ground)
+    line = sys._getframe().f_lineno + 1
+    Joint(type="REVOLUT", i=pin, j=pin)
+    with pytest.raises(DeckError, match="type='REVOLUT'; expected one of REVOLUTE, ") as err:
+        model.load()
+    assert (err.value.file, err.value.line, err.value.element) == (__file__, line, "Joint")
+
+
+def test_graphics_keep_any_attribute_for_the_3d_view():
+    model = Model()
+    ground = Part(ground=True)
+    pin = Marker(body=ground)
+    Graphics(type="Cylinder", center_marker_id=pin, radius=1.5, length="2.0")
+    Graphics(type="SPHERE", cm=pin, radius=0.25)
+    graphics = model.load().graphics
+    assert (graphics[1].type, graphics[1].attrs) == \
+        ("Cylinder", {"center_marker_id": "1", "radius": "1.5", "length": "2.0"})
+    assert (graphics[2].type, graphics[2].attrs) == ("SPHERE", {"cm": "1", "radius": "0.25"})

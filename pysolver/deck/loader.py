@@ -57,6 +57,9 @@ def load(path: str | os.PathLike, user_code: bool = True,
     with open(path, "rb") as fh:
         raw = fh.read()
     fmt = {".py": "py", ".adm": "adm", ".xml": "xml"}.get(ext) or _sniff(raw, path)
+    if fmt == "xml" and raw.lstrip()[:1] != b"<" and _dataset_like(raw):
+        raise DeckError("not XML: the file reads as an Adams dataset (PART/, MARKER/ ... "
+                        "statements); name it .adm", file=path, line=1)
     text = _decode(raw, fmt, path)
     if fmt == "adm":
         acf = os.path.splitext(path)[0] + ".acf"
@@ -72,9 +75,7 @@ def _sniff(raw, path):
     head = raw.lstrip()[:1]
     if head == b"<":
         return "xml"
-    lines = raw.decode("latin-1").splitlines()[1:50]
-    if any(re.match(r"\s*(PART|MARKER|UNITS|JOINT|ACCGRAV|SFORCE|REQUEST)\s*/", ln, re.I)
-           for ln in lines):
+    if _dataset_like(raw):
         return "adm"
     raise DeckError("not a deck pysolver reads: expected MotionSolve XML (.xml), a Python "
                     "deck of pysolver.msolve statements (.py), an Adams dataset (.adm) or an "
@@ -94,6 +95,13 @@ def _load_acf(path, user_code, simulate=None, dataset=None):
             dataset = (data_path, _decode(fh.read(), "adm", data_path))
     text = adams.with_commands(dataset[1], acf, path)
     return loads(text, fmt="adm", file=dataset[0], user_code=user_code, simulate=simulate)
+
+
+def _dataset_like(raw):
+    """True when a line after the first starts like an Adams dataset statement."""
+    lines = raw.decode("latin-1").splitlines()[1:50]
+    return any(re.match(r"\s*(PART|MARKER|UNITS|JOINT|ACCGRAV|SFORCE|REQUEST)\s*/", ln, re.I)
+               for ln in lines)
 
 
 _XML_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*?encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
@@ -127,11 +135,11 @@ def _decode(raw, fmt, path):
                         file=path, line=line) from None
 
 
-def deck_elements(path, user_code=True):
+def deck_elements(path, user_code=True, model=None):
     """(elements, title) of a deck file before they are checked: the list every format is
     read into (pysolver.deck.writer writes it as XML); title is an Adams dataset's first
-    line (else None)."""
-    model = load(path, user_code=user_code)
+    line (else None). `model`: the deck already loaded."""
+    model = model if model is not None else load(path, user_code=user_code)
     text, fmt = model.source.text, model.source.fmt
     title = text.splitlines()[0].strip() if fmt == "adm" and text else None
     return _elements(text, fmt, model.source.file, user_code), title

@@ -32,7 +32,8 @@ __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE
            "VFORCE", "VTORQUE", "GFORCE", "BUSHING", "GRAPHICS", "SPLINE", "MOTION", "JOINT",
            "JPRIM", "GCON", "COUPLER",
            "LOADCONTROL", "VARIABLE",
-           "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "EQUILIBRIUM",
+           "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "SENSOR_EVALUATE", "EQUILIBRIUM",
+           "RESOUTPUT", "H3DOUTPUT",
            "py_sysfnc", "py_sysary", "py_errmes"]
 
 #: User subroutines: ROUTINE= a Python function (or its name in SCRIPT=), SCRIPT=, INTERPRETER=;
@@ -116,9 +117,9 @@ def UNITS(**kw):
 
 
 def ACCGRAV(**kw):
-    """Gravity: IGRAV, JGRAV, KGRAV (global x, y, z components)."""
-    _emit("ACCGRAV", "Force_Gravity", {"IGRAV": "grav_x", "JGRAV": "grav_y", "KGRAV": "grav_z"},
-          **kw)
+    """Gravity: IGRAV, JGRAV, KGRAV (global x, y, z components), LABEL."""
+    _emit("ACCGRAV", "Force_Gravity", {"IGRAV": "grav_x", "JGRAV": "grav_y", "KGRAV": "grav_z",
+                                       "LABEL": "label"}, **kw)
 
 
 def PART(id, **kw):
@@ -140,17 +141,21 @@ def PART(id, **kw):
 
 
 def POINT_MASS(id, **kw):
-    """Point body with 3 translational DOF: MASS, CM, VX VY VZ, LABEL."""
+    """Point body with 3 translational DOF: MASS, CM, VX VY VZ (global, or along the axes of
+    the VM marker), LABEL."""
     _emit("POINT_MASS", "Body_Point", {"MASS": "mass", "CM": "cg_id", "VX": "v_ic_x",
-                                       "VY": "v_ic_y", "VZ": "v_ic_z", "LABEL": "label"}, id, **kw)
+                                       "VY": "v_ic_y", "VZ": "v_ic_z", "VM": "vm_id",
+                                       "LABEL": "label"}, id, **kw)
 
 
 def MARKER(id, **kw):
     """Marker: PART, QP=[x, y, z], one of REULER=[psi, theta, phi] (3-1-3),
-    EP=[e0, e1, e2, e3] or AXES=[a00, a10, a20, a01, a11, a21, a02, a12, a22]; RM, LABEL."""
+    YPR=[yaw, pitch, roll] (3-2-1), EP=[e0, e1, e2, e3] or
+    AXES=[a00, a10, a20, a01, a11, a21, a02, a12, a22]; RM, LABEL."""
     _emit("MARKER", "Reference_Marker",
           {"PART": "body_id", "QP": _vec(["pos_x", "pos_y", "pos_z"]),
-           "REULER": _vec(["psi", "theta", "phi"]), "EP": _vec(["e0", "e1", "e2", "e3"]),
+           "REULER": _vec(["psi", "theta", "phi"]), "YPR": _vec(["yaw", "pitch", "roll"]),
+           "EP": _vec(["e0", "e1", "e2", "e3"]),
            "AXES": _vec(["a00", "a10", "a20", "a01", "a11", "a21", "a02", "a12", "a22"]),
            "RM": "rm_id", "LABEL": "label"}, id, **kw)
 
@@ -211,16 +216,22 @@ def SPRINGDAMPER(id, I=None, J=None, TRANSLATION=False, ROTATION=False,  # noqa:
 
 
 def _vector(stmt, kind, comps, id, kw):
+    comps = {c: f"{c.lower()}_expression" for c in comps}
+    if any(k.upper() == "ACTIONONLY" and v for k, v in kw.items()):   # on I alone: no JFLOAT
+        kw = {k: v for k, v in kw.items() if k.upper() != "ACTIONONLY"}
+        _emit(stmt, "Force_Vector_OneBody", {"I": "marker_id", "RM": "ref_marker_id", **comps,
+                                              "LABEL": "label"}, id, {"type": kind}, **kw)
+        return
     _emit(stmt, "Force_Vector_TwoBody",
           {"I": "i_marker_id", "JFLOAT": "j_floating_marker_id", "RM": "ref_marker_id",
-           **{c: f"{c.lower()}_expression" for c in comps}, "LABEL": "label"}, id,
-          {"type": kind}, **kw)
+           **comps, "LABEL": "label", "ACTIONONLY": lambda v: {}}, id, {"type": kind}, **kw)
 
 
 def VFORCE(id, **kw):
     """Vector force (Force_Vector_TwoBody): I (where it acts), JFLOAT (the body taking the
     reaction, at the same point), RM (the marker whose axes resolve FX, FY, FZ; global if
-    omitted), FX, FY, FZ, LABEL. VTORQUE takes TX, TY, TZ instead, GFORCE all six."""
+    omitted), FX, FY, FZ, LABEL; ACTIONONLY=True (no JFLOAT) acts on I's body alone
+    (Force_Vector_OneBody). VTORQUE takes TX, TY, TZ instead, GFORCE all six."""
     _vector("VFORCE", "FORCEONLY", ("FX", "FY", "FZ"), id, kw)
 
 
@@ -321,11 +332,11 @@ def JOINT(id, **kw):
     UNIVERSAL, HOOKE, FIXED, PLANAR, CONSTANT_VELOCITY or CONVEL, SCREW, RACK_PINION or
     RACKPIN, the primitives INLINE, INPLANE, ORIENTATION, PARALLEL_AXES, PERPENDICULAR,
     FREE), I, J (markers: I on the first body, J on the second), PITCH (SCREW: translation
-    per turn), PD (RACK_PINION: pitch diameter), LABEL. The reactions are
-    res.joint(id)."""
+    per turn), PD (RACK_PINION: pitch diameter), VIRTUAL (is_virtual), LABEL. The
+    reactions are res.joint(id)."""
     _emit("JOINT", "Constraint_Joint",
           {"TYPE": _joint_type, "I": "i_marker_id", "J": "j_marker_id", "PITCH": "pitch",
-           "PD": "pitch_diameter", "LABEL": "label"}, id, **kw)
+           "PD": "pitch_diameter", "VIRTUAL": "is_virtual", "LABEL": "label"}, id, **kw)
 
 
 def _coupled_joints(val):
@@ -344,7 +355,7 @@ def COUPLER(id, **kw):
     _emit("COUPLER", "Constraint_Coupler",
           {"JOINTS": _coupled_joints, "TYPE": _coupled_types,
            "SCALES": lambda v: {"coefficients": ", ".join(str(float(x)) for x in v)},
-           "LABEL": "label"}, id, **kw)
+           "VIRTUAL": "is_virtual", "LABEL": "label"}, id, **kw)
 
 
 def GCON(id, **kw):
@@ -352,15 +363,16 @@ def GCON(id, **kw):
     time held at zero), I (the marker MotionSolve reports its reaction at), LABEL; ROUTINE
     (GCOSUB), SCRIPT, INTERPRETER and FUNCTION="USER(...)" for a user subroutine."""
     _emit("GCON", "Constraint_General",
-          {"FUNCTION": "expr", "I": "i_marker_id", "LABEL": "label", **_ROUTINE}, id, **kw)
+          {"FUNCTION": "expr", "I": "i_marker_id", "VIRTUAL": "is_virtual", "LABEL": "label",
+           **_ROUTINE}, id, **kw)
 
 
 def JPRIM(id, **kw):
     """Joint primitive (Constraint_Jprim): TYPE (ATPOINT, INLINE, INPLANE, ORIENTATION,
     PARALLEL_AXES, PERPENDICULAR), I, J, LABEL."""
     _emit("JPRIM", "Constraint_Jprim",
-          {"TYPE": _joint_type, "I": "i_marker_id", "J": "j_marker_id", "LABEL": "label"},
-          id, **kw)
+          {"TYPE": _joint_type, "I": "i_marker_id", "J": "j_marker_id",
+           "VIRTUAL": "is_virtual", "LABEL": "label"}, id, **kw)
 
 
 def LOADCONTROL(id=None, **kw):
@@ -395,9 +407,34 @@ def SENSOR(id, EVALUATE=None, **kw):
            **_USERSUB}, id, **kw)
 
 
+def SENSOR_EVALUATE(id, **kw):
+    """Sensor_Evaluate on its own (SENSOR(..., EVALUATE=) makes one with the sensor's id):
+    FUNCTION, LABEL; ROUTINE (SEVSUB), SCRIPT, INTERPRETER. A sensor names it with
+    EVALUATE_ID=."""
+    _emit("SENSOR_EVALUATE", "Sensor_Evaluate", {"FUNCTION": "expr", "LABEL": "label",
+                                                 **_USERSUB}, id, **_usersub(kw))
+
+
+def _settings(stmt, tag, kw):
+    _emit(stmt, tag, {k.upper(): k.lower() for k in kw}, **kw)
+
+
+def RESOUTPUT(**kw):
+    """MotionSolve's ResOutput settings, kept as written (not used: pysolver writes its own
+    outputs)."""
+    _settings("RESOUTPUT", "ResOutput", kw)
+
+
+def H3DOUTPUT(**kw):
+    """MotionSolve's H3DOutput settings, kept as written (not used)."""
+    _settings("H3DOUTPUT", "H3DOutput", kw)
+
+
 def VARIABLE(id, **kw):
-    """Variable read with VARVAL(id): FUNCTION, LABEL; ROUTINE (VARSUB), SCRIPT, INTERPRETER."""
-    _emit("VARIABLE", "Reference_Variable", {"FUNCTION": "expr", "LABEL": "label", **_USERSUB},
+    """Variable read with VARVAL(id): FUNCTION, IC (initial_value: kept, not used: variables
+    are explicit), LABEL; ROUTINE (VARSUB), SCRIPT, INTERPRETER."""
+    _emit("VARIABLE", "Reference_Variable", {"FUNCTION": "expr", "IC": "initial_value",
+                                             "LABEL": "label", **_USERSUB},
           id, **_usersub(kw))
 
 
@@ -422,31 +459,35 @@ def REQUEST(id, FUNCTION=None, **kw):
 
 def INTEGRATOR(**kw):
     """Integrator settings: ERROR (integr_tol), HMAX, HMIN, HINIT (h0_max), MAX_NUM_STEPS,
-    TYPE, and pysolver's MAX_STEP_GROWTH and NONLIN_CONV_COEF."""
+    TYPE, DAE_CONSTR_TOL, pysolver's MAX_STEP_GROWTH and NONLIN_CONV_COEF, LABEL."""
     _emit("INTEGRATOR", "Param_Transient", {"ERROR": "integr_tol", "HMAX": "h_max",
                                             "HMIN": "h_min", "HINIT": "h0_max",
                                             "MAX_NUM_STEPS": "max_num_steps",
                                             "TYPE": "integrator_type",
+                                            "DAE_CONSTR_TOL": "dae_constr_tol",
                                             "MAX_STEP_GROWTH": "max_step_growth",
-                                            "NONLIN_CONV_COEF": "nonlin_conv_coef"}, **kw)
+                                            "NONLIN_CONV_COEF": "nonlin_conv_coef",
+                                            "LABEL": "label"}, **kw)
 
 
 def EQUILIBRIUM(**kw):
     """Static settings (Param_Static): METHOD (FIM_D, FIM_S, MKEAM), MAX_KE_TOL, MAX_DQ_TOL,
     MAXIT (max_num_iter), IMBALANCE (max_imbalance), ERROR (max_error), STABILITY,
-    COMPLIANCE_DELTA."""
+    COMPLIANCE_DELTA, TLIMIT, ALIMIT (radians), LABEL."""
     _emit("EQUILIBRIUM", "Param_Static",
           {"METHOD": "method", "MAX_KE_TOL": "max_ke_tol", "MAX_DQ_TOL": "max_dq_tol",
            "MAXIT": "max_num_iter", "IMBALANCE": "max_imbalance", "ERROR": "max_error",
-           "STABILITY": "stability", "COMPLIANCE_DELTA": "compliance_delta"}, **kw)
+           "STABILITY": "stability", "COMPLIANCE_DELTA": "compliance_delta",
+           "TLIMIT": "tlimit", "ALIMIT": "alimit", "LABEL": "label"}, **kw)
 
 
 def SIMULATE(**kw):
-    """Run: TYPE (TRANSIENT, STATIC, QUASI-STATIC, ASSEMBLY), END or DURATION, DTOUT or
-    STEPS (ASSEMBLY takes neither: the initial-conditions analysis alone)."""
+    """Run: TYPE (TRANSIENT, STATIC, QUASI-STATIC, ASSEMBLY), START, END or DURATION, DTOUT or
+    STEPS (ASSEMBLY takes neither: the initial-conditions analysis alone), PRINT_INCREMENT."""
     _emit("SIMULATE", "Simulate", {"TYPE": "analysis_type", "END": "end_time",
                                    "DURATION": "duration", "DTOUT": "print_interval",
-                                   "STEPS": "num_step", "START": "start_time"}, **kw)
+                                   "STEPS": "num_step", "START": "start_time",
+                                   "PRINT_INCREMENT": "print_increment"}, **kw)
 
 
 def STOP():

@@ -1,0 +1,255 @@
+"""pysolver convert in every direction (MotionSolve XML, Python statement scripts, Adams
+datasets with their command files, scripts of msolve classes): every example deck's forms in
+decks/forms/adams and decks/forms/msolve are what convert writes, build the same model number for
+number and give the same results; a deck of every attribute the examples leave out makes
+the round trip through each format and back; what a format cannot hold is a DeckError."""
+import dataclasses
+import importlib.util
+import shutil
+import warnings
+
+import numpy as np
+import pytest
+
+import pysolver
+from pysolver import DeckError, DeckWarning, catalogue
+from pysolver.cli import main
+from pysolver.convert import convert
+
+from helpers import DECKS, TEST_DECKS
+
+
+def _module(path):
+    spec = importlib.util.spec_from_file_location(path.stem, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+MAKE = _module(DECKS / "forms" / "make.py")
+EVERY = TEST_DECKS / "forms" / "every_attribute.xml"
+
+
+def _load(path, **kw):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeckWarning)
+        return pysolver.load(path, **kw)
+
+
+def _tree(value):
+    """An expression tree without the columns its nodes carry (where the text had them)."""
+    if isinstance(value, tuple) and value and value[0] == "call":
+        return ("call", value[1], [_tree(v) for v in value[2]])
+    if isinstance(value, tuple) and value and value[0] == "name":
+        return value[:2]
+    if isinstance(value, (tuple, list)):
+        return type(value)(_tree(v) for v in value)
+    return value
+
+
+def _differences(a, b, path):
+    """Where two parts of a model differ, numbers bit for bit (a zero's sign too); the
+    expressions' texts and the deck lines aside."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        a, b = np.asarray(a), np.asarray(b)
+        same = a.shape == b.shape and np.array_equal(a, b, equal_nan=True) and \
+            (a.dtype.kind != "f" or np.array_equal(np.signbit(a), np.signbit(b)))
+        return [] if same else [f"{path}: {a!r} != {b!r}"]
+    if dataclasses.is_dataclass(a) and not isinstance(a, type):
+        return [d for f in dataclasses.fields(a) if f.name not in ("text", "texts", "line",
+                                                                   "load_text")
+                for d in _differences(getattr(a, f.name), getattr(b, f.name),
+                                      f"{path}.{f.name}")]
+    if isinstance(a, dict):
+        if list(a) != list(b):
+            return [f"{path}: {list(a)} != {list(b)}"]
+        return [d for k in a for d in _differences(a[k], b[k], f"{path}[{k}]")]
+    if isinstance(a, tuple) and a and a[0] in ("call", "name"):
+        a, b = _tree(a), _tree(b)
+    if isinstance(a, (list, tuple)):
+        if not isinstance(b, (list, tuple)) or len(a) != len(b):
+            return [f"{path}: {a!r} != {b!r}"]
+        return [d for k, (u, v) in enumerate(zip(a, b)) for d in _differences(u, v,
+                                                                               f"{path}[{k}]")]
+    if callable(a):
+        return []
+    if type(a) is not type(b) or (a != b and a == a) or \
+            (isinstance(a, float) and np.signbit(a) != np.signbit(b)):
+        return [f"{path}: {a!r} != {b!r}"]
+    return []
+
+
+def model_differences(a, b):
+    """Every difference between two models' elements, units, gravity, settings, commands."""
+    out = [d for el in catalogue.ELEMENTS
+           for d in _differences(getattr(a, el.table), getattr(b, el.table), el.table)]
+    for attr in ("units", "force_scale", "gravity", "static", "commands", "output_settings"):
+        out += _differences(getattr(a, attr), getattr(b, attr), attr)
+    return out + _differences(vars(a.transient), vars(b.transient), "transient")
+
+
+def _rel(a, b):
+    """Largest difference of two request tables over each channel's largest value (>= 1)."""
+    assert np.array_equal(np.isnan(a), np.isnan(b))        # the same unused channels
+    used = ~np.all(np.isnan(b), axis=0)
+    a, b = a[:, used], b[:, used]
+    if not a.size:
+        return 0.0
+    return float(np.max(np.abs(a - b) / np.maximum(1.0, np.abs(b).max(axis=0))))
+
+
+def _same_results(res, ref):
+    """Same success and message, same output rows, every request channel equal to 1e-12 of
+    its scale at every row."""
+    assert (res.success, res.status, res.message) == (ref.success, ref.status, ref.message)
+    assert len(res.t) == len(ref.t)
+    assert _rel(res.t[:, None], ref.t[:, None]) <= 1e-12
+    assert res.request_ids == ref.request_ids
+    for rid in ref.request_ids:
+        assert _rel(res.request(rid), ref.request(rid)) <= 1e-12, rid
+
+
+#: Decks run for a fraction of their time here: IFToMM A02 (81 links) for 2 s of its 20 s.
+SHORT = {"iftomm_a02_fourbar": 2.0, "iftomm_a02_fourbar_inline": 2.0}
+
+
+def _forms_of(deck, sub):
+    """The deck, its Python statement twin when it has one, its .adm (with the .acf beside)
+    and its script of msolve classes."""
+    twin = deck.with_suffix(".py")
+    return [deck] + ([twin] if deck.suffix == ".xml" and twin.exists() else []) + \
+        list(MAKE.outputs(deck, sub))
+
+
+@pytest.mark.parametrize("deck, sub", MAKE.sources(),
+                         ids=[f"{s}/{d.name}".lstrip("/") for d, s in MAKE.sources()])
+def test_every_form_of_an_example_deck_builds_the_same_model_and_runs_alike(deck, sub):
+    paths = _forms_of(deck, sub)
+    simulate = {"analysis_type": "TRANSIENT", "end_time": SHORT[deck.stem],
+                "print_interval": 0.05} if deck.stem in SHORT else None
+    models = [_load(p, simulate=simulate) for p in paths]
+    for path, model in zip(paths[1:], models[1:]):
+        assert model_differences(models[0], model) == [], path
+    results = [m.run(progress=False) for m in models]
+    assert results[0].success, results[0].message
+    for res in results[1:]:
+        _same_results(res, results[0])
+
+
+def test_the_committed_forms_are_what_convert_writes():
+    """decks/forms/make.py regenerates them: run it after changing a deck or a writer."""
+    written = MAKE.all_forms()
+    for path, text in written.items():
+        assert path.exists(), f"{path} is missing: run python decks/forms/make.py"
+        assert path.read_text() == text, f"{path} is out of date: run python decks/forms/make.py"
+    shipped = {p for folder in ("adams", "msolve") for p in (DECKS / "forms" / folder).rglob("*")
+               if p.is_file()}
+    assert shipped == set(written), "decks/forms holds files make.py does not write"
+
+
+def test_every_attribute_makes_the_round_trip_through_every_format(tmp_path):
+    """Orientation forms, references, one-body forces, user subroutine scripts (named
+    relative to the new folder), a Sensor_Evaluate of its own, request names with gaps,
+    a spline surface, output settings, every integrator and statics setting, commands with
+    start_time and print_increment, numbers such as 0.30000000000000004 and 5e-324: each
+    format, and each format converted again, builds the model the XML builds, number for
+    number, and runs alike."""
+    ref = _load(EVERY)
+    out = tmp_path / "out"
+    out.mkdir()
+    firsts = []
+    for ext in (".adm", ".py", ".xml"):
+        first = out / f"first{ext}"
+        convert(EVERY, first)
+        firsts.append(first)
+        assert model_differences(ref, _load(first)) == [], ext
+    for first in firsts:
+        for ext in (".adm", ".py", ".xml"):
+            again = tmp_path / f"{first.stem}_{first.suffix[1:]}{ext}"
+            convert(first, again)
+            assert model_differences(ref, _load(again)) == [], again.name
+    res = ref.run(progress=False)
+    # the assembly's row at t = 0, 5 steps, then 100 (print_increment is kept, not used)
+    assert res.success and len(res.t) == 1 + 5 + 100, res.message
+    for first in firsts:
+        _same_results(_load(first).run(progress=False), res)
+
+
+def test_the_dataset_holds_adams_statements_and_pysolver_extensions(tmp_path):
+    """What the .adm says: exact digits, part-relative placement as written (ZP/XP where they
+    give the axes exactly, else pysolver's AXES), pysolver's statements and keywords, the
+    commands in the .acf."""
+    convert(EVERY, tmp_path / "every.adm")
+    text = (tmp_path / "every.adm").read_text()
+    for line in ("MARKER/2, PART = 1, QP = 0.30000000000000004, 5e-324, 1e+300",
+                 "MARKER/21, PART = 2, QP = 0.0, 2.0, 0.0, ZP = 1.0, 2.0, 0.0, XP = 0.0, 3.0, 0.0",
+                 ", AXES = 0.36, 0.48, -0.8, -0.8, 0.6, 0.0, 0.48, 0.64, 0.6",
+                 "VTORQUE/1, I = 20, ACTIONONLY, RM = 5, TY = 1e-4*SIN(TIME)\\, TZ = -0.001*WZ(20)\\",
+                 "JOINT/1, FREE, I = 20, J = 1, VIRTUAL",
+                 "SENSOR_EVALUATE/7, FUNCTION = DY(30)\\",
+                 ", CNAMES = height, \"\", \"1e5\"",
+                 ", FUNCTION = USER(30, -1)\\, ROUTINE = floor, INTERPRETER = PYTHON",
+                 "GRAPHICS/1, TYPE = Cylinder, CENTER_MARKER_ID = 20, RADIUS = 1.50"):
+        assert line in text.splitlines(), line
+    assert max(len(ln) for ln in text.splitlines() if not ln.startswith("!")) <= 80
+    assert (tmp_path / "every.acf").read_text().splitlines() == [
+        "every", "every", "SIMULATE/INITIAL_CONDITIONS",
+        "SIMULATE/DYNAMICS, START = 0.0, END = 0.1, STEPS = 5",
+        "SIMULATE/DYNAMICS, DURATION = 0.1, PRINT_INCREMENT = 2", "STOP"]
+
+
+def test_the_command_line_writes_the_format_the_extension_names(tmp_path, capsys):
+    """-o x.adm writes x.adm and x.acf, -o x.py a script of msolve classes, -o x.xml XML;
+    any other extension is one line naming the formats (exit 2)."""
+    deck = DECKS / "joints" / "slider_crank.xml"
+    for name in ("sc.adm", "sc.py", "sc.xml"):
+        assert main(["convert", str(deck), "-o", str(tmp_path / name)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == f"wrote {tmp_path / 'sc.adm'}, {tmp_path / 'sc.acf'}"
+    assert lines[1:] == [f"wrote {tmp_path / 'sc.py'}", f"wrote {tmp_path / 'sc.xml'}"]
+    ref = _load(deck)
+    for name in ("sc.adm", "sc.acf", "sc.py", "sc.xml"):
+        assert model_differences(ref, _load(tmp_path / name)) == [], name
+    assert main(["convert", str(deck), "-o", str(tmp_path / "sc.txt")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("pysolver: error: ")
+    assert "unknown output format '.txt': pysolver convert writes MotionSolve XML (.xml), " \
+        "an Adams dataset with its command file (.adm), a script of msolve classes (.py)" in err
+    assert not (tmp_path / "sc.txt").exists()
+
+
+def test_a_deck_without_commands_has_no_command_file(tmp_path):
+    """No .acf beside the dataset (it loads with the default command, as the XML); one left
+    from before would give it commands, so it is written again with none."""
+    deck = tmp_path / "bare.xml"
+    deck.write_text((DECKS / "joints" / "pendulum_revolute.xml").read_text().split(
+        "</Model>")[0] + "</Model></MotionSolve>\n")
+    convert(deck, tmp_path / "bare.adm")
+    assert not (tmp_path / "bare.acf").exists()
+    shutil.copy(DECKS / "forms" / "adams" / "joints" / "pendulum_revolute.acf",
+                tmp_path / "bare.acf")
+    assert convert(deck, tmp_path / "bare.adm") == [str(tmp_path / "bare.adm"),
+                                                   str(tmp_path / "bare.acf")]
+    assert (tmp_path / "bare.acf").read_text() == "bare\nbare\nSTOP\n"
+    assert model_differences(_load(deck), _load(tmp_path / "bare.adm")) == []
+
+
+def test_what_a_file_cannot_hold_is_a_deck_error(tmp_path):
+    """A routine given as a Python function (name it in a script), a label with both kinds
+    of quote: a DeckError naming the deck, the line and the element."""
+    deck = tmp_path / "fn.py"
+    deck.write_text("def var(id, time, par, npar, dflag, iflag):\n    return time\n\n"
+                    "PART(1, GROUND=True)\nMARKER(1, PART=1)\nMARKER(2, PART=2)\n"
+                    "PART(2, MASS=1, CM=2, IP=[1, 1, 1])\nVARIABLE(1, ROUTINE=var)\n")
+    for ext in (".adm", ".py", ".xml"):
+        with pytest.raises(DeckError, match="a routine given as a Python function cannot be "
+                                            "written") as err:
+            convert(deck, tmp_path / f"fn{ext}")
+        assert (err.value.file, err.value.line) == (str(deck), 8)
+    deck = tmp_path / "quotes.xml"
+    deck.write_text('<MotionSolve><Model><Body_Rigid id="1" isground="TRUE" '
+                    'label="it&apos;s &quot;it&quot;"/></Model></MotionSolve>')
+    with pytest.raises(DeckError, match="cannot be written to a dataset's adams_view_name") \
+            as err:
+        convert(deck, tmp_path / "quotes.adm")
+    assert (err.value.file, err.value.line, err.value.element) == (str(deck), 1, "PART")
