@@ -66,7 +66,7 @@ def _folder_and_columns(args):
     folders = [v for v in args.output if not _COLUMN.match(v)]
     columns = args.column + [v for v in args.output if _COLUMN.match(v)]
     if len(folders) != 1:
-        raise _error("pysolver sweep needs one output folder, -o DIR" if not folders else
+        raise _error("sweep needs an output folder: -o DIR" if not folders else
                      f"one output folder, not {len(folders)}: {', '.join(folders)}")
     outputs = {}
     for item in columns:
@@ -149,8 +149,11 @@ def _client(address):
             from None
     try:
         return Client(address, timeout=SCHEDULER_TIMEOUT)
-    except (OSError, ValueError, TypeError) as err:
-        raise _error(f"--scheduler {address}: no Dask scheduler there ({err})") from None
+    except OSError:                     # refused or silent: dask retries until the timeout
+        raise _error(f"--scheduler {address}: no Dask scheduler answered within "
+                     f"{SCHEDULER_TIMEOUT} s") from None
+    except (ValueError, TypeError) as err:
+        raise _error(f"--scheduler {address}: {err}") from None
 
 
 def run(args):
