@@ -1,27 +1,51 @@
-"""The pysolver command: run a deck, check a deck, or sweep its parameters (pysolver run, check,
-sweep; pysolver COMMAND --help for each)."""
+"""The pysolver command: run, check, convert or sweep a deck (pysolver COMMAND --help for each).
+
+Every mistake of the user's (a bad option, a deck error, a file that cannot be read or written)
+is one line ``pysolver: error: ...`` on standard error and exit status 2, without a traceback.
+"""
 import argparse
 import csv
 import dataclasses
 import json
+import math
 import os
 import sys
 
+from ._version import __version__
 from .deck.loader import load
-from .errors import DeckError
+from .errors import DeckError, UsageError
 
 
-def _command_line_simulate(args, parser):
+class Parser(argparse.ArgumentParser):
+    """argparse with the command's one error convention (no usage block, exit status 2)."""
+
+    def error(self, message):
+        raise UsageError(message)
+
+
+def number(kind, low=None, words=""):
+    """An argparse type: a finite `kind` (float or int), above `low` when given."""
+    def parse(text):
+        try:
+            value = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{text!r} is not {'an integer' if kind is int else 'a number'}") from None
+        if not math.isfinite(value) or (low is not None and not value > low):
+            raise argparse.ArgumentTypeError(f"must be {words or 'finite'}, got {text}")
+        return value
+    return parse
+
+
+def _command_line_simulate(args):
     """--end, --steps, --dtout: the attributes of one transient command from 0 that replaces
     the deck's commands (None without them)."""
     if args.end is None and args.steps is None and args.dtout is None:
         return None
     if args.end is None:
-        parser.error("--steps and --dtout need --end")
+        raise UsageError("--steps and --dtout need --end")
     if args.steps is not None and args.dtout is not None:
-        parser.error("give --steps or --dtout, not both")
-    if not args.end > 0:
-        parser.error(f"--end must be > 0, got {args.end:g}")
+        raise UsageError("give --steps or --dtout, not both")
     sim = {"analysis_type": "TRANSIENT", "end_time": args.end}
     if args.dtout is not None:
         sim["print_interval"] = args.dtout
@@ -30,11 +54,88 @@ def _command_line_simulate(args, parser):
     return sim
 
 
+def _written_for(folder):
+    """The deck (absolute path) whose run `folder`'s stats.json records, or None."""
+    try:
+        with open(os.path.join(folder, "stats.json")) as fh:
+            stats = json.load(fh)
+        return stats.get("deck") or os.path.abspath(stats["meta"]["deck"])
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return None
+
+
+def default_output(deck):
+    """The output folder of ``pysolver run DECK`` without -o: the first of ``<stem>_out``,
+    ``<stem>_out-2``, ``<stem>_out-3``, ... (in the current folder) that does not exist, is
+    empty, or holds a run of this same deck (its stats.json says so); so a/deck.xml and
+    b/deck.xml, or deck.xml and deck.adm, never overwrite each other's results."""
+    stem = os.path.splitext(os.path.basename(deck))[0] + "_out"
+    mine = os.path.abspath(deck)
+    for k in range(1, 10000):
+        folder = stem if k == 1 else f"{stem}-{k}"
+        if not os.path.isdir(folder) and not os.path.exists(folder):
+            return folder
+        if os.path.isdir(folder) and (not os.listdir(folder) or _written_for(folder) == mine):
+            return folder
+    raise UsageError(f"no free output folder {stem}-N; give one with -o")
+
+
+def _output_folder(args):
+    out = args.output or default_output(args.deck)
+    if os.path.exists(out) and not os.path.isdir(out):
+        raise UsageError(f"-o {out}: exists and is not a folder")
+    os.makedirs(out, exist_ok=True)
+    if not os.access(out, os.W_OK | os.X_OK):
+        raise UsageError(f"-o {out}: cannot write in this folder")
+    return out
+
+
+def _stats(args, res):
+    """What stats.json holds."""
+    return {"deck": os.path.abspath(args.deck), "success": res.success, "status": res.status,
+            "message": res.message, "stats": res.stats, "timing": res.timing,
+            "meta": {k: v for k, v in res.meta.items() if k != "options"},
+            "options": res.meta["options"],
+            "statics": [{"time": float(s.time), "method": s.method, "success": bool(s.success),
+                         "message": s.message, "iterations": int(s.iterations),
+                         "imbalance": float(s.imbalance), "error": float(s.error)}
+                        for s in res.statics],
+            "events": [dataclasses.asdict(e) for e in res.events],
+            "log": res.log}
+
+
+def _write_states(res, out):
+    """states.csv (time and every state) and, when the deck has joints or motions,
+    reactions.csv (each joint's |F| Fx Fy Fz |T| Tx Ty Tz on I's body, each motion's
+    reaction)."""
+    # the kernel's CSV writer, as requests.csv's
+    from .results import _write_csv
+    written = [os.path.join(out, "states.csv")]
+    _write_csv(written[0], ["time"] + list(res.state_names), _columns(res.t, res.y))
+    names, cols = ["time"], []
+    for jid in res.joint_ids:
+        names += [f"joint{jid}.{c}" for c in ("F", "Fx", "Fy", "Fz", "T", "Tx", "Ty", "Tz")]
+        cols.append(res.joint(jid))
+    for name in res.state_names:
+        if name.startswith("motion") and name.endswith(".reaction"):
+            names.append(name)
+            cols.append(res.motion(int(name[6:].split(".")[0]))[:, None])
+    if cols:
+        written.append(os.path.join(out, "reactions.csv"))
+        _write_csv(written[-1], names, _columns(res.t, *cols))
+    return written
+
+
+def _columns(t, *blocks):
+    import numpy as np
+    return np.column_stack([np.asarray(t, float).reshape(-1, 1)] +
+                           [np.asarray(b, float).reshape(len(t), -1) for b in blocks])
+
+
 def _run(args):
     model = load(args.deck, user_code=not args.no_user_code,
-                 simulate=_command_line_simulate(args, args.parser))
-    out = args.output or os.path.splitext(os.path.basename(args.deck))[0] + "_out"
-    os.makedirs(out, exist_ok=True)
+                 simulate=_command_line_simulate(args))
+    out = _output_folder(args)
     # the rows go to the CSV as they are made (a crashing C subroutine loses none of them); it
     # is written again only when a channel with an expression had no value at all (dropped)
     csv_path = os.path.join(out, "requests.csv")
@@ -45,6 +146,10 @@ def _run(args):
         res.save(csv_path)
     written = [csv_path] + [os.path.join(out, f"requests_controller{lid}.csv")
                             for lid in res.controller_ids]
+    if args.states:
+        written += _write_states(res, out)
+    if args.npz:
+        written.append(res.save(os.path.join(out, "results.npz")))
     if not args.no_plot:
         png_path = os.path.join(out, "requests.png")
         try:
@@ -61,12 +166,7 @@ def _run(args):
             print(f"pysolver: no animation ({err})", file=sys.stderr)
     stats_path = os.path.join(out, "stats.json")
     with open(stats_path, "w") as fh:
-        json.dump({"success": res.success, "status": res.status, "message": res.message,
-                   "stats": res.stats, "timing": res.timing,
-                   "meta": {k: v for k, v in res.meta.items() if k != "options"},
-                   "options": res.meta["options"],
-                   "events": [dataclasses.asdict(e) for e in res.events],
-                   "log": res.log}, fh, indent=2)
+        json.dump(_stats(args, res), fh, indent=2)
     for line in res.log:
         print(line)
     print(res.summary())
@@ -92,31 +192,49 @@ def _convert(args):
     return 0
 
 
-def main(argv=None):
-    """Entry point of the ``pysolver`` command; returns the exit status."""
-    parser = argparse.ArgumentParser(prog="pysolver", description=__doc__)
-    sub = parser.add_subparsers(dest="command", required=True)
-    run = sub.add_parser("run", help="run a deck and write requests.csv, requests.png, "
-                         "scene.html, stats.json")
+def parser():
+    """The argument parser of the ``pysolver`` command."""
+    top = Parser(prog="pysolver", description=__doc__.split("\n\n")[0],
+                 epilog="Exit status: 0 done, 1 a run or case failed, 2 a user error "
+                        "(one line 'pysolver: error: ...'), 130 interrupted.")
+    top.add_argument("--version", action="version", version=f"pysolver {__version__}")
+    sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    run = sub.add_parser("run", help="run a deck: requests.csv, plot, scene.html, stats.json",
+                         description="Run a deck's commands (or --end) and write its results "
+                                     "into a folder.")
     run.add_argument("deck", help="deck file (.xml, .py, .adm or .acf)")
-    run.add_argument("-o", "--output", help="output directory (default: DECKNAME_out)")
+    run.add_argument("-o", "--output", metavar="DIR",
+                     help="output folder (default: DECKNAME_out, or DECKNAME_out-2, -3, ... "
+                          "when that one holds another deck's run)")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     run.add_argument("--no-plot", action="store_true", help="do not write requests.png")
     run.add_argument("--no-animation", action="store_true",
                      help="do not write scene.html (the 3-D animation)")
-    run.add_argument("--end", type=float, help="run one transient command to this time "
-                     "instead of the deck's commands (with --steps or --dtout)")
-    run.add_argument("--steps", type=int, help="output steps of that command (default 100)")
-    run.add_argument("--dtout", type=float, help="output interval of that command")
-    convert = sub.add_parser("convert", help="write a deck (.xml, .py, .adm or .acf) as "
-                             "MotionSolve XML (-o x.xml), an Adams dataset and its command "
-                             "file (-o x.adm) or a script of msolve classes (-o x.py)")
-    convert.add_argument("deck")
-    convert.add_argument("-o", "--output", required=True, help="the file to write; its "
-                         "extension (.xml, .adm, .py) chooses the format")
-    check = sub.add_parser("check", help="validate a deck and list what it contains (compiles "
-                           "it: runs its user subroutine scripts and loads its C libraries)")
-    check.add_argument("deck")
+    run.add_argument("--states", action="store_true",
+                     help="also write states.csv (every state) and reactions.csv (joints, "
+                          "motions)")
+    run.add_argument("--npz", action="store_true",
+                     help="also write results.npz (states, requests, joints: Result.save)")
+    run.add_argument("--end", type=number(float, 0.0, "a finite number > 0"),
+                     help="run one transient command to this time instead of the deck's "
+                          "commands (with --steps or --dtout)")
+    run.add_argument("--steps", type=number(int, 0, "an integer > 0"),
+                     help="output steps of that command (default 100)")
+    run.add_argument("--dtout", type=number(float, 0.0, "a finite number > 0"),
+                     help="output interval of that command")
+    check = sub.add_parser("check", help="validate a deck and list what it contains",
+                           description="Validate a deck and list what it contains (compiles "
+                                       "it: runs its user subroutine scripts and loads its C "
+                                       "libraries).")
+    check.add_argument("deck", help="deck file (.xml, .py, .adm or .acf)")
+    convert = sub.add_parser("convert", help="write a deck as XML, Adams .adm/.acf or msolve .py",
+                             description="Write a deck (.xml, .py, .adm or .acf) as MotionSolve "
+                                         "XML (-o x.xml), an Adams dataset and its command file "
+                                         "(-o x.adm) or a script of msolve classes (-o x.py).")
+    convert.add_argument("deck", help="deck file (.xml, .py, .adm or .acf)")
+    convert.add_argument("-o", "--output", required=True, metavar="FILE",
+                         help="the file to write; its extension (.xml, .adm, .py) chooses the "
+                              "format")
     for cmd in (run, check, convert):
         cmd.add_argument("--no-user-code", action="store_true",
                          help="refuse a deck that runs code of its own (a .py deck, a user "
@@ -125,17 +243,49 @@ def main(argv=None):
     check.set_defaults(func=_check)
     convert.set_defaults(func=_convert)
     from .batch.cli import add_parser
-    add_parser(sub)
-    args = parser.parse_args(argv)
-    args.parser = parser
+    add_parser(sub, number)
+    return top
+
+
+def _one_line(text):
+    return " ".join(part.strip() for part in str(text).splitlines() if part.strip())
+
+
+def main(argv=None):
+    """Entry point of the ``pysolver`` command; returns the exit status.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        0 done, 1 a run (or a sweep's case) failed, 2 a user error (printed as one line
+        ``pysolver: error: ...`` on standard error), 130 interrupted, 141 standard output
+        closed early (``| head``).
+    """
     try:
-        return args.func(args)
-    except DeckError as err:
-        print(f"pysolver: error: {err}", file=sys.stderr)
-        return 2
-    except FileNotFoundError as err:
-        print(f"pysolver: error: {err}", file=sys.stderr)
-        return 2
+        args = parser().parse_args(argv)
+        status = args.func(args)
+        sys.stdout.flush()          # a closed pipe shows here, not at interpreter exit
+        return status
+    except BrokenPipeError:
+        # the reader (head) is gone: nothing more to say, and no message at exit either
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 141
+    except (UsageError, DeckError) as err:
+        message = _one_line(err)
+    except OSError as err:          # a deck or folder that cannot be read or written
+        message = _one_line(f"{err.filename}: {err.strerror}" if err.filename and
+                            err.strerror else err)
+    except KeyboardInterrupt:
+        print("pysolver: interrupted", file=sys.stderr)
+        return 130
+    print(f"pysolver: error: {message}", file=sys.stderr)
+    return 2
 
 
 if __name__ == "__main__":

@@ -45,6 +45,11 @@ class DeckError(ValueError):
         return (", ".join(where) + ": " if where else "") + self.reason
 
 
+class UsageError(Exception):
+    """A mistake on the command line (an option, a file of cases): the ``pysolver`` command
+    prints it as one line ``pysolver: error: <message>`` and exits with status 2."""
+
+
 class DeckWarning(UserWarning):
     """A deck loads, but part of it is read in a way its author may not have meant (an
     ambiguity of the public documentation, decided in docs/). Located like :class:`DeckError`,

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import catalogue
+from . import catalogue, imports
 from .errors import DeckError
 from .options import Options, resolve_kernel
 from .records import (  # noqa: F401 - the records are the model's vocabulary
@@ -137,16 +137,19 @@ class Model:
         if not (moving if moving is not None else
                 any(b.kind != "ground" for b in self.bodies.values())):
             self.check()                  # the DeckError saying there is nothing to run
+        before = imports.spent()
         res = self.compile(options.get("kernel")).run(
             progress=progress, stream=None if stream is None else os.fspath(stream),
             params=params, **options)
+        res.timing["imports"] = imports.spent() - before    # 0 once the process has them
         res._origin = (self, params)    # what res.animate() draws: no copy, no cost
         return res
 
     def compile(self, kernel: str | None = None):
         """The :class:`~pysolver.solve.compiled.CompiledModel` for a kind of kernel (as the
         ``kernel`` run option; None: ``PYSOLVER_KERNEL``, else auto), built once and kept."""
-        from .solve.compiled import CompiledModel  # the facade: compiling comes later
+        with imports.timed():
+            from .solve.compiled import CompiledModel  # the facade: compiling comes later
         kind = resolve_kernel(kernel)
         key = kind == "tapes"
         if key not in self._compiled:

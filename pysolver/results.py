@@ -107,6 +107,11 @@ class Result:
         """Ids of the Post_Request elements, sorted."""
         return list(self._request_ids)
 
+    @property
+    def joint_ids(self):
+        """Ids of the Constraint_Joint elements whose reactions :meth:`joint` gives, sorted."""
+        return sorted(-rid for rid, k in self._column if rid < 0 and k == 0)
+
     def request(self, id: int) -> np.ndarray:
         """Return Post_Request `id` as an (n, 8) array: channels expr1..expr8, NaN for NULL.
 
@@ -344,6 +349,23 @@ class Result:
         if "nevents" in s and (s["nevents"] or s["nroots"]):
             lines.insert(3, f"sensor events: {s['nevents']}  re-armed: {s['nrearms']}  "
                             f"restarts: {s['nrestarts']}  root evaluations: {s['nroots']}")
+        # static solves: each one (a few), else a tally (a quasi-static analysis: one per row)
+        st = self.statics
+        if 0 < len(st) <= 3:
+            lines += [f"static at t = {r.time:g}: {r.method}, {r.iterations} iterations, "
+                      f"imbalance {r.imbalance:.3g}, " +
+                      ("converged" if r.success else f"failed ({r.message})") for r in st]
+        elif st:
+            methods = {}
+            for r in st:
+                methods[r.method] = methods.get(r.method, 0) + 1
+            bad = [r for r in st if not r.success]
+            lines.append(f"static solves: {len(st)} ("
+                         + ", ".join(f"{m} {n}" for m, n in methods.items()) + "), "
+                         + (f"{len(bad)} failed (first at t = {bad[0].time:g}: "
+                            f"{bad[0].message})" if bad else "all converged")
+                         + f", iterations up to {max(r.iterations for r in st)}, largest "
+                         f"imbalance {max(r.imbalance for r in st):.3g}")
         return "\n".join(lines)
 
     def __repr__(self):

@@ -15,7 +15,7 @@ PKG = pathlib.Path(pysolver.__file__).resolve().parent
 #: come first; ``Model.run`` reaches the solvers through an import inside the call (the facade).
 #: The viewer ranks with results (Result.animate calls it).
 RANK = {"_version": 0, "headers": 0, "errors": 0, "options": 0, "rotations": 0, "results": 4,
-        "catalogue": 0, "settings": 0, "records": 1, "model": 1,
+        "catalogue": 0, "settings": 0, "imports": 0, "records": 1, "model": 1,
         "deck": 2, "build": 3, "_kernel": 3, "solve": 4, "viewer": 4, "batch": 5, "cli": 5,
         "msolve": 5, "modeling": 5, "convert": 5,
         "__init__": 5,

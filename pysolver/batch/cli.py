@@ -1,34 +1,58 @@
-"""``pysolver sweep``: the command-line face of :func:`pysolver.sweep`."""
+"""``pysolver sweep``: the command-line face of :func:`pysolver.sweep`.
+
+Mistakes raise :class:`pysolver.errors.UsageError` (one line ``pysolver: error: ...``, exit 2).
+"""
+import argparse
 import csv
+import math
 import os
+import re
 import sys
 
-from ..errors import DeckError
+from ..errors import DeckError, UsageError
 from .design import grid, sample
 from .runner import STATUSES, StorageError, sweep
 
+#: Seconds to wait for a Dask scheduler (dask's own default is 30 s and more).
+SCHEDULER_TIMEOUT = 5
 
-def add_parser(sub):
-    """The ``sweep`` sub-command of the ``pysolver`` parser."""
-    p = sub.add_parser("sweep", help="run a parameter study of a deck (grid, sample or cases)")
-    p.add_argument("deck", help="deck file (.xml or .py)")
+#: A column as the old spelling gave it: ``--output NAME=SPEC`` (now ``--column``).
+_COLUMN = re.compile(r"^[A-Za-z_]\w*=\S+$")
+
+
+def _error(message):
+    return UsageError(message)
+
+
+def add_parser(sub, number):
+    """The ``sweep`` sub-command of the ``pysolver`` parser; `number(kind, low, words)` is
+    the command's argparse type of numbers (:func:`pysolver.cli.number`)."""
+    p = sub.add_parser("sweep", help="run a parameter study of a deck (grid, sample or cases)",
+                       description="Run a deck once per case (a grid over --set values, a "
+                                   "--sample within --set ranges, or --cases from a CSV) and "
+                                   "write the table of cases into a folder.")
+    p.add_argument("deck", help="deck file (.xml, .py, .adm or .acf)")
     p.add_argument("--set", action="append", default=[], metavar="PATH=V1,V2,...",
                    help="values of a path (a grid over every --set); with --sample: PATH=LO,HI")
     p.add_argument("--cases", metavar="CSV", help="cases as a CSV file, one column per path")
     p.add_argument("--sample", metavar="METHOD:N",
                    help="N cases by sobol or lhs within the --set ranges (seed: --seed)")
-    p.add_argument("--seed", type=int, default=None)
-    p.add_argument("--output", action="append", default=[], metavar="NAME=SPEC",
-                   help="a scalar per case, e.g. x_end=final:request/1/1 (final, max, min, "
-                        "mean of request/ID/K or a state; first_event; steps)")
-    p.add_argument("-j", "--processes", type=int, default=None,
+    p.add_argument("--seed", type=number(int), default=None)
+    p.add_argument("--column", action="append", default=[], metavar="NAME=SPEC",
+                   help="a column of the table, a scalar per case, e.g. "
+                        "x_end=final:request/1/1 (final, max, min, mean of request/ID/K or a "
+                        "state; first_event; steps)")
+    p.add_argument("-j", "--processes", type=number(int, -1, "an integer >= 0"), default=None,
                    help="worker processes (default: one per core; 0: in this process)")
-    p.add_argument("--timeout", type=float, default=None, help="seconds per case")
+    p.add_argument("--timeout", type=number(float, 0.0, "a finite number > 0"), default=None,
+                   help="seconds per case")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="a Dask scheduler (tcp://...) to run the cases on")
-    p.add_argument("-o", "--out", required=True, metavar="DIR",
-                   help="directory: table.csv (and table.parquet with pyarrow), results/, "
+    p.add_argument("-o", "--output", action="append", default=[], metavar="DIR",
+                   help="folder: table.csv (and table.parquet with pyarrow), results/, "
                         "cases.jsonl; a second run into it skips the cases already done")
+    # the spellings of earlier versions: --out DIR; --output NAME=SPEC for --column
+    p.add_argument("--out", action="append", dest="output", help=argparse.SUPPRESS)
     p.add_argument("--keep", default="ok", metavar="STATUS,...",
                    help="statuses of stored cases to reuse (default: ok; the others run "
                         f"again), or all; statuses: {', '.join(STATUSES)}")
@@ -36,75 +60,129 @@ def add_parser(sub):
     p.set_defaults(func=run)
 
 
+def _folder_and_columns(args):
+    """The output folder and the NAME=SPEC columns (--column, and --output NAME=SPEC as
+    earlier versions spelled it)."""
+    folders = [v for v in args.output if not _COLUMN.match(v)]
+    columns = args.column + [v for v in args.output if _COLUMN.match(v)]
+    if len(folders) != 1:
+        raise _error("sweep needs an output folder: -o DIR" if not folders else
+                     f"one output folder, not {len(folders)}: {', '.join(folders)}")
+    outputs = {}
+    for item in columns:
+        name, sep, spec = item.partition("=")
+        if not sep or not name or not spec:
+            raise _error(f"--column {item!r}: expected NAME=SPEC")
+        outputs[name] = spec
+    return folders[0], outputs
+
+
 def _cases(args):
     if args.cases:
         if args.set or args.sample:
-            raise SystemExit("pysolver: error: give --cases or --set, not both")
-        with open(args.cases, newline="") as fh:
-            return [{k: _number(v) for k, v in row.items()} for row in csv.DictReader(fh)]
+            raise _error("give --cases or --set, not both")
+        return _read_cases(args.cases)
+    if not args.set:
+        raise _error("no cases: give --set PATH=V1,V2,... (a grid), --sample with --set "
+                     "ranges, or --cases CSV")
     values = {}
     for item in args.set:
         path, sep, rest = item.partition("=")
         if not sep or not rest:
-            raise SystemExit(f"pysolver: error: --set {item!r}: expected PATH=V1,V2,...")
+            raise _error(f"--set {item!r}: expected PATH=V1,V2,...")
         try:
-            values[path] = [float(v) for v in rest.split(",")]
+            values[path] = [_finite(v) for v in rest.split(",")]
         except ValueError:
-            raise SystemExit(f"pysolver: error: --set {item!r}: values must be numbers") \
-                from None
+            raise _error(f"--set {item!r}: values must be numbers") from None
     if args.sample:
         method, _, n = args.sample.partition(":")
-        if any(len(v) != 2 for v in values.values()) or not n.isdigit():
-            raise SystemExit("pysolver: error: --sample METHOD:N takes ranges --set PATH=LO,HI")
+        if method not in ("sobol", "lhs") or not n.isdigit():
+            raise _error(f"--sample {args.sample!r}: expected sobol:N or lhs:N")
+        if int(n) < 1:
+            raise _error(f"--sample {args.sample}: N must be at least 1")
+        if any(len(v) != 2 for v in values.values()):
+            raise _error("--sample METHOD:N takes ranges --set PATH=LO,HI")
         return sample({p: tuple(v) for p, v in values.items()}, int(n), method, args.seed)
     return grid(values)
 
 
-def _number(text):
-    """A CSV cell as a number, or as given (the case's row then says why it is not one)."""
+def _finite(text):
+    value = float(text)
+    if not math.isfinite(value):
+        raise ValueError(text)
+    return value
+
+
+def _read_cases(path):
+    """The cases of a CSV file (a header of paths, a row per case), every cell a number."""
+    with open(path, newline="", encoding="utf-8-sig") as fh:
+        reader = csv.reader(fh)
+        header = next(reader, None)
+        rows = [r for r in reader if any(c.strip() for c in r)]
+    if not header or not any(h.strip() for h in header):
+        raise _error(f"--cases {path}: empty file (expected a header of paths and a row per "
+                     "case)")
+    if not rows:
+        raise _error(f"--cases {path}: no cases (a header and no rows)")
+    cases = []
+    for line, row in enumerate(rows, start=2):
+        if len(row) != len(header):
+            raise _error(f"--cases {path}: row {line} has {len(row)} cells, the header "
+                         f"{len(header)}")
+        case = {}
+        for name, cell in zip(header, row):
+            try:
+                case[name.strip()] = _finite(cell)
+            except ValueError:
+                raise _error(f"--cases {path}: row {line}, column {name.strip()!r}: {cell!r} "
+                             "is not a number") from None
+        cases.append(case)
+    return cases
+
+
+def _client(address):
+    """A dask.distributed Client of the scheduler at `address` (SCHEDULER_TIMEOUT s)."""
     try:
-        return float(text)
-    except (TypeError, ValueError):
-        return text
+        from dask.distributed import Client
+    except ImportError:
+        raise _error("--scheduler needs dask.distributed (pip install \"pysolver[dask]\")") \
+            from None
+    try:
+        return Client(address, timeout=SCHEDULER_TIMEOUT)
+    except OSError:                     # refused or silent: dask retries until the timeout
+        raise _error(f"--scheduler {address}: no Dask scheduler answered within "
+                     f"{SCHEDULER_TIMEOUT} s") from None
+    except (ValueError, TypeError) as err:
+        raise _error(f"--scheduler {address}: {err}") from None
 
 
 def run(args):
     """Run the sweep the arguments describe; exit status 0 when every case ran (ok or
     failed), 1 when some did not."""
+    out, outputs = _folder_and_columns(args)
     cases = _cases(args)
-    outputs = {}
-    for item in args.output:
-        name, sep, spec = item.partition("=")
-        if not sep:
-            raise SystemExit(f"pysolver: error: --output {item!r}: expected NAME=SPEC")
-        outputs[name] = spec
-    client = None
-    if args.scheduler:
-        from dask.distributed import Client
-        client = Client(args.scheduler)
     keep = "all" if args.keep == "all" else [s.strip() for s in args.keep.split(",") if s.strip()]
+    client = _client(args.scheduler) if args.scheduler else None
     try:
         sw = sweep(args.deck, cases, processes=args.processes, client=client,
-                   timeout=args.timeout, outputs=outputs, directory=args.out,
+                   timeout=args.timeout, outputs=outputs, directory=out,
                    progress=False if args.quiet else None, keep=keep)
     except StorageError as err:
-        print(f"pysolver: error: {err}", file=sys.stderr)
-        return 2
+        raise _error(str(err)) from None
     except ValueError as err:
         if isinstance(err, DeckError):
             raise
-        print(f"pysolver: error: {err}", file=sys.stderr)
-        return 2
+        raise _error(str(err)) from None
     except KeyboardInterrupt:
-        print(f"pysolver: interrupted; the cases finished so far are in {args.out} (run the "
+        print(f"pysolver: interrupted; the cases finished so far are in {out} (run the "
               "same command again to resume)", file=sys.stderr)
         return 130
     finally:
         if client is not None:
             client.close()
-    written = [_table(sw, args.out)]
+    written = [_table(sw, out)]
     print(sw)
-    print(f"wrote {', '.join(written)} and results/ in {args.out}")
+    print(f"wrote {', '.join(written)} and results/ in {out}")
     return 0 if all(r["status"] in ("ok", "failed") for r in sw.rows) else 1
 
 

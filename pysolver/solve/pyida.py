@@ -8,8 +8,8 @@ here: its callback signatures, its event bookkeeping and the counters it reports
 import warnings
 
 import numpy as np
-from sksundae.ida import IDA
 
+from .. import imports
 from ..build.kernel import UserFailure
 from .step import ROOT_RETURN, Step
 
@@ -62,6 +62,8 @@ class PyIDA:
         with warnings.catch_warnings():
             # scikit-sundae warns that an exact sparse jacfn replaces its DQ Jacobian
             warnings.simplefilter("ignore", UserWarning)
+            with imports.timed():       # scikit-sundae (and scipy.optimize): only here
+                from sksundae.ida import IDA
             self._ida = IDA(resfn, **options)
 
     def init_step(self, t0, y0, yp0):

@@ -1,0 +1,325 @@
+"""The pysolver command: one line `pysolver: error: ...` and exit 2 for every user error, a
+quiet end when its reader goes away, --version and --help, one spelling of the output folder,
+default folders that do not overwrite another deck's, --states / --npz, statics in the summary
+and stats.json, and no scikit-sundae or scipy.optimize in a C-backend run."""
+import csv
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import pysolver
+from pysolver.cli import main
+
+from helpers import DECKS
+
+DECK = DECKS / "particle_between_lines.xml"
+PEN = "Force_Penalty/1/penalty"
+SRC = str(pathlib.Path(pysolver.__file__).resolve().parents[1])
+
+
+def _error(capsys, argv):
+    """Run main(argv); its exit status and the lines of standard error."""
+    status = main([str(a) for a in argv])
+    return status, capsys.readouterr().err.strip().splitlines()
+
+
+def _cli(*args, cwd):
+    env = dict(os.environ, PYTHONPATH=SRC)
+    return subprocess.run([sys.executable, "-m", "pysolver", *map(str, args)], cwd=cwd,
+                          env=env, capture_output=True, text=True)
+
+
+# user errors: exit 2 and one line ------------------------------------------------------------
+
+def test_a_cell_of_cases_that_is_no_number(tmp_path, capsys):
+    cases = tmp_path / "cases.csv"
+    cases.write_text(f"{PEN}\n5e3\nabc\n")
+    assert _error(capsys, ["sweep", DECK, "--cases", cases, "-o", tmp_path / "s"]) == (2, [
+        f"pysolver: error: --cases {cases}: row 3, column '{PEN}': 'abc' is not a number"])
+    assert not (tmp_path / "s").exists()
+
+
+def test_an_empty_design(tmp_path, capsys):
+    header = tmp_path / "header.csv"
+    header.write_text(f"{PEN}\n")
+    assert _error(capsys, ["sweep", DECK, "--cases", header, "-o", tmp_path / "s"]) == (2, [
+        f"pysolver: error: --cases {header}: no cases (a header and no rows)"])
+    empty = tmp_path / "empty.csv"
+    empty.write_text("")
+    assert _error(capsys, ["sweep", DECK, "--cases", empty, "-o", tmp_path / "s"]) == (2, [
+        f"pysolver: error: --cases {empty}: empty file (expected a header of paths and a row "
+        "per case)"])
+    assert _error(capsys, ["sweep", DECK, "-o", tmp_path / "s"]) == (2, [
+        "pysolver: error: no cases: give --set PATH=V1,V2,... (a grid), --sample with --set "
+        "ranges, or --cases CSV"])
+
+
+def test_a_sample_of_no_cases(tmp_path, capsys):
+    base = ["sweep", DECK, "--set", f"{PEN}=5e3,2e4", "-o", tmp_path / "s"]
+    assert _error(capsys, base + ["--sample", "sobol:0"]) == (2, [
+        "pysolver: error: --sample sobol:0: N must be at least 1"])
+    assert _error(capsys, base + ["--sample", "halton:4"]) == (2, [
+        "pysolver: error: --sample 'halton:4': expected sobol:N or lhs:N"])
+
+
+def test_an_unreachable_scheduler_fails_after_five_seconds(tmp_path, capsys):
+    pytest.importorskip("dask.distributed", reason="the dask extra")
+    argv = ["sweep", DECK, "--set", f"{PEN}=5e3,2e4", "--scheduler", "tcp://127.0.0.1:1",
+            "-o", tmp_path / "s", "-q"]
+    assert _error(capsys, argv) == (2, [
+        "pysolver: error: --scheduler tcp://127.0.0.1:1: no Dask scheduler answered within 5 s"])
+
+
+def test_a_scheduler_without_dask(tmp_path, capsys, monkeypatch):
+    for name in ("dask", "dask.distributed", "distributed"):
+        monkeypatch.setitem(sys.modules, name, None)        # import fails as if absent
+    argv = ["sweep", DECK, "--set", f"{PEN}=5e3,2e4", "--scheduler", "tcp://127.0.0.1:8786",
+            "-o", tmp_path / "s", "-q"]
+    assert _error(capsys, argv) == (2, [
+        "pysolver: error: --scheduler needs dask.distributed (pip install \"pysolver[dask]\")"])
+
+
+def test_a_deck_that_does_not_exist(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    for cmd in ("run", "check"):
+        assert _error(capsys, [cmd, "nodeck.xml"]) == (2, [
+            "pysolver: error: nodeck.xml: No such file or directory"])
+    assert not list(tmp_path.iterdir())
+
+
+def test_an_output_folder_that_cannot_be_made(tmp_path, capsys):
+    afile = tmp_path / "afile"
+    afile.write_text("")
+    assert _error(capsys, ["run", DECK, "-o", afile, "-q"]) == (2, [
+        f"pysolver: error: -o {afile}: exists and is not a folder"])
+    assert _error(capsys, ["run", DECK, "-o", afile / "sub", "-q"]) == (2, [
+        f"pysolver: error: {afile / 'sub'}: Not a directory"])
+    sweep = ["sweep", DECK, "--set", f"{PEN}=5e3", "-j", "0", "-o", afile, "-q"]
+    status, err = _error(capsys, sweep)
+    assert status == 2 and len(err) == 1 and err[0].startswith(f"pysolver: error: {afile}")
+
+
+@pytest.mark.parametrize("argv, line", [
+    (["--end", "abc"], "argument --end: 'abc' is not a number"),
+    (["--end", "-1"], "argument --end: must be a finite number > 0, got -1"),
+    (["--end", "nan"], "argument --end: must be a finite number > 0, got nan"),
+    (["--end", "inf"], "argument --end: must be a finite number > 0, got inf"),
+    (["--end", "1", "--steps", "2.5"], "argument --steps: '2.5' is not an integer"),
+    (["--end", "1", "--steps", "0"], "argument --steps: must be an integer > 0, got 0"),
+    (["--end", "1", "--dtout", "0"], "argument --dtout: must be a finite number > 0, got 0"),
+    (["--steps", "4"], "--steps and --dtout need --end"),
+    (["--end", "1", "--steps", "4", "--dtout", "0.1"], "give --steps or --dtout, not both"),
+])
+def test_bad_numbers_for_the_run(tmp_path, capsys, argv, line):
+    assert _error(capsys, ["run", DECK, "-o", tmp_path / "o"] + argv) == (2, [
+        f"pysolver: error: {line}"])
+    assert not (tmp_path / "o").exists()
+
+
+def test_argparse_usage_errors_keep_the_convention(capsys):
+    assert _error(capsys, ["run"]) == (2, [
+        "pysolver: error: the following arguments are required: deck"])
+    assert _error(capsys, []) == (2, [
+        "pysolver: error: the following arguments are required: COMMAND"])
+    assert _error(capsys, ["frobnicate"]) == (2, [
+        "pysolver: error: argument COMMAND: invalid choice: 'frobnicate' (choose from 'run', "
+        "'check', 'convert', 'sweep')"])
+    assert _error(capsys, ["check", DECK, "--bogus"]) == (2, [
+        "pysolver: error: unrecognized arguments: --bogus"])
+
+
+def test_a_deck_error_is_one_line(tmp_path, capsys):
+    bad = tmp_path / "bad.xml"
+    bad.write_text("<MotionSolve><Model><Body_Point id='2'/></Model></MotionSolve>")
+    status, err = _error(capsys, ["check", bad])
+    assert status == 2 and len(err) == 1
+    assert err[0].startswith(f"pysolver: error: {bad}:1, Body_Point id=2, attribute 'cg_id'")
+
+
+# the pipe, --version, --help -----------------------------------------------------------------
+
+@pytest.mark.parametrize("argv", [["check", DECK],
+                                  ["sweep", DECK, "--set", f"{PEN}=5e3,2e4", "-j", "0", "-o",
+                                   "s", "-q"]])
+def test_a_reader_that_goes_away_ends_the_command_quietly(tmp_path, argv):
+    """`pysolver check deck | head -1`: the reader closes the pipe; the command exits 141
+    (128 + SIGPIPE, as a Unix tool killed by it) and prints nothing on stderr."""
+    env = dict(os.environ, PYTHONPATH=SRC)
+    proc = subprocess.Popen([sys.executable, "-m", "pysolver", *map(str, argv)], cwd=tmp_path,
+                            env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc.stdout.close()             # before the command writes anything
+    err = proc.stderr.read().decode()
+    assert proc.wait(timeout=120) == 141 and err == ""
+
+
+def test_head_reads_the_first_line(tmp_path):
+    env = dict(os.environ, PYTHONPATH=SRC)
+    p = subprocess.run(f"'{sys.executable}' -m pysolver check '{DECK}' | head -1; "
+                       "exit ${PIPESTATUS[0]}", shell=True, executable="/bin/bash", cwd=tmp_path,
+                       env=env, capture_output=True, text=True)
+    assert (p.returncode, p.stdout, p.stderr) == (141, f"deck: {DECK} (xml)\n", "") or \
+        (p.returncode, p.stdout, p.stderr) == (0, f"deck: {DECK} (xml)\n", "")
+
+
+def test_version(tmp_path):
+    p = _cli("--version", cwd=tmp_path)
+    assert (p.returncode, p.stdout, p.stderr) == (0, f"pysolver {pysolver.__version__}\n", "")
+
+
+def test_help_lists_every_command_on_one_line(capsys, monkeypatch):
+    monkeypatch.setenv("COLUMNS", "100")
+    with pytest.raises(SystemExit) as done:
+        main(["--help"])
+    assert done.value.code == 0
+    lines = capsys.readouterr().out.splitlines()
+    start = lines.index("  COMMAND")
+    assert lines[start + 1:start + 5] == [
+        "    run       run a deck: requests.csv, plot, scene.html, stats.json",
+        "    check     validate a deck and list what it contains",
+        "    convert   write a deck as XML, Adams .adm/.acf or msolve .py",
+        "    sweep     run a parameter study of a deck (grid, sample or cases)"]
+
+
+def test_one_spelling_of_the_output_folder(tmp_path, capsys):
+    """-o/--output on run, convert and sweep; sweep also reads the earlier --out DIR and
+    --output NAME=SPEC (now --column)."""
+    import argparse
+
+    from pysolver.cli import parser
+    (commands,) = [a for a in parser()._actions if isinstance(a, argparse._SubParsersAction)]
+    for cmd, meta in (("run", "DIR"), ("convert", "FILE"), ("sweep", "DIR")):
+        (out,) = [a for a in commands.choices[cmd]._actions if "-o" in a.option_strings]
+        assert (out.option_strings, out.dest, out.metavar) == (["-o", "--output"], "output", meta)
+    new = ["sweep", DECK, "--set", f"{PEN}=5e3,2e4", "-j", "0", "-q", "--output",
+           tmp_path / "new", "--column", "x_end=final:request/1/1"]
+    old = ["sweep", DECK, "--set", f"{PEN}=5e3,2e4", "-j", "0", "-q", "--out",
+           tmp_path / "old", "--output", "x_end=final:request/1/1"]
+    assert main([str(a) for a in new]) == 0 and main([str(a) for a in old]) == 0
+    capsys.readouterr()
+    tables = []
+    for name in ("new", "old"):
+        with open(tmp_path / name / "table.csv", newline="") as fh:
+            tables.append([(r[PEN], r["x_end"]) for r in csv.DictReader(fh)])
+    assert tables[0] == tables[1] and len(tables[0]) == 2
+    assert _error(capsys, ["sweep", DECK, "--set", f"{PEN}=5e3", "-o", "a", "-o", "b"]) == (2, [
+        "pysolver: error: one output folder, not 2: a, b"])
+
+
+# output folders and files ---------------------------------------------------------------------
+
+def test_decks_of_one_stem_get_folders_of_their_own(tmp_path, capsys, monkeypatch):
+    """a/deck.xml, b/deck.xml and a/deck.adm run from one folder: deck_out, deck_out-2,
+    deck_out-3; a/deck.xml again writes into deck_out (its stats.json names that deck)."""
+    for sub in ("a", "b"):
+        (tmp_path / sub).mkdir()
+        shutil.copy(DECK, tmp_path / sub / "deck.xml")
+    for ext in (".adm", ".acf"):
+        shutil.copy(DECKS / "forms" / "adams" / f"particle_between_lines{ext}",
+                    tmp_path / "a" / f"deck{ext}")
+    monkeypatch.chdir(tmp_path)
+    order = ["a/deck.xml", "b/deck.xml", "a/deck.adm", "a/deck.xml"]
+    for deck in order:
+        assert main(["run", deck, "-q", "--no-plot", "--no-animation"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    wrote = [line.split(", ")[0] for line in out if line.startswith("wrote ")]
+    assert wrote == ["wrote deck_out/requests.csv", "wrote deck_out-2/requests.csv",
+                     "wrote deck_out-3/requests.csv", "wrote deck_out/requests.csv"]
+    for folder, deck in (("deck_out", "a/deck.xml"), ("deck_out-2", "b/deck.xml"),
+                         ("deck_out-3", "a/deck.adm")):
+        stats = json.loads((tmp_path / folder / "stats.json").read_text())
+        assert stats["deck"] == str(tmp_path / deck)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a", "b", "deck_out", "deck_out-2",
+                                                          "deck_out-3"]
+
+
+def test_states_and_reactions(tmp_path, capsys):
+    """--states writes states.csv (time and every state) and reactions.csv (each joint's eight
+    components, each motion's reaction), the numbers of the Python API; --npz results.npz."""
+    deck = DECKS / "joints" / "slider_crank.xml"
+    out = tmp_path / "o"
+    assert main(["run", str(deck), "-o", str(out), "-q", "--no-plot", "--no-animation",
+                 "--states", "--npz", "--end", "0.1", "--steps", "5"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1] == "wrote " + ", ".join(
+        str(out / f) for f in ("requests.csv", "states.csv", "reactions.csv", "results.npz",
+                               "stats.json"))
+    res = pysolver.load(deck, simulate={"analysis_type": "TRANSIENT", "end_time": 0.1,
+                                        "num_step": 5}).run(progress=False)
+    states = np.loadtxt(out / "states.csv", delimiter=",", skiprows=1)
+    header = (out / "states.csv").read_text().splitlines()[0].split(",")
+    assert header == ["time"] + res.state_names
+    np.testing.assert_array_equal(states, np.column_stack([res.t, res.y]))
+    header = (out / "reactions.csv").read_text().splitlines()[0].split(",")
+    assert res.joint_ids == [1, 2, 3, 4]
+    assert header == ["time"] + [f"joint{j}.{c}" for j in (1, 2, 3, 4) for c in
+                                 ("F", "Fx", "Fy", "Fz", "T", "Tx", "Ty", "Tz")] + \
+        ["motion1.reaction"]
+    reactions = np.loadtxt(out / "reactions.csv", delimiter=",", skiprows=1)
+    np.testing.assert_array_equal(reactions, np.column_stack(
+        [res.t] + [res.joint(j) for j in (1, 2, 3, 4)] + [res.motion(1)]))
+    with np.load(out / "results.npz") as npz:
+        np.testing.assert_array_equal(npz["joint_1"], res.joint(1))
+        np.testing.assert_array_equal(npz["y"], res.y)
+
+
+def test_a_deck_without_joints_writes_no_reactions(tmp_path, capsys):
+    assert main(["run", str(DECK), "-o", str(tmp_path), "-q", "--no-plot", "--no-animation",
+                 "--states"]) == 0
+    capsys.readouterr()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["requests.csv", "states.csv",
+                                                          "stats.json"]
+
+
+def test_statics_in_the_summary_and_stats_json(tmp_path, capsys):
+    deck = DECKS / "static_pendulum.xml"
+    assert main(["run", str(deck), "-o", str(tmp_path), "-q", "--no-plot",
+                 "--no-animation"]) == 0
+    res = pysolver.load(deck).run(progress=False)
+    (st,) = res.statics
+    line = f"static at t = 0: FIM_S, {st.iterations} iterations, imbalance " \
+           f"{st.imbalance:.3g}, converged"
+    assert line in capsys.readouterr().out.splitlines()
+    assert line in res.summary().splitlines()
+    stats = json.loads((tmp_path / "stats.json").read_text())
+    assert stats["statics"] == [{"time": 0.0, "method": "FIM_S", "success": True,
+                                 "message": st.message, "iterations": st.iterations,
+                                 "imbalance": st.imbalance, "error": st.error}]
+
+
+def test_many_static_solves_are_one_line():
+    import dataclasses
+    res = pysolver.load(DECKS / "static_pendulum.xml").run(progress=False)
+    (st,) = res.statics
+    res.statics = [dataclasses.replace(st, time=float(k), imbalance=float(k), iterations=k)
+                   for k in range(1, 5)]
+    res.statics[2] = dataclasses.replace(res.statics[2], success=False, message="no luck")
+    assert res.summary().splitlines()[-1] == (
+        "static solves: 4 (FIM_S 4), 1 failed (first at t = 3: no luck), iterations up to 4, "
+        "largest imbalance 4")
+
+
+# imports ----------------------------------------------------------------------------------------
+
+def test_a_c_backend_run_imports_no_scikit_sundae(tmp_path):
+    """scikit-sundae (and scipy.optimize, which it loads) are imported only where they run;
+    res.timing["imports"] is the time of the run's first imports, 0 on the next run."""
+    code = ("import sys, pysolver\n"
+            f"m = pysolver.load({str(DECK)!r})\n"
+            "r1 = m.run(progress=False); r2 = m.run(progress=False)\n"
+            "print(r1.meta['options']['backend'], r1.success, 'sksundae' in sys.modules,\n"
+            "      'scipy.optimize' in sys.modules, r1.timing['imports'] > 0,\n"
+            "      r2.timing['imports'])\n")
+    p = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True,
+                       text=True, env=dict(os.environ, PYTHONPATH=SRC))
+    assert p.stdout.split() == ["c", "True", "False", "False", "True", "0.0"], p.stderr[-2000:]
+
+
+def test_the_scikit_sundae_backend_still_runs():
+    res = pysolver.load(DECK).run(backend="sksundae", progress=False)
+    assert res.success and res.meta["options"]["backend"] == "sksundae"
+    assert "sksundae" in sys.modules
