@@ -4,6 +4,10 @@
  * Built against the SUNDIALS 7.9 shared libraries that the scikit-sundae wheel ships (see
  * build.sh); the wheel ships no headers, so the API declarations are in csrc/sundials_decls.h.
  * Usage: seed3_ida RTOL REPEAT -> prints "steps nres njac seconds" and the outputs.
+ *        seed3_ida RTOL REPEAT CASES -> runs each line "K1 X0" of the file CASES (the penalty
+ *        of line 1 and the particle's initial x: a sweep's cases) once, one after another,
+ *        REPEAT times over; prints "ncases steps seconds": the total steps of one pass and
+ *        the best pass's wall time.
  */
 #include <math.h>
 #include <stdint.h>
@@ -13,14 +17,17 @@
 
 #include "bench.h"
 
-#define K 1e4
 #define C 1e2
 #define M 1.0
 #define GRAV 9810.0
 #define CF 1000.0
 
-/* Smoothed penalty of g = 1 + sx x - z: force f, and df/dg, df/dgdot. */
-static void penalty(double g, double gd, double* f, double* fg, double* fgd) {
+/* Penalties of line 1 and line 2 (a case sets the first) and the particle's initial x. */
+static double KL[2] = {1e4, 1e4};
+static double X0 = 100.0;
+
+/* Smoothed penalty of g = 1 + sx x - z with stiffness K: force f, and df/dg, df/dgdot. */
+static void penalty(double K, double g, double gd, double* f, double* fg, double* fgd) {
   *f = *fg = *fgd = 0.0;
   if (g <= 0.0) return;
   double d = g < 1.0 ? g : 1.0, s = d * d * (3 - 2 * d), ds = g < 1.0 ? 6 * d * (1 - d) : 0.0;
@@ -35,7 +42,7 @@ static int res(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void* ud) 
   double fx = 0, fz = 0;
   for (int k = 0; k < 2; k++) {
     double sx = k ? -1.0 : 1.0, f, fg, fgd;
-    penalty(1 + sx * y[0] - y[1], sx * y[2] - y[3], &f, &fg, &fgd);
+    penalty(KL[k], 1 + sx * y[0] - y[1], sx * y[2] - y[3], &f, &fg, &fgd);
     fx += f * sx;
     fz -= f;
   }
@@ -57,7 +64,7 @@ static int jac(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yyp, N_Vecto
   for (int k = 0; k < 2; k++) {
     double sx = k ? -1.0 : 1.0, f, fg, fgd;
     double grad[4] = {sx, -1, 0, 0}, gdot_v[4] = {0, 0, sx, -1}, dir[2] = {sx, -1};
-    penalty(1 + sx * y[0] - y[1], sx * y[2] - y[3], &f, &fg, &fgd);
+    penalty(KL[k], 1 + sx * y[0] - y[1], sx * y[2] - y[3], &f, &fg, &fgd);
     for (int i = 0; i < 2; i++)     /* rows: generalized force on x (2) and z (3) */
       for (int j = 0; j < 4; j++)
         A(2 + i, j) -= CF * dir[i] * (fg * grad[j] + fgd * gdot_v[j]);
@@ -66,49 +73,80 @@ static int jac(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yyp, N_Vecto
   return 0;
 }
 
+/* One run from x = X0, z = 120 at rest to t = 3 s with outputs every 0.005 s into out (601 x
+ * 2); returns its wall seconds (from IDACreate to the last output; a sweep's pass times
+ * everything) and sets the step, residual and Jacobian counts. */
+static double run(double rtol, double (*out)[2], long* nst, long* nre, long* nje) {
+  SUNContext ctx;
+  SUNContext_Create(0, &ctx);
+  N_Vector y = N_VNew_Serial(4, ctx), yp = N_VNew_Serial(4, ctx);
+  double *yv = N_VGetArrayPointer(y), *ypv = N_VGetArrayPointer(yp);
+  yv[0] = X0; yv[1] = 120; yv[2] = 0; yv[3] = 0;
+  ypv[0] = 0; ypv[1] = 0; ypv[2] = 0; ypv[3] = -GRAV;
+  struct timespec a, b;
+  clock_gettime(CLOCK_MONOTONIC, &a);
+  void* mem = IDACreate(ctx);
+  IDAInit(mem, res, 0.0, y, yp);
+  IDASStolerances(mem, rtol, rtol);
+  IDASetMaxNumSteps(mem, 1000000);
+  SUNMatrix J = SUNDenseMatrix(4, 4, ctx);
+  SUNLinearSolver LS = SUNLinSol_Dense(y, J, ctx);
+  IDASetLinearSolver(mem, LS, J);
+  IDASetJacFn(mem, jac);
+  IDASetStopTime(mem, 3.0);
+  double t;
+  out[0][0] = X0; out[0][1] = 120;
+  /* like pysolver: the first call asks for the end time in one-step mode */
+  IDASolve(mem, 3.0, &t, y, yp, 2 /* IDA_ONE_STEP */);
+  for (int k = 1; k <= 600; k++) {
+    double tp = 0.005 * k;
+    if (t < tp) IDASolve(mem, tp, &t, y, yp, 1 /* IDA_NORMAL */);
+    if (t > tp) { /* interpolate: IDA_NORMAL with tout behind tn returns the interpolant */
+      IDASolve(mem, tp, &t, y, yp, 1);
+    }
+    out[k][0] = yv[0]; out[k][1] = yv[1];
+  }
+  clock_gettime(CLOCK_MONOTONIC, &b);
+  IDAGetNumSteps(mem, nst);
+  IDAGetNumResEvals(mem, nre);
+  IDAGetNumJacEvals(mem, nje);
+  bench_free(mem, LS, J, y, yp, ctx);
+  return (b.tv_sec - a.tv_sec) + 1e-9 * (b.tv_nsec - a.tv_nsec);
+}
+
 int main(int argc, char** argv) {
   double rtol = argc > 1 ? atof(argv[1]) : 1e-6;
   int repeat = argc > 2 ? atoi(argv[2]) : 5;
   double best = 1e30;
   long nst = 0, nre = 0, nje = 0;
   static double out[601][2];
-  for (int rep = 0; rep < repeat; rep++) {
-    SUNContext ctx;
-    SUNContext_Create(0, &ctx);
-    N_Vector y = N_VNew_Serial(4, ctx), yp = N_VNew_Serial(4, ctx);
-    double *yv = N_VGetArrayPointer(y), *ypv = N_VGetArrayPointer(yp);
-    yv[0] = 100; yv[1] = 120; yv[2] = 0; yv[3] = 0;
-    ypv[0] = 0; ypv[1] = 0; ypv[2] = 0; ypv[3] = -GRAV;
-    struct timespec a, b;
-    clock_gettime(CLOCK_MONOTONIC, &a);
-    void* mem = IDACreate(ctx);
-    IDAInit(mem, res, 0.0, y, yp);
-    IDASStolerances(mem, rtol, rtol);
-    IDASetMaxNumSteps(mem, 1000000);
-    SUNMatrix J = SUNDenseMatrix(4, 4, ctx);
-    SUNLinearSolver LS = SUNLinSol_Dense(y, J, ctx);
-    IDASetLinearSolver(mem, LS, J);
-    IDASetJacFn(mem, jac);
-    IDASetStopTime(mem, 3.0);
-    double t;
-    out[0][0] = 100; out[0][1] = 120;
-    /* like pysolver: the first call asks for the end time in one-step mode */
-    IDASolve(mem, 3.0, &t, y, yp, 2 /* IDA_ONE_STEP */);
-    for (int k = 1; k <= 600; k++) {
-      double tp = 0.005 * k;
-      if (t < tp) IDASolve(mem, tp, &t, y, yp, 1 /* IDA_NORMAL */);
-      if (t > tp) { /* interpolate: IDA_NORMAL with tout behind tn returns the interpolant */
-        IDASolve(mem, tp, &t, y, yp, 1);
+  if (argc > 3) { /* a sweep's cases, one pass after another */
+    FILE* fh = fopen(argv[3], "r");
+    if (!fh) { perror(argv[3]); return 2; }
+    static double cases[100000][2];
+    int n = 0;
+    while (n < 100000 && fscanf(fh, "%lf %lf", &cases[n][0], &cases[n][1]) == 2) n++;
+    fclose(fh);
+    long steps = 0;
+    for (int rep = 0; rep < repeat; rep++) {
+      struct timespec a, b;
+      clock_gettime(CLOCK_MONOTONIC, &a);
+      steps = 0;
+      for (int i = 0; i < n; i++) {
+        KL[0] = cases[i][0]; X0 = cases[i][1];
+        run(rtol, out, &nst, &nre, &nje);
+        steps += nst;
       }
-      out[k][0] = yv[0]; out[k][1] = yv[1];
+      clock_gettime(CLOCK_MONOTONIC, &b);
+      double sec = (b.tv_sec - a.tv_sec) + 1e-9 * (b.tv_nsec - a.tv_nsec);
+      if (sec < best) best = sec;
     }
-    clock_gettime(CLOCK_MONOTONIC, &b);
-    double sec = (b.tv_sec - a.tv_sec) + 1e-9 * (b.tv_nsec - a.tv_nsec);
+    printf("%d %ld %.9f\n", n, steps, best);
+    return 0;
+  }
+  for (int rep = 0; rep < repeat; rep++) {
+    double sec = run(rtol, out, &nst, &nre, &nje);
     if (sec < best) best = sec;
-    IDAGetNumSteps(mem, &nst);
-    IDAGetNumResEvals(mem, &nre);
-    IDAGetNumJacEvals(mem, &nje);
-    bench_free(mem, LS, J, y, yp, ctx);
   }
   printf("%ld %ld %ld %.9f\n", nst, nre, nje, best);
   for (int k = 0; k <= 600; k++) printf("%.17g %.17g\n", out[k][0], out[k][1]);
