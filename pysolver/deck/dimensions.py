@@ -192,6 +192,12 @@ class Typer:
         return self._variables[vid]
 
 
+def header(name, unit):
+    """A column's name with its unit, ``z [mm]`` (CSV headers, DataFrames); the bare name
+    when it has none."""
+    return f"{name} [{unit}]" if unit else name
+
+
 def unit_text(exps, units):
     """Print a dimension in a model's units: ``mm/s``, ``N*mm``, ``rad/s^2``, ``1/s``;
     ``-`` when dimensionless."""
@@ -219,10 +225,10 @@ def quantity(dim, units):
 
 
 #: Fields of a LoadControl record and their dimensions (pysolver/solve/loadlaw.py: e, Ie and
-#: De are displacements; A a load per displacement).
+#: De are displacements; A a load per displacement; clamped a flag, no unit).
 CONTROLLER = {"time": TIME, "target": FORCE, "measured": FORCE, "filtered": FORCE,
               "displacement": LENGTH, "A": _dim(F=1, L=-1), "e": LENGTH, "Ie": LENGTH,
-              "De": LENGTH, "velocity": VELOCITY, "clamped": NONE}
+              "De": LENGTH, "velocity": VELOCITY, "clamped": None}
 
 
 def channel_units(model):
@@ -240,7 +246,7 @@ def channel_units(model):
         return cached
     typer, units = Typer(model), model.units
     out = {"time": quantity(Dim(TIME), units),
-           "controller": {k: quantity(Dim(d), units) for k, d in CONTROLLER.items()}}
+           "controller": {k: quantity(d and Dim(d), units) for k, d in CONTROLLER.items()}}
     for req in model.requests.values():
         for k, tree in enumerate(req.exprs):
             if tree is not None:
