@@ -291,16 +291,21 @@ class Result:
         return path
 
     def plot(self, path: str | os.PathLike | None = None):
-        """Plot every request channel against time, one panel per request.
+        """Plot the run: one panel per kind of quantity with its unit (``length [mm]``) against
+        ``time [s]``, sensor events and the ends of Simulate commands marked, LoadControl
+        tasks, the path of a point whose x and z (or y) are requested, static equilibria as a
+        table with their imbalance; a failed run's title is ``FAILED: message`` in red
+        (docs/usage.md, "Plots").
 
         Parameters
         ----------
         path : str, optional
-            Write the figure there (PNG, PDF, ... by suffix) instead of returning it open.
+            Also write the figure there (PNG, PDF, ... by suffix).
 
         Returns
         -------
         matplotlib.figure.Figure
+            Made without pyplot: Jupyter shows it once, and pyplot holds no open figure.
 
         Raises
         ------
@@ -308,47 +313,12 @@ class Result:
             matplotlib is not installed (``pip install "pysolver[plot]"``).
         """
         try:
-            import matplotlib
+            import matplotlib  # noqa: F401
         except ImportError:
             raise ImportError("plotting needs matplotlib: pip install \"pysolver[plot]\"") \
                 from None
-        if path is not None:
-            matplotlib.use("Agg", force=False)
-        import matplotlib.pyplot as plt
-        ids = self.request_ids or [None]
-        ctrl = list(self._controllers)
-        fig, axes = plt.subplots(len(ids) + len(ctrl), 1,
-                                 figsize=(8, 2.6 * (len(ids) + len(ctrl))), sharex=True,
-                                 squeeze=False)
-        for ax, lid in zip(axes[len(ids):, 0], ctrl):
-            rec = self._controllers[lid]
-            ax.plot(rec["time"], rec["target"], "k--", label="target load")
-            ax.plot(rec["time"], rec["measured"], label="measured load")
-            ax.set_title(f"LoadControl {lid}", fontsize=9)
-            ax.legend(fontsize=7, loc="upper left")
-            ax.grid(True, alpha=0.3)
-            vel = ax.twinx()
-            vel.plot(rec["time"], rec["velocity"], color="tab:red", lw=0.8, label="velocity")
-            vel.legend(fontsize=7, loc="lower right")
-        for ax, rid in zip(axes[:len(ids), 0], ids):
-            if rid is None:
-                for j, name in enumerate(self.state_names[:8]):
-                    ax.plot(self.t, self.y[:, j], label=name)
-            else:
-                arr = self.request(rid)
-                for k in range(8):
-                    if not np.all(np.isnan(arr[:, k])):
-                        ax.plot(self.t, arr[:, k],
-                                label=self._labels.get((rid, k)) or f"expr{k + 1}")
-                ax.set_title(f"Post_Request {rid}", fontsize=9)
-            ax.legend(fontsize=7, loc="best")
-            ax.grid(True, alpha=0.3)
-        axes[-1, 0].set_xlabel("time")
-        fig.tight_layout()
-        if path is not None:
-            fig.savefig(path, dpi=110)
-            plt.close(fig)
-        return fig
+        from . import plotting
+        return plotting.figure(self) if path is None else plotting.save(self, path)
 
     def animate(self, model=None, params=None, max_frames: int | None = 4000):
         """The 3-D animation of this run: in Jupyter it shows itself, ``.save(path)`` writes

@@ -238,14 +238,15 @@ def channel_units(model):
     -------
     dict
         ``(request id, channel index 0..7)`` -> :class:`Quantity` for every channel with an
-        expression, ``"time"`` -> the time's, ``"controller"`` -> {field: Quantity} of the
+        expression, ``"time"`` and ``"force"`` -> the time's and the force's (static
+        imbalances), ``"controller"`` -> {field: Quantity} of the
         LoadControl records (:data:`CONTROLLER`).
     """
     cached = model.__dict__.get("_channel_units")
     if cached is not None:
         return cached
     typer, units = Typer(model), model.units
-    out = {"time": quantity(Dim(TIME), units),
+    out = {"time": quantity(Dim(TIME), units), "force": quantity(Dim(FORCE), units),
            "controller": {k: quantity(d and Dim(d), units) for k, d in CONTROLLER.items()}}
     for req in model.requests.values():
         for k, tree in enumerate(req.exprs):
