@@ -181,7 +181,7 @@ def _paths(res, channels):
     channels named as coordinates of one point: the two that move most."""
     out = []
     by_request = {}
-    for (rid, k, _), ch in zip(res._named_channels(), channels):
+    for (rid, _, _), ch in zip(res._named_channels(), channels):
         axis = _axis_of(ch[1])
         if ch[4] == "length" and axis is not None:
             by_request.setdefault((rid, axis[1], ch[3]), {})[axis[0]] = ch
