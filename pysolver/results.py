@@ -43,9 +43,13 @@ class Result:
     timing : dict
         Wall time in seconds: ``setup`` (compile, initial conditions), ``integrate``, ``total``.
     meta : dict
-        pysolver version, deck path and SHA-256, integrator options, and ``usersubs``: for each
+        pysolver version, deck path and SHA-256, integrator options, ``usersubs``: for each
         element defined by a user subroutine, how it runs (traced into the kernel, with the
-        expression it became).
+        expression it became), and ``commands``: each Simulate command's ``analysis`` and
+        ``end_time``, in order.
+    units, quantities : dict
+        Unit and kind of quantity of time and each request channel by bare name (properties;
+        docs/usage.md, "Units").
     events : list of pysolver.solve.sensors.Event
         One record per sensor firing: ``time``, ``sensor`` (id), ``label``, ``value`` (the
         sensor's expression then) and ``actions`` taken.
