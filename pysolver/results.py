@@ -217,7 +217,7 @@ class Result:
         """Unit of time and of each request channel by its bare name (as ``columns()`` names
         them): a string in the deck's units (``"mm"``, ``"N"``, ``"rad/s"``; ``"-"``
         dimensionless), None where the channel's expression has no unit (docs/usage.md,
-        "Units")."""
+        "Units"). A name two requests share maps to the first's unit."""
         out = {"time": self._quantity("time").unit}
         for rid, k, name in self._named_channels():
             out.setdefault(name, self._quantity((rid, k)).unit)
