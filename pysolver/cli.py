@@ -100,6 +100,8 @@ def _stats(args, res):
                          "message": s.message, "iterations": int(s.iterations),
                          "imbalance": float(s.imbalance), "error": float(s.error)}
                         for s in res.statics],
+            "units": res.units,
+            **({"controller_units": res.controller_units()} if res.controller_ids else {}),
             "events": [dataclasses.asdict(e) for e in res.events],
             "log": res.log}
 
@@ -142,7 +144,7 @@ def _run(args):
     res = model.run(progress=None if not args.quiet else False, stream=csv_path)
     with open(csv_path, newline="") as fh:
         streamed = next(csv.reader(fh), None)
-    if streamed != res.columns()[0] or res.controller_ids:
+    if streamed != res.columns(units=True)[0] or res.controller_ids:
         res.save(csv_path)
     written = [csv_path] + [os.path.join(out, f"requests_controller{lid}.csv")
                             for lid in res.controller_ids]

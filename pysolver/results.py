@@ -7,6 +7,12 @@ import os
 
 import numpy as np
 
+from .deck.dimensions import CONTROLLER, Quantity
+from .deck.dimensions import header as _header
+
+#: The fields of a LoadControl record (pysolver/solve/loadcontrol.py), in order.
+_CONTROLLER_FIELDS = tuple(CONTROLLER)
+
 
 class Result:
     """Outcome of :meth:`Model.run`.
@@ -37,9 +43,13 @@ class Result:
     timing : dict
         Wall time in seconds: ``setup`` (compile, initial conditions), ``integrate``, ``total``.
     meta : dict
-        pysolver version, deck path and SHA-256, integrator options, and ``usersubs``: for each
+        pysolver version, deck path and SHA-256, integrator options, ``usersubs``: for each
         element defined by a user subroutine, how it runs (traced into the kernel, with the
-        expression it became).
+        expression it became), and ``commands``: each Simulate command's ``analysis`` and
+        ``end_time``, in order.
+    units, quantities : dict
+        Unit and kind of quantity of time and each request channel by bare name (properties;
+        docs/usage.md, "Units").
     events : list of pysolver.solve.sensors.Event
         One record per sensor firing: ``time``, ``sensor`` (id), ``label``, ``value`` (the
         sensor's expression then) and ``actions`` taken.
@@ -53,7 +63,7 @@ class Result:
 
     def __init__(self, *, t, y, yp, outputs, channels, state_names, success, status, message,
                  stats, timing, meta, labels=None, events=(), log=(), statics=(),
-                 controllers=None):
+                 controllers=None, units=None):
         self.t = np.asarray(t)
         self.y = np.asarray(y)
         self.yp = np.asarray(yp)
@@ -75,6 +85,8 @@ class Result:
         self._column = {tuple(ch): col for col, ch in enumerate(channels)}
         self._request_ids = sorted({rid for rid, _ in self._column if rid > 0})  # < 0: joints
         self._requests = {}
+        # units by channel (rid, k), "time" and "controller" (deck/dimensions.channel_units)
+        self._units = units or {}
 
     @property
     def compliance(self):
@@ -176,19 +188,68 @@ class Result:
         return np.column_stack([np.linalg.norm(force, axis=1), force,
                                 np.linalg.norm(torque, axis=1), torque])
 
-    def columns(self) -> tuple[list, np.ndarray]:
-        """Return (names, 2-D array) of time and every non-NULL request channel."""
-        names, cols = ["time"], [self.t]
+    def _quantity(self, key):
+        q = self.__dict__.get("_units", {}).get(key)   # a Result pickled before units: none
+        return q if q is not None else Quantity(None, None)
+
+    def _named_channels(self):
+        """(request id, channel index, name) of every channel columns() writes."""
+        out = []
         for rid in self.request_ids:
             for k in range(8):
-                col = self._channel(rid, k)
-                if not np.all(np.isnan(col)) or self._labels.get((rid, k)):
-                    names.append(self._labels.get((rid, k)) or f"REQ{rid}.{k + 1}")
-                    cols.append(col)
+                if not np.all(np.isnan(self._channel(rid, k))) or self._labels.get((rid, k)):
+                    out.append((rid, k, self._labels.get((rid, k)) or f"REQ{rid}.{k + 1}"))
+        return out
+
+    def columns(self, units: bool = False) -> tuple[list, np.ndarray]:
+        """Return (names, 2-D array) of time and every non-NULL request channel.
+
+        Parameters
+        ----------
+        units : bool, optional
+            Names with their unit as the CSV header has them (``"z [mm]"``; a channel with no
+            unit keeps its bare name); by default the bare names.
+        """
+        names = [_header("time", self._quantity("time").unit if units else None)]
+        cols = [self.t]
+        for rid, k, name in self._named_channels():
+            names.append(_header(name, self._quantity((rid, k)).unit if units else None))
+            cols.append(self._channel(rid, k))
         return names, np.column_stack(cols)
+
+    @property
+    def units(self) -> dict:
+        """Unit of time and of each request channel by its bare name (as ``columns()`` names
+        them): a string in the deck's units (``"mm"``, ``"N"``, ``"rad/s"``; ``"-"``
+        dimensionless), None where the channel's expression has no unit (docs/usage.md,
+        "Units"). A name two requests share maps to the first's unit."""
+        out = {"time": self._quantity("time").unit}
+        for rid, k, name in self._named_channels():
+            out.setdefault(name, self._quantity((rid, k)).unit)
+        return out
+
+    @property
+    def quantities(self) -> dict:
+        """Kind of quantity of time and each request channel by bare name: ``"length"``,
+        ``"velocity"``, ``"angle"``, ``"force"``, ``"torque"``, ``"energy"``, ... or None (a
+        channel with no unit, or a unit with no common name such as N/mm)."""
+        out = {"time": "time"}
+        for rid, k, name in self._named_channels():
+            out.setdefault(name, self._quantity((rid, k)).kind)
+        return out
+
+    def controller_units(self) -> dict:
+        """Units of the fields of :meth:`controller` (the same for every task): field name ->
+        unit string (None for ``clamped``, a flag)."""
+        ctrl = self.__dict__.get("_units", {}).get("controller", {})
+        return {k: (ctrl[k].unit if k in ctrl else None) for k in _CONTROLLER_FIELDS}
 
     def to_dataframe(self):
         """Return a pandas DataFrame indexed by time with one column per request channel.
+
+        Column names carry their unit as the CSV header does (``"z [mm]"``, the index
+        ``"time [s]"``); ``df.attrs["units"]`` is :attr:`units` and ``df.attrs["quantities"]``
+        :attr:`quantities` (bare names).
 
         Raises
         ------
@@ -199,9 +260,12 @@ class Result:
             import pandas as pd
         except ImportError as err:
             raise ImportError("to_dataframe needs pandas: pip install pandas") from err
-        names, data = self.columns()
-        return pd.DataFrame(data[:, 1:], index=pd.Index(data[:, 0], name="time"),
-                            columns=names[1:])
+        names, data = self.columns(units=True)
+        df = pd.DataFrame(data[:, 1:], index=pd.Index(data[:, 0], name=names[0]),
+                          columns=names[1:])
+        df.attrs["units"] = self.units
+        df.attrs["quantities"] = self.quantities
+        return df
 
     def save(self, path: str | os.PathLike) -> str:
         """Write the results: ``.csv`` (time and request channels) or ``.npz`` (everything).
@@ -225,25 +289,32 @@ class Result:
                      success=self.success, message=self.message, t_events=self.t_events,
                      i_events=self.i_events, **extra)
         elif path.lower().endswith(".csv"):
-            _write_csv(path, *self.columns())
+            _write_csv(path, *self.columns(units=True))
+            units = self.controller_units()
             for lid, rec in self._controllers.items():
                 data = np.column_stack([np.asarray(v, float) for v in rec.values()])
-                _write_csv(f"{path[:-4]}_controller{lid}.csv", list(rec), data)
+                _write_csv(f"{path[:-4]}_controller{lid}.csv",
+                           [_header(k, units.get(k)) for k in rec], data)
         else:
             raise ValueError(f"unknown result format for {path!r}: use .csv or .npz")
         return path
 
     def plot(self, path: str | os.PathLike | None = None):
-        """Plot every request channel against time, one panel per request.
+        """Plot the run: one panel per kind of quantity with its unit (``length [mm]``) against
+        ``time [s]``, sensor events and the ends of Simulate commands marked, LoadControl
+        tasks, the path of a point whose x and z (or y) are requested, static equilibria as a
+        table with their imbalance; a failed run's title is ``FAILED: message`` in red
+        (docs/usage.md, "Plots").
 
         Parameters
         ----------
         path : str, optional
-            Write the figure there (PNG, PDF, ... by suffix) instead of returning it open.
+            Also write the figure there (PNG, PDF, ... by suffix).
 
         Returns
         -------
         matplotlib.figure.Figure
+            Made without pyplot: Jupyter shows it once, and pyplot holds no open figure.
 
         Raises
         ------
@@ -251,47 +322,12 @@ class Result:
             matplotlib is not installed (``pip install "pysolver[plot]"``).
         """
         try:
-            import matplotlib
+            import matplotlib  # noqa: F401
         except ImportError:
             raise ImportError("plotting needs matplotlib: pip install \"pysolver[plot]\"") \
                 from None
-        if path is not None:
-            matplotlib.use("Agg", force=False)
-        import matplotlib.pyplot as plt
-        ids = self.request_ids or [None]
-        ctrl = list(self._controllers)
-        fig, axes = plt.subplots(len(ids) + len(ctrl), 1,
-                                 figsize=(8, 2.6 * (len(ids) + len(ctrl))), sharex=True,
-                                 squeeze=False)
-        for ax, lid in zip(axes[len(ids):, 0], ctrl):
-            rec = self._controllers[lid]
-            ax.plot(rec["time"], rec["target"], "k--", label="target load")
-            ax.plot(rec["time"], rec["measured"], label="measured load")
-            ax.set_title(f"LoadControl {lid}", fontsize=9)
-            ax.legend(fontsize=7, loc="upper left")
-            ax.grid(True, alpha=0.3)
-            vel = ax.twinx()
-            vel.plot(rec["time"], rec["velocity"], color="tab:red", lw=0.8, label="velocity")
-            vel.legend(fontsize=7, loc="lower right")
-        for ax, rid in zip(axes[:len(ids), 0], ids):
-            if rid is None:
-                for j, name in enumerate(self.state_names[:8]):
-                    ax.plot(self.t, self.y[:, j], label=name)
-            else:
-                arr = self.request(rid)
-                for k in range(8):
-                    if not np.all(np.isnan(arr[:, k])):
-                        ax.plot(self.t, arr[:, k],
-                                label=self._labels.get((rid, k)) or f"expr{k + 1}")
-                ax.set_title(f"Post_Request {rid}", fontsize=9)
-            ax.legend(fontsize=7, loc="best")
-            ax.grid(True, alpha=0.3)
-        axes[-1, 0].set_xlabel("time")
-        fig.tight_layout()
-        if path is not None:
-            fig.savefig(path, dpi=110)
-            plt.close(fig)
-        return fig
+        from . import plotting
+        return plotting.figure(self) if path is None else plotting.save(self, path)
 
     def animate(self, model=None, params=None, max_frames: int | None = 4000):
         """The 3-D animation of this run: in Jupyter it shows itself, ``.save(path)`` writes

@@ -45,14 +45,16 @@ def test_pickle_round_trip(bead):
 def test_save_csv_npz_and_dataframe(bead, tmp_path):
     res = bead.run()
     res.save(tmp_path / "r.csv")
-    data = np.genfromtxt(tmp_path / "r.csv", delimiter=",", names=True)
-    np.testing.assert_array_equal(data["time"], res.t)
-    np.testing.assert_array_equal(data["g"], res.request(1)[:, 4])
+    header, *rows = (tmp_path / "r.csv").read_text().splitlines()
+    assert header == "time [s],x [m],y [m],vx [m/s],vy [m/s],g,penalty_force [N]"
+    data = np.array([row.split(",") for row in rows], dtype=float)
+    np.testing.assert_array_equal(data[:, 0], res.t)
+    np.testing.assert_array_equal(data[:, 5], res.request(1)[:, 4])
     res.save(tmp_path / "r.npz")
     z = np.load(tmp_path / "r.npz")
     np.testing.assert_array_equal(z["request_1"], res.request(1))
     df = res.to_dataframe()
-    assert list(df.columns[:2]) == ["x", "y"] and len(df) == len(res.t)
+    assert list(df.columns[:2]) == ["x [m]", "y [m]"] and len(df) == len(res.t)
     with pytest.raises(ValueError, match="use .csv or .npz"):
         res.save(tmp_path / "r.txt")
 

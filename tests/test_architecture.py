@@ -13,10 +13,11 @@ PKG = pathlib.Path(pysolver.__file__).resolve().parent
 #: Stages in the order of the data flow, as import ranks: a module may import its own stage and
 #: earlier ones. Records and shared vocabulary (options, errors, results, rotations, catalogue)
 #: come first; ``Model.run`` reaches the solvers through an import inside the call (the facade).
-#: The viewer ranks with results (Result.animate calls it).
+#: The viewer and plotting rank with results (Result.animate and Result.plot call them).
 RANK = {"_version": 0, "headers": 0, "errors": 0, "options": 0, "rotations": 0, "results": 4,
         "catalogue": 0, "settings": 0, "imports": 0, "records": 1, "model": 1,
-        "deck": 2, "build": 3, "_kernel": 3, "solve": 4, "viewer": 4, "batch": 5, "cli": 5,
+        "deck": 2, "build": 3, "_kernel": 3, "solve": 4, "viewer": 4, "plotting": 4, "batch": 5,
+        "cli": 5,
         "msolve": 5, "modeling": 5, "convert": 5,
         "__init__": 5,
         "__main__": 5, "_build_ffi": 5}

@@ -323,3 +323,37 @@ def test_the_scikit_sundae_backend_still_runs():
     res = pysolver.load(DECK).run(backend="sksundae", progress=False)
     assert res.success and res.meta["options"]["backend"] == "sksundae"
     assert "sksundae" in sys.modules
+
+
+# units in what `pysolver run` writes ---------------------------------------------------------
+
+def test_the_readme_deck_writes_units_once(tmp_path, capsys, monkeypatch):
+    """The README deck (kg/mm/s/N): requests.csv's header carries the units and is the
+    streamed one (Result.save does not write the file a second time), and stats.json maps
+    each channel to its unit."""
+    out = tmp_path / "out"
+    calls = []
+    real_save = pysolver.Result.save
+    monkeypatch.setattr(pysolver.Result, "save",
+                        lambda self, path: calls.append(path) or real_save(self, path))
+    assert main(["run", str(DECK), "-o", str(out), "--no-animation", "--no-plot", "-q"]) == 0
+    with open(out / "requests.csv", newline="") as fh:
+        assert next(csv.reader(fh)) == ["time [s]", "x [mm]", "z [mm]", "force_L1 [N]",
+                                        "force_L2 [N]"]
+    assert calls == []
+    stats = json.loads((out / "stats.json").read_text())
+    assert stats["units"] == {"time": "s", "x": "mm", "z": "mm", "force_L1": "N",
+                              "force_L2": "N"}
+    assert "controller_units" not in stats
+
+
+def test_loadcontrol_units_in_stats_json(tmp_path, capsys):
+    """A LoadControl deck's stats.json gives its per-update fields' units too."""
+    out = tmp_path / "out"
+    assert main(["run", str(DECKS / "loadcontrol_indenter.xml"), "-o", str(out),
+                 "--no-animation", "--no-plot", "-q"]) == 0
+    stats = json.loads((out / "stats.json").read_text())
+    assert stats["units"]["z"] == "mm" and stats["units"]["floor_force"] == "N"
+    units = stats["controller_units"]
+    assert (units["time"], units["target"], units["displacement"], units["velocity"],
+            units["A"], units["clamped"]) == ("s", "N", "mm", "mm/s", "N/mm", None)

@@ -161,7 +161,7 @@ def test_a_crashing_c_routine_loses_no_row_of_pysolver_run(tmp_path):
     out = _cli(["run", deck, "-o", tmp_path / "out", "--no-plot", "-q"], tmp_path)
     assert out.returncode < 0, out.stderr[-2000:]          # killed by a signal
     lines = (tmp_path / "out" / "requests.csv").read_text().splitlines()
-    assert lines[0] == "x,y,vx,vy,g,penalty_force".join(["time,", ""])
+    assert lines[0] == "time [s],x [m],y [m],vx [m/s],vy [m/s],g,penalty_force [N]"
     rows = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]])
     assert np.allclose(rows[:, 0], 0.01 * np.arange(len(rows)))
     assert rows[-1, 0] >= 0.45                 # IDA's last steps before 0.5 are about 0.02

@@ -16,6 +16,7 @@ import numpy as np
 
 from .. import settings
 from ..build.bindings import ffi, lib
+from ..deck.dimensions import Quantity, header
 from .actors import Actor
 
 
@@ -45,22 +46,28 @@ def over_budget(rows, ny, nchannels, what):
 
 class Stream:
     """A CSV file of the run's rows written as they are made (``Model.run(stream=path)``): the
-    time and every request channel with an expression or a label, as Result.save writes them.
+    time and every request channel with an expression or a label, as Result.save writes them
+    (names with their units, `units` of deck.dimensions.channel_units).
     Rows from the C driver's batches are written by C as they are made, each handed to the
     operating system at once when the kernel calls user subroutines (a crash of one loses no
     row already made), else at the end of each batch; rows the Python driver makes are
     written, and flushed, once nothing can take them back."""
 
-    def __init__(self, path, kernel, labels):
-        names, cols, defined = ["time"], [], set(kernel.defined_channels.tolist())
+    def __init__(self, path, kernel, labels, units=None):
+        def unit(key):
+            return (units or {}).get(key, Quantity(None, None)).unit
+
+        defined = set(kernel.defined_channels.tolist())
+        names, cols = [header("time", unit("time"))], []
         for col, (rid, k) in sorted(enumerate(kernel.channels), key=lambda c: tuple(c[1])):
             if rid > 0 and (col in defined or labels.get((rid, k))):    # not joints' (< 0)
-                names.append(labels.get((rid, k)) or f"REQ{rid}.{k + 1}")
+                names.append(header(labels.get((rid, k)) or f"REQ{rid}.{k + 1}",
+                                    unit((rid, k))))
                 cols.append(col)
         self.path, self.cols = os.fsencode(path), np.array(cols, dtype=np.int32)
-        header = io.StringIO()
-        csv.writer(header).writerow(names)
-        self.header = header.getvalue().encode()
+        line = io.StringIO()
+        csv.writer(line).writerow(names)
+        self.header = line.getvalue().encode()
         self.nout = max(int(kernel.arrays["nout"]), 1)
         err = ffi.new("int *")
         self.st = lib.ps_stream_open(self.path, self.header,

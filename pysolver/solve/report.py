@@ -1,6 +1,7 @@
 """The :class:`~pysolver.Result` of a run, whichever path ran it (:mod:`.fast` or the driver,
 :mod:`.driver`): its statistics, timing and metadata are built here, once."""
 from .._version import __version__
+from ..deck.dimensions import channel_units
 from ..results import Result
 from . import nonfinite, precision
 
@@ -57,9 +58,13 @@ def result(model, kernel, plan, settings, rows, outcome, clock, ida, log, *, ste
     meta = {"version": __version__, "deck": model.source.file, "sha256": model.source.sha256,
             "options": used, "ny": kernel.ny, "stepping": "onestep" if onestep else "normal",
             "static": dict(static), "usersubs": dict(model.usersub_paths),
-            "kernel": gen["kernel"]}
+            "kernel": gen["kernel"],
+            # each Simulate command's analysis and end time (plots mark the boundaries)
+            "commands": [{"analysis": c.analysis, "end_time": c.end_time}
+                         for c in model.commands]}
     log = list(log) + nonfinite.channels(model, kernel, t, outputs)
     return Result(t=t, y=y, yp=yp, outputs=outputs, channels=kernel.channels,
                   state_names=kernel.layout.names, success=success, status=status,
                   message=message, stats=stats, timing=timing, meta=meta, labels=labels,
-                  events=events, log=log, statics=statics, controllers=controllers)
+                  events=events, log=log, statics=statics, controllers=controllers,
+                  units=channel_units(model))

@@ -5,6 +5,7 @@ import threading
 import time
 
 from ..build.bindings import lib
+from ..deck.dimensions import channel_units
 from . import integrator, report
 from .driver import Run
 from .fast import fast_run
@@ -30,7 +31,8 @@ def run_model(compiled, progress=None, overrides=None, actors=(), stream=None):
     log = [f"kernel: the tapes run ({gen['why']})"] if gen["kernel"] == "tapes" and \
         kind != "tapes" else []
     log += compiled.notes
-    sink = Stream(stream, kernel, labels) if stream is not None else None
+    sink = Stream(stream, kernel, labels, channel_units(compiled.model)) \
+        if stream is not None else None
     # Ctrl-C ends a run at its next residual (the C kernel's handler; main thread only)
     main = threading.current_thread() is threading.main_thread()
     if main:

@@ -1,0 +1,256 @@
+"""Units of the numbers a run reports: request channels typed from their expressions.
+
+A dimension is a vector of exponents over force, length, time, angle in radians and angle in
+degrees (F, L, T, A, D). Mass never appears: no function of the expression language measures
+a mass, and a kinetic energy is a force times a length. A request channel's dimension comes
+from walking its parsed tree: DX is a length, VX a velocity, PFORCE a force, TIME a time;
+``+``, ``-``, MAX, MIN, IF and STEP need equal dimensions; ``*`` and ``/`` add and subtract
+exponents, ``**`` by a literal scales them. A number written in the deck adopts the dimension
+it is added to (``1 + DX(10)`` is a length) and is dimensionless in a product. An expression
+whose terms do not match (``DX(10) + VX(10)``), a spline's value and a user subroutine's have
+no unit. Units are the deck's ``Units`` (kg, m, s, N when it has none: what the loader
+assumes); angles are in radians, as pysolver reports every angle (``RTOD * AZ(i, j)`` is in
+degrees). docs/usage.md, "Units".
+"""
+from collections import namedtuple
+from fractions import Fraction
+
+#: A channel's unit (str; "-" dimensionless; None: no unit) and kind of quantity (str or None).
+Quantity = namedtuple("Quantity", "unit kind")
+
+#: Unit symbols of the Units element's names.
+SYMBOLS = {"METER": "m", "MILLIMETER": "mm", "CENTIMETER": "cm", "KILOMETER": "km",
+           "INCH": "in", "FOOT": "ft", "MILE": "mi",
+           "SECOND": "s", "MILLISECOND": "ms", "MINUTE": "min", "HOUR": "h",
+           "NEWTON": "N", "KILONEWTON": "kN", "MILLINEWTON": "mN", "DYNE": "dyn",
+           "POUND_FORCE": "lbf", "KPOUND_FORCE": "kip", "KILOGRAM_FORCE": "kgf",
+           "OUNCE_FORCE": "ozf"}
+
+_F, _L, _T, _A, _D = range(5)
+
+
+def _dim(**exps):
+    v = [Fraction(0)] * 5
+    for name, e in exps.items():
+        v["FLTAD".index(name)] = Fraction(e)
+    return tuple(v)
+
+
+NONE = _dim()
+LENGTH, VELOCITY, ACCELERATION = _dim(L=1), _dim(L=1, T=-1), _dim(L=1, T=-2)
+ANGLE, ANGULAR_VELOCITY, ANGULAR_ACCELERATION = _dim(A=1), _dim(A=1, T=-1), _dim(A=1, T=-2)
+FORCE, TORQUE, TIME = _dim(F=1), _dim(F=1, L=1), _dim(T=1)
+
+#: Kinds of quantity by dimension (F*L: "torque" unless a KE made it an energy).
+KINDS = {NONE: "dimensionless", LENGTH: "length", VELOCITY: "velocity",
+         ACCELERATION: "acceleration", ANGLE: "angle", ANGULAR_VELOCITY: "angular velocity",
+         ANGULAR_ACCELERATION: "angular acceleration", FORCE: "force", TORQUE: "torque",
+         TIME: "time", _dim(D=1): "angle", _dim(D=1, T=-1): "angular velocity",
+         _dim(D=1, T=-2): "angular acceleration"}
+
+
+class Dim:
+    """A dimension (exponents F, L, T, A, D) with the kind its measure names (``energy``
+    for KE, else None); ``number`` marks a literal, which adopts what it is added to."""
+    __slots__ = ("exps", "kind", "number", "value")
+
+    def __init__(self, exps, kind=None, number=False, value=None):
+        self.exps, self.kind, self.number, self.value = exps, kind, number, value
+
+
+def _num(value=None):
+    return Dim(NONE, number=True, value=value)
+
+
+_MEASURES = {**dict.fromkeys(("DX", "DY", "DZ", "DM"), LENGTH),
+             **dict.fromkeys(("VX", "VY", "VZ", "VM", "VR"), VELOCITY),
+             **dict.fromkeys(("ACCX", "ACCY", "ACCZ", "ACCM"), ACCELERATION),
+             **dict.fromkeys(("WX", "WY", "WZ", "WM"), ANGULAR_VELOCITY),
+             **dict.fromkeys(("WDTX", "WDTY", "WDTZ", "WDTM"), ANGULAR_ACCELERATION),
+             **dict.fromkeys(("AX", "AY", "AZ", "AXU", "AYU", "AZU", "PSI", "THETA", "PHI",
+                              "YAW", "PITCH", "ROLL", "ACOS", "ASIN", "ATAN", "ATAN2"), ANGLE),
+             **dict.fromkeys(("FX", "FY", "FZ", "FM", "PFORCE", "IMPACT", "BISTOP"), FORCE),
+             **dict.fromkeys(("TX", "TY", "TZ", "TM"), TORQUE)}
+#: Functions whose value is a number whatever their argument's dimension.
+_PURE = ("SIN", "COS", "TAN", "SINH", "COSH", "TANH", "EXP", "LOG", "LOG10")
+#: Functions whose value has the dimension of their first argument.
+_SAME = ("ABS", "AINT", "ANINT", "SIGN")
+#: Functions whose arguments must agree: the indices of the ones that do.
+_AGREE = {"MAX": (0, 1), "MIN": (0, 1), "MOD": (0, 1), "DIM": (0, 1), "IF": (1, 2, 3),
+          "STEP": (2, 4), "STEP5": (2, 4), "HAVSIN": (2, 4)}
+#: Reaction and element force functions: comp 1-4 a force, 5-8 a torque.
+_ELEMENT_FORCES = ("SFORCE", "SPDP", "BUSH", "JOINT", "MOTION")
+
+
+def _add(a, b):
+    """The dimension of a + b (or MAX(a, b), ...): None unless they agree."""
+    if a is None or b is None:
+        return None
+    if a.number:
+        return b
+    if b.number:
+        return a
+    if a.exps != b.exps:
+        return None
+    return Dim(a.exps, a.kind if a.kind == b.kind else None)
+
+
+def _mul(a, b, sign=1):
+    """The dimension of a * b (sign 1) or a / b (sign -1); a number times a dimensionless
+    value stays a number (``5 * SIN(TIME)`` is an amplitude of the deck's choosing)."""
+    if a is None or b is None:
+        return None
+    if a.number and (b.number or b.exps == NONE) or b.number and a.exps == NONE:
+        return _num()
+    if b.number:                        # x * 2, x / 2
+        return a
+    if a.number and sign > 0:           # 2 * x (2 / x: the inverse of x's dimension)
+        return b
+    exps = tuple(x + sign * y for x, y in zip(a.exps, b.exps))
+    kind = a.kind if b.exps == NONE else b.kind if a.exps == NONE and sign > 0 else None
+    return Dim(exps, kind)
+
+
+class Typer:
+    """Types expression trees of one model (Reference_Variables through their expressions)."""
+
+    def __init__(self, model):
+        self.model = model
+        self._variables = {}
+
+    def of(self, node):
+        """The :class:`Dim` of a parsed expression, or None (no unit)."""
+        kind = node[0]
+        if kind == "num":
+            return _num(node[1])
+        if kind == "name":
+            name = node[1]
+            return (Dim(TIME) if name == "TIME" else
+                    Dim(_dim(A=1, D=-1)) if name == "DTOR" else
+                    Dim(_dim(A=-1, D=1)) if name == "RTOD" else _num())
+        if kind == "neg":
+            return self.of(node[1])
+        if kind == "bin":
+            op, a, b = node[1], self.of(node[2]), self.of(node[3])
+            if op in "+-":
+                return _add(a, b)
+            if op == "*":
+                return _mul(a, b)
+            if op == "/":
+                return _mul(a, b, -1)
+            return self._power(a, b)
+        return self._call(node[1], node[2])
+
+    @staticmethod
+    def _power(a, b):
+        if a is None or b is None:
+            return None
+        if a.number or (a.exps == NONE and b.exps == NONE):
+            return _num() if a.number else Dim(NONE)
+        if not b.number or b.value is None:
+            return None
+        p = Fraction(b.value).limit_denominator(1000)
+        return Dim(tuple(x * p for x in a.exps))
+
+    def _call(self, name, args):
+        if name in _MEASURES:
+            return Dim(_MEASURES[name])
+        if name == "KE":
+            return Dim(TORQUE, "energy")
+        if name == "ORIENT":
+            return Dim(NONE) if args[0][1] == 27 else Dim(ANGLE)
+        if name in _ELEMENT_FORCES:
+            if len(args) == 4:
+                return Dim(FORCE if args[2][1] <= 4 else TORQUE)
+            motion = self.model.motions.get(int(args[0][1]))
+            return Dim(TORQUE if motion and motion.direction.startswith("B") else FORCE)
+        if name == "VARVAL":
+            return self._variable(int(args[0][1]))
+        if name == "SENVAL":
+            ev = self.model.evaluates.get(int(args[0][1]))
+            return self.of(ev.expr) if ev is not None and ev.usersub is None else None
+        if name in _PURE:
+            arg = self.of(args[0])
+            return _num() if arg is not None and arg.number else Dim(NONE)
+        if name in _SAME:
+            return self.of(args[0])
+        if name == "SQRT":
+            return self._power(self.of(args[0]), _num(0.5))
+        if name in _AGREE:
+            out = _num()
+            for i in _AGREE[name]:
+                out = _add(out, self.of(args[i]))
+            return out
+        return None                     # splines, and anything not typed above
+
+    def _variable(self, vid):
+        if vid not in self._variables:
+            self._variables[vid] = None             # a cycle (refused at load) has no unit
+            var = self.model.variables.get(vid)
+            if var is not None and var.usersub is None:
+                self._variables[vid] = self.of(var.expr)
+        return self._variables[vid]
+
+
+def header(name, unit):
+    """A column's name with its unit, ``z [mm]`` (CSV headers, DataFrames); the bare name
+    when it has none."""
+    return f"{name} [{unit}]" if unit else name
+
+
+def unit_text(exps, units):
+    """Print a dimension in a model's units: ``mm/s``, ``N*mm``, ``rad/s^2``, ``1/s``;
+    ``-`` when dimensionless."""
+    syms = (SYMBOLS[units["force"]], SYMBOLS[units["length"]], SYMBOLS[units["time"]], "rad",
+            "deg")
+
+    def part(pairs):
+        return "*".join(s if e == 1 else f"{s}^{e}" if e.denominator == 1 else f"{s}^({e})"
+                        for s, e in pairs)
+    num = [(s, e) for s, e in zip(syms, exps) if e > 0]
+    den = [(s, -e) for s, e in zip(syms, exps) if e < 0]
+    if not num and not den:
+        return "-"
+    text = part(num) or "1"
+    if den:
+        text += "/" + (part(den) if len(den) == 1 else f"({part(den)})")
+    return text
+
+
+def quantity(dim, units):
+    """The :class:`Quantity` of a :class:`Dim` (or None: no unit) in a model's units."""
+    if dim is None:
+        return Quantity(None, None)
+    return Quantity(unit_text(dim.exps, units), dim.kind or KINDS.get(dim.exps))
+
+
+#: Fields of a LoadControl record and their dimensions (pysolver/solve/loadlaw.py: e, Ie and
+#: De are displacements; A a load per displacement; clamped a flag, no unit).
+CONTROLLER = {"time": TIME, "target": FORCE, "measured": FORCE, "filtered": FORCE,
+              "displacement": LENGTH, "A": _dim(F=1, L=-1), "e": LENGTH, "Ie": LENGTH,
+              "De": LENGTH, "velocity": VELOCITY, "clamped": None}
+
+
+def channel_units(model):
+    """Units of a model's outputs, worked out once per model.
+
+    Returns
+    -------
+    dict
+        ``(request id, channel index 0..7)`` -> :class:`Quantity` for every channel with an
+        expression, ``"time"`` and ``"force"`` -> the time's and the force's (static
+        imbalances), ``"controller"`` -> {field: Quantity} of the
+        LoadControl records (:data:`CONTROLLER`).
+    """
+    cached = model.__dict__.get("_channel_units")
+    if cached is not None:
+        return cached
+    typer, units = Typer(model), model.units
+    out = {"time": quantity(Dim(TIME), units), "force": quantity(Dim(FORCE), units),
+           "controller": {k: quantity(d and Dim(d), units) for k, d in CONTROLLER.items()}}
+    for req in model.requests.values():
+        for k, tree in enumerate(req.exprs):
+            if tree is not None:
+                out[(req.id, k)] = quantity(None if req.usersub else typer.of(tree), units)
+    model._channel_units = out
+    return out
