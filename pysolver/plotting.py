@@ -123,9 +123,26 @@ def _draw_group(ax, res, group):
     kind, unit, members = group
     for shown, _, values, _, _ in members:
         ax.plot(res.t, values, lw=1.2, label=shown)
+    _steady_limits(ax, [values for _, _, values, _, _ in members])
     ax.set_ylabel(_label(kind, unit))
     ax.grid(True, alpha=0.3)
     ax.legend(**LEGEND)
+
+
+def _steady_limits(ax, series):
+    """A panel whose channels all stay within 1e-9 of their size (a spin of 200 rad/s held to
+    1e-11) reads as its value: limits 1 % either side, no offset notation
+    (``1e-10+2e2``) on the axis."""
+    data = np.concatenate([np.asarray(v, float).ravel() for v in series])
+    data = data[np.isfinite(data)]
+    if not len(data):
+        return
+    lo, hi = data.min(), data.max()
+    size = max(abs(lo), abs(hi))
+    if hi - lo <= 1e-9 * size and size > 0:
+        mid = 0.5 * (lo + hi)
+        ax.set_ylim(mid - 0.01 * size, mid + 0.01 * size)
+        ax.ticklabel_format(axis="y", useOffset=False)
 
 
 def _draw_controller(ax, res, lid):

@@ -71,6 +71,17 @@ def test_angles_and_angular_velocities_get_separate_panels():
         ["tip_gap"]
 
 
+def test_a_steady_channel_reads_as_its_value():
+    """The top's spin stays 200 rad/s to 1e-10: its panel spans 198..202 rad/s and its axis
+    has no offset notation, where matplotlib alone would show a flat line under
+    '1e-10+2e2'."""
+    fig = _run("spinning_top.xml").plot()
+    fig.canvas.draw()
+    spin = fig.axes[3]
+    assert spin.get_ylim() == pytest.approx((198.0, 202.0), abs=1e-6)
+    assert spin.yaxis.get_offset_text().get_text() == ""
+
+
 def test_a_wide_spread_in_one_kind_splits_the_panel():
     res = _run("torque_free_spin.xml")
     groups = plotting._panels(plotting._channels(res))
