@@ -27,8 +27,13 @@ AXES = ("x", "y", "z")
 
 
 def figure(res):
-    """Draw `res` (a :class:`pysolver.Result`) and return the Figure (see the module)."""
-    from matplotlib.figure import Figure
+    """Draw `res` (a :class:`pysolver.Result`) and return the Figure (see the module);
+    ImportError naming the extra to install when matplotlib is missing."""
+    try:
+        from matplotlib.figure import Figure
+    except ImportError:
+        raise ImportError("plotting needs matplotlib: pip install \"pysolver[plot]\"") \
+            from None
 
     channels = _channels(res)
     static_only = len(res.t) <= 1

@@ -321,11 +321,6 @@ class Result:
         ImportError
             matplotlib is not installed (``pip install "pysolver[plot]"``).
         """
-        try:
-            import matplotlib  # noqa: F401
-        except ImportError:
-            raise ImportError("plotting needs matplotlib: pip install \"pysolver[plot]\"") \
-                from None
         from . import plotting
         return plotting.figure(self) if path is None else plotting.save(self, path)
 
@@ -392,16 +387,13 @@ class Result:
                       f"imbalance {r.imbalance:.3g}, " +
                       ("converged" if r.success else f"failed ({r.message})") for r in st]
         elif st:
-            methods = {}
-            for r in st:
-                methods[r.method] = methods.get(r.method, 0) + 1
             bad = [r for r in st if not r.success]
-            lines.append(f"static solves: {len(st)} ("
-                         + ", ".join(f"{m} {n}" for m, n in methods.items()) + "), "
-                         + (f"{len(bad)} failed (first at t = {bad[0].time:g}: "
-                            f"{bad[0].message})" if bad else "all converged")
-                         + f", iterations up to {max(r.iterations for r in st)}, largest "
-                         f"imbalance {max(r.imbalance for r in st):.3g}")
+            methods = ", ".join(f"{m} {sum(r.method == m for r in st)}"
+                                for m in dict.fromkeys(r.method for r in st))
+            lines.append(f"static solves: {len(st)} ({methods}), " + (
+                f"{len(bad)} failed (first at t = {bad[0].time:g}: {bad[0].message})" if bad
+                else "all converged") + f", iterations up to {max(r.iterations for r in st)}, "
+                f"largest imbalance {max(r.imbalance for r in st):.3g}")
         return "\n".join(lines)
 
     def __repr__(self):
