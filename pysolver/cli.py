@@ -84,7 +84,10 @@ def _output_folder(args):
     out = args.output or default_output(args.deck)
     if os.path.exists(out) and not os.path.isdir(out):
         raise UsageError(f"-o {out}: exists and is not a folder")
-    os.makedirs(out, exist_ok=True)
+    try:
+        os.makedirs(out, exist_ok=True)
+    except OSError as err:
+        raise UsageError(f"-o {out}: cannot make the output folder ({err.strerror})") from None
     if not os.access(out, os.W_OK | os.X_OK):
         raise UsageError(f"-o {out}: cannot write in this folder")
     return out
@@ -106,21 +109,26 @@ def _stats(args, res):
             "log": res.log}
 
 
-def _write_states(res, out):
+def _write_states(model, res, out):
     """states.csv (time and every state) and, when the deck has joints or motions,
     reactions.csv (each joint's |F| Fx Fy Fz |T| Tx Ty Tz on I's body, each motion's
-    reaction)."""
+    reaction), their headers with units as requests.csv's."""
     # the kernel's CSV writer, as requests.csv's
+    from .deck.dimensions import header, state_unit, unit_of
     from .results import _write_csv
+    time = header("time", res.units["time"])
     written = [os.path.join(out, "states.csv")]
-    _write_csv(written[0], ["time"] + list(res.state_names), _columns(res.t, res.y))
-    names, cols = ["time"], []
+    _write_csv(written[0], [time] + [header(n, state_unit(model, n)) for n in res.state_names],
+               _columns(res.t, res.y))
+    names, cols = [time], []
+    units = {"F": unit_of(model, "force"), "T": unit_of(model, "torque")}
     for jid in res.joint_ids:
-        names += [f"joint{jid}.{c}" for c in ("F", "Fx", "Fy", "Fz", "T", "Tx", "Ty", "Tz")]
+        names += [header(f"joint{jid}.{c}", units[c[0]])
+                  for c in ("F", "Fx", "Fy", "Fz", "T", "Tx", "Ty", "Tz")]
         cols.append(res.joint(jid))
     for name in res.state_names:
         if name.startswith("motion") and name.endswith(".reaction"):
-            names.append(name)
+            names.append(header(name, state_unit(model, name)))
             cols.append(res.motion(int(name[6:].split(".")[0]))[:, None])
     if cols:
         written.append(os.path.join(out, "reactions.csv"))
@@ -149,7 +157,7 @@ def _run(args):
     written = [csv_path] + [os.path.join(out, f"requests_controller{lid}.csv")
                             for lid in res.controller_ids]
     if args.states:
-        written += _write_states(res, out)
+        written += _write_states(model, res, out)
     if args.npz:
         written.append(res.save(os.path.join(out, "results.npz")))
     if not args.no_plot:

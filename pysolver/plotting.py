@@ -154,14 +154,16 @@ def _draw_controller(ax, res, lid):
     rec, units = res.controller(lid), res.controller_units()
     ax.plot(rec["time"], rec["target"], "k--", label="target load")
     ax.plot(rec["time"], rec["measured"], label="measured load")
-    ax.set_title(f"LoadControl {lid}", fontsize=9)
+    ax.set_title(f"LoadControl {lid}", fontsize=9, loc="right")
     ax.set_ylabel(_label("load", units["target"]))
     ax.grid(True, alpha=0.3)
     vel = ax.twinx()
     vel.plot(rec["time"], rec["velocity"], color="tab:red", lw=0.8, label="velocity")
     vel.set_ylabel(_label("velocity", units["velocity"]), color="tab:red")
+    # the legend above the panel: beside it, it would cover the velocity axis' label
     lines = ax.get_lines() + vel.get_lines()
-    ax.legend(lines, [ln.get_label() for ln in lines], **dict(LEGEND, bbox_to_anchor=(1.08, 1)))
+    ax.legend(lines, [ln.get_label() for ln in lines], loc="lower left",
+              bbox_to_anchor=(0.0, 1.0), ncol=len(lines), fontsize=8, borderaxespad=0.2)
 
 
 def _marks(ax, res, labels):
@@ -238,8 +240,9 @@ def _draw_statics(ax, res, channels):
         rows = np.flatnonzero(res.t == st.time)
         row = rows[-1] if len(rows) else row
         force = res._quantity("force").unit or ""
-        ax.set_title(f"static equilibrium at t = {st.time:g}: {st.method}, {st.iterations} "
-                     f"iterations, imbalance {st.imbalance:.3g} {force}".rstrip()
+        its = f"{st.iterations} iteration{'s' * (st.iterations != 1)}"
+        ax.set_title(f"static equilibrium at t = {st.time:g}: {st.method}, {its}, imbalance "
+                     f"{st.imbalance:.3g} {force}".rstrip()
                      + ("" if st.success else " (FAILED)"), fontsize=9)
     elif row >= 0:
         ax.set_title(f"the one output row, t = {res.t[row]:g}", fontsize=9)

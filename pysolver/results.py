@@ -271,7 +271,8 @@ class Result:
         """Write the results: ``.csv`` (time and request channels) or ``.npz`` (everything).
         With LoadControl tasks a ``.csv`` has a sibling ``<stem>_controller<id>.csv`` per task
         (one row per update, the fields of :meth:`controller`); a ``.npz`` holds them as
-        ``controller<id>_<field>``.
+        ``controller<id>_<field>``, and the CSV's rows and header (``table``,
+        ``table_columns``: names with units, ``z [mm]``).
 
         Returns
         -------
@@ -285,9 +286,11 @@ class Result:
                           if rid < 0 and k == 0})
             extra.update({f"controller{lid}_{name}": col
                           for lid, rec in self._controllers.items() for name, col in rec.items()})
+            names, table = self.columns(units=True)
             np.savez(path, t=self.t, y=self.y, yp=self.yp, state_names=np.array(self.state_names),
                      success=self.success, message=self.message, t_events=self.t_events,
-                     i_events=self.i_events, **extra)
+                     i_events=self.i_events, table=table, table_columns=np.array(names),
+                     **extra)
         elif path.lower().endswith(".csv"):
             _write_csv(path, *self.columns(units=True))
             units = self.controller_units()
@@ -383,7 +386,8 @@ class Result:
         # static solves: each one (a few), else a tally (a quasi-static analysis: one per row)
         st = self.statics
         if 0 < len(st) <= 3:
-            lines += [f"static at t = {r.time:g}: {r.method}, {r.iterations} iterations, "
+            lines += [f"static at t = {r.time:g}: {r.method}, {r.iterations} iteration"
+                      f"{'s' * (r.iterations != 1)}, "
                       f"imbalance {r.imbalance:.3g}, " +
                       ("converged" if r.success else f"failed ({r.message})") for r in st]
         elif st:

@@ -99,7 +99,8 @@ def test_an_output_folder_that_cannot_be_made(tmp_path, capsys):
     assert _error(capsys, ["run", DECK, "-o", afile, "-q"]) == (2, [
         f"pysolver: error: -o {afile}: exists and is not a folder"])
     assert _error(capsys, ["run", DECK, "-o", afile / "sub", "-q"]) == (2, [
-        f"pysolver: error: {afile / 'sub'}: Not a directory"])
+        f"pysolver: error: -o {afile / 'sub'}: cannot make the output folder (Not a "
+        "directory)"])
     sweep = ["sweep", DECK, "--set", f"{PEN}=5e3", "-j", "0", "-o", afile, "-q"]
     status, err = _error(capsys, sweep)
     assert status == 2 and len(err) == 1 and err[0].startswith(f"pysolver: error: {afile}")
@@ -251,14 +252,22 @@ def test_states_and_reactions(tmp_path, capsys):
     res = pysolver.load(deck, simulate={"analysis_type": "TRANSIENT", "end_time": 0.1,
                                         "num_step": 5}).run(progress=False)
     states = np.loadtxt(out / "states.csv", delimiter=",", skiprows=1)
+    # headers with units (the deck is in m, N, s; the motion turns the crank: a torque);
+    # multipliers of joint equations have the unit of their equation and stay bare
+    unit = {"x": "m", "y": "m", "z": "m", "vx": "m/s", "vy": "m/s", "vz": "m/s",
+            "e0": "-", "e1": "-", "e2": "-", "e3": "-", "wx": "rad/s", "wy": "rad/s",
+            "wz": "rad/s", "reaction": "N*m"}
     header = (out / "states.csv").read_text().splitlines()[0].split(",")
-    assert header == ["time"] + res.state_names
+    assert header == ["time [s]"] + [
+        f"{n} [{unit[n.split('.')[1]]}]" if n.startswith(("body", "motion1.reaction"))
+        else n for n in res.state_names]
+    assert "joint1.reaction1" in header and "motion1.position_reaction" in header
     np.testing.assert_array_equal(states, np.column_stack([res.t, res.y]))
     header = (out / "reactions.csv").read_text().splitlines()[0].split(",")
     assert res.joint_ids == [1, 2, 3, 4]
-    assert header == ["time"] + [f"joint{j}.{c}" for j in (1, 2, 3, 4) for c in
-                                 ("F", "Fx", "Fy", "Fz", "T", "Tx", "Ty", "Tz")] + \
-        ["motion1.reaction"]
+    assert header == ["time [s]"] + [
+        f"joint{j}.{c} [{'N' if c[0] == 'F' else 'N*m'}]" for j in (1, 2, 3, 4)
+        for c in ("F", "Fx", "Fy", "Fz", "T", "Tx", "Ty", "Tz")] + ["motion1.reaction [N*m]"]
     reactions = np.loadtxt(out / "reactions.csv", delimiter=",", skiprows=1)
     np.testing.assert_array_equal(reactions, np.column_stack(
         [res.t] + [res.joint(j) for j in (1, 2, 3, 4)] + [res.motion(1)]))
@@ -357,3 +366,23 @@ def test_loadcontrol_units_in_stats_json(tmp_path, capsys):
     units = stats["controller_units"]
     assert (units["time"], units["target"], units["displacement"], units["velocity"],
             units["A"], units["clamped"]) == ("s", "N", "mm", "mm/s", "N/mm", None)
+
+
+def test_a_sweep_says_why_cases_did_not_run(tmp_path, capsys):
+    """Cases that end in `error` are rows of the table and, the first three, lines on
+    standard error with their reason; the exit status is 1."""
+    status = main(["sweep", str(DECK), "--set", "mass=1,2", "-o", str(tmp_path / "s"), "-q"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert status == 1
+    assert len(err) == 2 and all(line.startswith(f"pysolver: case {k} error: mass: sweep "
+                                                 "parameter 'mass': unknown element")
+                                 for k, line in enumerate(err))
+
+
+@pytest.mark.parametrize("argv, start", [
+    (["--column", "foo=bar"], "pysolver: error: --column 'foo': 'bar' must be"),
+    (["--keep", "foo"], "pysolver: error: --keep: unknown status 'foo'")])
+def test_sweep_errors_name_the_option_typed(tmp_path, capsys, argv, start):
+    status, err = _error(capsys, ["sweep", DECK, "--set", f"{PEN}=1e4", "-o", tmp_path / "s",
+                                  "-q", *argv])
+    assert status == 2 and len(err) == 1 and err[0].startswith(start), err

@@ -157,9 +157,14 @@ def test_a_failed_run_is_titled_failed_in_red():
 
 def test_loadcontrol_panel_keeps_its_units():
     fig = _run("loadcontrol_indenter.xml").plot()
-    ax = next(ax for ax in fig.axes if ax.get_title() == "LoadControl 1")
+    ax = next(ax for ax in fig.axes if ax.get_title(loc="right") == "LoadControl 1")
     assert ax.get_ylabel() == "load [N]"
-    assert [a.get_ylabel() for a in fig.axes if a.bbox.bounds == ax.bbox.bounds
-            and a is not ax] == ["velocity [mm/s]"]
+    twins = [a for a in fig.axes if a.bbox.bounds == ax.bbox.bounds and a is not ax]
+    assert [a.get_ylabel() for a in twins] == ["velocity [mm/s]"]
     assert _legend(ax) == ["target load", "measured load", "velocity"]
+    # the legend covers neither the data nor the velocity axis' label
+    fig.canvas.draw()
+    box = ax.get_legend().get_window_extent()
+    assert not box.overlaps(ax.get_window_extent())
+    assert not box.overlaps(twins[0].yaxis.label.get_window_extent())
     assert fig.axes[0].get_ylabel() == "length [mm]"

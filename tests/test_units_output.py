@@ -92,6 +92,15 @@ def test_the_readme_deck_csv_header_saved_and_streamed(particle, tmp_path):
                               "force_L1": "force", "force_L2": "force"}
 
 
+def test_the_npz_holds_the_csv_table_with_its_units(particle, tmp_path):
+    res = particle.run()
+    res.save(tmp_path / "r.npz")
+    with np.load(tmp_path / "r.npz") as npz:
+        assert ",".join(npz["table_columns"]) == README_HEADER
+        np.testing.assert_array_equal(npz["table"], res.columns()[1])
+        np.testing.assert_array_equal(npz["request_1"][:, :4], res.request(1)[:, :4])
+
+
 def test_dataframe_columns_carry_units_and_attrs_map_bare_names(particle):
     pytest.importorskip("pandas", reason="pandas is not installed")
     res = particle.run()

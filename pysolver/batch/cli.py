@@ -172,7 +172,12 @@ def run(args):
     except ValueError as err:
         if isinstance(err, DeckError):
             raise
-        raise _error(str(err)) from None
+        # the API's words for the options (outputs=, keep=) as the command line spells them
+        msg = str(err)
+        for api, flag in (("output ", "--column "), ("keep: ", "--keep: ")):
+            if msg.startswith(api):
+                msg = flag + msg[len(api):]
+        raise _error(msg) from None
     except KeyboardInterrupt:
         print(f"pysolver: interrupted; the cases finished so far are in {out} (run the "
               "same command again to resume)", file=sys.stderr)
@@ -183,7 +188,14 @@ def run(args):
     written = [_table(sw, out)]
     print(sw)
     print(f"wrote {', '.join(written)} and results/ in {out}")
-    return 0 if all(r["status"] in ("ok", "failed") for r in sw.rows) else 1
+    # the cases that did not run to an end, and why (the first few; all are in the table)
+    stuck = [r for r in sw.rows if r["status"] not in ("ok", "failed")]
+    for r in stuck[:3]:
+        print(f"pysolver: case {r['case']} {r['status']}: {r['message']}", file=sys.stderr)
+    if len(stuck) > 3:
+        print(f"pysolver: ... and {len(stuck) - 3} more cases that did not run (see "
+              f"{written[0]})", file=sys.stderr)
+    return 0 if not stuck else 1
 
 
 def _table(sw, out):

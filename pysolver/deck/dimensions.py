@@ -254,3 +254,36 @@ def channel_units(model):
                 out[(req.id, k)] = quantity(None if req.usersub else typer.of(tree), units)
     model._channel_units = out
     return out
+
+
+#: Units of a body's coordinates by the name's last part (Euler parameters have none).
+_BODY_STATES = {**dict.fromkeys(("x", "y", "z"), LENGTH),
+                **dict.fromkeys(("vx", "vy", "vz"), VELOCITY),
+                **dict.fromkeys(("e0", "e1", "e2", "e3"), NONE),
+                **dict.fromkeys(("wx", "wy", "wz"), ANGULAR_VELOCITY)}
+
+
+def state_unit(model, name):
+    """The unit of state `name` (as ``Result.state_names`` names it) in the model's units:
+    bodies' coordinates and velocities, a motion's reaction (a force, a torque for B1..B3)
+    and driven velocity, tracked angles (``rad``); None for the multipliers that hold
+    constraints at the position level (``position_reaction``) and for a joint equation's
+    multiplier, whose unit is the equation's (``res.joint(id)`` gives the reactions)."""
+    owner, _, part = name.partition(".")
+    dim = None
+    if owner.startswith("body"):
+        dim = _BODY_STATES.get(part)
+    elif owner.startswith("motion") and part in ("reaction", "velocity"):
+        turns = model.motions[int(owner[6:])].direction.startswith("B")
+        dim = ((TORQUE if turns else FORCE) if part == "reaction" else
+               (ANGULAR_VELOCITY if turns else VELOCITY))
+    elif part.startswith("angle"):
+        dim = ANGLE
+    return quantity(None if dim is None else Dim(dim), model.units).unit
+
+
+def unit_of(model, kind):
+    """The unit of a kind of quantity (``"force"``, ``"torque"``, ``"length"``, ...; a key
+    of :data:`KINDS`' values) in the model's units."""
+    dim = next(d for d, k in KINDS.items() if k == kind)
+    return quantity(Dim(dim), model.units).unit

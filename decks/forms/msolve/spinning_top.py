@@ -1,7 +1,8 @@
 """A heavy symmetric top: a rigid body whose tip (marker 21) is held at the ground pivot
 (marker 1) by three bilateral Force_Penalty elements (a soft spherical joint). The top
 spins at 200 rad/s about its symmetry axis, tilted 0.3 rad from vertical, and precesses
-under gravity at about m g l / (I3 w3) = 2.76 rad/s (fast-top approximation).
+under gravity at about 3.1 rad/s on average (fast-top approximation m g l / (I3 w3):
+2.76).
 
 pysolver convert wrote this script of msolve classes from spinning_top.xml:
 pysolver.load() reads it, python runs it.
