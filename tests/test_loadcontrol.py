@@ -159,4 +159,4 @@ def test_records_are_saved_and_plotted(tmp_path):
     with np.load(tmp_path / "r.npz") as z:
         np.testing.assert_array_equal(z["controller1_A"], c["A"])
     fig = res.plot()
-    assert any(ax.get_title() == "LoadControl 1" for ax in fig.axes)
+    assert any(ax.get_title(loc="right") == "LoadControl 1" for ax in fig.axes)
