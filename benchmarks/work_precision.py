@@ -180,9 +180,10 @@ def c_program(name, *args):
     return [float(v) for v in out[0].split()], rows
 
 
-def plain_c_ida(tol, repeat):
-    """Seed example 3 in plain C: (steps, nres, njac, seconds, xz)."""
-    (steps, nres, njac, sec), xz = c_program("seed3_ida", repr(tol), repeat)
+def plain_c_ida(tol, repeat, ny=4):
+    """Seed example 3 in plain C: (steps, nres, njac, seconds, xz); `ny` 4 states (x z vx vz)
+    or 6 (the particle's three coordinates, as pysolver integrates a point body)."""
+    (steps, nres, njac, sec), xz = c_program("seed3_ida", repr(tol), repeat, "", ny)
     return int(steps), int(nres), int(njac), sec, xz
 
 

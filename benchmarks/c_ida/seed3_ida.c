@@ -8,6 +8,8 @@
  *        of line 1 and the particle's initial x: a sweep's cases) once, one after another,
  *        REPEAT times over; prints "ncases steps seconds": the total steps of one pass and
  *        the best pass's wall time.
+ *        seed3_ida RTOL REPEAT CASES|"" 6 -> the same with the particle's three coordinates
+ *        (6 states, as pysolver integrates a point body; "" for no cases file).
  */
 #include <math.h>
 #include <stdint.h>
@@ -73,26 +75,69 @@ static int jac(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yyp, N_Vecto
   return 0;
 }
 
+/* The same equations with the particle's three coordinates, as pysolver integrates a point
+ * body (x y z vx vy vz; y carries no force): the comparator for pysolver's own formulation. */
+static int res6(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void* ud) {
+  (void)t; (void)ud;
+  double *y = N_VGetArrayPointer(yy), *yp = N_VGetArrayPointer(yyp), *r = N_VGetArrayPointer(rr);
+  double fx = 0, fz = 0;
+  for (int k = 0; k < 2; k++) {
+    double sx = k ? -1.0 : 1.0, f, fg, fgd;
+    penalty(KL[k], 1 + sx * y[0] - y[2], sx * y[3] - y[5], &f, &fg, &fgd);
+    fx += f * sx;
+    fz -= f;
+  }
+  for (int i = 0; i < 3; i++) r[i] = yp[i] - y[3 + i];
+  r[3] = M * yp[3] - CF * fx;
+  r[4] = M * yp[4];
+  r[5] = M * (yp[5] + GRAV) - CF * fz;
+  return 0;
+}
+
+static int jac6(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yyp, N_Vector rr, SUNMatrix J,
+                void* ud, N_Vector t1, N_Vector t2, N_Vector t3) {
+  (void)t; (void)yyp; (void)rr; (void)ud; (void)t1; (void)t2; (void)t3;
+  double* y = N_VGetArrayPointer(yy);
+  double* a = SUNDenseMatrix_Data(J); /* column-major 6 x 6 */
+#define A(i, j) a[(j) * 6 + (i)]
+  for (int i = 0; i < 36; i++) a[i] = 0.0;
+  for (int i = 0; i < 3; i++) { A(i, i) = cj; A(i, 3 + i) = -1; A(3 + i, 3 + i) = cj * M; }
+  for (int k = 0; k < 2; k++) {
+    double sx = k ? -1.0 : 1.0, f, fg, fgd;
+    double grad[6] = {sx, 0, -1, 0, 0, 0}, gdot_v[6] = {0, 0, 0, sx, 0, -1}, dir[2] = {sx, -1};
+    penalty(KL[k], 1 + sx * y[0] - y[2], sx * y[3] - y[5], &f, &fg, &fgd);
+    for (int i = 0; i < 2; i++)     /* rows: generalized force on x (3) and z (5) */
+      for (int j = 0; j < 6; j++)
+        A(3 + 2 * i, j) -= CF * dir[i] * (fg * grad[j] + fgd * gdot_v[j]);
+  }
+#undef A
+  return 0;
+}
+
+/* States integrated: 4 (x z vx vz) or 6 (x y z vx vy vz). */
+static int NY = 4;
+
 /* One run from x = X0, z = 120 at rest to t = 3 s with outputs every 0.005 s into out (601 x
  * 2); returns its wall seconds (from IDACreate to the last output; a sweep's pass times
  * everything) and sets the step, residual and Jacobian counts. */
 static double run(double rtol, double (*out)[2], long* nst, long* nre, long* nje) {
   SUNContext ctx;
   SUNContext_Create(0, &ctx);
-  N_Vector y = N_VNew_Serial(4, ctx), yp = N_VNew_Serial(4, ctx);
+  N_Vector y = N_VNew_Serial(NY, ctx), yp = N_VNew_Serial(NY, ctx);
   double *yv = N_VGetArrayPointer(y), *ypv = N_VGetArrayPointer(yp);
-  yv[0] = X0; yv[1] = 120; yv[2] = 0; yv[3] = 0;
-  ypv[0] = 0; ypv[1] = 0; ypv[2] = 0; ypv[3] = -GRAV;
+  const int iz = NY == 6 ? 2 : 1; /* where z and its velocity's rate are */
+  for (int i = 0; i < NY; i++) yv[i] = ypv[i] = 0.0;
+  yv[0] = X0; yv[iz] = 120; ypv[NY - 1] = -GRAV;
   struct timespec a, b;
   clock_gettime(CLOCK_MONOTONIC, &a);
   void* mem = IDACreate(ctx);
-  IDAInit(mem, res, 0.0, y, yp);
+  IDAInit(mem, NY == 6 ? res6 : res, 0.0, y, yp);
   IDASStolerances(mem, rtol, rtol);
   IDASetMaxNumSteps(mem, 1000000);
-  SUNMatrix J = SUNDenseMatrix(4, 4, ctx);
+  SUNMatrix J = SUNDenseMatrix(NY, NY, ctx);
   SUNLinearSolver LS = SUNLinSol_Dense(y, J, ctx);
   IDASetLinearSolver(mem, LS, J);
-  IDASetJacFn(mem, jac);
+  IDASetJacFn(mem, NY == 6 ? jac6 : jac);
   IDASetStopTime(mem, 3.0);
   double t;
   out[0][0] = X0; out[0][1] = 120;
@@ -104,7 +149,7 @@ static double run(double rtol, double (*out)[2], long* nst, long* nre, long* nje
     if (t > tp) { /* interpolate: IDA_NORMAL with tout behind tn returns the interpolant */
       IDASolve(mem, tp, &t, y, yp, 1);
     }
-    out[k][0] = yv[0]; out[k][1] = yv[1];
+    out[k][0] = yv[0]; out[k][1] = yv[iz];
   }
   clock_gettime(CLOCK_MONOTONIC, &b);
   IDAGetNumSteps(mem, nst);
@@ -120,7 +165,8 @@ int main(int argc, char** argv) {
   double best = 1e30;
   long nst = 0, nre = 0, nje = 0;
   static double out[601][2];
-  if (argc > 3) { /* a sweep's cases, one pass after another */
+  NY = argc > 4 && atoi(argv[4]) == 6 ? 6 : 4;
+  if (argc > 3 && argv[3][0]) { /* a sweep's cases, one pass after another */
     FILE* fh = fopen(argv[3], "r");
     if (!fh) { perror(argv[3]); return 2; }
     static double cases[100000][2];
