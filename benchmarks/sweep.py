@@ -46,12 +46,13 @@ def hand_loop(cs):
         pysolver.loads(t).run()
 
 
-def plain_c(cs, repeat=3):
-    """The plain C program on the cases: (seconds of the best pass, steps of a pass)."""
+def plain_c(cs, repeat=3, ny=4):
+    """The plain C program on the cases, on `ny` states (4: x z vx vz; 6: the particle's three
+    coordinates, as pysolver integrates it): (seconds of the best pass, steps of a pass)."""
     with tempfile.NamedTemporaryFile("w", suffix=".txt") as fh:
         fh.write("".join(f"{c[PEN]!r} {c[POS]!r}\n" for c in cs))
         fh.flush()
-        (n, steps, sec), _ = c_program("seed3_ida", "1e-06", repeat, fh.name)
+        (n, steps, sec), _ = c_program("seed3_ida", "1e-06", repeat, fh.name, ny)
     assert int(n) == len(cs)
     return sec, int(steps)
 
@@ -72,6 +73,7 @@ def main():
     model.run()
     runs, run_steps = warm_runs(model, cs)
     c_time, c_steps = plain_c(cs)
+    c6_time, c6_steps = plain_c(cs, ny=6)
     hand, _ = timed(lambda: hand_loop(cs[:100]))
     hand /= 100
     serial = float("inf")
@@ -93,7 +95,8 @@ def main():
             ("model.run(params=case), warm", runs), ("sweep, in this process", serial),
             ("sweep, processes=2 (cold start)", cold), ("sweep, processes=2", warm),
             ("sweep, Dask LocalCluster 2 workers", dask_t),
-            ("plain C program, one process", c_time)]
+            ("plain C program, one process", c_time),
+            ("plain C program on 6 states", c6_time)]
     for name, t in rows:
         print(f"{name:>34} {n / t:8.0f} {hand * n / t:12.1f} {serial / t:9.2f}")
     print(f"\nsweep per case / warm model.run() of the same case: {serial / runs:.3f} "
@@ -101,6 +104,8 @@ def main():
     print(f"warm model.run() / plain C program on the same cases: {runs / c_time:.2f} "
           f"({runs / n * 1e6:.0f} us against {c_time / n * 1e6:.0f} us; steps "
           f"{run_steps / n:.0f} against {c_steps / n:.0f} per case; target <= 1.3)")
+    print(f"warm model.run() / the plain C program on 6 states: {runs / c6_time:.2f} "
+          f"({c6_time / n * 1e6:.0f} us, {c6_steps / n:.0f} steps per case)")
 
 
 if __name__ == "__main__":
