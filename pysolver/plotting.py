@@ -128,6 +128,9 @@ def _draw_group(ax, res, group):
     kind, unit, members = group
     for shown, _, values, _, _ in members:
         ax.plot(res.t, values, lw=1.2, label=shown)
+    # whole values on the ticks: an offset (``1e-6-2.942999e1``) is harder to read than
+    # -29.429999 .. -29.430001
+    ax.ticklabel_format(axis="y", useOffset=False)
     _steady_limits(ax, [values for _, _, values, _, _ in members])
     ax.set_ylabel(_label(kind, unit))
     ax.grid(True, alpha=0.3)
@@ -136,8 +139,7 @@ def _draw_group(ax, res, group):
 
 def _steady_limits(ax, series):
     """A panel whose channels all stay within 1e-9 of their size (a spin of 200 rad/s held to
-    1e-11) reads as its value: limits 1 % either side, no offset notation
-    (``1e-10+2e2``) on the axis."""
+    1e-11) reads as its value: limits 1 % either side (not a flat line under 1e-10 ticks)."""
     data = np.concatenate([np.asarray(v, float).ravel() for v in series])
     data = data[np.isfinite(data)]
     if not len(data):
@@ -147,7 +149,6 @@ def _steady_limits(ax, series):
     if hi - lo <= 1e-9 * size and size > 0:
         mid = 0.5 * (lo + hi)
         ax.set_ylim(mid - 0.01 * size, mid + 0.01 * size)
-        ax.ticklabel_format(axis="y", useOffset=False)
 
 
 def _draw_controller(ax, res, lid):

@@ -168,3 +168,17 @@ def test_loadcontrol_panel_keeps_its_units():
     assert not box.overlaps(ax.get_window_extent())
     assert not box.overlaps(twins[0].yaxis.label.get_window_extent())
     assert fig.axes[0].get_ylabel() == "length [mm]"
+
+
+def test_a_small_variation_on_a_large_value_has_whole_tick_labels():
+    """Bricard's energy stays -29.43 J to 1e-6: its ticks read -29.429996 .. -29.430000, not
+    an offset ('1e-6-2.942999e1') that leaves the reader to add it up."""
+    res = _run("joints/iftomm_a04_bricard.xml", progress=False)
+    fig = res.plot()
+    fig.canvas.draw()
+    ax = next(a for a in fig.axes if _legend(a) == ["energy"])
+    assert ax.yaxis.get_offset_text().get_text() == ""
+    low, high = ax.get_ylim()
+    assert -29.4301 < low < high < -29.4299
+    ticks = [t.get_text() for t in ax.get_yticklabels() if t.get_text()]
+    assert all(t.replace("\u2212", "-").startswith("-29.4") for t in ticks), ticks
