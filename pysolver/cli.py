@@ -11,6 +11,8 @@ import math
 import os
 import sys
 
+import numpy as np
+
 from ._version import __version__
 from .deck.loader import load
 from .errors import DeckError, UsageError
@@ -137,7 +139,7 @@ def _write_states(model, res, out):
 
 
 def _columns(t, *blocks):
-    import numpy as np
+    """Time and the blocks as one (n, columns) array."""
     return np.column_stack([np.asarray(t, float).reshape(-1, 1)] +
                            [np.asarray(b, float).reshape(len(t), -1) for b in blocks])
 

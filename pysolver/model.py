@@ -148,11 +148,12 @@ class Model:
     def compile(self, kernel: str | None = None):
         """The :class:`~pysolver.solve.compiled.CompiledModel` for a kind of kernel (as the
         ``kernel`` run option; None: ``PYSOLVER_KERNEL``, else auto), built once and kept."""
-        with imports.timed():
-            from .solve.compiled import CompiledModel  # the facade: compiling comes later
         kind = resolve_kernel(kernel)
         key = kind == "tapes"
         if key not in self._compiled:
+            # the facade: compiling comes later (imported, and timed, only when building)
+            with imports.timed():
+                from .solve.compiled import CompiledModel
             self._compiled[key] = CompiledModel(self, kind)
         return self._compiled[key]
 

@@ -20,10 +20,6 @@ SCHEDULER_TIMEOUT = 5
 _COLUMN = re.compile(r"^[A-Za-z_]\w*=\S+$")
 
 
-def _error(message):
-    return UsageError(message)
-
-
 def add_parser(sub, number):
     """The ``sweep`` sub-command of the ``pysolver`` parser; `number(kind, low, words)` is
     the command's argparse type of numbers (:func:`pysolver.cli.number`)."""
@@ -66,13 +62,13 @@ def _folder_and_columns(args):
     folders = [v for v in args.output if not _COLUMN.match(v)]
     columns = args.column + [v for v in args.output if _COLUMN.match(v)]
     if len(folders) != 1:
-        raise _error("sweep needs an output folder: -o DIR" if not folders else
+        raise UsageError("sweep needs an output folder: -o DIR" if not folders else
                      f"one output folder, not {len(folders)}: {', '.join(folders)}")
     outputs = {}
     for item in columns:
         name, sep, spec = item.partition("=")
         if not sep or not name or not spec:
-            raise _error(f"--column {item!r}: expected NAME=SPEC")
+            raise UsageError(f"--column {item!r}: expected NAME=SPEC")
         outputs[name] = spec
     return folders[0], outputs
 
@@ -80,28 +76,28 @@ def _folder_and_columns(args):
 def _cases(args):
     if args.cases:
         if args.set or args.sample:
-            raise _error("give --cases or --set, not both")
+            raise UsageError("give --cases or --set, not both")
         return _read_cases(args.cases)
     if not args.set:
-        raise _error("no cases: give --set PATH=V1,V2,... (a grid), --sample with --set "
+        raise UsageError("no cases: give --set PATH=V1,V2,... (a grid), --sample with --set "
                      "ranges, or --cases CSV")
     values = {}
     for item in args.set:
         path, sep, rest = item.partition("=")
         if not sep or not rest:
-            raise _error(f"--set {item!r}: expected PATH=V1,V2,...")
+            raise UsageError(f"--set {item!r}: expected PATH=V1,V2,...")
         try:
             values[path] = [_finite(v) for v in rest.split(",")]
         except ValueError:
-            raise _error(f"--set {item!r}: values must be numbers") from None
+            raise UsageError(f"--set {item!r}: values must be numbers") from None
     if args.sample:
         method, _, n = args.sample.partition(":")
         if method not in ("sobol", "lhs") or not n.isdigit():
-            raise _error(f"--sample {args.sample!r}: expected sobol:N or lhs:N")
+            raise UsageError(f"--sample {args.sample!r}: expected sobol:N or lhs:N")
         if int(n) < 1:
-            raise _error(f"--sample {args.sample}: N must be at least 1")
+            raise UsageError(f"--sample {args.sample}: N must be at least 1")
         if any(len(v) != 2 for v in values.values()):
-            raise _error("--sample METHOD:N takes ranges --set PATH=LO,HI")
+            raise UsageError("--sample METHOD:N takes ranges --set PATH=LO,HI")
         return sample({p: tuple(v) for p, v in values.items()}, int(n), method, args.seed)
     return grid(values)
 
@@ -120,21 +116,21 @@ def _read_cases(path):
         header = next(reader, None)
         rows = [r for r in reader if any(c.strip() for c in r)]
     if not header or not any(h.strip() for h in header):
-        raise _error(f"--cases {path}: empty file (expected a header of paths and a row per "
+        raise UsageError(f"--cases {path}: empty file (expected a header of paths and a row per "
                      "case)")
     if not rows:
-        raise _error(f"--cases {path}: no cases (a header and no rows)")
+        raise UsageError(f"--cases {path}: no cases (a header and no rows)")
     cases = []
     for line, row in enumerate(rows, start=2):
         if len(row) != len(header):
-            raise _error(f"--cases {path}: row {line} has {len(row)} cells, the header "
+            raise UsageError(f"--cases {path}: row {line} has {len(row)} cells, the header "
                          f"{len(header)}")
         case = {}
         for name, cell in zip(header, row):
             try:
                 case[name.strip()] = _finite(cell)
             except ValueError:
-                raise _error(f"--cases {path}: row {line}, column {name.strip()!r}: {cell!r} "
+                raise UsageError(f"--cases {path}: row {line}, column {name.strip()!r}: {cell!r} "
                              "is not a number") from None
         cases.append(case)
     return cases
@@ -145,15 +141,15 @@ def _client(address):
     try:
         from dask.distributed import Client
     except ImportError:
-        raise _error("--scheduler needs dask.distributed (pip install \"pysolver[dask]\")") \
+        raise UsageError("--scheduler needs dask.distributed (pip install \"pysolver[dask]\")") \
             from None
     try:
         return Client(address, timeout=SCHEDULER_TIMEOUT)
     except OSError:                     # refused or silent: dask retries until the timeout
-        raise _error(f"--scheduler {address}: no Dask scheduler answered within "
+        raise UsageError(f"--scheduler {address}: no Dask scheduler answered within "
                      f"{SCHEDULER_TIMEOUT} s") from None
     except (ValueError, TypeError) as err:
-        raise _error(f"--scheduler {address}: {err}") from None
+        raise UsageError(f"--scheduler {address}: {err}") from None
 
 
 def run(args):
@@ -168,7 +164,7 @@ def run(args):
                    timeout=args.timeout, outputs=outputs, directory=out,
                    progress=False if args.quiet else None, keep=keep)
     except StorageError as err:
-        raise _error(str(err)) from None
+        raise UsageError(str(err)) from None
     except ValueError as err:
         if isinstance(err, DeckError):
             raise
@@ -177,7 +173,7 @@ def run(args):
         for api, flag in (("output ", "--column "), ("keep: ", "--keep: ")):
             if msg.startswith(api):
                 msg = flag + msg[len(api):]
-        raise _error(msg) from None
+        raise UsageError(msg) from None
     except KeyboardInterrupt:
         print(f"pysolver: interrupted; the cases finished so far are in {out} (run the "
               "same command again to resume)", file=sys.stderr)
