@@ -11,7 +11,10 @@ from helpers import DECKS, TEST_DECKS
 
 FAST_DECKS = ["catenary_bead.xml", "particle_above_line.xml", "particle_between_lines.xml",
               "particle_between_lines_si.xml", "spinning_top.xml", "stiff_penalty_pendulum.xml",
-              "torque_free_spin.xml", "catenary_bead.py", "torque_free_spin.py"]
+              "torque_free_spin.xml", "catenary_bead.py", "torque_free_spin.py",
+              # motions and exact joints: reactions and request rows from C at steps' ends
+              "driven_indenter.xml", "joints/pendulum_revolute.xml", "joints/slider_crank.xml",
+              "joints/spherical_pendulum.xml", "joints/iftomm_a04_bricard.xml"]
 
 TWO_COMMANDS = """<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
   <Reference_Marker id="2" body_id="2" pos_z="1"/>
@@ -88,7 +91,7 @@ def test_a_run_that_fails_is_reported_by_the_general_path(monkeypatch):
 
 
 @pytest.mark.parametrize("name, why", [("sensor_end_condition.xml", "sensors"),
-                                       ("loadcontrol_indenter.xml", "load control, motions"),
+                                       ("loadcontrol_indenter.xml", "load control"),
                                        ("static_pendulum.xml", "a static command")])
 def test_runs_that_need_the_driver_take_it(name, why):
     model = _load(name)

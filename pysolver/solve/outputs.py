@@ -261,9 +261,10 @@ class Printer(Actor):
 
     @property
     def instants(self):
-        """Print times are what the batched path runs through; motion reactions need the
-        Python of every row (they are recomputed from the row's force balance)."""
-        return bool(self.kernel.layout.lam)
+        """None of its own: print times are what the batched path runs through, and every
+        row's request channels and reactions are computed in C (with motions and joints each
+        row is the end of a step, csrc/ida.c)."""
+        return False
 
     # the schedule --------------------------------------------------------------------
     def begin_command(self, t, end, dt):
