@@ -31,7 +31,8 @@
   X(4, IDASetNoInactiveRootWarn) X(4, IDASolve) X(4, IDAGetRootInfo) X(4, IDAGetNumSteps)     \
   X(4, IDAGetNumResEvals) X(4, IDAGetNumJacEvals) X(4, IDAGetNumErrTestFails)                 \
   X(4, IDAGetNumNonlinSolvConvFails) X(4, IDAGetNumGEvals) X(4, IDAGetLastStep) X(4, IDAFree)   \
-  X(4, IDASetId) X(4, IDASetSuppressAlg) X(4, IDAGetCurrentStep) X(7, SUNSparseMatrix)          \
+  X(4, IDASetId) X(4, IDASetSuppressAlg) X(4, IDAGetCurrentStep) X(4, IDAGetCurrentTime) \
+  X(7, SUNSparseMatrix)                                                                     \
   X(7, SUNSparseMatrix_Data) X(7, SUNSparseMatrix_IndexValues)                                \
   X(7, SUNSparseMatrix_IndexPointers) X(8, SUNLinSol_SuperLUMT) X(0, SUNLinSolNewEmpty)          \
   X(3, SUNLinSolGetType_Dense) X(3, SUNLinSolSetup_Dense) X(3, SUNLinSolSolve_Dense)
@@ -509,8 +510,13 @@ int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret,
                  double* yp, int* rootsfound) {
   int n = s->m->ny;
   /* constraints hold at the steps, not on IDA's interpolant between them: with reactions,
-   * every requested time is a step's end */
-  if (s->hit && !onestep && tout < tstop) tstop = tout;
+   * every requested time is a step's end; one the last step already passed (a print time a
+   * rounding error after the restart it began at) is interpolated, as without reactions */
+  if (s->hit && !onestep && tout < tstop) {
+    sunrealtype tn = tout;
+    CALL(s, IDAGetCurrentTime)(s->mem, &tn);
+    tstop = tout < tn ? tstop : tout;
+  }
   int flag = CALL(s, IDASetStopTime)(s->mem, tstop);
   if (flag < 0) return flag;
   flag = CALL(s, IDASolve)(s->mem, tout, tret, s->y, s->yp, onestep ? 2 : 1);
@@ -586,4 +592,100 @@ void ps_ida_stats(psIDA* s, long* out) {
   ida_counters(s, out);
   for (int i = 0; i < 6; i++) out[i] += s->acc[i];
   out[6] = s->limited_at;
+}
+
+/* Run every LoadControl update due at t (ps_control_next(c) <= t), in task order. Returns 1
+ * when one ran, 0 when none was due, -1 when one failed (ctl: its index and code). */
+static int updates_due(psIDA* s, const psRestart* r, psControl* const* c, int nctl, double t,
+                       double* y, double* yp, int* ctl) {
+  int any = 0;
+  for (int i = 0; i < nctl; i++) {
+    if (ps_control_next(c[i]) > t) continue;
+    int rc = ps_control_update(s->m, s->d, r, c[i], t, y, yp);
+    if (rc != PS_OK) {
+      ctl[0] = i;
+      ctl[1] = rc;
+      return -1;
+    }
+    any = 1;
+  }
+  return any;
+}
+
+/* Act at t as the general driver does (Run.act_due): the updates due, then a cold restart of
+ * IDA at the state they made consistent. */
+static int act(psIDA* s, const psRestart* r, psControl* const* c, int nctl, double t, double* y,
+               double* yp, int* fresh, long* nrestarts, int* ctl) {
+  int due = updates_due(s, r, c, nctl, t, y, yp, ctl);
+  if (due < 0) return PS_IDA_CONTROL_FAILED;
+  if (due) {
+    s->d->last_t = t; /* restarts are not step attempts (see ps_residual) */
+    ps_ida_reinit(s, t, y, yp);
+    *fresh = 1;
+    (*nrestarts)++;
+  }
+  return 0;
+}
+
+int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl,
+                      const double* tout, int nout, double tend, int last, double* t, double* y,
+                      double* yp, int* fresh, double* y_out, double* yp_out, double* req_out,
+                      int* nreached, double* tret, long* nrestarts, int* ctl) {
+  int n = s->m->ny, flag = 0, k = 0;
+  size_t row = sizeof(double) * (size_t)n;
+  *nreached = 0;
+  *tret = *t;
+  while (k < nout) {
+    if (ps_interrupted()) return 0;
+    /* IDA stops exactly at the next update, or the command's end */
+    double tstop = tend;
+    for (int i = 0; i < nctl; i++) tstop = fmin(tstop, ps_control_next(c[i]));
+    /* output times a first step passed (Printer.emit_due) */
+    for (; k < nout && tout[k] <= *t; k++) {
+      if (tout[k] == *t) {
+        memcpy(y_out + (long)k * n, y, row);
+        memcpy(yp_out + (long)k * n, yp, row);
+      } else {
+        flag = ps_ida_solve(s, tout[k], tstop, 0, tret, y_out + (long)k * n,
+                            yp_out + (long)k * n, NULL);
+        if (flag < 0) return flag;
+      }
+      row_outputs(s, k, k + 1, tout, y_out, yp_out, req_out);
+      *nreached = k + 1;
+    }
+    if (k == nout) break;
+    flag = act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);
+    if (flag) return flag;
+    s->d->bad_kind = 0;
+    tstop = tend;
+    for (int i = 0; i < nctl; i++) tstop = fmin(tstop, ps_control_next(c[i]));
+    if (*fresh) {
+      /* the first step of a (re)start, toward the stop; the output times it passed are
+       * written at the top of the loop (interpolated, or the step itself at its end) */
+      flag = ps_ida_solve(s, tstop, tstop, 1, tret, y, yp, NULL);
+      *fresh = 0;
+      if (flag < 0) return flag;
+      *t = *tret;
+    } else if (tout[k] <= tstop) {
+      /* the output times up to the stop */
+      for (; k < nout && tout[k] <= tstop; k++) {
+        flag = ps_ida_solve(s, tout[k], tstop, 0, tret, y_out + (long)k * n,
+                            yp_out + (long)k * n, NULL);
+        if (flag < 0) return flag;
+        row_outputs(s, k, k + 1, tout, y_out, yp_out, req_out);
+        *nreached = k + 1;
+      }
+      memcpy(y, y_out + (long)(k - 1) * n, row);
+      memcpy(yp, yp_out + (long)(k - 1) * n, row);
+      *t = *tret;
+    } else {
+      flag = ps_ida_solve(s, tstop, tstop, 0, tret, y, yp, NULL);
+      if (flag < 0) return flag;
+      *t = *tret;
+    }
+  }
+  if (s->stream && ps_stream_flush(s->stream) != 0) s->stream = NULL;
+  /* the command's end: the updates due there */
+  if (last && !ps_interrupted()) return act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);
+  return flag < 0 ? flag : 0;
 }

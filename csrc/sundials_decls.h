@@ -81,6 +81,7 @@ int IDAGetNumNonlinSolvConvFails(void* mem, long* n);
 int IDAGetNumGEvals(void* mem, long* n);
 int IDAGetLastStep(void* mem, sunrealtype* hlast);
 int IDAGetCurrentStep(void* mem, sunrealtype* hcur);
+int IDAGetCurrentTime(void* mem, sunrealtype* tcur);
 void IDAFree(void** mem);
 
 #endif

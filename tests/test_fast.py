@@ -79,6 +79,80 @@ def test_commands_and_first_steps_of_every_length(end, monkeypatch):
     assert res.success and res.t[-1] == 0.9 and np.all(np.diff(res.t) > 0)
 
 
+LOADCONTROL = (DECKS / "loadcontrol_indenter.xml").read_text()
+
+
+def _controlled(update="0.01", end="3.0", dt="0.01", target=None, second=None, tasks=1):
+    """The LoadControl indenter with its update interval, end, print interval, target, a
+    second Simulate command and a second task (on a second indenter) changed."""
+    text = LOADCONTROL.replace('<Parameter name="UpdateTime">0.01</Parameter>',
+                               f'<Parameter name="UpdateTime">{update}</Parameter>')
+    text = text.replace('end_time="3.0" print_interval="0.01"/>',
+                        f'end_time="{end}" print_interval="{dt}"/>' + (second or ""))
+    if target:
+        text = text.replace("IF(t-1: 20*t, 20, IF(t-2: 20, 40, 40))", target)
+    if tasks == 2:
+        body = ('<Reference_Marker id="20" body_id="3" pos_x="5"/>\n'
+                '<Body_Point id="3" cg_id="20" mass="0.02"/>\n'
+                '<Force_Penalty id="2" type="EXPRESSION" expr="-DZ(20)" penalty="50" '
+                'penalty1="0" unilateral="True" smoothing_factor="1e-4"/>\n<Post_Request')
+        task = text[text.index("<Schedule"):text.index("</Schedule>") + len("</Schedule>")]
+        task = task.replace('"material">2<', '"material">3<').replace("20*t", "10*t")
+        text = text.replace("<Post_Request", body, 1).replace("</CustomTasks>",
+                                                              task + "</CustomTasks>")
+    return pysolver.loads(text)
+
+
+def _same_control(a, b):
+    _same_rows(a, b)
+    assert a.stats["nrestarts"] == b.stats["nrestarts"] > 0
+    for lid in a._controllers:
+        for name, values in a.controller(lid).items():
+            assert np.array_equal(values, b.controller(lid)[name], equal_nan=True), name
+
+
+def _same_rows(a, b):
+    for name in ("t", "y", "yp", "_outputs"):
+        assert np.array_equal(getattr(a, name), getattr(b, name), equal_nan=True), name
+    assert (a.success, a.status, a.message) == (b.success, b.status, b.message)
+    assert {k: a.stats[k] for k in _SAME_STATS} == {k: b.stats[k] for k in _SAME_STATS}
+    assert a.meta == b.meta and a.log == b.log and a.events == b.events == []
+
+
+@pytest.mark.parametrize("case", [
+    {},                                                  # updates on the print times
+    {"update": "0.015", "dt": "0.1", "end": "1.0"},      # between them, several per row
+    {"update": "0.25", "dt": "0.01", "end": "1.0"},      # many rows per update
+    {"end": "1.0", "second": '<Simulate analysis_type="Transient" end_time="1.5" '
+                             'print_interval="0.02"/>'},
+    {"end": "1.2", "tasks": 2}])
+def test_load_control_runs_in_c_to_the_bit(case, monkeypatch):
+    """LoadControl's updates in the batched path's C loop (ps_ida_controlled): the general
+    loop's rows, counters, restarts and controller records to the last bit, on every run (the
+    kept IDA object restarts), whatever the update and print intervals, over two Simulate
+    commands and with two tasks."""
+    model = _controlled(**case)
+    assert _takes_fast_path(model)
+    runs = [model.run(progress=False) for _ in range(2)]
+    ref = _general(model, monkeypatch)
+    assert ref.success and len(ref.controller(1)["time"]) > 3
+    for res in runs:
+        _same_control(res, ref)
+
+
+def test_load_control_failures_are_worded_as_the_general_loop(monkeypatch):
+    """A target that turns infinite at t = 0.5 (1 / (TIME - 0.5) is evaluated at the update
+    there): both paths stop at that update with status -700 and the same message, rows and
+    records."""
+    model = _controlled(target="IF(TIME-0.5: 20*TIME, 1/(TIME-0.5), 20)", end="1.0")
+    res = model.run(progress=False)
+    ref = _general(model, monkeypatch)
+    assert not res.success and res.status == -700
+    assert res.message == "LoadControl 1: the target load is inf at t = 0.5"
+    _same_rows(res, ref)
+    assert res.controller(1)["time"][-1] < 0.5
+
+
 def test_a_run_that_fails_is_reported_by_the_general_path(monkeypatch):
     """Too many steps: the batched path reports it in the general loop's words, rows and
     all."""
@@ -91,7 +165,7 @@ def test_a_run_that_fails_is_reported_by_the_general_path(monkeypatch):
 
 
 @pytest.mark.parametrize("name, why", [("sensor_end_condition.xml", "sensors"),
-                                       ("loadcontrol_indenter.xml", "load control"),
+                                       ("loadcontrol_bed.py", "load control, 324 states"),
                                        ("static_pendulum.xml", "a static command")])
 def test_runs_that_need_the_driver_take_it(name, why):
     model = _load(name)

@@ -115,6 +115,16 @@ enum psElement {
 #define PS_OK 0
 #define PS_ERR_NONFINITE 1 /* an expression or force evaluated to NaN or infinity */
 #define PS_ERR_SINGULAR 2  /* a matrix to solve with is singular */
+#define PS_ERR_ASSEMBLY 3  /* the position constraints cannot be held (ps_restart_consistent) */
+/* A LoadControl update's own failures (ps_control_update): its measured load, its target load
+ * or the law's velocity is not finite, or its log is full. */
+#define PS_CTRL_LOAD 10
+#define PS_CTRL_TARGET 11
+#define PS_CTRL_VELOCITY 12
+#define PS_CTRL_LOG 13
+/* Fields of one LoadControl update's log row (pysolver/solve/loadlaw.py, FIELDS): time, target,
+ * measured, filtered, displacement, A, e, Ie, De, velocity, clamped (1 or 0). */
+#define PS_LAW_FIELDS 11
 
 struct psModel;
 
@@ -314,6 +324,110 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
 int ps_consistent_yp(const psModel* m, psData* d, double t, const double* y, double* yp,
                      double* work, int* piv, int iters);
 
+/* How a scene with motions and joints is made consistent again at a restart (csrc/control.c;
+ * pysolver/build/consistent.py's consistent() away from the initial state, dense): the state
+ * indices it works on and its workspace, all allocated by the caller. */
+typedef struct psRestart {
+  int nlam;               /* reactions: motions first, then constraint equations  */
+  const int* lam;         /* (nlam) each reaction's state                         */
+  const int* mu;          /* (nlam) its position multiplier's state, -1 if none   */
+  const int* rate;        /* (nlam) an acceleration motion's driven velocity, -1  */
+  int ndisp;              /* equations held at the position level (mu >= 0)      */
+  const int* disp;        /* (ndisp) their indices into lam                       */
+  int nturn;              /* tracked angles                                       */
+  const int* turns;       /* (nturn) their states                                 */
+  int nu;                 /* the bodies' velocities                               */
+  const int* uidx;        /* (nu) their states                                    */
+  int nrow;               /* the force rows: states that are not algebraic        */
+  const int* row;         /* (nrow) their indices                                 */
+  double* J0;             /* (ny x ny) workspace from here on                     */
+  double* J1;             /* (ny x ny)                                            */
+  double* res;            /* (ny)                                                 */
+  double* res2;           /* (ny)                                                 */
+  double* dx;             /* (ny)                                                 */
+  double* g;              /* (nlam)                                               */
+  double* z;              /* (nlam)                                               */
+  double* z2;             /* (nlam)                                               */
+  double* lamv;           /* (nlam)                                               */
+  double* cc;             /* (nlam x nlam)                                        */
+  double* saddle;         /* ((nrow + nlam)^2)                                    */
+  double* rhs;            /* (nrow + nlam)                                        */
+  int* rows;              /* (nlam)                                               */
+} psRestart;
+
+/* Make (t, y, yp) consistent in place: the reactions zeroed, the tracked angles on their
+ * measured angles, the positions moved onto the position constraints and the velocities onto
+ * the rate rows (each the least change), then the accelerations and the reactions solved for.
+ * Returns PS_OK, PS_ERR_NONFINITE (a kernel evaluation failed, as ps_residual),
+ * PS_ERR_SINGULAR or PS_ERR_ASSEMBLY. */
+int ps_restart_consistent(const psModel* m, psData* d, const psRestart* r, double t, double* y,
+                          double* yp);
+
+/* The motions' and constraints' reactions (nlam, into lam) that balance the force rows at
+ * (t, y, yp), by least squares: what a LoadControl task with load="motion" measures. Returns
+ * PS_OK, PS_ERR_NONFINITE or PS_ERR_SINGULAR. */
+int ps_motion_reactions(const psModel* m, psData* d, const psRestart* r, double t,
+                        const double* y, const double* yp, double* lam);
+
+/* The LoadControl law (seed 002) between updates: its parameters, then its state. loads and
+ * sorted hold window doubles each (allocated by the caller). */
+typedef struct psLaw {
+  double velocity0;       /* the starting velocity                                */
+  double max_velocity;    /* MaxVelocity                                          */
+  double kp, ki;          /* gains                                                */
+  double smooth;          /* a, in (0, 1)                                         */
+  int window;             /* median filter samples (1: off)                       */
+  int has_A;              /* 1 once the load/displacement ratio A is known        */
+  double A, e, ie, e2;    /* the ratio, the smoothed error, its integral, e's
+                             second smoothing                                     */
+  double velocity;        /* the velocity of the current interval                 */
+  double x_onset;         /* displacement at the onset of load                    */
+  int nloads;             /* loads kept for the median                            */
+  double* loads;          /* (window) the last loads, oldest first                */
+  double* sorted;         /* (window) scratch                                     */
+} psLaw;
+
+/* Put the law's state back to its start (its parameters stay). */
+void ps_law_reset(psLaw* w);
+
+/* One update at time t with displacement x from the start, measured load and target load;
+ * writes the PS_LAW_FIELDS fields of its log row into row and returns the velocity for the
+ * next interval (the law of pysolver/solve/loadlaw.py, operation for operation). */
+double ps_law_update(psLaw* w, double t, double x, double load, double target, double* row);
+
+/* One LoadControl task: its law, where it reads and writes in the state, its schedule and
+ * its log (cap rows of PS_LAW_FIELDS, allocated by the caller). */
+typedef struct psControl {
+  psLaw law;
+  int contact;            /* 1: the load is the penalties' force on the body along
+                             the axis; 0: minus the driving motion's reaction     */
+  int q, u;               /* state indices of the body's coordinate and velocity
+                             along the axis                                       */
+  int lam;                /* the driving motion's index among the reactions       */
+  int value;              /* its velocity's slot in d->senval                      */
+  int tape, slot;         /* the target load's expression                         */
+  double dt;              /* UpdateTime                                           */
+  double t0, x0;          /* the start's time and coordinate                      */
+  long n;                 /* the number of the next update                        */
+  double* log;            /* (cap x PS_LAW_FIELDS) one row per update             */
+  long nlog, cap;         /* rows written, rows allocated                         */
+  double bad[3];          /* load, target and velocity of the last update         */
+} psControl;
+
+/* Start a task at (t, y): its schedule, its law's state and log, the starting velocity, and
+ * (t, y, yp) made consistent with it (ps_restart_consistent's codes). */
+int ps_control_start(const psModel* m, psData* d, const psRestart* r, psControl* c, double t,
+                     double* y, double* yp);
+
+/* The time of the task's next update: t0 + n dt. */
+double ps_control_next(const psControl* c);
+
+/* Run the task's update at (t, y, yp): the load, the target, the law (a log row), the new
+ * velocity into d->senval and the state made consistent with it (in place). Returns PS_OK, a
+ * PS_CTRL_* code (c->bad holds the values) or ps_restart_consistent's codes. */
+int ps_control_update(const psModel* m, psData* d, const psRestart* r, psControl* c, double t,
+                      double* y, double* yp);
+
 /* Ctrl-C during a run: ps_interrupt_arm installs a SIGINT handler (saving the previous one)
  * whose first signal makes every later ps_residual fail at once, not recoverably, with the
  * message "interrupted", and whose second ends the process; ps_interrupt_disarm puts the
@@ -472,6 +586,25 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
  * switched on by ps_ida_tune's auto_eta, or SuperLU_MT, whose factorization is kept between
  * runs): call ps_ida_init instead; else IDA's flag. */
 int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
+
+/* ps_ida_controlled's return when a LoadControl update failed. */
+#define PS_IDA_CONTROL_FAILED -2000
+
+/* Advance through one batch of a Simulate command's output times (ending at tend; last: the
+ * command's last batch) with the LoadControl tasks c (nctl, in id order) acting at their
+ * update times, exactly as the general driver does (pysolver/solve/driver.py, Run.
+ * integrate_command): at each update time the updates due (ps_control_update) and a cold
+ * restart, IDA stopping exactly at each update time, one internal step toward the stop after a
+ * restart, and at the end of the command's last batch the updates due there. (*t, y, yp) is
+ * the current state and *fresh whether IDA was just (re)started, both carried from call to
+ * call. Rows as ps_ida_outputs (*nreached of them); *nrestarts counts the restarts. Returns 0,
+ * IDA's flag (< 0) of a failed step with *tret its time, or PS_IDA_CONTROL_FAILED with ctl
+ * the task's index and ps_control_update's code. Returns early, with 0, after Ctrl-C
+ * (ps_interrupted). */
+int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl,
+                      const double* tout, int nout, double tend, int last, double* t, double* y,
+                      double* yp, int* fresh, double* y_out, double* yp_out, double* req_out,
+                      int* nreached, double* tret, long* nrestarts, int* ctl);
 
 /* IDA's counters over the whole run, restarts included: steps, residual evaluations, Jacobian
  * evaluations, error-test failures, nonlinear convergence failures, root-function evaluations,

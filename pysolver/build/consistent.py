@@ -349,3 +349,48 @@ def _move(lay, y, du):
         e, w = y[qa + 3:qa + 7].copy(), du[ua + 3:ua + 6]
         e += 0.5 * G(e) @ w
         y[qa + 3:qa + 7] = e / np.linalg.norm(e)
+
+
+class Restart:
+    """The C form of :func:`consistent` away from the initial state, for dense scenes
+    (``ps_restart_consistent`` and ``ps_motion_reactions``, csrc/control.c): the state indices
+    and the workspace, allocated once per kernel. LoadControl restarts through it on both paths
+    of a run, so the two agree to the bit."""
+
+    def __init__(self, kernel):
+        from .bindings import ffi
+        lay, ny = kernel.layout, kernel.ny
+        ints = {"lam": lay.lam, "mu": lay.mu, "rate": lay.rate,
+                "disp": np.nonzero(np.array(lay.mu, dtype=int) >= 0)[0],
+                "turns": list(lay.turns.values()), "uidx": _velocities(lay),
+                "row": np.setdiff1d(np.arange(ny), lay.algebraic)}
+        nl, nr = len(lay.lam), len(ints["row"])
+        sizes = {"J0": ny * ny, "J1": ny * ny, "res": ny, "res2": ny, "dx": ny, "g": nl,
+                 "z": nl, "z2": nl, "lamv": nl, "cc": nl * nl, "saddle": (nr + nl) ** 2,
+                 "rhs": nr + nl}
+        self.r = r = ffi.new("psRestart *")
+        self.keep = []
+        for name, values in ints.items():
+            arr = np.ascontiguousarray(list(values) or [0], dtype=np.int32)
+            self.keep.append(arr)
+            setattr(r, name, ffi.cast("int *", ffi.from_buffer(arr)))
+        for name, size in sizes.items():
+            arr = np.zeros(max(size, 1))
+            self.keep.append(arr)
+            setattr(r, name, ffi.cast("double *", ffi.from_buffer(arr)))
+        rows = np.zeros(max(nl, 1), dtype=np.int32)
+        self.keep.append(rows)
+        r.rows = ffi.cast("int *", ffi.from_buffer(rows))
+        r.nlam, r.ndisp, r.nturn = nl, len(ints["disp"]), len(ints["turns"])
+        r.nu, r.nrow = len(ints["uidx"]), nr
+        self.lamv = self.keep[len(ints) + list(sizes).index("lamv")]
+
+    @classmethod
+    def of(cls, kernel):
+        """The kernel's Restart (built once), or None for a sparse scene (from
+        SPARSE_THRESHOLD states: :func:`consistent` works there)."""
+        if kernel.ny >= SPARSE_THRESHOLD:
+            return None
+        if getattr(kernel, "_restart", None) is None:
+            kernel._restart = cls(kernel)
+        return kernel._restart

@@ -50,7 +50,7 @@ def deck_actors(model, kernel, log, bar):
     sensors = Sensors(model, kernel, log)
     printer = Printer(kernel, bar)
     printer.watchers = [sensors]
-    controls = [LoadControlTask(kernel, model.controls[lid], k)
+    controls = [LoadControlTask(model, kernel, model.controls[lid], k)
                 for k, lid in enumerate(sorted(model.controls))]
     return sensors, controls, printer
 

@@ -19,8 +19,10 @@ import numpy as np
 
 from .. import settings
 from ..build.bindings import ffi, lib
+from ..build.kernel import UserFailure
 from . import integrator, report
 from .driver import Stop, deck_actors, failure, start_state
+from .loadcontrol import NonFinite
 from .outputs import Grid, Progress, over_budget
 
 #: Whether runs may take the fast path (tests switch it off to compare with the general path).
@@ -43,15 +45,22 @@ def fast_run(compiled, options, actors):
         sensors, controls, printer = deck_actors(model, kernel, [], Progress(0.0, 1.0, False))
         ok = (plan.use_c and all(cmd.analysis == "TRANSIENT" for cmd in model.commands)
               and not any(a.instants for a in (sensors, *controls, printer)))
-        cache[key] = (options, FastRun(model, kernel, options, plan) if ok else None)
+        cache[key] = (options, FastRun(model, kernel, options, plan, controls) if ok else None)
     return cache[key][1]
 
 
 class FastRun:
     """Everything a clean run of one model under one set of options needs, built once."""
 
-    def __init__(self, model, kernel, options, plan):
+    def __init__(self, model, kernel, options, plan, controls=()):
         self.model, self.k, self.options, self.plan = model, kernel, options, plan
+        # LoadControl tasks act at their update times inside the C loop (ps_ida_controlled)
+        self.controls = list(controls)
+        if self.controls:
+            self.ctl = ffi.new("psControl *[]", [task.c for task in self.controls])
+            self.restart = self.controls[0].restart.r
+            self.state = (ffi.new("double *"), np.empty(kernel.ny), np.empty(kernel.ny),
+                          ffi.new("int *"), ffi.new("long *"), ffi.new("int[2]"))
         self.solver = integrator.make(kernel, options, plan, (
             options.h_max or 0.0, options.h_min or 0.0, options.h0_max or 0.0))
         # each command, its start and its print times (those of outputs.Grid, bit for bit) in
@@ -85,32 +94,56 @@ class FastRun:
         ida = self.solver
         try:
             # the initial state (sweep cases change it) and a consistent yp, as the driver
+            k.senval[:] = 0.0                      # as a new run's actors (Sensors) set it
             t0, y0, yp0 = start_state(self.model, k, opts.integr_tol)
+            if self.controls:
+                self.state[0][0] = t0
+            for task in self.controls:             # as the general loop: the tasks start
+                task.start(_State(t0, y0, yp0))
             Y[0], YP[0], REQ[0, :len(k.channels)] = y0, yp0, k.outputs(t0, y0, yp0)
             row, t_run, fresh = 1, time.perf_counter(), True
+            d.last_t = t0
             if stream is not None:
                 stream.rows(T[:1], REQ[:1])
                 lib.ps_ida_set_stream(ida.s, stream.st)
             if lib.ps_ida_rerun(ida.s, t0, fb("double[]", y0), fb("double[]", yp0)) != 0:
                 ida.started = False
                 ida.init_step(t0, y0, yp0)
+            if self.controls:
+                t, y, yp, cfresh, nrestarts, ctl = self.state
+                t[0], y[:], yp[:], cfresh[0], nrestarts[0] = t0, y0, yp0, 1, 0
             for cmd, _, batches in self.commands:
                 d.step_limit = d.ntimes - d.nfail + opts.max_num_steps    # as the driver
-                for times in batches:
-                    flag = lib.ps_ida_outputs(
-                        ida.s, fb("double[]", times), len(times), cmd.end_time, fresh,
-                        fb("double[]", Y[row:]), fb("double[]", YP[row:]),
-                        fb("double[]", REQ[row:]), self.reached, self.tret, self.roots)
+                for i, times in enumerate(batches):
+                    out = (fb("double[]", Y[row:]), fb("double[]", YP[row:]),
+                           fb("double[]", REQ[row:]), self.reached, self.tret)
+                    if self.controls:
+                        flag = lib.ps_ida_controlled(
+                            ida.s, self.restart, self.ctl, len(self.controls),
+                            fb("double[]", times), len(times), cmd.end_time,
+                            i == len(batches) - 1, t, fb("double[]", y), fb("double[]", yp),
+                            cfresh, *out, nrestarts, ctl)
+                    else:
+                        flag = lib.ps_ida_outputs(ida.s, fb("double[]", times), len(times),
+                                                  cmd.end_time, fresh, *out, self.roots)
                     row += self.reached[0]
                     fresh = False
                     if lib.ps_interrupted():
                         raise Stop(False, -600, f"interrupted at t = {T[row - 1]:.6g}")
+                    if flag == lib.PS_IDA_CONTROL_FAILED:
+                        self.controls[ctl[0]].fail(ctl[1], t[0])
                     if flag < 0 or d.user_error or d.steps_exceeded:
                         raise Stop(False, *failure(self.model, k, opts, flag, self.tret[0]))
                     bar.update(T[row - 1])
         except Stop as stop:
             status, message = stop.status, stop.message
+        except NonFinite as err:                     # as the general loop words them
+            status, message = -700, str(err)
+        except UserFailure as err:
+            status, message = -400, f"{err} (t = {self.state[0][0]:.6g})"
         finally:
+            for task in self.controls:
+                log.extend(task.notes())
             d.step_limit = 0
             if stream is not None:
                 lib.ps_ida_set_stream(ida.s, ffi.NULL)
@@ -119,4 +152,13 @@ class FastRun:
         rows = (T[:row], Y[:row], YP[:row], REQ[:row, :len(k.channels)])
         return report.result(self.model, k, self.plan, (used, static, labels), rows,
                              (status == 0, status, message), (t_start, t_run or t_end, t_end),
-                             self.solver.counters(), log, steps=int(k.d.ntimes - k.d.nfail))
+                             self.solver.counters(), log, steps=int(k.d.ntimes - k.d.nfail),
+                             nrestarts=int(self.state[4][0]) if self.controls else 0,
+                             controllers={task.lc.id: task.records() for task in self.controls})
+
+
+class _State:
+    """The run state a task's start reads and makes consistent (in place), as the driver's."""
+
+    def __init__(self, t, y, yp):
+        self.t, self.y, self.yp = t, y, yp

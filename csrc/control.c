@@ -1,0 +1,400 @@
+/* LoadControl in C (seed 002): the controller's law (pysolver/solve/loadlaw.py is its reference
+ * in Python and its documentation), one task's update (load, target, law, the new velocity made
+ * consistent with the state) and the restart that makes a scene with motions and joints
+ * consistent again (pysolver/build/consistent.py's consistent() away from the initial state,
+ * dense). The general driver and the batched path both call these, so their runs agree to the
+ * last bit. */
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+
+/* Newton steps of the position and rate corrections, and of the accelerations (as
+ * consistent.py: its iters and the fixed 4). */
+#define PS_RESTART_ITERS 8
+#define PS_RESTART_ACC_ITERS 4
+
+/* The median of v[0..n-1] (sorted into tmp), as Python's statistics.median. */
+static double median(const double* v, int n, double* tmp) {
+  memcpy(tmp, v, sizeof(double) * (size_t)n);
+  for (int i = 1; i < n; i++) {
+    double x = tmp[i];
+    int j = i - 1;
+    for (; j >= 0 && tmp[j] > x; j--) tmp[j + 1] = tmp[j];
+    tmp[j + 1] = x;
+  }
+  return n % 2 ? tmp[n / 2] : (tmp[n / 2 - 1] + tmp[n / 2]) / 2.0;
+}
+
+/* A_t from A_{t-1}, x and the filtered load L (loadlaw.LoadLaw._ratio). */
+static void law_ratio(psLaw* w, double x, double L) {
+  if (!w->has_A) {
+    if (L != 0.0 && x != 0.0) {
+      w->A = L / x;
+      w->has_A = 1;
+    }
+    return;
+  }
+  double prev = w->A, a = w->smooth;
+  if (L == 0.0 || x == 0.0) return;
+  double denom = L * L + (prev * x) * (prev * x), pp = prev * prev;
+  if (denom == 0.0 || pp == 0.0) return;
+  double lam = 2.0 * (1.0 - a) / denom, gam = a / pp;
+  double den = lam * x * x + gam;
+  if (den == 0.0 || !isfinite(den)) return;
+  double next = (lam * L * x + gam * prev) / den;
+  if (!isfinite(next) || next == 0.0 || (next > 0) != (prev > 0)) return;
+  w->A = next;
+}
+
+void ps_law_reset(psLaw* w) {
+  w->has_A = 0;
+  w->A = 0.0;
+  w->e = w->ie = w->e2 = 0.0;
+  w->velocity = w->velocity0;
+  w->x_onset = 0.0;
+  w->nloads = 0;
+}
+
+double ps_law_update(psLaw* w, double t, double x, double load, double target, double* row) {
+  double a = w->smooth;
+  if (w->nloads == w->window) {
+    memmove(w->loads, w->loads + 1, sizeof(double) * (size_t)(w->window - 1));
+    w->nloads--;
+  }
+  w->loads[w->nloads++] = load;
+  double L = w->window > 1 ? median(w->loads, w->nloads, w->sorted) : load;
+  if (!w->has_A && L == 0.0) w->x_onset = x;
+  x = x - w->x_onset;
+  law_ratio(w, x, L);
+  double de = 0.0;
+  int clamped = 0;
+  if (w->has_A) {
+    double err = (target - L) / w->A;
+    w->e = (1.0 - a) * err + a * w->e;
+    double ie = err + w->ie;
+    w->e2 = (1.0 - a) * w->e + a * w->e2;
+    de = (1.0 - a) / a * (w->e - w->e2);
+    double v = w->kp * w->e + w->ki * ie + 0.25 * w->ki * de;
+    clamped = fabs(v) > w->max_velocity;
+    if (clamped)
+      v = copysign(w->max_velocity, v);
+    else
+      w->ie = ie;
+    w->velocity = v;
+  }
+  double out[PS_LAW_FIELDS] = {t,   target, load, L,          x,      w->has_A ? w->A : NAN,
+                               w->e, w->ie, de,   w->velocity, clamped};
+  memcpy(row, out, sizeof(out));
+  return w->velocity;
+}
+
+/* Solve A x = b in place by LU with partial pivoting (A n x n, row-major, overwritten). */
+static int solve(int n, double* A, double* b) {
+  for (int k = 0; k < n; k++) {
+    int p = k;
+    for (int i = k + 1; i < n; i++)
+      if (fabs(A[(long)i * n + k]) > fabs(A[(long)p * n + k])) p = i;
+    double pivot = A[(long)p * n + k];
+    if (pivot == 0.0 || !isfinite(pivot)) return PS_ERR_SINGULAR;
+    if (p != k) {
+      for (int j = 0; j < n; j++) {
+        double tmp = A[(long)k * n + j];
+        A[(long)k * n + j] = A[(long)p * n + j];
+        A[(long)p * n + j] = tmp;
+      }
+      double tmp = b[k];
+      b[k] = b[p];
+      b[p] = tmp;
+    }
+    for (int i = k + 1; i < n; i++) {
+      double f = A[(long)i * n + k] / pivot;
+      if (f == 0.0) continue;
+      for (int j = k + 1; j < n; j++) A[(long)i * n + j] -= f * A[(long)k * n + j];
+      b[i] -= f * b[k];
+    }
+  }
+  for (int i = n - 1; i >= 0; i--) {
+    double s = b[i];
+    for (int j = i + 1; j < n; j++) s -= A[(long)i * n + j] * b[j];
+    b[i] = s / A[(long)i * n + i];
+  }
+  return PS_OK;
+}
+
+/* The largest magnitude of v[idx[k]] (idx NULL: v[k]) over k < n. */
+static double maxabs(const double* v, const int* idx, int n) {
+  double m = 0.0;
+  for (int k = 0; k < n; k++) m = fmax(m, fabs(v[idx ? idx[k] : k]));
+  return m;
+}
+
+/* The least-norm x (written into the state indices cols of dx, which is zeroed first) with
+ * J[rows, cols] x = rhs: x = C^T (C C^T)^-1 rhs, C = J[rows, cols] (J row-major ny x ny). */
+static int least_change(const psRestart* r, int ny, const double* J, const int* rows, int nr,
+                        const int* cols, int nc, const double* rhs, double* dx) {
+  double* CC = r->cc;
+  double* z = r->z;
+  for (int i = 0; i < nr; i++) {
+    for (int j = 0; j < nr; j++) {
+      double s = 0.0;
+      for (int k = 0; k < nc; k++)
+        s += J[(long)rows[i] * ny + cols[k]] * J[(long)rows[j] * ny + cols[k]];
+      CC[(long)i * nr + j] = s;
+    }
+    z[i] = rhs[i];
+  }
+  if (solve(nr, CC, z) != PS_OK) return PS_ERR_SINGULAR;
+  memset(dx, 0, sizeof(double) * (size_t)ny);
+  for (int k = 0; k < nc; k++) {
+    double s = 0.0;
+    for (int i = 0; i < nr; i++) s += J[(long)rows[i] * ny + cols[k]] * z[i];
+    if (!isfinite(s)) return PS_ERR_SINGULAR;
+    dx[cols[k]] = s;
+  }
+  return PS_OK;
+}
+
+/* q += N(q) du: translate by du's velocities, rotate by its body angular velocities (Euler
+ * parameters renormalised), as consistent._move. */
+static void move(const psModel* m, double* y, const double* du) {
+  static const int gi[4][3] = {{1, 2, 3}, {0, 3, 2}, {3, 0, 1}, {2, 1, 0}};
+  static const double gs[4][3] = {{-1, -1, -1}, {1, -1, 1}, {1, 1, -1}, {-1, 1, 1}};
+  for (int b = 0; b < m->nbody; b++) {
+    int qa = m->body_qadr[b], ua = m->body_uadr[b];
+    for (int i = 0; i < 3; i++) y[qa + i] += du[ua + i];
+    if (m->body_type[b] != PS_BODY_RIGID) continue;
+    double e[4], w[3] = {du[ua + 3], du[ua + 4], du[ua + 5]}, norm = 0.0;
+    for (int a = 0; a < 4; a++) {
+      double s = 0.0;
+      for (int k = 0; k < 3; k++) s += gs[a][k] * y[qa + 3 + gi[a][k]] * w[k];
+      e[a] = y[qa + 3 + a] + 0.5 * s;
+      norm += e[a] * e[a];
+    }
+    norm = sqrt(norm);
+    for (int a = 0; a < 4; a++) y[qa + 3 + a] = e[a] / norm;
+  }
+}
+
+/* Each tracked angle onto its measured angle (its row is the wrapped error). */
+static int track_turns(const psModel* m, psData* d, const psRestart* r, double t, double* y,
+                       const double* yp) {
+  if (!r->nturn) return PS_OK;
+  int rc = ps_residual(m, d, t, y, yp, r->res);
+  if (rc != PS_OK) return rc;
+  for (int k = 0; k < r->nturn; k++) y[r->turns[k]] += r->res[r->turns[k]];
+  return PS_OK;
+}
+
+/* Step 1: positions (consistent._assemble away from the initial state). */
+static int assemble(const psModel* m, psData* d, const psRestart* r, double t, double* y,
+                    const double* yp) {
+  int ny = m->ny, nd = r->ndisp;
+  if (!nd) return PS_OK;
+  for (int it = 0; it <= PS_RESTART_ITERS; it++) {
+    int rc = ps_residual(m, d, t, y, yp, r->res);
+    if (rc != PS_OK) return rc;
+    for (int k = 0; k < nd; k++) r->g[k] = r->res[r->mu[r->disp[k]]];
+    double gmax = maxabs(r->g, NULL, nd);
+    if (it < PS_RESTART_ITERS && gmax <= 1e-13 * (1.0 + maxabs(y, NULL, ny))) return PS_OK;
+    if (it == PS_RESTART_ITERS)
+      return gmax <= 1e-9 * (1.0 + maxabs(y, NULL, ny)) ? PS_OK : PS_ERR_ASSEMBLY;
+    rc = ps_jacobian(m, d, t, y, yp, 0.0, r->J0);
+    if (rc != PS_OK) return rc;
+    for (int k = 0; k < nd; k++) {
+      r->rows[k] = r->lam[r->disp[k]];
+      r->g[k] = -r->g[k];
+    }
+    if (least_change(r, ny, r->J0, r->rows, nd, r->uidx, r->nu, r->g, r->dx) != PS_OK)
+      return PS_ERR_SINGULAR;
+    move(m, y, r->dx);
+  }
+  return PS_OK;
+}
+
+/* Step 2: the rate rows (acceleration motions take w = g', the others change u). */
+static int rates(const psModel* m, psData* d, const psRestart* r, double t, double* y,
+                 const double* yp) {
+  int ny = m->ny, nl = r->nlam, nh = 0;
+  int rc = ps_residual(m, d, t, y, yp, r->res);
+  if (rc != PS_OK) return rc;
+  for (int k = 0; k < nl; k++) {
+    r->g[k] = r->res[r->lam[k]];
+    if (r->rate[k] >= 0) {
+      y[r->rate[k]] += r->g[k];
+      r->g[k] = 0.0;
+    } else {
+      r->rows[nh++] = r->lam[k];
+    }
+  }
+  for (int it = 0; it < (nh ? PS_RESTART_ITERS : 0); it++) {
+    rc = ps_jacobian(m, d, t, y, yp, 0.0, r->J0);
+    if (rc != PS_OK) return rc;
+    for (int k = 0, h = 0; k < nl; k++)
+      if (r->rate[k] < 0) r->z2[h++] = -r->g[k];
+    if (least_change(r, ny, r->J0, r->rows, nh, r->uidx, r->nu, r->z2, r->dx) != PS_OK)
+      return PS_ERR_SINGULAR;
+    for (int k = 0; k < r->nu; k++) y[r->uidx[k]] += r->dx[r->uidx[k]];
+    rc = ps_residual(m, d, t, y, yp, r->res);
+    if (rc != PS_OK) return rc;
+    double held = 0.0;
+    for (int k = 0; k < nl; k++) {
+      r->g[k] = r->res[r->lam[k]];
+      if (r->rate[k] < 0) held = fmax(held, fabs(r->g[k]));
+    }
+    if (held <= 1e-14 * (1.0 + maxabs(y, r->uidx, r->nu))) break;
+  }
+  return PS_OK;
+}
+
+/* Step 3: accelerations and reactions from the residual rows and the time derivative of the
+ * rate rows, a saddle-point system. */
+static int accelerations(const psModel* m, psData* d, const psRestart* r, double t, double* y,
+                         double* yp) {
+  int ny = m->ny, nr = r->nrow, nl = r->nlam, n = nr + nl;
+  double* S = r->saddle;
+  double* z = r->rhs;
+  for (int it = 0; it < PS_RESTART_ACC_ITERS; it++) {
+    int rc = ps_jacobian(m, d, t, y, yp, 0.0, r->J0);
+    if (rc == PS_OK) rc = ps_jacobian(m, d, t, y, yp, 1.0, r->J1);
+    if (rc == PS_OK) rc = ps_residual(m, d, t, y, yp, r->res);
+    double h = 1e-6 * fmax(1.0, fabs(t));
+    if (rc == PS_OK) rc = ps_residual(m, d, t + h, y, yp, r->res2);
+    for (int k = 0; k < nl && rc == PS_OK; k++) r->g[k] = r->res2[r->lam[k]];
+    if (rc == PS_OK) rc = ps_residual(m, d, t - h, y, yp, r->res2);
+    if (rc != PS_OK) return rc;
+    for (int i = 0; i < nr; i++) {
+      int ri = r->row[i];
+      for (int j = 0; j < nr; j++) {
+        long e = (long)ri * ny + r->row[j];
+        S[(long)i * n + j] = r->J1[e] - r->J0[e];
+      }
+      for (int j = 0; j < nl; j++) S[(long)i * n + nr + j] = r->J0[(long)ri * ny + r->lam[j]];
+      z[i] = -r->res[ri];
+    }
+    for (int i = 0; i < nl; i++) {
+      int li = r->lam[i];
+      for (int j = 0; j < nr; j++) S[(long)(nr + i) * n + j] = r->J0[(long)li * ny + r->row[j]];
+      for (int j = 0; j < nl; j++) S[(long)(nr + i) * n + nr + j] = 0.0;
+      double jyp = 0.0;
+      for (int j = 0; j < ny; j++) jyp += r->J0[(long)li * ny + j] * yp[j];
+      double rt = (r->g[i] - r->res2[li]) / (2 * h);
+      z[nr + i] = -(jyp + rt);
+    }
+    if (solve(n, S, z) != PS_OK) return PS_ERR_SINGULAR;
+    double step = 0.0, size = 0.0;
+    for (int i = 0; i < nr; i++) yp[r->row[i]] += z[i];
+    for (int i = 0; i < nl; i++) y[r->lam[i]] += z[nr + i];
+    step = maxabs(z, NULL, n);
+    if (!isfinite(step)) return PS_ERR_SINGULAR;
+    size = fmax(maxabs(yp, NULL, ny), maxabs(y, r->lam, nl));
+    if (step <= 1e-14 * (1.0 + size)) break;
+  }
+  return PS_OK;
+}
+
+int ps_restart_consistent(const psModel* m, psData* d, const psRestart* r, double t, double* y,
+                          double* yp) {
+  for (int k = 0; k < r->nlam; k++) {
+    y[r->lam[k]] = 0.0;
+    if (r->mu[k] >= 0) y[r->mu[k]] = 0.0;
+  }
+  memset(yp, 0, sizeof(double) * (size_t)m->ny);
+  int rc = track_turns(m, d, r, t, y, yp);
+  if (rc == PS_OK) rc = assemble(m, d, r, t, y, yp);
+  if (rc == PS_OK) rc = track_turns(m, d, r, t, y, yp);
+  if (rc == PS_OK) rc = rates(m, d, r, t, y, yp);
+  if (rc == PS_OK) rc = accelerations(m, d, r, t, y, yp);
+  return rc;
+}
+
+int ps_motion_reactions(const psModel* m, psData* d, const psRestart* r, double t,
+                        const double* y, const double* yp, double* lam) {
+  int ny = m->ny, nr = r->nrow, nl = r->nlam;
+  double* yy = r->dx;
+  memcpy(yy, y, sizeof(double) * (size_t)ny);
+  for (int k = 0; k < nl; k++) {
+    yy[r->lam[k]] = 0.0;
+    if (r->mu[k] >= 0) yy[r->mu[k]] = 0.0;
+  }
+  int rc = ps_residual(m, d, t, yy, yp, r->res);
+  if (rc == PS_OK) rc = ps_jacobian(m, d, t, yy, yp, 0.0, r->J0);
+  if (rc != PS_OK) return rc;
+  /* least squares C x = -r over the force rows by Householder QR (C: nr x nl, nr >= nl) */
+  double* C = r->saddle;
+  double* b = r->rhs;
+  for (int i = 0; i < nr; i++) {
+    for (int j = 0; j < nl; j++) C[(long)i * nl + j] = r->J0[(long)r->row[i] * ny + r->lam[j]];
+    b[i] = -r->res[r->row[i]];
+  }
+  for (int k = 0; k < nl; k++) {
+    double norm = 0.0;
+    for (int i = k; i < nr; i++) norm += C[(long)i * nl + k] * C[(long)i * nl + k];
+    norm = sqrt(norm);
+    if (!(norm > 0.0) || !isfinite(norm)) return PS_ERR_SINGULAR;
+    double alpha = C[(long)k * nl + k] > 0 ? -norm : norm;
+    C[(long)k * nl + k] -= alpha;
+    double vv = 0.0;
+    for (int i = k; i < nr; i++) vv += C[(long)i * nl + k] * C[(long)i * nl + k];
+    for (int j = k + 1; j <= nl; j++) {
+      double s = 0.0;
+      for (int i = k; i < nr; i++) s += C[(long)i * nl + k] * (j < nl ? C[(long)i * nl + j] : b[i]);
+      double f = 2.0 * s / vv;
+      for (int i = k; i < nr; i++) {
+        if (j < nl)
+          C[(long)i * nl + j] -= f * C[(long)i * nl + k];
+        else
+          b[i] -= f * C[(long)i * nl + k];
+      }
+    }
+    r->g[k] = alpha; /* R's diagonal */
+  }
+  for (int k = nl - 1; k >= 0; k--) {
+    double s = b[k];
+    for (int j = k + 1; j < nl; j++) s -= C[(long)k * nl + j] * lam[j];
+    lam[k] = s / r->g[k];
+  }
+  return PS_OK;
+}
+
+int ps_control_start(const psModel* m, psData* d, const psRestart* r, psControl* c, double t,
+                     double* y, double* yp) {
+  c->t0 = t;
+  c->x0 = y[c->q];
+  c->n = 1;
+  c->nlog = 0;
+  ps_law_reset(&c->law);
+  d->senval[c->value] = c->law.velocity;
+  return ps_restart_consistent(m, d, r, t, y, yp);
+}
+
+double ps_control_next(const psControl* c) { return c->t0 + (double)c->n * c->dt; }
+
+int ps_control_update(const psModel* m, psData* d, const psRestart* r, psControl* c, double t,
+                      double* y, double* yp) {
+  double load;
+  int rc;
+  if (c->contact) {
+    rc = ps_penalty_loads(m, d, t, y, yp, r->res2);
+    load = r->res2[c->u];
+  } else {
+    rc = ps_motion_reactions(m, d, r, t, y, yp, r->lamv);
+    load = -r->lamv[c->lam];
+  }
+  if (rc != PS_OK) return rc;
+  double target = ps_eval_tape(m, d, c->tape, c->slot, t, y, yp);
+  c->bad[0] = load;
+  c->bad[1] = target;
+  if (!isfinite(load)) return PS_CTRL_LOAD;
+  if (!isfinite(target)) return PS_CTRL_TARGET;
+  if (c->nlog >= c->cap) return PS_CTRL_LOG;
+  double v = ps_law_update(&c->law, t, y[c->q] - c->x0, load, target,
+                           c->log + c->nlog * PS_LAW_FIELDS);
+  c->nlog++;
+  c->bad[2] = v;
+  if (!isfinite(v)) return PS_CTRL_VELOCITY;
+  d->senval[c->value] = v;
+  rc = ps_restart_consistent(m, d, r, t, y, yp);
+  c->n++;
+  return rc;
+}
