@@ -160,3 +160,46 @@ def test_records_are_saved_and_plotted(tmp_path):
         np.testing.assert_array_equal(z["controller1_A"], c["A"])
     fig = res.plot()
     assert any(ax.get_title(loc="right") == "LoadControl 1" for ax in fig.axes)
+
+
+@pytest.mark.parametrize("name", ["joints/slider_crank.xml", "joints/spherical_pendulum.xml",
+                                  "driven_indenter.xml", "joints/iftomm_a04_bricard.xml"])
+def test_the_c_restart_is_consistent_in_python(name):
+    """The restart LoadControl's updates take in C (ps_restart_consistent) against
+    consistent() in Python away from the start, from a state whose positions (1e-4) and
+    velocities (1e-2) are off the constraints: the same y and yp to 1e-9 of their size, the
+    position rows then zero to 1e-10 and the force rows to 1e-8 (the rate rows hold
+    g' + c lam, c the compliance); and
+    ps_motion_reactions against consistent.reactions (least squares), 1e-9."""
+    from pysolver.build.bindings import ffi, lib
+    from pysolver.build.consistent import Restart, consistent, reactions
+    model = pysolver.load(DECKS / name)
+    k = model.compile().kernel
+    res = model.run(progress=False)
+    rng = np.random.default_rng(5)
+    y0 = res.y[len(res.t) // 2].copy()
+    lay = k.layout
+    for qa, ua in zip(lay.qadr, lay.uadr):
+        y0[qa:qa + 3] += 1e-4 * rng.standard_normal(3)
+        y0[ua:ua + 3] += 1e-2 * rng.standard_normal(3)
+    t = float(res.t[len(res.t) // 2])
+    y_py = y0.copy()
+    yp_py = consistent(k, t, y_py)
+    y_c, yp_c = y0.copy(), np.zeros_like(y0)
+    rs = Restart.of(k)
+    fb = ffi.from_buffer
+    assert lib.ps_restart_consistent(k.m, k.d, rs.r, t, fb("double[]", y_c),
+                                     fb("double[]", yp_c)) == lib.PS_OK
+    for got, want in ((y_c, y_py), (yp_c, yp_py)):
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-9 * (1 + np.abs(want).max()))
+    r = k.residual_array(t, y_c, yp_c)
+    held = [m for m in lay.mu if m >= 0]
+    force = np.setdiff1d(np.arange(k.ny), lay.algebraic)
+    assert (np.abs(r[held]).max() if held else 0.0) <= 1e-10
+    assert np.abs(r[force]).max() <= 1e-8 * (1 + np.abs(yp_c).max())
+    lam = np.zeros(max(len(lay.lam), 1))
+    assert lib.ps_motion_reactions(k.m, k.d, rs.r, t, fb("double[]", y_c), fb("double[]", yp_c),
+                                   fb("double[]", lam)) == lib.PS_OK
+    want = reactions(k, t, y_c, yp_c)
+    np.testing.assert_allclose(lam[:len(want)], want, rtol=0,
+                               atol=1e-9 * (1 + np.abs(want).max()))

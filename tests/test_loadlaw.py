@@ -148,3 +148,52 @@ def test_a_ratio_update_that_underflows_keeps_the_last_one():
     law.update(0.0, -1e-170, 1e-170, 1.0)         # first A = -1
     law.update(1.0, -2e-170, 1e-170, 1.0)         # L^2 and (A x)^2 are below 1e-323
     assert law.A == -1.0 and math.isfinite(law.velocity)
+
+
+def _c_law(params):
+    """The C law (ps_law_update, csrc/control.c) with `params`; returns (law, step) where
+    step(t, x, load, target) runs one update and returns its log row."""
+    from pysolver.build.bindings import ffi, lib
+    w = ffi.new("psLaw *")
+    w.velocity0, w.max_velocity, w.kp, w.ki = (params.velocity, params.max_velocity, params.kp,
+                                               params.ki)
+    w.smooth, w.window = params.smooth, params.median_window
+    buffers = np.zeros(params.median_window), np.zeros(params.median_window)
+    w.loads, w.sorted = (ffi.cast("double *", ffi.from_buffer(b)) for b in buffers)
+    lib.ps_law_reset(w)
+    row = np.zeros(len(FIELDS))
+
+    def step(t, x, load, target):
+        lib.ps_law_update(w, t, x, load, target, ffi.cast("double *", ffi.from_buffer(row)))
+        return row.copy()
+    step.keep = buffers
+    return w, step
+
+
+@pytest.mark.parametrize("window", [1, 4, 5])
+def test_the_c_law_is_the_python_law(window):
+    """The law the runs use is C's (both paths of a run call it); this module's Python is its
+    reference: on the noisy indentation with contact lost and regained, sign flips refused and
+    the clamp reached, every logged field agrees to 1e-14 (relative to the field's size) in
+    every update."""
+    rng = np.random.default_rng(11)
+    n = 300
+    x = -np.concatenate([np.zeros(5), np.cumsum(rng.uniform(0, 2e-3, n - 5))])
+    L = 5e3 * (-x) ** 1.2 * (1 + 0.2 * rng.standard_normal(n))
+    L[:5] = 0.0
+    L[100:104] = 0.0                       # contact lost for a while
+    L[150] = -L[150]                       # a load that would flip A's sign
+    target = 60.0 * np.linspace(0, 1, n)
+    params = LawParams(velocity=-0.1, max_velocity=0.05, kp=20.0, ki=2.0, smooth=0.9,
+                       median_window=window)
+    law, (w, step) = LoadLaw(params), _c_law(params)
+    rows = []
+    for k in range(n):
+        law.update(k * 1e-2, x[k], L[k], target[k])
+        rows.append(step(k * 1e-2, x[k], L[k], target[k]))
+    want, got = np.array(law.log, dtype=float), np.array(rows)
+    assert np.array_equal(np.isnan(got), np.isnan(want))
+    assert 0 < want[:, FIELDS.index("clamped")].sum() < n      # the clamp acted, not always
+    scale = np.nanmax(np.abs(want), axis=0) + 1e-300
+    assert np.all(np.nan_to_num(np.abs(got - want)) <= 1e-14 * scale)
+    assert w.velocity == got[-1, FIELDS.index("velocity")]
