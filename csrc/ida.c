@@ -612,80 +612,111 @@ static int updates_due(psIDA* s, const psRestart* r, psControl* const* c, int nc
   return any;
 }
 
-/* Act at t as the general driver does (Run.act_due): the updates due, then a cold restart of
- * IDA at the state they made consistent. */
+/* A cold restart of IDA at (t, y, yp), as the general driver's Run.start. */
+static void restart(psIDA* s, double t, const double* y, const double* yp, int* fresh,
+                    long* nrestarts) {
+  s->d->last_t = t; /* restarts are not step attempts (see ps_residual) */
+  ps_ida_reinit(s, t, y, yp);
+  *fresh = 1;
+  (*nrestarts)++;
+}
+
+/* Act at t as the general driver does (Run.act_due): the updates due, then a restart. */
 static int act(psIDA* s, const psRestart* r, psControl* const* c, int nctl, double t, double* y,
                double* yp, int* fresh, long* nrestarts, int* ctl) {
   int due = updates_due(s, r, c, nctl, t, y, yp, ctl);
   if (due < 0) return PS_IDA_CONTROL_FAILED;
-  if (due) {
-    s->d->last_t = t; /* restarts are not step attempts (see ps_residual) */
-    ps_ida_reinit(s, t, y, yp);
-    *fresh = 1;
-    (*nrestarts)++;
-  }
+  if (due) restart(s, t, y, yp, fresh, nrestarts);
   return 0;
 }
 
-int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl,
+/* Write the rows of the output times from k on that lie at or before *t (Printer.emit_due):
+ * the current state at *t itself, IDA's interpolant before it. Returns the next row, or -1
+ * after a failed interpolation (IDA's flag in *flag). */
+static int emit_due(psIDA* s, const double* tout, int nout, int k, double tstop, double t,
+                    const double* y, const double* yp, double* y_out, double* yp_out,
+                    double* req_out, int* nreached, double* tret, int* flag) {
+  int n = s->m->ny;
+  size_t row = sizeof(double) * (size_t)n;
+  for (; k < nout && tout[k] <= t; k++) {
+    if (tout[k] == t) {
+      memcpy(y_out + (long)k * n, y, row);
+      memcpy(yp_out + (long)k * n, yp, row);
+    } else {
+      *flag = ps_ida_solve(s, tout[k], tstop, 0, tret, y_out + (long)k * n, yp_out + (long)k * n,
+                           NULL);
+      if (*flag < 0) return -1;
+    }
+    row_outputs(s, k, k + 1, tout, y_out, yp_out, req_out);
+    *nreached = k + 1;
+  }
+  return k;
+}
+
+int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,
                       const double* tout, int nout, double tend, int last, double* t, double* y,
-                      double* yp, int* fresh, double* y_out, double* yp_out, double* req_out,
-                      int* nreached, double* tret, long* nrestarts, int* ctl) {
+                      double* yp, int* fresh, double* t_out, double* y_out, double* yp_out,
+                      double* req_out, int* nreached, double* tret, long* nrestarts, int* ctl) {
   int n = s->m->ny, flag = 0, k = 0;
   size_t row = sizeof(double) * (size_t)n;
+  int* roots = S ? S->roots : NULL;
   *nreached = 0;
   *tret = *t;
   while (k < nout) {
     if (ps_interrupted()) return 0;
-    /* IDA stops exactly at the next update, or the command's end */
-    double tstop = tend;
-    for (int i = 0; i < nctl; i++) tstop = fmin(tstop, ps_control_next(c[i]));
-    /* output times a first step passed (Printer.emit_due) */
-    for (; k < nout && tout[k] <= *t; k++) {
-      if (tout[k] == *t) {
-        memcpy(y_out + (long)k * n, y, row);
-        memcpy(yp_out + (long)k * n, yp, row);
-      } else {
-        flag = ps_ida_solve(s, tout[k], tstop, 0, tret, y_out + (long)k * n,
-                            yp_out + (long)k * n, NULL);
-        if (flag < 0) return flag;
-      }
-      row_outputs(s, k, k + 1, tout, y_out, yp_out, req_out);
-      *nreached = k + 1;
-    }
-    if (k == nout) break;
     flag = act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);
     if (flag) return flag;
     s->d->bad_kind = 0;
-    tstop = tend;
+    /* IDA stops exactly at the next update, or the command's end */
+    double tstop = tend;
     for (int i = 0; i < nctl; i++) tstop = fmin(tstop, ps_control_next(c[i]));
     if (*fresh) {
-      /* the first step of a (re)start, toward the stop; the output times it passed are
-       * written at the top of the loop (interpolated, or the step itself at its end) */
-      flag = ps_ida_solve(s, tstop, tstop, 1, tret, y, yp, NULL);
+      /* the first step of a (re)start, toward the stop */
+      flag = ps_ida_solve(s, tstop, tstop, 1, tret, y, yp, roots);
       *fresh = 0;
       if (flag < 0) return flag;
-      *t = *tret;
     } else if (tout[k] <= tstop) {
-      /* the output times up to the stop */
+      /* the output times up to the stop (a root ends the batch: row k holds its state) */
       for (; k < nout && tout[k] <= tstop; k++) {
         flag = ps_ida_solve(s, tout[k], tstop, 0, tret, y_out + (long)k * n,
-                            yp_out + (long)k * n, NULL);
+                            yp_out + (long)k * n, roots);
         if (flag < 0) return flag;
+        if (flag == 2) break;
         row_outputs(s, k, k + 1, tout, y_out, yp_out, req_out);
         *nreached = k + 1;
       }
-      memcpy(y, y_out + (long)(k - 1) * n, row);
-      memcpy(yp, yp_out + (long)(k - 1) * n, row);
-      *t = *tret;
+      int j = flag == 2 ? k : k - 1;
+      memcpy(y, y_out + (long)j * n, row);
+      memcpy(yp, yp_out + (long)j * n, row);
     } else {
-      flag = ps_ida_solve(s, tstop, tstop, 0, tret, y, yp, NULL);
+      flag = ps_ida_solve(s, tstop, tstop, 0, tret, y, yp, roots);
       if (flag < 0) return flag;
-      *t = *tret;
     }
+    *t = *tret;
+    k = emit_due(s, tout, nout, k, tstop, *t, y, yp, y_out, yp_out, req_out, nreached, tret,
+                 &flag);
+    if (k < 0) return flag;
+    if (flag != 2) continue;
+    /* the sensors' instant */
+    if (ps_sensors_roots(s->m, s->d, S, roots, *t, y, yp) != PS_OK) return PS_IDA_CHATTER;
+    if (S->restart) restart(s, *t, y, yp, fresh, nrestarts);
+    if (S->halt >= 0) {
+      /* the row at the instant (Printer.emit: it replaces one at the same time) */
+      int at = *nreached > 0 && t_out[*nreached - 1] == *t ? *nreached - 1 : *nreached;
+      psStream* stream = s->stream;
+      if (at < *nreached) s->stream = NULL; /* a replaced row was streamed already */
+      t_out[at] = *t;
+      memcpy(y_out + (long)at * n, y, row);
+      memcpy(yp_out + (long)at * n, yp, row);
+      row_outputs(s, at, at + 1, t_out, y_out, yp_out, req_out);
+      if (s->stream || at < *nreached) s->stream = stream;
+      *nreached = at + 1;
+      return PS_IDA_HALTED;
+    }
+    if (S->nev + S->n > S->cap) return PS_IDA_DRAIN;
   }
   if (s->stream && ps_stream_flush(s->stream) != 0) s->stream = NULL;
   /* the command's end: the updates due there */
   if (last && !ps_interrupted()) return act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);
-  return flag < 0 ? flag : 0;
+  return 0;
 }

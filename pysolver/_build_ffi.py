@@ -20,7 +20,8 @@ USERSUB_HEADER = ROOT / "csrc" / "include" / "pysolver_usersub.h"
 SOURCES = ["hd.c", "kinematics.c", "tape.c", "residual.c", "assembly.c", "elements/penalty.c",
            "elements/sforce.c", "elements/vforce.c", "elements/motion.c", "elements/joint.c",
            "elements/gcon.c", "elements/coupler.c", "elements/turn.c",
-           "elements/table.c", "usersub.c", "control.c", "ida.c", "sparselu.c", "csv.c", "gen.c"]
+           "elements/table.c", "usersub.c", "control.c", "events.c", "ida.c", "sparselu.c",
+           "csv.c", "gen.c"]
 
 
 def cdef_from_header(text, start_at="#define PS_BODY_POINT"):

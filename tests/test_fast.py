@@ -153,6 +153,90 @@ def test_load_control_failures_are_worded_as_the_general_loop(monkeypatch):
     assert res.controller(1)["time"][-1] < 0.5
 
 
+def _ball(sensors, **kw):
+    from scenes import ball
+    return pysolver.loads(ball(sensors, **kw))
+
+
+BOUNCE = ('<Force_Penalty id="1" expr="-DZ(10)" penalty="1e5" unilateral="TRUE" '
+          'smoothing_factor="1e-4"/>')
+SENSOR_DECKS = {
+    "halt deck": lambda: _load("sensor_halt_acceleration.xml"),
+    "end condition": lambda: _load("sensor_end_condition.xml"),
+    "re-arming": lambda: _ball(
+        '<Sensor_Event id="1" expr="DZ(10)" compare="GE" value="5" error_tol="0.01"/>'
+        '<Sensor_Event id="2" expr="VZ(10)" compare="EQ" value="0" error_tol="1e-3" '
+        'restart="TRUE"/>', extra=BOUNCE, end=6.0, tol=1e-8),
+    "id order": lambda: _ball("".join(
+        f'<Sensor_Event id="{i}" expr="DZ(10)" compare="LT" value="5"/>' for i in (9, 2, 5))),
+    "halt at the start": lambda: _ball(
+        '<Sensor_Event id="1" expr="DZ(10)" compare="GE" value="10" halt="TRUE"/>'),
+    "chatter": lambda: _ball(
+        '<Sensor_Event id="1" expr="TIME - 0.3 + SENVAL(1)" compare="GE" value="0" '
+        'error_tol="0" evaluate_id="1"/>',
+        extra='<Sensor_Evaluate id="1" expr="SENVAL(1) - 1e-13"/>'),
+}
+
+
+@pytest.mark.parametrize("name", sorted(SENSOR_DECKS))
+@pytest.mark.parametrize("cap", [None, 1])
+def test_sensors_decided_in_c_to_the_bit(name, cap, monkeypatch):
+    """Sensors whose actions need no Python (evaluate, halt, restart) are decided in the
+    batched path's C loop (csrc/events.c): the general loop's rows, events, log, re-armings,
+    restarts and message to the last bit, on every run; with room for one event at a time in C
+    (cap 1) the loop hands them over after each instant and goes on."""
+    from pysolver.solve import sensors
+    monkeypatch.setattr(sensors, "EVENT_CAP", cap or sensors.EVENT_CAP)
+    model = SENSOR_DECKS[name]()
+    assert _takes_fast_path(model)
+    runs = [model.run(progress=False) for _ in range(2)]
+    ref = _general(model, monkeypatch)
+    assert ref.events
+    for res in runs:
+        for field in ("t", "y", "yp", "_outputs"):
+            assert np.array_equal(getattr(res, field), getattr(ref, field), equal_nan=True)
+        assert (res.success, res.status, res.message) == (ref.success, ref.status, ref.message)
+        assert {k: res.stats[k] for k in _SAME_STATS} == {k: ref.stats[k] for k in _SAME_STATS}
+        assert res.events == ref.events and res.log == ref.log and res.meta == ref.meta
+
+
+def test_sensors_with_other_actions_take_the_general_loop():
+    """print, dt, return, verbose, hmax, stepsize and zero_crossing need the general loop, and
+    so does an evaluate whose value a force reads (the state is then made consistent again)."""
+    for action in ('print="TRUE"', 'dt="0.01"', 'return="TRUE"', 'verbose="TRUE"',
+                   'hmax="0.01"', 'stepsize="1e-3"', 'zero_crossing="0.1"'):
+        model = _ball(f'<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" {action}/>')
+        assert not _takes_fast_path(model), action
+    model = _ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" evaluate_id="1"/>',
+                  extra='<Reference_Marker id="1" body_id="1"/>'
+                        '<Sensor_Evaluate id="1" expr="VZ(10)"/><Force_Scalar_TwoBody id="9" '
+                        'type="Force" i_marker_id="10" j_marker_id="1" expr="SENVAL(1)"/>')
+    assert not _takes_fast_path(model)
+
+
+def test_sensors_and_load_control_in_one_c_loop(monkeypatch):
+    """A sensor that restarts at t = 0.5 and halts at 1.25 beside the LoadControl task: both
+    in the C loop, the general loop's rows, records and events to the bit."""
+    text = LOADCONTROL.replace("<Post_Request", '<Sensor_Event id="1" expr="TIME" compare="GE" '
+                               'value="0.5" restart="TRUE"/><Sensor_Event id="2" expr="TIME" '
+                               'compare="GE" value="1.25" halt="TRUE"/><Post_Request')
+    model = pysolver.loads(text)
+    assert _takes_fast_path(model)
+    res, ref = model.run(progress=False), _general(model, monkeypatch)
+    assert res.status == 1 and res.message.startswith("halted by Sensor_Event 2 at t = 1.25")
+    _same_rows_events(res, ref)
+    for name, values in res.controller(1).items():
+        assert np.array_equal(values, ref.controller(1)[name], equal_nan=True), name
+
+
+def _same_rows_events(a, b):
+    for name in ("t", "y", "yp", "_outputs"):
+        assert np.array_equal(getattr(a, name), getattr(b, name), equal_nan=True), name
+    assert (a.success, a.status, a.message) == (b.success, b.status, b.message)
+    assert {k: a.stats[k] for k in _SAME_STATS} == {k: b.stats[k] for k in _SAME_STATS}
+    assert a.events == b.events and a.log == b.log and a.meta == b.meta
+
+
 def test_a_run_that_fails_is_reported_by_the_general_path(monkeypatch):
     """Too many steps: the batched path reports it in the general loop's words, rows and
     all."""
@@ -164,7 +248,7 @@ def test_a_run_that_fails_is_reported_by_the_general_path(monkeypatch):
     assert ok.success and _takes_fast_path(model)
 
 
-@pytest.mark.parametrize("name, why", [("sensor_end_condition.xml", "sensors"),
+@pytest.mark.parametrize("name, why", [("sensor_output_interval.xml", "a sensor's dt"),
                                        ("loadcontrol_bed.py", "load control, 324 states"),
                                        ("static_pendulum.xml", "a static command")])
 def test_runs_that_need_the_driver_take_it(name, why):

@@ -24,6 +24,7 @@ from . import integrator, report
 from .driver import Stop, deck_actors, failure, start_state
 from .loadcontrol import NonFinite
 from .outputs import Grid, Progress, over_budget
+from .sensors import CSensors
 
 #: Whether runs may take the fast path (tests switch it off to compare with the general path).
 ENABLED = True
@@ -45,20 +46,26 @@ def fast_run(compiled, options, actors):
         sensors, controls, printer = deck_actors(model, kernel, [], Progress(0.0, 1.0, False))
         ok = (plan.use_c and all(cmd.analysis == "TRANSIENT" for cmd in model.commands)
               and not any(a.instants for a in (sensors, *controls, printer)))
-        cache[key] = (options, FastRun(model, kernel, options, plan, controls) if ok else None)
+        c_sensors = CSensors(model, kernel) if sensors.sensors and ok else None
+        cache[key] = (options, FastRun(model, kernel, options, plan, controls, c_sensors)
+                      if ok else None)
     return cache[key][1]
 
 
 class FastRun:
     """Everything a clean run of one model under one set of options needs, built once."""
 
-    def __init__(self, model, kernel, options, plan, controls=()):
+    def __init__(self, model, kernel, options, plan, controls=(), sensors=None):
         self.model, self.k, self.options, self.plan = model, kernel, options, plan
-        # LoadControl tasks act at their update times inside the C loop (ps_ida_controlled)
-        self.controls = list(controls)
-        if self.controls:
-            self.ctl = ffi.new("psControl *[]", [task.c for task in self.controls])
-            self.restart = self.controls[0].restart.r
+        # LoadControl tasks and sensors whose actions need no Python act inside the C loop
+        # (ps_ida_controlled), one call per Simulate command (a first step after a restart may
+        # pass any number of print times, which the general loop writes before acting)
+        self.controls, self.sensors = list(controls), sensors
+        self.acting = bool(self.controls or sensors)
+        if self.acting:
+            self.ctl = ffi.new("psControl *[]", [task.c for task in self.controls] or 1)
+            self.restart = self.controls[0].restart.r if self.controls else ffi.NULL
+            self.S = sensors.S if sensors else ffi.NULL
             self.state = (ffi.new("double *"), np.empty(kernel.ny), np.empty(kernel.ny),
                           ffi.new("int *"), ffi.new("long *"), ffi.new("int[2]"))
         self.solver = integrator.make(kernel, options, plan, (
@@ -66,9 +73,11 @@ class FastRun:
         # each command, its start and its print times (those of outputs.Grid, bit for bit) in
         # batches of one C call; every row's time
         self.commands, t, rows = [], 0.0, [np.zeros(1)]
+        batch = np.inf if self.acting else Grid.BATCH
         for cmd in model.commands:
             times = Grid(t, cmd.end_time, cmd.print_interval).all()
-            batches = [times[i:i + Grid.BATCH] for i in range(0, len(times), Grid.BATCH)]
+            batches = [times[i:i + batch] for i in range(0, len(times), batch)] if \
+                batch < len(times) else [times]
             self.commands.append((cmd, t, batches))
             rows.append(times)
             t = cmd.end_time
@@ -82,7 +91,7 @@ class FastRun:
         """Run the model; returns its Result, or None when its outputs would pass the budget
         (the general path stops at the command past it). `progress` as Model.run; `stream`
         an outputs.Stream the rows are written to."""
-        k, d, fb, opts = self.k, self.k.d, self.fb, self.options
+        k, d, opts = self.k, self.k.d, self.options
         k.reset_counters()
         n, ny = len(self.times), k.ny
         if over_budget(n, ny, len(k.channels), "the run"):
@@ -90,50 +99,46 @@ class FastRun:
         T, Y, YP = self.times.copy(), np.empty((n, ny)), np.empty((n, ny))
         REQ = np.empty((n, self.nout))
         bar, row, t_run = Progress(0.0, self.times[-1], progress), 0, None
-        status, message = 0, "The simulation finished."
+        status, message, ida_counters = 0, "The simulation finished.", None
         ida = self.solver
+        if self.acting:
+            self.state[4][0] = 0
         try:
+            # a new run's actors: stored values zero, every sensor armed (as Sensors does)
+            k.senval[:] = 0.0
+            if self.sensors:
+                self.sensors.reset()
             # the initial state (sweep cases change it) and a consistent yp, as the driver
-            k.senval[:] = 0.0                      # as a new run's actors (Sensors) set it
             t0, y0, yp0 = start_state(self.model, k, opts.integr_tol)
-            if self.controls:
-                self.state[0][0] = t0
-            for task in self.controls:             # as the general loop: the tasks start
-                task.start(_State(t0, y0, yp0))
+            halt = self._start(t0, y0, yp0)
             Y[0], YP[0], REQ[0, :len(k.channels)] = y0, yp0, k.outputs(t0, y0, yp0)
-            row, t_run, fresh = 1, time.perf_counter(), True
-            d.last_t = t0
+            row, t_run = 1, time.perf_counter()
             if stream is not None:
                 stream.rows(T[:1], REQ[:1])
+            if halt:
+                ida_counters = {"steps": 0, "nfev": 0, "njev": 0, "netf": 0, "ncfn": 0,
+                                "growth_limited_at": None}
+                raise Stop(True, 1, f"halted by {halt} at t = {t0:.9g}")
+            if stream is not None:
                 lib.ps_ida_set_stream(ida.s, stream.st)
+            d.last_t = t0
+            fb = self.fb
             if lib.ps_ida_rerun(ida.s, t0, fb("double[]", y0), fb("double[]", yp0)) != 0:
                 ida.started = False
                 ida.init_step(t0, y0, yp0)
-            if self.controls:
-                t, y, yp, cfresh, nrestarts, ctl = self.state
-                t[0], y[:], yp[:], cfresh[0], nrestarts[0] = t0, y0, yp0, 1, 0
+            if self.acting:
+                t, y, yp = self.state[:3]
+                t[0], y[:], yp[:], self.state[3][0] = t0, y0, yp0, 1
+            run = self._command_acting if self.acting else self._command
+            fresh = True
             for cmd, _, batches in self.commands:
                 d.step_limit = d.ntimes - d.nfail + opts.max_num_steps    # as the driver
                 for i, times in enumerate(batches):
-                    out = (fb("double[]", Y[row:]), fb("double[]", YP[row:]),
-                           fb("double[]", REQ[row:]), self.reached, self.tret)
-                    if self.controls:
-                        flag = lib.ps_ida_controlled(
-                            ida.s, self.restart, self.ctl, len(self.controls),
-                            fb("double[]", times), len(times), cmd.end_time,
-                            i == len(batches) - 1, t, fb("double[]", y), fb("double[]", yp),
-                            cfresh, *out, nrestarts, ctl)
-                    else:
-                        flag = lib.ps_ida_outputs(ida.s, fb("double[]", times), len(times),
-                                                  cmd.end_time, fresh, *out, self.roots)
-                    row += self.reached[0]
+                    row, stop = run(cmd, times, i == len(batches) - 1, fresh, T, Y, YP, REQ,
+                                    row)
                     fresh = False
-                    if lib.ps_interrupted():
-                        raise Stop(False, -600, f"interrupted at t = {T[row - 1]:.6g}")
-                    if flag == lib.PS_IDA_CONTROL_FAILED:
-                        self.controls[ctl[0]].fail(ctl[1], t[0])
-                    if flag < 0 or d.user_error or d.steps_exceeded:
-                        raise Stop(False, *failure(self.model, k, opts, flag, self.tret[0]))
+                    if stop is not None:
+                        raise stop
                     bar.update(T[row - 1])
         except Stop as stop:
             status, message = stop.status, stop.message
@@ -142,6 +147,9 @@ class FastRun:
         except UserFailure as err:
             status, message = -400, f"{err} (t = {self.state[0][0]:.6g})"
         finally:
+            if self.sensors:
+                self.sensors.drain()
+                log.extend(self.sensors.log)
             for task in self.controls:
                 log.extend(task.notes())
             d.step_limit = 0
@@ -150,11 +158,85 @@ class FastRun:
             bar.close(T[max(row - 1, 0)])
         t_end = time.perf_counter()
         rows = (T[:row], Y[:row], YP[:row], REQ[:row, :len(k.channels)])
+        events = self.sensors.events if self.sensors else []
         return report.result(self.model, k, self.plan, (used, static, labels), rows,
-                             (status == 0, status, message), (t_start, t_run or t_end, t_end),
-                             self.solver.counters(), log, steps=int(k.d.ntimes - k.d.nfail),
-                             nrestarts=int(self.state[4][0]) if self.controls else 0,
+                             (status >= 0, status, message), (t_start, t_run or t_end, t_end),
+                             ida_counters or self.solver.counters(), log,
+                             steps=int(k.d.ntimes - k.d.nfail),
+                             nevents=len(events), events=events,
+                             nrearms=int(self.S.nrearms) if self.sensors else 0,
+                             nrestarts=int(self.state[4][0]) if self.acting else 0,
                              controllers={task.lc.id: task.records() for task in self.controls})
+
+    def _start(self, t0, y0, yp0):
+        """The actors' start, in the general loop's order: the sensors (those whose condition
+        holds fire), then the tasks; returns the element that halts the run there, or None."""
+        if self.acting:
+            self.state[0][0] = t0
+        halt = None
+        if self.sensors:
+            code = lib.ps_sensors_start(self.k.m, self.k.d, self.S, t0,
+                                        self.fb("double[]", y0), self.fb("double[]", yp0))
+            if code != lib.PS_OK:
+                raise Stop(False, -200, self.sensors.chatter())
+            halt = self.sensors.halted_by() if self.S.halt >= 0 else None
+        state = _State(t0, y0, yp0)
+        for task in self.controls:
+            task.start(state)
+        return halt
+
+    def _command(self, cmd, times, last, fresh, T, Y, YP, REQ, row):
+        """One batch of a command's print times, nothing acting: ps_ida_outputs. Returns the
+        next row and the Stop that ends the run there (or None)."""
+        fb = self.fb
+        flag = lib.ps_ida_outputs(self.solver.s, fb("double[]", times), len(times),
+                                  cmd.end_time, fresh, fb("double[]", Y[row:]),
+                                  fb("double[]", YP[row:]), fb("double[]", REQ[row:]),
+                                  self.reached, self.tret, self.roots)
+        row += self.reached[0]
+        return row, self._check(flag, T, row)
+
+    def _command_acting(self, cmd, times, last, fresh, T, Y, YP, REQ, row):
+        """A command's print times with tasks and sensors acting in C: ps_ida_controlled, called
+        again after each drain of the sensors' event records. Returns as :meth:`_command`."""
+        fb = self.fb
+        t, y, yp, cfresh, nrestarts, ctl = self.state
+        start = 0
+        while True:
+            flag = lib.ps_ida_controlled(
+                self.solver.s, self.restart, self.ctl, len(self.controls), self.S,
+                fb("double[]", times[start:]), len(times) - start, cmd.end_time, last, t,
+                fb("double[]", y), fb("double[]", yp), cfresh, fb("double[]", T[row:]),
+                fb("double[]", Y[row:]), fb("double[]", YP[row:]), fb("double[]", REQ[row:]),
+                self.reached, self.tret, nrestarts, ctl)
+            row += self.reached[0]
+            start += self.reached[0]
+            if flag != lib.PS_IDA_DRAIN:
+                break
+            self.sensors.drain()
+        if not lib.ps_interrupted():
+            if flag == lib.PS_IDA_CONTROL_FAILED:
+                try:
+                    self.controls[ctl[0]].fail(ctl[1], t[0])
+                except NonFinite as err:             # as the general loop words them
+                    return row, Stop(False, -700, str(err))
+                except UserFailure as err:
+                    return row, Stop(False, -400, f"{err} (t = {t[0]:.6g})")
+            if flag == lib.PS_IDA_CHATTER:
+                return row, Stop(False, -200, self.sensors.chatter())
+        if flag == lib.PS_IDA_HALTED and not lib.ps_interrupted():
+            return row, Stop(True, 1, f"halted by {self.sensors.halted_by()} at t = {t[0]:.9g}")
+        return row, self._check(flag, T, row)
+
+    def _check(self, flag, T, row):
+        """The Stop of Ctrl-C or a failed step, worded as the general loop words them, or
+        None."""
+        d = self.k.d
+        if lib.ps_interrupted():
+            return Stop(False, -600, f"interrupted at t = {T[row - 1]:.6g}")
+        if flag < 0 or d.user_error or d.steps_exceeded:
+            return Stop(False, *failure(self.model, self.k, self.options, flag, self.tret[0]))
+        return None
 
 
 class _State:

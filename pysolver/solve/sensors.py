@@ -17,12 +17,17 @@ functions whose crossings IDA reports) are the kernel's, in C (``ps_roots`` and
 import collections
 import dataclasses
 
+import numpy as np
+
 from .actors import Actor, Flow
 
 #: Events (firings and re-armings) allowed within CHATTER_WINDOW * max(1, |t|) of time before
 #: the run stops as chattering (Zeno behaviour, or a sensor that re-fires at the same instant).
 CHATTER_LIMIT = 100
 CHATTER_WINDOW = 1e-9
+
+#: Events the batched path's C loop records before it returns to Python to hand them over.
+EVENT_CAP = 1024
 
 
 @dataclasses.dataclass
@@ -76,9 +81,10 @@ class Sensors(Actor):
 
     @property
     def instants(self):
-        """Sensors act at roots of their expressions: any sensor makes a run leave the batched
-        path."""
-        return bool(self.sensors)
+        """Sensors act at roots of their expressions, which the batched path decides in C for
+        sensors whose actions need no Python (:func:`decided_in_c`); any other sensor makes a
+        run leave it."""
+        return not all(decided_in_c(se, self.kernel) for se in self.sensors)
 
     # hooks ---------------------------------------------------------------------------
     def start(self, run):
@@ -223,3 +229,78 @@ class Sensors(Actor):
             run.yp = k_.consistent_yp(run.t, run.y)
         return flow
 
+
+
+def decided_in_c(sensor, kernel):
+    """Whether a sensor's instants can be decided in C (csrc/events.c, on the batched path):
+    its actions are storing a Sensor_Evaluate that no force reads, halt and restart."""
+    return (sensor.zero_crossing is None and sensor.dt is None and sensor.stepsize is None
+            and sensor.hmax is None and not (sensor.print or sensor.verbose or sensor.ret)
+            and (sensor.evaluate_id is None or not kernel.forces_use_senval))
+
+
+class CSensors:
+    """A deck's sensors as the C loop decides them (``psSensors``): the struct, its arrays, and
+    its event records turned into :class:`Event` objects and log lines as :class:`Sensors`
+    writes them. `cap` events (default :data:`EVENT_CAP`) are kept in C between drains."""
+
+    def __init__(self, model, kernel, cap=None):
+        from ..build.bindings import ffi
+        self.kernel = kernel
+        self.sensors = [model.sensors[i] for i in kernel.sensor_ids]
+        n = len(self.sensors)
+        eidx = {eid: i for i, eid in enumerate(kernel.evaluate_ids)}
+        slots = [eidx[se.evaluate_id] if se.evaluate_id is not None else -1
+                 for se in self.sensors]
+        tapes = [kernel.evaluate_tapes[i] if i >= 0 else (0, 0) for i in slots]
+        ints = {"evaluate": slots, "eval_tape": [t for t, _ in tapes],
+                "eval_slot": [s for _, s in tapes], "halts": [se.halt for se in self.sensors],
+                "restarts": [se.restart for se in self.sensors]}
+        cap = max(cap or EVENT_CAP, n)
+        self.S = S = ffi.new("psSensors *")
+        self.keep = []
+
+        def array(values, kind):
+            arr = np.ascontiguousarray(values, dtype=np.int32 if kind == "int" else float)
+            self.keep.append(arr)
+            return ffi.cast(f"{kind} *", ffi.from_buffer(arr))
+        for name, values in ints.items():
+            setattr(S, name, array(values, "int"))
+        for name in ("holds", "rearms", "fired", "rearmed", "now", "roots"):
+            setattr(S, name, array(np.zeros(n), "int"))
+        S.f = array(np.zeros(n), "double")
+        self.ev = (np.zeros(cap), np.zeros(cap), np.zeros(cap, dtype=np.int32))
+        S.ev_time, S.ev_value = (ffi.cast("double *", ffi.from_buffer(a)) for a in self.ev[:2])
+        S.ev_sensor = ffi.cast("int *", ffi.from_buffer(self.ev[2]))
+        S.n, S.cap = n, cap
+        self.events, self.log = [], []
+
+    def reset(self):
+        """A new run: no events, re-armings or recent firings; every sensor armed."""
+        S = self.S
+        S.nev = S.nrearms = S.first = S.nrecent = 0
+        self.kernel.armed[:] = 1
+        self.events, self.log = [], []
+
+    def drain(self):
+        """Move the events recorded in C to :attr:`events` and :attr:`log`."""
+        t, value, sensor = self.ev
+        for i in range(self.S.nev):
+            se = self.sensors[int(sensor[i])]
+            actions = se.actions()
+            self.events.append(Event(float(t[i]), se.id, se.label, float(value[i]), actions))
+            self.log.append(f"t = {t[i]:.9g}: Sensor_Event {se.id} fired (value {value[i]:.6g} "
+                            f"{se.compare} {se.value:g}): {', '.join(actions) or 'log only'}")
+        self.S.nev = 0
+
+    def halted_by(self):
+        """The element that halted the run."""
+        return f"Sensor_Event {self.sensors[self.S.halt].id}"
+
+    def chatter(self):
+        """The message of a run ended by chattering sensors (as :class:`Sensors` words it)."""
+        S = self.S
+        first, last = S.recent[S.first], S.recent[(S.first + S.nrecent - 1) % CHATTER_LIMIT]
+        return (f"sensor events chatter: {CHATTER_LIMIT} events between t = {first:.12g} and "
+                f"{last:.12g}; the sensors keep re-firing without time advancing (give them an "
+                "error_tol band)")

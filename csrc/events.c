@@ -1,0 +1,119 @@
+/* Sensor_Event at an instant, in C: arming, firing and re-arming, the event iteration and the
+ * chatter guard of pysolver/solve/sensors.py, for sensors whose actions are those that need no
+ * Python (store a Sensor_Evaluate whose value no force reads, halt, restart). The batched path
+ * decides such sensors' instants here (ps_ida_controlled); the general loop runs sensors.py,
+ * and tests/test_fast.py holds the two to the same rows, events and counters. */
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+
+/* sensors.py's CHATTER_LIMIT (the length of psSensors.recent) and CHATTER_WINDOW. */
+#define PS_CHATTER_LIMIT 100
+#define PS_CHATTER_WINDOW 1e-9
+
+/* A fired or re-armed sensor at t: ends the run as chattering when PS_CHATTER_LIMIT events lie
+ * within PS_CHATTER_WINDOW * max(1, |t|) (sensors.py's CHATTER_LIMIT and CHATTER_WINDOW). */
+static int chatter(psSensors* S, double t) {
+  S->recent[(S->first + S->nrecent) % PS_CHATTER_LIMIT] = t;
+  if (S->nrecent < PS_CHATTER_LIMIT)
+    S->nrecent++;
+  else
+    S->first = (S->first + 1) % PS_CHATTER_LIMIT;
+  if (S->nrecent < PS_CHATTER_LIMIT) return 0;
+  double oldest = S->recent[S->first];
+  return t - oldest <= PS_CHATTER_WINDOW * fmax(1.0, fabs(t));
+}
+
+/* Arm sensor k; an EQ sensor remembers from which side of its value it approaches. */
+static void arm(const psModel* m, psData* d, int k, double f) {
+  d->sensor_armed[k] = 1;
+  d->sensor_side[k] = f >= m->sensor_value[k] ? 1.0 : -1.0;
+}
+
+/* Fire sensor k (its expression f): disarm it, store its Sensor_Evaluate, note a restart or a
+ * halt, record the event. */
+static void fire(const psModel* m, psData* d, psSensors* S, int k, double f, double t,
+                 const double* y, const double* yp) {
+  d->sensor_armed[k] = 0;
+  if (S->evaluate[k] >= 0)
+    d->senval[S->evaluate[k]] = ps_eval_tape(m, d, S->eval_tape[k], S->eval_slot[k], t, y, yp);
+  S->restart |= S->restarts[k];
+  if (S->halts[k]) S->halt = k;
+  S->ev_time[S->nev] = t;
+  S->ev_value[S->nev] = f;
+  S->ev_sensor[S->nev] = k;
+  S->nev++;
+}
+
+/* The sensors' status at (t, y, yp) into S->holds, S->rearms and S->f. */
+static void status(const psModel* m, psData* d, psSensors* S, double t, const double* y,
+                   const double* yp) {
+  ps_sensor_status(m, d, t, y, yp, S->holds, S->rearms);
+  memcpy(S->f, d->sensor_f, sizeof(double) * (size_t)S->n);
+}
+
+/* The event iteration at one instant (sensors.py, Sensors._settle): re-arm and fire until
+ * nothing changes, each sensor firing and re-arming at most once. */
+static int settle(const psModel* m, psData* d, psSensors* S, double t, const double* y,
+                  const double* yp) {
+  for (;;) {
+    status(m, d, S, t, y, yp);
+    int up = 0, now = 0;
+    for (int k = 0; k < S->n; k++)
+      if (!d->sensor_armed[k] && !S->rearmed[k] && S->rearms[k]) {
+        arm(m, d, k, S->f[k]);
+        S->nrearms++;
+        S->rearmed[k] = 1;
+        up = 1;
+        if (chatter(S, t)) return PS_SE_CHATTER;
+      }
+    for (int k = 0; k < S->n; k++) {
+      S->now[k] = d->sensor_armed[k] && !S->fired[k] && S->holds[k];
+      now |= S->now[k];
+    }
+    if (now) {
+      if (chatter(S, t)) return PS_SE_CHATTER;
+      for (int k = 0; k < S->n; k++)
+        if (S->now[k]) {
+          S->fired[k] = 1;
+          fire(m, d, S, k, S->f[k], t, y, yp);
+        }
+    }
+    if (!up && !now) return PS_OK;
+  }
+}
+
+int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const double* y,
+                     const double* yp) {
+  S->restart = 0;
+  S->halt = -1;
+  if (!S->n) return PS_OK;
+  status(m, d, S, t, y, yp);
+  for (int k = 0; k < S->n; k++) {
+    arm(m, d, k, S->f[k]);
+    S->fired[k] = S->rearmed[k] = 0;
+  }
+  return settle(m, d, S, t, y, yp);
+}
+
+int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found, double t,
+                     const double* y, const double* yp) {
+  S->restart = 0;
+  S->halt = -1;
+  for (int k = 0; k < S->n; k++) {
+    S->fired[k] = found[k] != 0 && d->sensor_armed[k];
+    S->rearmed[k] = found[k] != 0 && !d->sensor_armed[k];
+  }
+  if (chatter(S, t)) return PS_SE_CHATTER;
+  /* IDA saw these crossings: take them as they are, then settle the rest */
+  status(m, d, S, t, y, yp);
+  for (int k = 0; k < S->n; k++)
+    if (S->rearmed[k]) {
+      arm(m, d, k, S->f[k]);
+      S->nrearms++;
+    }
+  for (int k = 0; k < S->n; k++)
+    if (S->fired[k]) fire(m, d, S, k, S->f[k], t, y, yp);
+  return settle(m, d, S, t, y, yp);
+}
