@@ -13,6 +13,11 @@ functions whose crossings IDA reports) are the kernel's, in C (``ps_roots`` and
   first time sends the run back to the last converged step, with h_max and h_min scaled by
   ``zero_crossing``; when it fires again the bounds come back.
 - **Chatter guard.** Over CHATTER_LIMIT events within CHATTER_WINDOW * max(1, |t|) end the run.
+
+Sensors whose actions need no Python (:func:`decided_in_c`: storing a Sensor_Evaluate no force
+reads, halt, restart) are decided by the same rules in C on the batched path
+(csrc/events.c; :class:`CSensors` hands its event records over); tests/test_fast.py holds the
+two to the same rows, events, log and counters.
 """
 import collections
 import dataclasses
