@@ -1,6 +1,7 @@
 /* Sensor_Event at an instant, in C: arming, firing and re-arming, the event iteration and the
  * chatter guard of pysolver/solve/sensors.py, for sensors whose actions are those that need no
- * Python (store a Sensor_Evaluate whose value no force reads, halt, restart). The batched path
+ * Python (store a Sensor_Evaluate whose value no force reads, halt, restart, print, return,
+ * a new print interval). The batched path
  * decides such sensors' instants here (ps_ida_controlled); the general loop runs sensors.py,
  * and tests/test_fast.py holds the two to the same rows, events and counters. */
 #include <math.h>
@@ -31,15 +32,18 @@ static void arm(const psModel* m, psData* d, int k, double f) {
   d->sensor_side[k] = f >= m->sensor_value[k] ? 1.0 : -1.0;
 }
 
-/* Fire sensor k (its expression f): disarm it, store its Sensor_Evaluate, note a restart or a
- * halt, record the event. */
+/* Fire sensor k (its expression f): disarm it, store its Sensor_Evaluate, note what it asks
+ * of the instant (restart, row, halt, return, print interval), record the event. */
 static void fire(const psModel* m, psData* d, psSensors* S, int k, double f, double t,
                  const double* y, const double* yp) {
   d->sensor_armed[k] = 0;
   if (S->evaluate[k] >= 0)
     d->senval[S->evaluate[k]] = ps_eval_tape(m, d, S->eval_tape[k], S->eval_slot[k], t, y, yp);
   S->restart |= S->restarts[k];
+  S->emit |= S->prints[k] || S->halts[k];
   if (S->halts[k]) S->halt = k;
+  if (S->rets[k]) S->ret = k;
+  if (S->dts[k] > 0) S->dt = S->dts[k];
   S->ev_time[S->nev] = t;
   S->ev_value[S->nev] = f;
   S->ev_sensor[S->nev] = k;
@@ -84,10 +88,17 @@ static int settle(const psModel* m, psData* d, psSensors* S, double t, const dou
   }
 }
 
+/* A new instant: nothing asked yet. */
+static void begin(psSensors* S) {
+  S->restart = S->emit = 0;
+  S->halt = S->ret = -1;
+  S->dt = 0.0;
+  S->instant_nev = S->nev;
+}
+
 int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const double* y,
                      const double* yp) {
-  S->restart = 0;
-  S->halt = -1;
+  begin(S);
   if (!S->n) return PS_OK;
   status(m, d, S, t, y, yp);
   for (int k = 0; k < S->n; k++) {
@@ -99,8 +110,7 @@ int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const 
 
 int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found, double t,
                      const double* y, const double* yp) {
-  S->restart = 0;
-  S->halt = -1;
+  begin(S);
   for (int k = 0; k < S->n; k++) {
     S->fired[k] = found[k] != 0 && d->sensor_armed[k];
     S->rearmed[k] = found[k] != 0 && !d->sensor_armed[k];

@@ -630,42 +630,90 @@ static int act(psIDA* s, const psRestart* r, psControl* const* c, int nctl, doub
   return 0;
 }
 
-/* Write the rows of the output times from k on that lie at or before *t (Printer.emit_due):
- * the current state at *t itself, IDA's interpolant before it. Returns the next row, or -1
- * after a failed interpolation (IDA's flag in *flag). */
-static int emit_due(psIDA* s, const double* tout, int nout, int k, double tstop, double t,
-                    const double* y, const double* yp, double* y_out, double* yp_out,
-                    double* req_out, int* nreached, double* tret, int* flag) {
+/* Where the C loop writes its rows: the output times (k of nout used), the rows (r of cap
+ * written) and their arrays. */
+typedef struct Rows {
+  const double* tout;
+  int nout, k;
+  double *t_out, *y_out, *yp_out, *req_out;
+  int cap, r;
+} Rows;
+
+/* Write row o->r at time tm with state (y, yp) and its request channels. */
+static void put_row(psIDA* s, Rows* o, double tm, const double* y, const double* yp) {
   int n = s->m->ny;
-  size_t row = sizeof(double) * (size_t)n;
-  for (; k < nout && tout[k] <= t; k++) {
-    if (tout[k] == t) {
-      memcpy(y_out + (long)k * n, y, row);
-      memcpy(yp_out + (long)k * n, yp, row);
-    } else {
-      *flag = ps_ida_solve(s, tout[k], tstop, 0, tret, y_out + (long)k * n, yp_out + (long)k * n,
-                           NULL);
-      if (*flag < 0) return -1;
+  o->t_out[o->r] = tm;
+  if (y) memcpy(o->y_out + (long)o->r * n, y, sizeof(double) * (size_t)n);
+  if (yp) memcpy(o->yp_out + (long)o->r * n, yp, sizeof(double) * (size_t)n);
+  row_outputs(s, o->r, o->r + 1, o->t_out, o->y_out, o->yp_out, o->req_out);
+  o->r++;
+}
+
+/* Write the rows of the output times that lie at or before t (Printer.emit_due): the current
+ * state at t itself, IDA's interpolant before it. Returns 0 or IDA's flag of a failed
+ * interpolation. */
+static int emit_due(psIDA* s, Rows* o, double tstop, double t, const double* y,
+                    const double* yp, double* tret) {
+  int n = s->m->ny;
+  for (; o->k < o->nout && o->tout[o->k] <= t; o->k++) {
+    if (o->tout[o->k] == t) {
+      put_row(s, o, t, y, yp);
+      continue;
     }
-    row_outputs(s, k, k + 1, tout, y_out, yp_out, req_out);
-    *nreached = k + 1;
+    int flag = ps_ida_solve(s, o->tout[o->k], tstop, 0, tret, o->y_out + (long)o->r * n,
+                            o->yp_out + (long)o->r * n, NULL);
+    if (flag < 0) return flag;
+    put_row(s, o, o->tout[o->k], NULL, NULL);
   }
-  return k;
+  return 0;
+}
+
+/* The sensors' instant at (t, y, yp) after IDA's roots, carried out as the general driver's
+ * Run.apply: a restart, then a row at the instant (Printer.emit: it replaces a row at the same
+ * time), then the end of the run, of the command, or a new print interval. Returns 0 to go on
+ * or one of ps_ida_controlled's codes. */
+static int instant(psIDA* s, psSensors* S, Rows* o, double t, double* y, double* yp, int* fresh,
+                   long* nrestarts) {
+  if (ps_sensors_roots(s->m, s->d, S, S->roots, t, y, yp) != PS_OK) return PS_IDA_CHATTER;
+  if (S->restart) restart(s, t, y, yp, fresh, nrestarts);
+  S->emitted = 0;
+  if (S->emit || S->halt >= 0 || S->ret >= 0) {
+    if (o->r > 0 && o->t_out[o->r - 1] == t) {
+      /* a replaced row was streamed already */
+      psStream* stream = s->stream;
+      s->stream = NULL;
+      o->r--;
+      put_row(s, o, t, y, yp);
+      s->stream = stream;
+      S->emitted = 2;
+    } else {
+      put_row(s, o, t, y, yp);
+      S->emitted = 1;
+    }
+  }
+  if (S->halt >= 0) return PS_IDA_HALTED;
+  if (S->ret >= 0) return PS_IDA_RETURN;
+  if (S->dt > 0) return PS_IDA_REGRID;
+  /* room for the next instant's events and row */
+  if (S->nev + S->n > S->cap || o->r + (o->nout - o->k) + 1 > o->cap) return PS_IDA_DRAIN;
+  return 0;
 }
 
 int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,
                       const double* tout, int nout, double tend, int last, double* t, double* y,
-                      double* yp, int* fresh, double* t_out, double* y_out, double* yp_out,
-                      double* req_out, int* nreached, double* tret, long* nrestarts, int* ctl) {
-  int n = s->m->ny, flag = 0, k = 0;
+                      double* yp, int* fresh, int cap, double* t_out, double* y_out,
+                      double* yp_out, double* req_out, int* nreached, int* nused, double* tret,
+                      long* nrestarts, int* ctl) {
+  int n = s->m->ny, flag = 0;
   size_t row = sizeof(double) * (size_t)n;
   int* roots = S ? S->roots : NULL;
-  *nreached = 0;
+  Rows o = {tout, nout, 0, t_out, y_out, yp_out, req_out, cap, 0};
   *tret = *t;
-  while (k < nout) {
-    if (ps_interrupted()) return 0;
-    flag = act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);
-    if (flag) return flag;
+  int code = 0;
+  while (o.k < nout) {
+    if (ps_interrupted()) break;
+    code = act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);
+    if (code) break;
     s->d->bad_kind = 0;
     /* IDA stops exactly at the next update, or the command's end */
     double tstop = tend;
@@ -674,49 +722,40 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
       /* the first step of a (re)start, toward the stop */
       flag = ps_ida_solve(s, tstop, tstop, 1, tret, y, yp, roots);
       *fresh = 0;
-      if (flag < 0) return flag;
-    } else if (tout[k] <= tstop) {
-      /* the output times up to the stop (a root ends the batch: row k holds its state) */
-      for (; k < nout && tout[k] <= tstop; k++) {
-        flag = ps_ida_solve(s, tout[k], tstop, 0, tret, y_out + (long)k * n,
-                            yp_out + (long)k * n, roots);
-        if (flag < 0) return flag;
-        if (flag == 2) break;
-        row_outputs(s, k, k + 1, tout, y_out, yp_out, req_out);
-        *nreached = k + 1;
+    } else if (tout[o.k] <= tstop) {
+      /* the output times up to the stop (a root ends the batch: row r holds its state) */
+      for (; o.k < nout && tout[o.k] <= tstop; o.k++) {
+        flag = ps_ida_solve(s, tout[o.k], tstop, 0, tret, y_out + (long)o.r * n,
+                            yp_out + (long)o.r * n, roots);
+        if (flag < 0 || flag == 2) break;
+        put_row(s, &o, tout[o.k], NULL, NULL);
       }
-      int j = flag == 2 ? k : k - 1;
-      memcpy(y, y_out + (long)j * n, row);
-      memcpy(yp, yp_out + (long)j * n, row);
+      if (flag >= 0) {
+        int j = flag == 2 ? o.r : o.r - 1;
+        memcpy(y, y_out + (long)j * n, row);
+        memcpy(yp, yp_out + (long)j * n, row);
+      }
     } else {
       flag = ps_ida_solve(s, tstop, tstop, 0, tret, y, yp, roots);
-      if (flag < 0) return flag;
+    }
+    if (flag < 0) {
+      code = flag;
+      break;
     }
     *t = *tret;
-    k = emit_due(s, tout, nout, k, tstop, *t, y, yp, y_out, yp_out, req_out, nreached, tret,
-                 &flag);
-    if (k < 0) return flag;
-    if (flag != 2) continue;
-    /* the sensors' instant */
-    if (ps_sensors_roots(s->m, s->d, S, roots, *t, y, yp) != PS_OK) return PS_IDA_CHATTER;
-    if (S->restart) restart(s, *t, y, yp, fresh, nrestarts);
-    if (S->halt >= 0) {
-      /* the row at the instant (Printer.emit: it replaces one at the same time) */
-      int at = *nreached > 0 && t_out[*nreached - 1] == *t ? *nreached - 1 : *nreached;
-      psStream* stream = s->stream;
-      if (at < *nreached) s->stream = NULL; /* a replaced row was streamed already */
-      t_out[at] = *t;
-      memcpy(y_out + (long)at * n, y, row);
-      memcpy(yp_out + (long)at * n, yp, row);
-      row_outputs(s, at, at + 1, t_out, y_out, yp_out, req_out);
-      if (s->stream || at < *nreached) s->stream = stream;
-      *nreached = at + 1;
-      return PS_IDA_HALTED;
+    int root = flag == 2;
+    code = emit_due(s, &o, tstop, *t, y, yp, tret);
+    if (code) break;
+    if (root) {
+      code = instant(s, S, &o, *t, y, yp, fresh, nrestarts);
+      if (code) break;
     }
-    if (S->nev + S->n > S->cap) return PS_IDA_DRAIN;
   }
   if (s->stream && ps_stream_flush(s->stream) != 0) s->stream = NULL;
+  *nreached = o.r;
+  *nused = o.k;
+  if (code || ps_interrupted()) return code;
   /* the command's end: the updates due there */
-  if (last && !ps_interrupted()) return act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);
+  if (last) return act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);
   return 0;
 }

@@ -171,6 +171,14 @@ SENSOR_DECKS = {
         f'<Sensor_Event id="{i}" expr="DZ(10)" compare="LT" value="5"/>' for i in (9, 2, 5))),
     "halt at the start": lambda: _ball(
         '<Sensor_Event id="1" expr="DZ(10)" compare="GE" value="10" halt="TRUE"/>'),
+    "print, dt and evaluate": lambda: _load("sensor_output_interval.xml"),
+    "return, two commands": lambda: _ball(
+        '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" return="TRUE"/>', end=1.5,
+        more='<Simulate analysis_type="Transient" end_time="2.0" print_interval="0.25"/>'),
+    "dt at every bounce": lambda: _ball(
+        '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" error_tol="0.01" '
+        'dt="0.02" print="TRUE"/><Sensor_Event id="2" expr="DZ(10)" compare="GE" value="5" '
+        'error_tol="0.01" dt="0.2"/>', extra=BOUNCE, end=6.0, tol=1e-8),
     "chatter": lambda: _ball(
         '<Sensor_Event id="1" expr="TIME - 0.3 + SENVAL(1)" compare="GE" value="0" '
         'error_tol="0" evaluate_id="1"/>',
@@ -181,10 +189,10 @@ SENSOR_DECKS = {
 @pytest.mark.parametrize("name", sorted(SENSOR_DECKS))
 @pytest.mark.parametrize("cap", [None, 1])
 def test_sensors_decided_in_c_to_the_bit(name, cap, monkeypatch):
-    """Sensors whose actions need no Python (evaluate, halt, restart) are decided in the
-    batched path's C loop (csrc/events.c): the general loop's rows, events, log, re-armings,
-    restarts and message to the last bit, on every run; with room for one event at a time in C
-    (cap 1) the loop hands them over after each instant and goes on."""
+    """Sensors whose actions need no Python (evaluate, halt, restart, print, return, dt) are
+    decided in the batched path's C loop (csrc/events.c): the general loop's rows, events, log,
+    re-armings, restarts and message to the last bit, on every run; with room for one event at
+    a time in C (cap 1) the loop hands them over after each instant and goes on."""
     from pysolver.solve import sensors
     monkeypatch.setattr(sensors, "EVENT_CAP", cap or sensors.EVENT_CAP)
     model = SENSOR_DECKS[name]()
@@ -201,10 +209,9 @@ def test_sensors_decided_in_c_to_the_bit(name, cap, monkeypatch):
 
 
 def test_sensors_with_other_actions_take_the_general_loop():
-    """print, dt, return, verbose, hmax, stepsize and zero_crossing need the general loop, and
-    so does an evaluate whose value a force reads (the state is then made consistent again)."""
-    for action in ('print="TRUE"', 'dt="0.01"', 'return="TRUE"', 'verbose="TRUE"',
-                   'hmax="0.01"', 'stepsize="1e-3"', 'zero_crossing="0.1"'):
+    """verbose, hmax, stepsize and zero_crossing need the general loop, and so does an evaluate
+    whose value a force reads (the state is then made consistent again)."""
+    for action in ('verbose="TRUE"', 'hmax="0.01"', 'stepsize="1e-3"', 'zero_crossing="0.1"'):
         model = _ball(f'<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" {action}/>')
         assert not _takes_fast_path(model), action
     model = _ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" evaluate_id="1"/>',
@@ -212,6 +219,20 @@ def test_sensors_with_other_actions_take_the_general_loop():
                         '<Sensor_Evaluate id="1" expr="VZ(10)"/><Force_Scalar_TwoBody id="9" '
                         'type="Force" i_marker_id="10" j_marker_id="1" expr="SENVAL(1)"/>')
     assert not _takes_fast_path(model)
+
+
+def test_a_print_interval_past_the_output_budget(monkeypatch):
+    """A dt action whose rows would pass PYSOLVER_OUTPUT_BUDGET: both paths stop there with
+    status -500 and the same message, rows and events (that sensor's event is not written; an
+    earlier sensor's at the same instant is)."""
+    model = _ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" print="TRUE"/>'
+                  '<Sensor_Event id="2" expr="DZ(10)" compare="LT" value="5" dt="1e-6"/>')
+    monkeypatch.setenv("PYSOLVER_OUTPUT_BUDGET", str(8 * 7 * 200))
+    assert _takes_fast_path(model)
+    res, ref = model.run(progress=False), _general(model, monkeypatch)
+    assert res.status == -500 and "Sensor_Event 2's dt = 1e-06" in res.message
+    assert [e.sensor for e in res.events] == [1]
+    _same_rows_events(res, ref)
 
 
 def test_sensors_and_load_control_in_one_c_loop(monkeypatch):
@@ -248,7 +269,7 @@ def test_a_run_that_fails_is_reported_by_the_general_path(monkeypatch):
     assert ok.success and _takes_fast_path(model)
 
 
-@pytest.mark.parametrize("name, why", [("sensor_output_interval.xml", "a sensor's dt"),
+@pytest.mark.parametrize("name, why", [("contact_onset_zero_crossing.xml", "zero_crossing"),
                                        ("loadcontrol_bed.py", "load control, 324 states"),
                                        ("static_pendulum.xml", "a static command")])
 def test_runs_that_need_the_driver_take_it(name, why):

@@ -429,7 +429,8 @@ int ps_control_update(const psModel* m, psData* d, const psRestart* r, psControl
                       double* y, double* yp);
 
 /* Sensor_Event elements decided in C (csrc/events.c): those whose actions need no Python
- * (store a Sensor_Evaluate no force reads, halt, restart). Per sensor (index k in id order)
+ * (store a Sensor_Evaluate no force reads, halt, restart, print, return, dt). Per sensor
+ * (index k in id order)
  * its actions, then the state of the run's instants, the events recorded (cap of them,
  * allocated by the caller) and scratch. */
 #define PS_SE_CHATTER 20 /* sensor events chatter (sensors.py, CHATTER_LIMIT) */
@@ -440,6 +441,9 @@ typedef struct psSensors {
   const int* eval_slot;   /* (n) and slot                                         */
   const int* halts;       /* (n) 1: halt                                          */
   const int* restarts;    /* (n) 1: restart                                       */
+  const int* prints;      /* (n) 1: write a row at the event                      */
+  const int* rets;        /* (n) 1: end the Simulate command                      */
+  const double* dts;      /* (n) a new print interval, 0 none                     */
   int* holds;             /* (n) scratch from here on                             */
   int* rearms;            /* (n)                                                  */
   int* fired;             /* (n) fired at this instant                            */
@@ -451,7 +455,12 @@ typedef struct psSensors {
   int first, nrecent;     /* where the oldest of them is, how many there are      */
   long nrearms;           /* re-armings in the run                                */
   int restart;            /* 1: the last instant's actions asked for a restart    */
+  int emit;               /* 1: they asked for a row                              */
+  int emitted;            /* the row: 0 none, 1 added, 2 replacing one            */
   int halt;               /* the sensor that halted the run at it, -1 none        */
+  int ret;                /* the sensor that ended the command at it, -1 none     */
+  double dt;              /* the print interval it set, 0 none                    */
+  long instant_nev;       /* the first event of the last instant                  */
   double* ev_time;        /* (cap) each event's time                              */
   double* ev_value;       /* (cap) its sensor's expression                        */
   int* ev_sensor;         /* (cap) its sensor                                     */
@@ -459,14 +468,14 @@ typedef struct psSensors {
 } psSensors;
 
 /* The sensors at the start of a run at (t, y, yp): every sensor armed (an EQ sensor on the
- * side it starts on), then those whose condition holds fire (the event iteration). Sets
- * S->restart and S->halt. Returns PS_OK or PS_SE_CHATTER. */
+ * side it starts on), then those whose condition holds fire (the event iteration). Sets what
+ * the instant asks (S->restart, emit, halt, ret, dt). Returns PS_OK or PS_SE_CHATTER. */
 int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const double* y,
                      const double* yp);
 
 /* The sensors at a root of theirs at (t, y, yp), found IDA's root flags: those crossed fire
- * (armed) or re-arm (fired before), then the event iteration. Sets S->restart and S->halt.
- * Returns PS_OK or PS_SE_CHATTER. */
+ * (armed) or re-arm (fired before), then the event iteration. Sets what the instant asks
+ * (S->restart, emit, halt, ret, dt). Returns PS_OK or PS_SE_CHATTER. */
 int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found, double t,
                      const double* y, const double* yp);
 
@@ -630,30 +639,37 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
 int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
 
 /* ps_ida_controlled's returns other than IDA's flags: a LoadControl update failed, the
- * sensors chatter, a sensor halted the run, the event records are full (drain them and call
- * again: the state is that of the top of the loop). */
+ * sensors chatter, a sensor halted the run, a sensor ended the command, a sensor set a new
+ * print interval (call again with its print times), the event records or the rows are full
+ * (drain or grow them and call again). After the last four the state is that of the top of
+ * the loop. */
 #define PS_IDA_CONTROL_FAILED -2000
 #define PS_IDA_CHATTER -2001
 #define PS_IDA_HALTED 3
 #define PS_IDA_DRAIN 4
+#define PS_IDA_RETURN 5
+#define PS_IDA_REGRID 6
 
-/* Advance through one batch of a Simulate command's output times (ending at tend; last: the
- * command's last batch) with the run's actors deciding in C, exactly as the general driver
- * does (pysolver/solve/driver.py, Run.integrate_command): the LoadControl tasks c (nctl, in id
- * order) at their update times (ps_control_update, then a cold restart; IDA stops exactly
- * there) and the sensors S (NULL: none) at their roots (ps_sensors_roots, then a restart if
- * asked; a halt writes a row at the instant, t_out[*nreached - 1] its time, and ends the
- * batch); one internal step toward the stop after a restart; at the end of the command's last
- * batch the updates due there. (*t, y, yp) is the current state and *fresh whether IDA was
- * just (re)started, both carried from call to call. Rows as ps_ida_outputs (*nreached of them);
- * *nrestarts counts the restarts. Returns 0, IDA's flag (< 0) of a failed step with *tret its
- * time, PS_IDA_CONTROL_FAILED (ctl: the task's index and ps_control_update's code),
- * PS_IDA_CHATTER, PS_IDA_HALTED or PS_IDA_DRAIN. Returns early, with 0, after Ctrl-C
- * (ps_interrupted). */
+/* Advance through a Simulate command's output times tout (ending at tend; last: the command's
+ * last call) with the run's actors deciding in C, exactly as the general driver does
+ * (pysolver/solve/driver.py, Run.integrate_command and Run.apply): the LoadControl tasks c
+ * (nctl, in id order) at their update times (ps_control_update, then a cold restart; IDA stops
+ * exactly there) and the sensors S (NULL: none) at their roots (ps_sensors_roots, then a
+ * restart if asked, a row at the instant for print, halt and return, which replaces a row at
+ * the same time); one internal step toward the stop after a restart; at the end of the
+ * command's last call the updates due there. (*t, y, yp) is the current state and *fresh
+ * whether IDA was just (re)started, both carried from call to call. Rows go to t_out, y_out,
+ * yp_out, req_out (cap rows of room, which the caller keeps at least one more than the output
+ * times left): *nreached rows written, *nused output times used; *nrestarts counts the
+ * restarts. Returns 0, IDA's flag (< 0) of a failed step with *tret its time,
+ * PS_IDA_CONTROL_FAILED (ctl: the task's index and ps_control_update's code), PS_IDA_CHATTER,
+ * PS_IDA_HALTED, PS_IDA_RETURN, PS_IDA_REGRID or PS_IDA_DRAIN. Returns early, with 0, after
+ * Ctrl-C (ps_interrupted). */
 int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,
                       const double* tout, int nout, double tend, int last, double* t, double* y,
-                      double* yp, int* fresh, double* t_out, double* y_out, double* yp_out,
-                      double* req_out, int* nreached, double* tret, long* nrestarts, int* ctl);
+                      double* yp, int* fresh, int cap, double* t_out, double* y_out,
+                      double* yp_out, double* req_out, int* nreached, int* nused, double* tret,
+                      long* nrestarts, int* ctl);
 
 /* IDA's counters over the whole run, restarts included: steps, residual evaluations, Jacobian
  * evaluations, error-test failures, nonlinear convergence failures, root-function evaluations,

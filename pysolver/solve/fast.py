@@ -23,7 +23,7 @@ from ..build.kernel import UserFailure
 from . import integrator, report
 from .driver import Stop, deck_actors, failure, start_state
 from .loadcontrol import NonFinite
-from .outputs import Grid, Progress, over_budget
+from .outputs import Grid, Progress, command_rows, over_budget
 from .sensors import CSensors
 
 #: Whether runs may take the fast path (tests switch it off to compare with the general path).
@@ -82,6 +82,9 @@ class FastRun:
             rows.append(times)
             t = cmd.end_time
         self.times = np.concatenate(rows)
+        # the rows of the commands after each (room a command's call keeps for them)
+        sizes = [len(r) for r in rows[1:]]
+        self.later = [sum(sizes[i + 1:]) for i in range(len(sizes))]
         self.nout = max(int(kernel.arrays["nout"]), 1)
         self.fb = ffi.from_buffer
         self.reached, self.tret = ffi.new("int *"), ffi.new("double *")
@@ -96,9 +99,10 @@ class FastRun:
         n, ny = len(self.times), k.ny
         if over_budget(n, ny, len(k.channels), "the run"):
             return None
-        T, Y, YP = self.times.copy(), np.empty((n, ny)), np.empty((n, ny))
-        REQ = np.empty((n, self.nout))
-        bar, row, t_run = Progress(0.0, self.times[-1], progress), 0, None
+        # rows at events, and print intervals sensors change, may need more room
+        room = n + (_SLACK if self.acting else 0)
+        out = _Out(self.times, room, ny, self.nout)
+        bar, t_run = Progress(0.0, self.times[-1], progress), None
         status, message, ida_counters = 0, "The simulation finished.", None
         ida = self.solver
         if self.acting:
@@ -111,10 +115,10 @@ class FastRun:
             # the initial state (sweep cases change it) and a consistent yp, as the driver
             t0, y0, yp0 = start_state(self.model, k, opts.integr_tol)
             halt = self._start(t0, y0, yp0)
-            Y[0], YP[0], REQ[0, :len(k.channels)] = y0, yp0, k.outputs(t0, y0, yp0)
-            row, t_run = 1, time.perf_counter()
+            out.Y[0], out.YP[0], out.REQ[0, :len(k.channels)] = y0, yp0, k.outputs(t0, y0, yp0)
+            out.row, t_run = 1, time.perf_counter()
             if stream is not None:
-                stream.rows(T[:1], REQ[:1])
+                stream.rows(out.T[:1], out.REQ[:1])
             if halt:
                 ida_counters = {"steps": 0, "nfev": 0, "njev": 0, "netf": 0, "ncfn": 0,
                                 "growth_limited_at": None}
@@ -129,17 +133,17 @@ class FastRun:
             if self.acting:
                 t, y, yp = self.state[:3]
                 t[0], y[:], yp[:], self.state[3][0] = t0, y0, yp0, 1
-            run = self._command_acting if self.acting else self._command
-            fresh = True
-            for cmd, _, batches in self.commands:
-                d.step_limit = d.ntimes - d.nfail + opts.max_num_steps    # as the driver
-                for i, times in enumerate(batches):
-                    row, stop = run(cmd, times, i == len(batches) - 1, fresh, T, Y, YP, REQ,
-                                    row)
-                    fresh = False
-                    if stop is not None:
-                        raise stop
-                    bar.update(T[row - 1])
+                self._commands_acting(out, bar)
+            else:
+                fresh = True
+                for cmd, _, batches in self.commands:
+                    d.step_limit = d.ntimes - d.nfail + opts.max_num_steps    # as the driver
+                    for times in batches:
+                        stop = self._command(cmd, times, fresh, out)
+                        fresh = False
+                        if stop is not None:
+                            raise stop
+                        bar.update(out.T[out.row - 1])
         except Stop as stop:
             status, message = stop.status, stop.message
         except NonFinite as err:                     # as the general loop words them
@@ -155,9 +159,10 @@ class FastRun:
             d.step_limit = 0
             if stream is not None:
                 lib.ps_ida_set_stream(ida.s, ffi.NULL)
-            bar.close(T[max(row - 1, 0)])
+            bar.close(out.T[max(out.row - 1, 0)])
         t_end = time.perf_counter()
-        rows = (T[:row], Y[:row], YP[:row], REQ[:row, :len(k.channels)])
+        row = out.row
+        rows = (out.T[:row], out.Y[:row], out.YP[:row], out.REQ[:row, :len(k.channels)])
         events = self.sensors.events if self.sensors else []
         return report.result(self.model, k, self.plan, (used, static, labels), rows,
                              (status >= 0, status, message), (t_start, t_run or t_end, t_end),
@@ -185,48 +190,96 @@ class FastRun:
             task.start(state)
         return halt
 
-    def _command(self, cmd, times, last, fresh, T, Y, YP, REQ, row):
+    def _command(self, cmd, times, fresh, out):
         """One batch of a command's print times, nothing acting: ps_ida_outputs. Returns the
-        next row and the Stop that ends the run there (or None)."""
-        fb = self.fb
+        Stop that ends the run there, or None."""
+        fb, row = self.fb, out.row
         flag = lib.ps_ida_outputs(self.solver.s, fb("double[]", times), len(times),
-                                  cmd.end_time, fresh, fb("double[]", Y[row:]),
-                                  fb("double[]", YP[row:]), fb("double[]", REQ[row:]),
+                                  cmd.end_time, fresh, fb("double[]", out.Y[row:]),
+                                  fb("double[]", out.YP[row:]), fb("double[]", out.REQ[row:]),
                                   self.reached, self.tret, self.roots)
-        row += self.reached[0]
-        return row, self._check(flag, T, row)
+        out.row += self.reached[0]
+        return self._check(flag, out.T, out.row)
 
-    def _command_acting(self, cmd, times, last, fresh, T, Y, YP, REQ, row):
-        """A command's print times with tasks and sensors acting in C: ps_ida_controlled, called
-        again after each drain of the sensors' event records. Returns as :meth:`_command`."""
-        fb = self.fb
+    def _commands_acting(self, out, bar):
+        """Every command with tasks and sensors acting in C: one ps_ida_controlled call per
+        command, called again after the sensors' event records are drained or the rows grown,
+        with a new print interval's times, and in the next command after a return."""
+        k, d, fb, opts = self.k, self.k.d, self.fb, self.options
         t, y, yp, cfresh, nrestarts, ctl = self.state
-        start = 0
-        while True:
-            flag = lib.ps_ida_controlled(
-                self.solver.s, self.restart, self.ctl, len(self.controls), self.S,
-                fb("double[]", times[start:]), len(times) - start, cmd.end_time, last, t,
-                fb("double[]", y), fb("double[]", yp), cfresh, fb("double[]", T[row:]),
-                fb("double[]", Y[row:]), fb("double[]", YP[row:]), fb("double[]", REQ[row:]),
-                self.reached, self.tret, nrestarts, ctl)
-            row += self.reached[0]
-            start += self.reached[0]
-            if flag != lib.PS_IDA_DRAIN:
-                break
-            self.sensors.drain()
+        nused = ffi.new("int *")
+        moved = False                    # a return ended the last command early
+        for ci, (cmd, _, batches) in enumerate(self.commands):
+            times = batches[0]
+            if moved:                    # the command starts where the return left it
+                why = over_budget(out.row + command_rows(t[0], cmd.end_time, cmd.print_interval),
+                                  k.ny, len(k.channels),
+                                  f"the Simulate command ending at {cmd.end_time:g}")
+                if why:
+                    raise Stop(False, -500, why)
+                times = Grid(t[0], cmd.end_time, cmd.print_interval).all()
+            d.step_limit = d.ntimes - d.nfail + opts.max_num_steps        # as the driver
+            used = 0
+            while True:
+                out.reserve(len(times) - used + 1 + self.later[ci])
+                row = out.row
+                flag = lib.ps_ida_controlled(
+                    self.solver.s, self.restart, self.ctl, len(self.controls), self.S,
+                    fb("double[]", times) + used, len(times) - used, cmd.end_time, 1, t,
+                    fb("double[]", y), fb("double[]", yp), cfresh, len(out.T) - row,
+                    fb("double[]", out.T) + row, fb("double[]", out.Y) + row * k.ny,
+                    fb("double[]", out.YP) + row * k.ny, fb("double[]", out.REQ) + row * self.nout,
+                    self.reached, nused, self.tret, nrestarts, ctl)
+                out.row += self.reached[0]
+                used += nused[0]
+                if flag == lib.PS_IDA_DRAIN:
+                    self.sensors.drain()
+                elif flag == lib.PS_IDA_REGRID:
+                    times, used = self._regrid(cmd, out), 0
+                else:
+                    break
+            if out.row:
+                bar.update(out.T[out.row - 1])
+            stop = self._acting_stop(flag, out)
+            if stop is not None:
+                raise stop
+            moved = flag == lib.PS_IDA_RETURN
+
+    def _regrid(self, cmd, out):
+        """The print times after sensors set a new print interval at the current instant, as
+        Printer.set_interval makes them (the last sensor's interval; each checked against the
+        output budget first, in order, as the general loop does)."""
+        k, t = self.k, self.state[0][0]
+        before = out.row - (self.S.emitted == 1)      # the rows before the instant's own
+        for i, se in self.sensors.new_intervals():
+            why = over_budget(before + command_rows(t, cmd.end_time, se.dt), k.ny,
+                              len(k.channels), f"Sensor_Event {se.id}'s dt = {se.dt:g} at t = "
+                              f"{t:.6g}")
+            if why:
+                # the general loop stops inside that sensor's action: neither its event nor the
+                # instant's row is written
+                self.sensors.drain(upto=i)
+                out.row = before
+                raise Stop(False, -500, why)
+            dt = se.dt
+        return Grid(t, cmd.end_time, dt).all()
+
+    def _acting_stop(self, flag, out):
+        """The Stop of a call of ps_ida_controlled that ended the run, or None."""
+        t, ctl = self.state[0], self.state[5]
         if not lib.ps_interrupted():
             if flag == lib.PS_IDA_CONTROL_FAILED:
                 try:
                     self.controls[ctl[0]].fail(ctl[1], t[0])
                 except NonFinite as err:             # as the general loop words them
-                    return row, Stop(False, -700, str(err))
+                    return Stop(False, -700, str(err))
                 except UserFailure as err:
-                    return row, Stop(False, -400, f"{err} (t = {t[0]:.6g})")
+                    return Stop(False, -400, f"{err} (t = {t[0]:.6g})")
             if flag == lib.PS_IDA_CHATTER:
-                return row, Stop(False, -200, self.sensors.chatter())
-        if flag == lib.PS_IDA_HALTED and not lib.ps_interrupted():
-            return row, Stop(True, 1, f"halted by {self.sensors.halted_by()} at t = {t[0]:.9g}")
-        return row, self._check(flag, T, row)
+                return Stop(False, -200, self.sensors.chatter())
+            if flag == lib.PS_IDA_HALTED:
+                return Stop(True, 1, f"halted by {self.sensors.halted_by()} at t = {t[0]:.9g}")
+        return self._check(flag, out.T, out.row)
 
     def _check(self, flag, T, row):
         """The Stop of Ctrl-C or a failed step, worded as the general loop words them, or
@@ -237,6 +290,33 @@ class FastRun:
         if flag < 0 or d.user_error or d.steps_exceeded:
             return Stop(False, *failure(self.model, self.k, self.options, flag, self.tret[0]))
         return None
+
+
+#: Rows beyond the print times that a run whose actors act in C starts with (rows at events).
+_SLACK = 64
+
+
+class _Out:
+    """A run's rows: times, states, rates and request channels, and how many are written; room
+    for more is made by :meth:`reserve` (the batched path's C loop never allocates)."""
+
+    def __init__(self, times, room, ny, nout):
+        self.T = np.empty(room)
+        self.T[:len(times)] = times
+        self.Y, self.YP, self.REQ = np.empty((room, ny)), np.empty((room, ny)), \
+            np.empty((room, nout))
+        self.row = 0
+
+    def reserve(self, more):
+        """Make room for `more` rows after those written."""
+        if len(self.T) - self.row >= more:
+            return
+        room = self.row + more + _SLACK
+        for name in ("T", "Y", "YP", "REQ"):
+            old = getattr(self, name)
+            new = np.empty((room,) + old.shape[1:])
+            new[:self.row] = old[:self.row]
+            setattr(self, name, new)
 
 
 class _State:

@@ -15,7 +15,7 @@ functions whose crossings IDA reports) are the kernel's, in C (``ps_roots`` and
 - **Chatter guard.** Over CHATTER_LIMIT events within CHATTER_WINDOW * max(1, |t|) end the run.
 
 Sensors whose actions need no Python (:func:`decided_in_c`: storing a Sensor_Evaluate no force
-reads, halt, restart) are decided by the same rules in C on the batched path
+reads, halt, restart, print, return, dt) are decided by the same rules in C on the batched path
 (csrc/events.c; :class:`CSensors` hands its event records over); tests/test_fast.py holds the
 two to the same rows, events, log and counters.
 """
@@ -238,9 +238,10 @@ class Sensors(Actor):
 
 def decided_in_c(sensor, kernel):
     """Whether a sensor's instants can be decided in C (csrc/events.c, on the batched path):
-    its actions are storing a Sensor_Evaluate that no force reads, halt and restart."""
-    return (sensor.zero_crossing is None and sensor.dt is None and sensor.stepsize is None
-            and sensor.hmax is None and not (sensor.print or sensor.verbose or sensor.ret)
+    its actions are storing a Sensor_Evaluate that no force reads, halt, restart, print, return
+    and a new print interval (dt), not zero_crossing, hmax, stepsize or verbose."""
+    return (sensor.zero_crossing is None and sensor.stepsize is None and sensor.hmax is None
+            and not sensor.verbose
             and (sensor.evaluate_id is None or not kernel.forces_use_senval))
 
 
@@ -260,7 +261,9 @@ class CSensors:
         tapes = [kernel.evaluate_tapes[i] if i >= 0 else (0, 0) for i in slots]
         ints = {"evaluate": slots, "eval_tape": [t for t, _ in tapes],
                 "eval_slot": [s for _, s in tapes], "halts": [se.halt for se in self.sensors],
-                "restarts": [se.restart for se in self.sensors]}
+                "restarts": [se.restart for se in self.sensors],
+                "prints": [se.print for se in self.sensors],
+                "rets": [se.ret for se in self.sensors]}
         cap = max(cap or EVENT_CAP, n)
         self.S = S = ffi.new("psSensors *")
         self.keep = []
@@ -274,6 +277,7 @@ class CSensors:
         for name in ("holds", "rearms", "fired", "rearmed", "now", "roots"):
             setattr(S, name, array(np.zeros(n), "int"))
         S.f = array(np.zeros(n), "double")
+        S.dts = array([se.dt or 0.0 for se in self.sensors], "double")
         self.ev = (np.zeros(cap), np.zeros(cap), np.zeros(cap, dtype=np.int32))
         S.ev_time, S.ev_value = (ffi.cast("double *", ffi.from_buffer(a)) for a in self.ev[:2])
         S.ev_sensor = ffi.cast("int *", ffi.from_buffer(self.ev[2]))
@@ -287,10 +291,11 @@ class CSensors:
         self.kernel.armed[:] = 1
         self.events, self.log = [], []
 
-    def drain(self):
-        """Move the events recorded in C to :attr:`events` and :attr:`log`."""
+    def drain(self, upto=None):
+        """Move the events recorded in C (the first `upto` of them; None: all) to
+        :attr:`events` and :attr:`log`."""
         t, value, sensor = self.ev
-        for i in range(self.S.nev):
+        for i in range(self.S.nev if upto is None else upto):
             se = self.sensors[int(sensor[i])]
             actions = se.actions()
             self.events.append(Event(float(t[i]), se.id, se.label, float(value[i]), actions))
@@ -301,6 +306,13 @@ class CSensors:
     def halted_by(self):
         """The element that halted the run."""
         return f"Sensor_Event {self.sensors[self.S.halt].id}"
+
+    def new_intervals(self):
+        """(event index, sensor) of the events of the last instant that set a print interval,
+        in the order they fired."""
+        sensor = self.ev[2]
+        return [(i, self.sensors[int(sensor[i])]) for i in range(self.S.instant_nev, self.S.nev)
+                if self.sensors[int(sensor[i])].dt is not None]
 
     def chatter(self):
         """The message of a run ended by chattering sensors (as :class:`Sensors` words it)."""
