@@ -293,8 +293,9 @@ static int accelerations(const psModel* m, psData* d, const psRestart* r, double
   return PS_OK;
 }
 
-int ps_restart_consistent(const psModel* m, psData* d, const psRestart* r, double t, double* y,
-                          double* yp) {
+/* The restart proper (ps_restart_consistent). */
+static int restart_state(const psModel* m, psData* d, const psRestart* r, double t, double* y,
+                         double* yp) {
   for (int k = 0; k < r->nlam; k++) {
     y[r->lam[k]] = 0.0;
     if (r->mu[k] >= 0) y[r->mu[k]] = 0.0;
@@ -305,6 +306,20 @@ int ps_restart_consistent(const psModel* m, psData* d, const psRestart* r, doubl
   if (rc == PS_OK) rc = track_turns(m, d, r, t, y, yp);
   if (rc == PS_OK) rc = rates(m, d, r, t, y, yp);
   if (rc == PS_OK) rc = accelerations(m, d, r, t, y, yp);
+  return rc;
+}
+
+int ps_restart_consistent(const psModel* m, psData* d, const psRestart* r, double t, double* y,
+                          double* yp) {
+  /* its residuals at t +- h are not step attempts, nor bound by max_num_steps */
+  long ntimes = d->ntimes, nfail = d->nfail, limit = d->step_limit;
+  double last = d->last_t;
+  d->step_limit = 0;
+  int rc = restart_state(m, d, r, t, y, yp);
+  d->ntimes = ntimes;
+  d->nfail = nfail;
+  d->last_t = last;
+  d->step_limit = limit;
   return rc;
 }
 
@@ -381,7 +396,8 @@ int ps_control_update(const psModel* m, psData* d, const psRestart* r, psControl
     rc = ps_motion_reactions(m, d, r, t, y, yp, r->lamv);
     load = -r->lamv[c->lam];
   }
-  if (rc != PS_OK) return rc;
+  if (rc != PS_OK && d->user_error) return rc;
+  if (rc != PS_OK) load = NAN; /* not finite, or the reactions not determined */
   double target = ps_eval_tape(m, d, c->tape, c->slot, t, y, yp);
   c->bad[0] = load;
   c->bad[1] = target;

@@ -44,6 +44,8 @@ static void fire(const psModel* m, psData* d, psSensors* S, int k, double f, dou
   if (S->halts[k]) S->halt = k;
   if (S->rets[k]) S->ret = k;
   if (S->dts[k] > 0) S->dt = S->dts[k];
+  /* room: the loop hands the records over whenever an instant could fill them */
+  if (S->nev >= S->cap) return;
   S->ev_time[S->nev] = t;
   S->ev_value[S->nev] = f;
   S->ev_sensor[S->nev] = k;

@@ -31,7 +31,7 @@
   X(4, IDASetNoInactiveRootWarn) X(4, IDASolve) X(4, IDAGetRootInfo) X(4, IDAGetNumSteps)     \
   X(4, IDAGetNumResEvals) X(4, IDAGetNumJacEvals) X(4, IDAGetNumErrTestFails)                 \
   X(4, IDAGetNumNonlinSolvConvFails) X(4, IDAGetNumGEvals) X(4, IDAGetLastStep) X(4, IDAFree)   \
-  X(4, IDASetId) X(4, IDASetSuppressAlg) X(4, IDAGetCurrentStep) X(4, IDAGetCurrentTime) \
+  X(4, IDASetId) X(4, IDASetSuppressAlg) X(4, IDAGetCurrentStep) X(4, IDAGetCurrentTime) X(4, IDAGetSolution) \
   X(7, SUNSparseMatrix)                                                                     \
   X(7, SUNSparseMatrix_Data) X(7, SUNSparseMatrix_IndexValues)                                \
   X(7, SUNSparseMatrix_IndexPointers) X(8, SUNLinSol_SuperLUMT) X(0, SUNLinSolNewEmpty)          \
@@ -65,6 +65,7 @@ struct psIDA {
   SUNContext ctx;         /* context of the current integration                     */
   void* mem;              /* IDA memory                                             */
   N_Vector y, yp;         /* state and its derivative                               */
+  N_Vector yi, ypi;       /* an interpolated state and derivative (ps_ida_interpolate) */
   SUNMatrix A;            /* dense or band matrix                                   */
   SUNLinearSolver LS;     /* linear solver                                          */
   int band;               /* 1: band matrix filled through map                      */
@@ -328,11 +329,13 @@ static void release(psIDA* s) {
   if (s->A) CALL(s, SUNMatDestroy)(s->A);
   if (s->y) CALL(s, N_VDestroy)(s->y);
   if (s->yp) CALL(s, N_VDestroy)(s->yp);
+  if (s->yi) CALL(s, N_VDestroy)(s->yi);
+  if (s->ypi) CALL(s, N_VDestroy)(s->ypi);
   if (s->ctx) CALL(s, SUNContext_Free)(&s->ctx);
   s->mem = NULL;
   s->LS = NULL;
   s->A = NULL;
-  s->y = s->yp = NULL;
+  s->y = s->yp = s->yi = s->ypi = NULL;
   s->ctx = NULL;
 }
 
@@ -390,7 +393,9 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   CALL(s, SUNContext_ClearErrHandlers)(s->ctx); /* C never prints: flags are returned */
   s->y = CALL(s, N_VNew_Serial)(n, s->ctx);
   s->yp = CALL(s, N_VNew_Serial)(n, s->ctx);
-  if (!s->y || !s->yp) return fail(s, "N_VNew_Serial", -1);
+  s->yi = CALL(s, N_VNew_Serial)(n, s->ctx);
+  s->ypi = CALL(s, N_VNew_Serial)(n, s->ctx);
+  if (!s->y || !s->yp || !s->yi || !s->ypi) return fail(s, "N_VNew_Serial", -1);
   memcpy(CALL(s, N_VGetArrayPointer)(s->y), y0, sizeof(double) * (size_t)n);
   memcpy(CALL(s, N_VGetArrayPointer)(s->yp), yp0, sizeof(double) * (size_t)n);
   s->mem = CALL(s, IDACreate)(s->ctx);
@@ -526,21 +531,43 @@ int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret,
   return flag;
 }
 
+int ps_ida_interpolate(psIDA* s, double t, double* y, double* yp) {
+  int flag = CALL(s, IDAGetSolution)(s->mem, t, s->yi, s->ypi);
+  if (flag < 0) return flag;
+  size_t row = sizeof(double) * (size_t)s->m->ny;
+  memcpy(y, CALL(s, N_VGetArrayPointer)(s->yi), row);
+  memcpy(yp, CALL(s, N_VGetArrayPointer)(s->ypi), row);
+  return 0;
+}
+
 void ps_ida_set_stream(psIDA* s, psStream* st) { s->stream = st; }
 
 /* Write the request channels of output rows k0..k1-1 (and stream the rows). */
-static void row_outputs(psIDA* s, int k0, int k1, const double* tout, double* y_out,
-                        double* yp_out, double* req_out) {
-  int n = s->m->ny, nout = s->m->nout > 0 ? s->m->nout : 1;
-  if (s->m->nout > 0)
-    for (int k = k0; k < k1; k++)
-      ps_outputs(s->m, s->d, tout[k], y_out + (long)k * n, yp_out + (long)k * n,
-                 req_out + (long)k * s->m->nout);
+/* Stream rows k0..k1-1 (times tout, request channels req_out). */
+static void stream_rows(psIDA* s, int k0, int k1, const double* tout, const double* req_out) {
+  int nout = s->m->nout > 0 ? s->m->nout : 1;
   /* a failed write ends the streaming, not the run: the rows are kept in memory */
   if (s->stream && k1 > k0 &&
       ps_stream_rows(s->stream, tout + k0, req_out + (long)k0 * nout, k1 - k0, nout,
                      s->m->nuser > 0) != 0)
     s->stream = NULL;
+}
+
+/* Request channels of rows k0..k1-1, without streaming them. */
+static void row_channels(psIDA* s, int k0, int k1, const double* tout, double* y_out,
+                         double* yp_out, double* req_out) {
+  int n = s->m->ny;
+  if (s->m->nout > 0)
+    for (int k = k0; k < k1; k++)
+      ps_outputs(s->m, s->d, tout[k], y_out + (long)k * n, yp_out + (long)k * n,
+                 req_out + (long)k * s->m->nout);
+}
+
+/* Write the request channels of output rows k0..k1-1 and stream the rows. */
+static void row_outputs(psIDA* s, int k0, int k1, const double* tout, double* y_out,
+                        double* yp_out, double* req_out) {
+  row_channels(s, k0, k1, tout, y_out, yp_out, req_out);
+  stream_rows(s, k0, k1, tout, req_out);
 }
 
 int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fresh,
@@ -562,8 +589,7 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
       memcpy(yp_out + (long)last * n, yp_out, sizeof(double) * (size_t)n);
     }
     for (k = 0; k < last; k++) {
-      flag = ps_ida_solve(s, tout[k], tstop, 0, tret, y_out + (long)k * n,
-                          yp_out + (long)k * n, rootsfound);
+      flag = ps_ida_interpolate(s, tout[k], y_out + (long)k * n, yp_out + (long)k * n);
       if (flag < 0) return flag;
     }
     row_outputs(s, 0, m, tout, y_out, yp_out, req_out);
@@ -631,37 +657,40 @@ static int act(psIDA* s, const psRestart* r, psControl* const* c, int nctl, doub
 }
 
 /* Where the C loop writes its rows: the output times (k of nout used), the rows (r of cap
- * written) and their arrays. */
+ * written) and their arrays, and the rows streamed (those before `streamed`: the last row is
+ * held back, for a row at an event may replace it). */
 typedef struct Rows {
   const double* tout;
   int nout, k;
   double *t_out, *y_out, *yp_out, *req_out;
-  int cap, r;
+  int cap, r, streamed;
 } Rows;
 
-/* Write row o->r at time tm with state (y, yp) and its request channels. */
+/* Write row o->r at time tm with state (y, yp) (NULL: there already) and its request
+ * channels, streaming the rows before it. */
 static void put_row(psIDA* s, Rows* o, double tm, const double* y, const double* yp) {
   int n = s->m->ny;
+  stream_rows(s, o->streamed, o->r, o->t_out, o->req_out);
+  if (o->r > o->streamed) o->streamed = o->r;
   o->t_out[o->r] = tm;
   if (y) memcpy(o->y_out + (long)o->r * n, y, sizeof(double) * (size_t)n);
   if (yp) memcpy(o->yp_out + (long)o->r * n, yp, sizeof(double) * (size_t)n);
-  row_outputs(s, o->r, o->r + 1, o->t_out, o->y_out, o->yp_out, o->req_out);
+  row_channels(s, o->r, o->r + 1, o->t_out, o->y_out, o->yp_out, o->req_out);
   o->r++;
 }
 
 /* Write the rows of the output times that lie at or before t (Printer.emit_due): the current
- * state at t itself, IDA's interpolant before it. Returns 0 or IDA's flag of a failed
- * interpolation. */
-static int emit_due(psIDA* s, Rows* o, double tstop, double t, const double* y,
-                    const double* yp, double* tret) {
+ * state at t itself, IDA's interpolant over its last step before it. Returns 0 or IDA's flag
+ * of a failed interpolation. */
+static int emit_due(psIDA* s, Rows* o, double t, const double* y, const double* yp) {
   int n = s->m->ny;
   for (; o->k < o->nout && o->tout[o->k] <= t; o->k++) {
     if (o->tout[o->k] == t) {
       put_row(s, o, t, y, yp);
       continue;
     }
-    int flag = ps_ida_solve(s, o->tout[o->k], tstop, 0, tret, o->y_out + (long)o->r * n,
-                            o->yp_out + (long)o->r * n, NULL);
+    int flag = ps_ida_interpolate(s, o->tout[o->k], o->y_out + (long)o->r * n,
+                                  o->yp_out + (long)o->r * n);
     if (flag < 0) return flag;
     put_row(s, o, o->tout[o->k], NULL, NULL);
   }
@@ -678,13 +707,10 @@ static int instant(psIDA* s, psSensors* S, Rows* o, double t, double* y, double*
   if (S->restart) restart(s, t, y, yp, fresh, nrestarts);
   S->emitted = 0;
   if (S->emit || S->halt >= 0 || S->ret >= 0) {
-    if (o->r > 0 && o->t_out[o->r - 1] == t) {
-      /* a replaced row was streamed already */
-      psStream* stream = s->stream;
-      s->stream = NULL;
+    if (o->r > o->streamed && o->t_out[o->r - 1] == t) {
+      /* it replaces the last row, which is not streamed yet */
       o->r--;
       put_row(s, o, t, y, yp);
-      s->stream = stream;
       S->emitted = 2;
     } else {
       put_row(s, o, t, y, yp);
@@ -701,13 +727,13 @@ static int instant(psIDA* s, psSensors* S, Rows* o, double t, double* y, double*
 
 int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,
                       const double* tout, int nout, double tend, int last, double* t, double* y,
-                      double* yp, int* fresh, int cap, double* t_out, double* y_out,
-                      double* yp_out, double* req_out, int* nreached, int* nused, double* tret,
-                      long* nrestarts, int* ctl) {
+                      double* yp, int* fresh, int cap, int held, double* t_out, double* y_out,
+                      double* yp_out, double* req_out, int* nreached, int* nused, int* nstreamed,
+                      double* tret, long* nrestarts, int* ctl) {
   int n = s->m->ny, flag = 0;
   size_t row = sizeof(double) * (size_t)n;
   int* roots = S ? S->roots : NULL;
-  Rows o = {tout, nout, 0, t_out, y_out, yp_out, req_out, cap, 0};
+  Rows o = {tout, nout, 0, t_out, y_out, yp_out, req_out, cap, 0, held ? -1 : 0};
   *tret = *t;
   int code = 0;
   while (o.k < nout) {
@@ -744,16 +770,20 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
     }
     *t = *tret;
     int root = flag == 2;
-    code = emit_due(s, &o, tstop, *t, y, yp, tret);
+    code = emit_due(s, &o, *t, y, yp);
     if (code) break;
     if (root) {
       code = instant(s, S, &o, *t, y, yp, fresh, nrestarts);
       if (code) break;
     }
   }
+  /* the rows before the last go out now */
+  stream_rows(s, o.streamed, o.r - 1, t_out, req_out);
+  if (o.r - 1 > o.streamed) o.streamed = o.r - 1;
   if (s->stream && ps_stream_flush(s->stream) != 0) s->stream = NULL;
   *nreached = o.r;
   *nused = o.k;
+  *nstreamed = o.streamed;
   if (code || ps_interrupted()) return code;
   /* the command's end: the updates due there */
   if (last) return act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);

@@ -82,6 +82,7 @@ int IDAGetNumGEvals(void* mem, long* n);
 int IDAGetLastStep(void* mem, sunrealtype* hlast);
 int IDAGetCurrentStep(void* mem, sunrealtype* hcur);
 int IDAGetCurrentTime(void* mem, sunrealtype* tcur);
+int IDAGetSolution(void* mem, sunrealtype t, N_Vector yret, N_Vector ypret);
 void IDAFree(void** mem);
 
 #endif

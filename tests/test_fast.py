@@ -235,6 +235,74 @@ def test_a_print_interval_past_the_output_budget(monkeypatch):
     _same_rows_events(res, ref)
 
 
+def test_a_root_in_a_restarts_first_step_past_print_times(monkeypatch):
+    """The first step after a (re)start finds a root and passes print times before it (loose
+    tolerance, h0_max 0.05, rows every 5 ms): the rows before the root are IDA's interpolant over
+    that step (not the root's state, which a normal-mode call wrote there before), the root is
+    acted on, and both paths agree to the bit."""
+    model = _ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="9.999" '
+                  'restart="TRUE"/>', end=0.2, dt="0.005", tol=1e-4)
+    res = model.run(progress=False, h0_max=0.05)
+    ref = _general(model, monkeypatch, h0_max=0.05)
+    _same_rows_events(res, ref)
+    (event,) = res.events
+    assert 0.005 < event.time < 0.01 and res.stats["nrestarts"] == 1
+    z = res.request(1)[:, 0]
+    assert 9.999 < z[1] < 10.0 and res.t[1] == 0.005          # interpolated, not the root
+    assert res.success and res.t[-1] == 0.2
+
+
+def test_a_failed_start_reports_no_records_of_the_run_before(monkeypatch):
+    """The kept batched run of a LoadControl deck, after a run that logged 30 updates, runs a
+    case whose initial conditions fail (a force 1e-9 / VARVAL = inf): no controller records
+    and no notes of the earlier run, as on the general loop."""
+    text = LOADCONTROL.replace('end_time="3.0"', 'end_time="0.3"').replace(
+        ">10</Parameter>", ">1e-6</Parameter>").replace(
+        "<Post_Request", '<Reference_Variable id="5" expr="1"/><Force_Scalar_TwoBody id="9" '
+        'type="Force" i_marker_id="10" j_marker_id="1" expr="1e-9/VARVAL(5)"/><Post_Request')
+    model = pysolver.loads(text)
+    case = {"Reference_Variable/5/value": 0.0}
+    for enabled in (True, False):
+        monkeypatch.setattr(fast, "ENABLED", enabled)
+        assert len(model.run(progress=False).controller(1)["time"]) == 30
+        bad = model.run(progress=False, params=case)
+        assert bad.status == -700 and len(bad.controller(1)["time"]) == 0
+        assert not [line for line in bad.log if "LoadControl" in line]
+
+
+def test_a_halt_that_replaces_a_print_row_is_streamed_as_kept(tmp_path, monkeypatch):
+    """A halt at a print time replaces that row (its Sensor_Evaluate now stored): the streamed
+    CSV holds the replacing row, as the Result does, on both paths."""
+    text = """<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+      <Reference_Marker id="10" body_id="2" pos_z="10"/>
+      <Body_Point id="2" cg_id="10" mass="1"/><Force_Gravity grav_z="-9.81"/>
+      <Sensor_Evaluate id="1" expr="100 + TIME"/>
+      <Sensor_Event id="1" expr="TIME" compare="GE" value="0.5" evaluate_id="1" halt="TRUE"/>
+      <Post_Request id="1" expr1="DZ(10)" expr2="SENVAL(1)"/>
+      <Param_Transient integr_tol="1e-8"/></Model>
+      <Simulate analysis_type="Transient" end_time="1.0" print_interval="0.1"/></MotionSolve>"""
+    model = pysolver.loads(text)
+    assert _takes_fast_path(model)
+    for enabled in (True, False):
+        monkeypatch.setattr(fast, "ENABLED", enabled)
+        path = tmp_path / f"rows_{enabled}.csv"
+        res = model.run(progress=False, stream=str(path))
+        lines = path.read_text().splitlines()[1:]
+        assert res.status == 1 and len(lines) == len(res.t) == 6
+        assert lines[-1].split(",")[-1] == "100.5" and res.request(1)[-1, 1] == 100.5
+
+
+def test_a_restart_where_forces_read_senval_takes_the_general_loop():
+    """A restart where a force reads SENVAL makes the state consistent again in Python: such a
+    sensor keeps the run on the general loop."""
+    model = _ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" restart="TRUE"/>',
+                  extra='<Reference_Marker id="1" body_id="1"/><Sensor_Evaluate id="1" '
+                        'expr="VZ(10)"/><Force_Scalar_TwoBody id="9" type="Force" '
+                        'i_marker_id="10" j_marker_id="1" expr="SENVAL(1)"/>')
+    assert not _takes_fast_path(model)
+    assert model.run(progress=False).stats["nrestarts"] == 1
+
+
 def test_sensors_and_load_control_in_one_c_loop(monkeypatch):
     """A sensor that restarts at t = 0.5 and halts at 1.25 beside the LoadControl task: both
     in the C loop, the general loop's rows, records and events to the bit."""

@@ -358,6 +358,8 @@ typedef struct psRestart {
 /* Make (t, y, yp) consistent in place: the reactions zeroed, the tracked angles on their
  * measured angles, the positions moved onto the position constraints and the velocities onto
  * the rate rows (each the least change), then the accelerations and the reactions solved for.
+ * Its residual evaluations are not step attempts (d->ntimes, nfail, last_t and step_limit are
+ * left as they were).
  * Returns PS_OK, PS_ERR_NONFINITE (a kernel evaluation failed, as ps_residual),
  * PS_ERR_SINGULAR or PS_ERR_ASSEMBLY. */
 int ps_restart_consistent(const psModel* m, psData* d, const psRestart* r, double t, double* y,
@@ -580,6 +582,11 @@ psIDA* ps_ida_new(const psIDA* loaded);
 /* Free an integration object and its current integration. NULL is allowed. */
 void ps_ida_delete(psIDA* s);
 
+/* IDA's interpolant over its last step at t (at or before its current time, after its last
+ * step's start) into y and yp, as IDASolve gives a requested time it has passed, without
+ * stepping, stopping or looking for roots. Returns 0 or IDA's flag (< 0). */
+int ps_ida_interpolate(psIDA* s, double t, double* y, double* yp);
+
 /* Write every output row ps_ida_outputs makes to st as soon as it is made (NULL: stop),
  * flushed row by row when the model calls user subroutines (the code that may crash the
  * process), else at the end of each ps_ida_outputs call. The stream is not owned: close it
@@ -661,15 +668,18 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
  * whether IDA was just (re)started, both carried from call to call. Rows go to t_out, y_out,
  * yp_out, req_out (cap rows of room, which the caller keeps at least one more than the output
  * times left): *nreached rows written, *nused output times used; *nrestarts counts the
- * restarts. Returns 0, IDA's flag (< 0) of a failed step with *tret its time,
+ * restarts. The rows are streamed (ps_ida_set_stream) all but the last, which a row at an
+ * event may replace: held says that the row before t_out[0] is not streamed yet, and the rows
+ * before index *nstreamed (from -1) are streamed on return; the caller streams the rest at
+ * the end of the run. Returns 0, IDA's flag (< 0) of a failed step with *tret its time,
  * PS_IDA_CONTROL_FAILED (ctl: the task's index and ps_control_update's code), PS_IDA_CHATTER,
  * PS_IDA_HALTED, PS_IDA_RETURN, PS_IDA_REGRID or PS_IDA_DRAIN. Returns early, with 0, after
  * Ctrl-C (ps_interrupted). */
 int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,
                       const double* tout, int nout, double tend, int last, double* t, double* y,
-                      double* yp, int* fresh, int cap, double* t_out, double* y_out,
-                      double* yp_out, double* req_out, int* nreached, int* nused, double* tret,
-                      long* nrestarts, int* ctl);
+                      double* yp, int* fresh, int cap, int held, double* t_out, double* y_out,
+                      double* yp_out, double* req_out, int* nreached, int* nused, int* nstreamed,
+                      double* tret, long* nrestarts, int* ctl);
 
 /* IDA's counters over the whole run, restarts included: steps, residual evaluations, Jacobian
  * evaluations, error-test failures, nonlinear convergence failures, root-function evaluations,

@@ -64,7 +64,19 @@ class _Jac:
 
 def consistent(kernel, t, y, iters=8, initial=False):
     """Make y consistent in place (positions, velocities, lam, mu, w) and return yp; at the
-    `initial` state also with the motions' ic_disp and ic_vel."""
+    `initial` state also with the motions' ic_disp and ic_vel. Its residuals at nearby times
+    are not step attempts, nor bound by max_num_steps (as in C, ps_restart_consistent)."""
+    d = kernel.d
+    kept = (d.ntimes, d.nfail, d.last_t, d.step_limit)
+    d.step_limit = 0
+    try:
+        return _consistent(kernel, t, y, iters, initial)
+    finally:
+        d.ntimes, d.nfail, d.last_t, d.step_limit = kept
+
+
+def _consistent(kernel, t, y, iters, initial):
+    """consistent() proper."""
     lay = kernel.layout
     lam, mu, rate = (np.array(v, dtype=int) for v in (lay.lam, lay.mu, lay.rate))
     y[lam] = 0.0

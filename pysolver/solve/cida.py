@@ -164,6 +164,13 @@ class CIDA:
         return Step(self.tret[0], self.y.copy(), self.yp.copy(), flag,
                     self.roots.copy() if flag == ROOT_RETURN else None)
 
+    def interpolate(self, t, tstop):
+        """The state at t, which the last step passed: IDA's interpolant (no step, stop time or
+        root search: ps_ida_interpolate)."""
+        fb = ffi.from_buffer
+        flag = lib.ps_ida_interpolate(self.s, t, fb("double[]", self.y), fb("double[]", self.yp))
+        return Step(float(t), self.y.copy(), self.yp.copy(), flag, None)
+
     def outputs(self, times, tstop):
         """Advance through output times in C; returns (Step of the last call, Y, YP, REQ, n)
         with the n output rows reached before a root or a failure."""

@@ -21,7 +21,7 @@ from ..build.consistent import AssemblyError, set_tolerance
 from ..build.kernel import UserFailure
 from . import integrator, nonfinite, quasistatic
 from .actors import Actor, Flow
-from .loadcontrol import LoadControlTask, NonFinite
+from .loadcontrol import Interrupted, LoadControlTask, NonFinite
 from .outputs import Printer, Progress, command_rows, over_budget
 from .sensors import Chatter, Sensors
 from .step import ROOT_RETURN, TOO_MUCH_WORK, Step
@@ -319,7 +319,10 @@ class Run:
                                            step.t))
             # outputs up to the point reached: the point itself, or IDA's interpolant
             t = step.t
-            printer.emit_due(step, self.solver, tstop)
+            bad = printer.emit_due(step, self.solver, tstop)
+            if bad is not None:
+                raise Stop(False, *failure(self.model, self.kernel, self.options, bad.status,
+                                           bad.t))
             self.t, self.y, self.yp = t, step.y, step.yp
             if step.status == ROOT_RETURN:
                 if self.on_roots(step):
@@ -377,6 +380,8 @@ class Run:
                 raise Stop(False, -200, str(err)) from None
             except NonFinite as err:
                 raise Stop(False, -700, str(err)) from None
+            except Interrupted:
+                raise self.interrupted() from None
             except UserFailure as err:      # a user subroutine failed outside IDA's calls
                 raise Stop(False, -400, f"{err} (t = {self.t:.6g})") from None
             except quasistatic.StaticFailure as err:

@@ -112,6 +112,8 @@ class FastRun:
             k.senval[:] = 0.0
             if self.sensors:
                 self.sensors.reset()
+            for task in self.controls:
+                task.reset()
             # the initial state (sweep cases change it) and a consistent yp, as the driver
             t0, y0, yp0 = start_state(self.model, k, opts.integr_tol)
             halt = self._start(t0, y0, yp0)
@@ -119,6 +121,7 @@ class FastRun:
             out.row, t_run = 1, time.perf_counter()
             if stream is not None:
                 stream.rows(out.T[:1], out.REQ[:1])
+            out.streamed = 1
             if halt:
                 ida_counters = {"steps": 0, "nfev": 0, "njev": 0, "netf": 0, "ncfn": 0,
                                 "growth_limited_at": None}
@@ -159,6 +162,8 @@ class FastRun:
             d.step_limit = 0
             if stream is not None:
                 lib.ps_ida_set_stream(ida.s, ffi.NULL)
+                if self.acting and out.streamed < out.row:     # the row C held back
+                    stream.rows(out.T[out.streamed:out.row], out.REQ[out.streamed:out.row])
             bar.close(out.T[max(out.row - 1, 0)])
         t_end = time.perf_counter()
         row = out.row
@@ -185,6 +190,7 @@ class FastRun:
             if code != lib.PS_OK:
                 raise Stop(False, -200, self.sensors.chatter())
             halt = self.sensors.halted_by() if self.S.halt >= 0 else None
+            self.sensors.drain()                  # the loop's records start empty
         state = _State(t0, y0, yp0)
         for task in self.controls:
             task.start(state)
@@ -207,7 +213,7 @@ class FastRun:
         with a new print interval's times, and in the next command after a return."""
         k, d, fb, opts = self.k, self.k.d, self.fb, self.options
         t, y, yp, cfresh, nrestarts, ctl = self.state
-        nused = ffi.new("int *")
+        nused, nstreamed = ffi.new("int *"), ffi.new("int *")
         moved = False                    # a return ended the last command early
         for ci, (cmd, _, batches) in enumerate(self.commands):
             times = batches[0]
@@ -227,10 +233,12 @@ class FastRun:
                     self.solver.s, self.restart, self.ctl, len(self.controls), self.S,
                     fb("double[]", times) + used, len(times) - used, cmd.end_time, 1, t,
                     fb("double[]", y), fb("double[]", yp), cfresh, len(out.T) - row,
-                    fb("double[]", out.T) + row, fb("double[]", out.Y) + row * k.ny,
-                    fb("double[]", out.YP) + row * k.ny, fb("double[]", out.REQ) + row * self.nout,
-                    self.reached, nused, self.tret, nrestarts, ctl)
+                    int(row > out.streamed), fb("double[]", out.T) + row,
+                    fb("double[]", out.Y) + row * k.ny, fb("double[]", out.YP) + row * k.ny,
+                    fb("double[]", out.REQ) + row * self.nout, self.reached, nused, nstreamed,
+                    self.tret, nrestarts, ctl)
                 out.row += self.reached[0]
+                out.streamed = row + nstreamed[0]
                 used += nused[0]
                 if flag == lib.PS_IDA_DRAIN:
                     self.sensors.drain()
@@ -260,6 +268,7 @@ class FastRun:
                 # instant's row is written
                 self.sensors.drain(upto=i)
                 out.row = before
+                out.streamed = min(out.streamed, before)
                 raise Stop(False, -500, why)
             dt = se.dt
         return Grid(t, cmd.end_time, dt).all()
@@ -286,7 +295,8 @@ class FastRun:
         None."""
         d = self.k.d
         if lib.ps_interrupted():
-            return Stop(False, -600, f"interrupted at t = {T[row - 1]:.6g}")
+            t = max(self.state[0][0], T[row - 1]) if self.acting else T[row - 1]
+            return Stop(False, -600, f"interrupted at t = {t:.6g}")
         if flag < 0 or d.user_error or d.steps_exceeded:
             return Stop(False, *failure(self.model, self.k, self.options, flag, self.tret[0]))
         return None
@@ -306,6 +316,7 @@ class _Out:
         self.Y, self.YP, self.REQ = np.empty((room, ny)), np.empty((room, ny)), \
             np.empty((room, nout))
         self.row = 0
+        self.streamed = 0          # rows written to the run's stream
 
     def reserve(self, more):
         """Make room for `more` rows after those written."""

@@ -33,6 +33,10 @@ class NonFinite(Exception):
     consistent with its new velocity."""
 
 
+class Interrupted(Exception):
+    """Ctrl-C came during a LoadControl update."""
+
+
 class LoadControlTask(Actor):
     """One LoadControl task (k-th in id order) of a model, on its compiled kernel."""
 
@@ -140,8 +144,14 @@ class LoadControlTask(Actor):
         if code != lib.PS_OK:
             self.fail(code, t)
 
+    def reset(self):
+        """Before a run: no updates logged, none scheduled (start() schedules them)."""
+        self.c.nlog, self.c.t0 = 0, math.inf
+
     def fail(self, code, t):
         """Raise the error of an update at t that returned `code` (not PS_OK)."""
+        if lib.ps_interrupted():                # Ctrl-C: the driver words it
+            raise Interrupted()
         if code == lib.PS_ERR_NONFINITE and self.kernel.d.user_error:
             from ..build.kernel import UserFailure
             raise UserFailure(self.kernel.message)

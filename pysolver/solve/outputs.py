@@ -320,11 +320,15 @@ class Printer(Actor):
 
     def emit_due(self, step, solver, tstop):
         """Write the rows of every pending print time up to the point a step reached: the
-        point itself, or the solver's interpolant within its last step."""
+        point itself, or the solver's interpolant within its last step. Returns the Step of an
+        interpolation that failed (its row is not written), else None."""
         while self.pending and self.pending[0] <= step.t:
             tp = self.pending.popleft()
-            at = step if tp == step.t else solver.step(tp, tstop)
+            at = step if tp == step.t else solver.interpolate(tp, tstop)
+            if not at.success:
+                return at
             self.emit(tp, at.y, at.yp)
+        return None
 
     def flush_stream(self, t_safe, inclusive):
         """Write the rows not yet streamed up to t_safe (rows no action can take back)."""

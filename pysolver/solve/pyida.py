@@ -84,6 +84,11 @@ class PyIDA:
             if isinstance(lst, list):
                 lst.clear()
 
+    def interpolate(self, t, tstop):
+        """The state at t, which the last step passed (scikit-sundae has no interpolant of
+        its own to call: a normal-mode call toward t)."""
+        return self.step(t, tstop)
+
     def step(self, tout, tstop=None, onestep=False):
         """One IDASolve call toward tout, never past tstop (None: no limit); with reactions
         (algebraic states) a step ends at tout, as in csrc/ida.c."""

@@ -238,11 +238,13 @@ class Sensors(Actor):
 
 def decided_in_c(sensor, kernel):
     """Whether a sensor's instants can be decided in C (csrc/events.c, on the batched path):
-    its actions are storing a Sensor_Evaluate that no force reads, halt, restart, print, return
-    and a new print interval (dt), not zero_crossing, hmax, stepsize or verbose."""
+    its actions are storing a Sensor_Evaluate, halt, restart, print, return and a new print
+    interval (dt), not zero_crossing, hmax, stepsize or verbose; where forces read SENVAL, not
+    evaluate or restart (the general loop then makes the state consistent again)."""
     return (sensor.zero_crossing is None and sensor.stepsize is None and sensor.hmax is None
             and not sensor.verbose
-            and (sensor.evaluate_id is None or not kernel.forces_use_senval))
+            and not (kernel.forces_use_senval
+                     and (sensor.evaluate_id is not None or sensor.restart)))
 
 
 class CSensors:
