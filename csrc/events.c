@@ -33,12 +33,20 @@ static void arm(const psModel* m, psData* d, int k, double f) {
 }
 
 /* Fire sensor k (its expression f): disarm it, store its Sensor_Evaluate, note what it asks
- * of the instant (restart, row, halt, return, print interval), record the event. */
-static void fire(const psModel* m, psData* d, psSensors* S, int k, double f, double t,
-                 const double* y, const double* yp) {
+ * of the instant (restart, row, halt, return, print interval), record the event. Returns 1
+ * when its print interval would pass the output budget (S->over = k): the instant stops there,
+ * its event unrecorded, as the general loop stops inside that sensor's action. */
+static int fire(const psModel* m, psData* d, psSensors* S, int k, double f, double t,
+                const double* y, const double* yp) {
   d->sensor_armed[k] = 0;
   if (S->evaluate[k] >= 0)
     d->senval[S->evaluate[k]] = ps_eval_tape(m, d, S->eval_tape[k], S->eval_slot[k], t, y, yp);
+  /* outputs.over_budget of the rows so far and those of the new interval to the end */
+  if (S->dts[k] > 0 && isfinite(S->tend) &&
+      ((double)S->rows + ((S->tend - t) / S->dts[k] + 1.0)) * S->row_bytes > S->budget) {
+    S->over = k;
+    return 1;
+  }
   S->restart |= S->restarts[k];
   S->emit |= S->prints[k] || S->halts[k];
   if (S->halts[k]) S->halt = k;
@@ -50,6 +58,7 @@ static void fire(const psModel* m, psData* d, psSensors* S, int k, double f, dou
   S->ev_value[S->nev] = f;
   S->ev_sensor[S->nev] = k;
   S->nev++;
+  return 0;
 }
 
 /* The sensors' status at (t, y, yp) into S->holds, S->rearms and S->f. */
@@ -83,7 +92,7 @@ static int settle(const psModel* m, psData* d, psSensors* S, double t, const dou
       for (int k = 0; k < S->n; k++)
         if (S->now[k]) {
           S->fired[k] = 1;
-          fire(m, d, S, k, S->f[k], t, y, yp);
+          if (fire(m, d, S, k, S->f[k], t, y, yp)) return PS_SE_BUDGET;
         }
     }
     if (!up && !now) return PS_OK;
@@ -95,12 +104,14 @@ static void begin(psSensors* S) {
   S->restart = S->emit = 0;
   S->halt = S->ret = -1;
   S->dt = 0.0;
+  S->over = -1;
   S->instant_nev = S->nev;
 }
 
 int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const double* y,
                      const double* yp) {
   begin(S);
+  S->tend = NAN; /* before the first command a print interval is not checked (Printer) */
   if (!S->n) return PS_OK;
   status(m, d, S, t, y, yp);
   for (int k = 0; k < S->n; k++) {
@@ -126,6 +137,6 @@ int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found
       S->nrearms++;
     }
   for (int k = 0; k < S->n; k++)
-    if (S->fired[k]) fire(m, d, S, k, S->f[k], t, y, yp);
+    if (S->fired[k] && fire(m, d, S, k, S->f[k], t, y, yp)) return PS_SE_BUDGET;
   return settle(m, d, S, t, y, yp);
 }

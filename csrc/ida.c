@@ -701,9 +701,15 @@ static int emit_due(psIDA* s, Rows* o, double t, const double* y, const double* 
  * Run.apply: a restart, then a row at the instant (Printer.emit: it replaces a row at the same
  * time), then the end of the run, of the command, or a new print interval. Returns 0 to go on
  * or one of ps_ida_controlled's codes. */
-static int instant(psIDA* s, psSensors* S, Rows* o, double t, double* y, double* yp, int* fresh,
-                   long* nrestarts) {
-  if (ps_sensors_roots(s->m, s->d, S, S->roots, t, y, yp) != PS_OK) return PS_IDA_CHATTER;
+static int instant(psIDA* s, psSensors* S, Rows* o, double t, double tend, double* y,
+                   double* yp, int* fresh, long* nrestarts) {
+  long base = S->rows;
+  S->rows += o->r;  /* the rows before the instant, as the general loop counts them */
+  S->tend = tend;
+  int rc = ps_sensors_roots(s->m, s->d, S, S->roots, t, y, yp);
+  S->rows = base;
+  if (rc == PS_SE_BUDGET) return PS_IDA_BUDGET;
+  if (rc != PS_OK) return PS_IDA_CHATTER;
   if (S->restart) restart(s, t, y, yp, fresh, nrestarts);
   S->emitted = 0;
   if (S->emit || S->halt >= 0 || S->ret >= 0) {
@@ -773,7 +779,7 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
     code = emit_due(s, &o, *t, y, yp);
     if (code) break;
     if (root) {
-      code = instant(s, S, &o, *t, y, yp, fresh, nrestarts);
+      code = instant(s, S, &o, *t, tend, y, yp, fresh, nrestarts);
       if (code) break;
     }
   }

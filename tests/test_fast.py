@@ -303,6 +303,53 @@ def test_a_restart_where_forces_read_senval_takes_the_general_loop():
     assert model.run(progress=False).stats["nrestarts"] == 1
 
 
+def _rows_budget(model, rows):
+    """PYSOLVER_OUTPUT_BUDGET for `rows` output rows of `model`."""
+    k = model.compile().kernel
+    return str(8 * (2 * k.ny + max(len(k.channels), 1)) * rows)
+
+
+@pytest.mark.parametrize("case", ["dt and halt", "dt and return", "dt then a command"])
+def test_print_intervals_against_the_budget_as_the_general_loop(case, monkeypatch):
+    """A print interval past the output budget stops the run inside that sensor's action, even
+    when another sensor halts or returns at the same instant (C checks the budget as it fires),
+    and a later command's rows are checked at its start, after a dt made more of them: status
+    -500 and the general loop's message, rows and events."""
+    se = '<Sensor_Event id="{}" expr="DZ(10)" compare="LT" value="5" {}/>'
+    decks = {"dt and halt": (se.format(1, 'dt="1e-6"') + se.format(2, 'halt="TRUE"'), {}, 200),
+             "dt and return": (se.format(1, 'dt="1e-6"') + se.format(2, 'return="TRUE"'), {},
+                               200),
+             "dt then a command": (
+                 '<Sensor_Event id="1" expr="TIME" compare="GE" value="0.5" dt="0.001"/>',
+                 dict(end=1.0, more='<Simulate analysis_type="Transient" end_time="2.0" '
+                                    'print_interval="0.1"/>'), 512)}
+    sensors, kw, rows = decks[case]
+    model = _ball(sensors, **kw)
+    monkeypatch.setenv("PYSOLVER_OUTPUT_BUDGET", _rows_budget(model, rows))
+    assert _takes_fast_path(model)
+    res, ref = model.run(progress=False), _general(model, monkeypatch)
+    assert res.status == -500
+    assert ("the Simulate command ending at 2" if case == "dt then a command"
+            else "Sensor_Event 1's dt = 1e-06") in res.message
+    _same_rows_events(res, ref)
+
+
+@pytest.mark.parametrize("cap", [None, 1])
+def test_events_after_print_interval_instants_are_all_kept(cap, monkeypatch):
+    """Instants that each set a print interval (two sensors alternating at every bounce,
+    error_tol 0), then a halt: every event reaches the Result (the records are handed over after
+    each such instant), on both paths alike."""
+    from pysolver.solve import sensors
+    monkeypatch.setattr(sensors, "EVENT_CAP", cap or sensors.EVENT_CAP)
+    model = _ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" error_tol="0" '
+                  'dt="0.02"/><Sensor_Event id="2" expr="DZ(10)" compare="GE" value="5" '
+                  'error_tol="0" dt="0.2"/><Sensor_Event id="3" expr="TIME" compare="GE" '
+                  'value="4.0" halt="TRUE"/>', extra=BOUNCE, end=6.0, tol=1e-8)
+    res, ref = model.run(progress=False), _general(model, monkeypatch)
+    assert res.status == 1 and res.events[-1].sensor == 3 and len(res.events) == 5
+    _same_rows_events(res, ref)
+
+
 def test_sensors_and_load_control_in_one_c_loop(monkeypatch):
     """A sensor that restarts at t = 0.5 and halts at 1.25 beside the LoadControl task: both
     in the C loop, the general loop's rows, records and events to the bit."""

@@ -436,6 +436,7 @@ int ps_control_update(const psModel* m, psData* d, const psRestart* r, psControl
  * its actions, then the state of the run's instants, the events recorded (cap of them,
  * allocated by the caller) and scratch. */
 #define PS_SE_CHATTER 20 /* sensor events chatter (sensors.py, CHATTER_LIMIT) */
+#define PS_SE_BUDGET 21  /* a sensor's print interval passes the output budget */
 typedef struct psSensors {
   int n;                  /* sensors (m->nsensor)                                 */
   const int* evaluate;    /* (n) the d->senval slot of its Sensor_Evaluate, -1    */
@@ -462,7 +463,12 @@ typedef struct psSensors {
   int halt;               /* the sensor that halted the run at it, -1 none        */
   int ret;                /* the sensor that ended the command at it, -1 none     */
   double dt;              /* the print interval it set, 0 none                    */
+  int over;               /* the sensor whose print interval passed the budget    */
   long instant_nev;       /* the first event of the last instant                  */
+  long rows;              /* output rows of the run before the instant            */
+  double tend;            /* the current command's end (NaN: before the first)    */
+  double row_bytes;       /* bytes per output row (outputs.over_budget)           */
+  double budget;          /* the output budget in bytes                           */
   double* ev_time;        /* (cap) each event's time                              */
   double* ev_value;       /* (cap) its sensor's expression                        */
   int* ev_sensor;         /* (cap) its sensor                                     */
@@ -477,7 +483,9 @@ int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const 
 
 /* The sensors at a root of theirs at (t, y, yp), found IDA's root flags: those crossed fire
  * (armed) or re-arm (fired before), then the event iteration. Sets what the instant asks
- * (S->restart, emit, halt, ret, dt). Returns PS_OK or PS_SE_CHATTER. */
+ * (S->restart, emit, halt, ret, dt). Returns PS_OK, PS_SE_CHATTER or PS_SE_BUDGET (a print
+ * interval would make the run's rows, S->rows before the instant and those to S->tend, pass
+ * S->budget: S->over is the sensor, and the instant stops at it). */
 int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found, double t,
                      const double* y, const double* yp);
 
@@ -656,6 +664,7 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
 #define PS_IDA_DRAIN 4
 #define PS_IDA_RETURN 5
 #define PS_IDA_REGRID 6
+#define PS_IDA_BUDGET -2002
 
 /* Advance through a Simulate command's output times tout (ending at tend; last: the command's
  * last call) with the run's actors deciding in C, exactly as the general driver does
@@ -673,6 +682,8 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
  * before index *nstreamed (from -1) are streamed on return; the caller streams the rest at
  * the end of the run. Returns 0, IDA's flag (< 0) of a failed step with *tret its time,
  * PS_IDA_CONTROL_FAILED (ctl: the task's index and ps_control_update's code), PS_IDA_CHATTER,
+ * PS_IDA_BUDGET (S->over's print interval passes the output budget; S->rows are the rows of
+ * the run before its call plus those it wrote, as the caller sets S->rows at each call),
  * PS_IDA_HALTED, PS_IDA_RETURN, PS_IDA_REGRID or PS_IDA_DRAIN. Returns early, with 0, after
  * Ctrl-C (ps_interrupted). */
 int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,

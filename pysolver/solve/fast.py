@@ -139,7 +139,8 @@ class FastRun:
                 self._commands_acting(out, bar)
             else:
                 fresh = True
-                for cmd, _, batches in self.commands:
+                for cmd, t_cmd, batches in self.commands:
+                    self._budget(cmd, t_cmd, out.row)
                     d.step_limit = d.ntimes - d.nfail + opts.max_num_steps    # as the driver
                     for times in batches:
                         stop = self._command(cmd, times, fresh, out)
@@ -214,21 +215,22 @@ class FastRun:
         k, d, fb, opts = self.k, self.k.d, self.fb, self.options
         t, y, yp, cfresh, nrestarts, ctl = self.state
         nused, nstreamed = ffi.new("int *"), ffi.new("int *")
+        if self.sensors:                 # what a print interval may add (outputs.over_budget)
+            self.S.row_bytes = 8 * (2 * k.ny + max(len(k.channels), 1))
+            self.S.budget = settings.output_budget()
         moved = False                    # a return ended the last command early
         for ci, (cmd, _, batches) in enumerate(self.commands):
             times = batches[0]
+            self._budget(cmd, t[0], out.row)
             if moved:                    # the command starts where the return left it
-                why = over_budget(out.row + command_rows(t[0], cmd.end_time, cmd.print_interval),
-                                  k.ny, len(k.channels),
-                                  f"the Simulate command ending at {cmd.end_time:g}")
-                if why:
-                    raise Stop(False, -500, why)
                 times = Grid(t[0], cmd.end_time, cmd.print_interval).all()
             d.step_limit = d.ntimes - d.nfail + opts.max_num_steps        # as the driver
             used = 0
             while True:
                 out.reserve(len(times) - used + 1 + self.later[ci])
                 row = out.row
+                if self.sensors:
+                    self.S.rows = row
                 flag = lib.ps_ida_controlled(
                     self.solver.s, self.restart, self.ctl, len(self.controls), self.S,
                     fb("double[]", times) + used, len(times) - used, cmd.end_time, 1, t,
@@ -240,40 +242,36 @@ class FastRun:
                 out.row += self.reached[0]
                 out.streamed = row + nstreamed[0]
                 used += nused[0]
-                if flag == lib.PS_IDA_DRAIN:
+                if self.sensors:
                     self.sensors.drain()
-                elif flag == lib.PS_IDA_REGRID:
-                    times, used = self._regrid(cmd, out), 0
-                else:
+                if flag == lib.PS_IDA_REGRID:     # the new interval from the instant on
+                    times, used = Grid(t[0], cmd.end_time, self.S.dt).all(), 0
+                elif flag != lib.PS_IDA_DRAIN:
                     break
             if out.row:
                 bar.update(out.T[out.row - 1])
-            stop = self._acting_stop(flag, out)
+            stop = self._acting_stop(flag, out, cmd.end_time)
             if stop is not None:
                 raise stop
             moved = flag == lib.PS_IDA_RETURN
 
-    def _regrid(self, cmd, out):
-        """The print times after sensors set a new print interval at the current instant, as
-        Printer.set_interval makes them (the last sensor's interval; each checked against the
-        output budget first, in order, as the general loop does)."""
-        k, t = self.k, self.state[0][0]
-        before = out.row - (self.S.emitted == 1)      # the rows before the instant's own
-        for i, se in self.sensors.new_intervals():
-            why = over_budget(before + command_rows(t, cmd.end_time, se.dt), k.ny,
-                              len(k.channels), f"Sensor_Event {se.id}'s dt = {se.dt:g} at t = "
-                              f"{t:.6g}")
-            if why:
-                # the general loop stops inside that sensor's action: neither its event nor the
-                # instant's row is written
-                self.sensors.drain(upto=i)
-                out.row = before
-                out.streamed = min(out.streamed, before)
-                raise Stop(False, -500, why)
-            dt = se.dt
-        return Grid(t, cmd.end_time, dt).all()
+    def _budget(self, cmd, t, rows):
+        """Stop when a command starting at t after `rows` rows would pass the output budget,
+        as the general loop checks it (Run.check_output_budget)."""
+        k = self.k
+        why = over_budget(rows + command_rows(t, cmd.end_time, cmd.print_interval), k.ny,
+                          len(k.channels), f"the Simulate command ending at {cmd.end_time:g}")
+        if why:
+            raise Stop(False, -500, why)
 
-    def _acting_stop(self, flag, out):
+    def _over_budget(self, end, out):
+        """The message of a sensor's print interval past the output budget, as the general loop
+        words it (Run.set_print_interval)."""
+        k, t, se = self.k, self.state[0][0], self.sensors.sensors[self.S.over]
+        return over_budget(out.row + command_rows(t, end, se.dt), k.ny, len(k.channels),
+                           f"Sensor_Event {se.id}'s dt = {se.dt:g} at t = {t:.6g}")
+
+    def _acting_stop(self, flag, out, cmd_end):
         """The Stop of a call of ps_ida_controlled that ended the run, or None."""
         t, ctl = self.state[0], self.state[5]
         if not lib.ps_interrupted():
@@ -286,6 +284,8 @@ class FastRun:
                     return Stop(False, -400, f"{err} (t = {t[0]:.6g})")
             if flag == lib.PS_IDA_CHATTER:
                 return Stop(False, -200, self.sensors.chatter())
+            if flag == lib.PS_IDA_BUDGET:
+                return Stop(False, -500, self._over_budget(cmd_end, out))
             if flag == lib.PS_IDA_HALTED:
                 return Stop(True, 1, f"halted by {self.sensors.halted_by()} at t = {t[0]:.9g}")
         return self._check(flag, out.T, out.row)

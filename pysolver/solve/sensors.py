@@ -309,13 +309,6 @@ class CSensors:
         """The element that halted the run."""
         return f"Sensor_Event {self.sensors[self.S.halt].id}"
 
-    def new_intervals(self):
-        """(event index, sensor) of the events of the last instant that set a print interval,
-        in the order they fired."""
-        sensor = self.ev[2]
-        return [(i, self.sensors[int(sensor[i])]) for i in range(self.S.instant_nev, self.S.nev)
-                if self.sensors[int(sensor[i])].dt is not None]
-
     def chatter(self):
         """The message of a run ended by chattering sensors (as :class:`Sensors` words it)."""
         S = self.S
