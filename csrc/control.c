@@ -89,39 +89,6 @@ double ps_law_update(psLaw* w, double t, double x, double load, double target, d
   return w->velocity;
 }
 
-/* Solve A x = b in place by LU with partial pivoting (A n x n, row-major, overwritten). */
-static int solve(int n, double* A, double* b) {
-  for (int k = 0; k < n; k++) {
-    int p = k;
-    for (int i = k + 1; i < n; i++)
-      if (fabs(A[(long)i * n + k]) > fabs(A[(long)p * n + k])) p = i;
-    double pivot = A[(long)p * n + k];
-    if (pivot == 0.0 || !isfinite(pivot)) return PS_ERR_SINGULAR;
-    if (p != k) {
-      for (int j = 0; j < n; j++) {
-        double tmp = A[(long)k * n + j];
-        A[(long)k * n + j] = A[(long)p * n + j];
-        A[(long)p * n + j] = tmp;
-      }
-      double tmp = b[k];
-      b[k] = b[p];
-      b[p] = tmp;
-    }
-    for (int i = k + 1; i < n; i++) {
-      double f = A[(long)i * n + k] / pivot;
-      if (f == 0.0) continue;
-      for (int j = k + 1; j < n; j++) A[(long)i * n + j] -= f * A[(long)k * n + j];
-      b[i] -= f * b[k];
-    }
-  }
-  for (int i = n - 1; i >= 0; i--) {
-    double s = b[i];
-    for (int j = i + 1; j < n; j++) s -= A[(long)i * n + j] * b[j];
-    b[i] = s / A[(long)i * n + i];
-  }
-  return PS_OK;
-}
-
 /* The largest magnitude of v[idx[k]] (idx NULL: v[k]) over k < n. */
 static double maxabs(const double* v, const int* idx, int n) {
   double m = 0.0;
@@ -144,7 +111,7 @@ static int least_change(const psRestart* r, int ny, const double* J, const int* 
     }
     z[i] = rhs[i];
   }
-  if (solve(nr, CC, z) != PS_OK) return PS_ERR_SINGULAR;
+  if (psu_dense_solve(nr, CC, z, NULL) != PS_OK) return PS_ERR_SINGULAR;
   memset(dx, 0, sizeof(double) * (size_t)ny);
   for (int k = 0; k < nc; k++) {
     double s = 0.0;
@@ -281,7 +248,7 @@ static int accelerations(const psModel* m, psData* d, const psRestart* r, double
       double rt = (r->g[i] - r->res2[li]) / (2 * h);
       z[nr + i] = -(jyp + rt);
     }
-    if (solve(n, S, z) != PS_OK) return PS_ERR_SINGULAR;
+    if (psu_dense_solve(n, S, z, NULL) != PS_OK) return PS_ERR_SINGULAR;
     double step = 0.0, size = 0.0;
     for (int i = 0; i < nr; i++) yp[r->row[i]] += z[i];
     for (int i = 0; i < nl; i++) y[r->lam[i]] += z[nr + i];

@@ -75,6 +75,11 @@ double* ps_slot(const psModel* m, psData* d, int slot);
 void ps_rate_coeff(const psModel* m, psData* d, const psuHD* c, const double* g, int tape,
                    int slot, int i, double* out, double* sc);
 
+/* residual.c: solve A x = b in place (b becomes x) by LU with partial pivoting; A (n x n,
+ * row-major) is overwritten; piv (n, or NULL) receives the pivot rows. Returns
+ * PS_ERR_SINGULAR on a zero or non-finite pivot. */
+int psu_dense_solve(int n, double* A, double* b, int* piv);
+
 /* usersub.c: a PS_OP_USER instruction (operands a) at time t into out. */
 void ps_user_call(const psModel* m, psData* d, const psuHD* c, double* out, const int* a,
                   double t);

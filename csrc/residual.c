@@ -448,16 +448,14 @@ double ps_eval_tape(const psModel* m, psData* d, int tape, int slot, double t, c
   return ps_slot(m, d, slot)[0];
 }
 
-/* Solve A x = b in place (b becomes x) by LU with partial pivoting; A (n x n, row-major) is
- * overwritten. Returns PS_ERR_SINGULAR on a zero or non-finite pivot. */
-static int lu_solve(int n, double* A, double* b, int* piv) {
+int psu_dense_solve(int n, double* A, double* b, int* piv) {
   for (int k = 0; k < n; k++) {
     int p = k;
     for (int i = k + 1; i < n; i++)
       if (fabs(A[(long)i * n + k]) > fabs(A[(long)p * n + k])) p = i;
     double pivot = A[(long)p * n + k];
     if (pivot == 0.0 || !isfinite(pivot)) return PS_ERR_SINGULAR;
-    piv[k] = p;
+    if (piv) piv[k] = p;
     if (p != k) {
       for (int j = 0; j < n; j++) {
         double tmp = A[(long)k * n + j];
@@ -497,7 +495,7 @@ int ps_consistent_yp(const psModel* m, psData* d, double t, const double* y, dou
     if (rc != PS_OK) return rc;
     for (long k = 0; k < (long)n * n; k++) A[k] -= J0[k];
     for (int i = 0; i < n; i++) r[i] = -r[i];
-    if (lu_solve(n, A, r, piv) != PS_OK) return PS_ERR_SINGULAR;
+    if (psu_dense_solve(n, A, r, piv) != PS_OK) return PS_ERR_SINGULAR;
     double step = 0.0, size = 0.0;
     for (int i = 0; i < n; i++) {
       yp[i] += r[i];
