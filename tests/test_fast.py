@@ -442,3 +442,42 @@ def test_the_kept_run_follows_pysolver_backend(monkeypatch):
     monkeypatch.setenv("PYSOLVER_BACKEND", "sksundae")
     res = model.run(progress=False)
     assert res.success and res.meta["options"]["backend"] == "sksundae"
+
+
+def _random_deck(rng):
+    """A random scene of sensors (and sometimes a LoadControl task): expressions, thresholds,
+    error_tol bands and actions drawn from those the C loop decides, with random print
+    intervals, a second Simulate command and first-step bounds."""
+    actions = ['restart="TRUE"', 'print="TRUE"', 'dt="{:.3g}"', 'return="TRUE"',
+               'evaluate_id="1"', 'halt="TRUE"']
+    watched = [("TIME", "GE", lambda: rng.uniform(0.0, 0.6)),
+               ("DZ(10)", "LT", lambda: rng.uniform(2.0, 9.0)),
+               ("DZ(10)", "GE", lambda: rng.uniform(2.0, 9.0)),
+               ("VZ(10)", "EQ", lambda: 0.0)]
+    sensors = ['<Sensor_Evaluate id="1" expr="VZ(10) + TIME"/>']
+    for sid in range(1, rng.integers(1, 4) + 1):
+        expr, compare, value = watched[rng.integers(len(watched))]
+        chosen = rng.choice(len(actions), size=rng.integers(0, 3), replace=False)
+        acts = " ".join(actions[i].format(rng.choice([0.01, 0.05, 0.2])) for i in chosen
+                        if actions[i] != 'halt="TRUE"' or rng.random() < 0.3)
+        sensors.append(f'<Sensor_Event id="{sid}" expr="{expr}" compare="{compare}" '
+                       f'value="{value():.4g}" error_tol="{rng.choice([0.0, 1e-3, 0.1])}" '
+                       f'{acts}/>')
+    more = ('<Simulate analysis_type="Transient" end_time="2.5" print_interval="0.07"/>'
+            if rng.random() < 0.5 else "")
+    model = _ball("".join(sensors), extra=BOUNCE, end=1.6, dt=rng.choice([0.1, 0.03]),
+                  tol=1e-7, more=more)
+    return model, ({"h0_max": 0.05} if rng.random() < 0.3 else {})
+
+
+@pytest.mark.parametrize("seed", range(24))
+def test_random_sensor_scenes_to_the_bit(seed, monkeypatch):
+    """Random sensor scenes (seeded): the batched path's C loop and the general loop give the
+    same rows, events, log, counters and message, twice in a row."""
+    model, options = _random_deck(np.random.default_rng(seed))
+    options = dict(options, kernel="tapes")     # the loop is the same on either kernel
+    assert _takes_fast_path(model, **options)
+    runs = [model.run(progress=False, **options) for _ in range(2)]
+    ref = _general(model, monkeypatch, **options)
+    for res in runs:
+        _same(res, ref, events=True)
