@@ -52,13 +52,33 @@ static int fire(const psModel* m, psData* d, psSensors* S, int k, double f, doub
   if (S->halts[k]) S->halt = k;
   if (S->rets[k]) S->ret = k;
   if (S->dts[k] > 0) S->dt = S->dts[k];
+  if (S->verboses[k]) S->verbose_on[k] = 1;
   /* room: the loop hands the records over whenever an instant could fill them */
-  if (S->nev >= S->cap) return;
+  if (S->nev >= S->cap) return 0;
   S->ev_time[S->nev] = t;
   S->ev_value[S->nev] = f;
   S->ev_sensor[S->nev] = k;
   S->nev++;
   return 0;
+}
+
+int ps_sensors_verbose(const psModel* m, psData* d, psSensors* S, double t, const double* y,
+                       const double* yp) {
+  int any = 0;
+  for (int k = 0; k < S->n && !any; k++) any = S->verbose_on[k];
+  if (!any) return 0;
+  ps_sensor_status(m, d, t, y, yp, S->holds, S->rearms);
+  int wrote = 0;
+  for (int k = 0; k < S->n; k++) {
+    if (!S->verbose_on[k] || S->nev >= S->cap) continue;
+    /* a record of sensor -1 - k: a line of the log, not an event */
+    S->ev_time[S->nev] = t;
+    S->ev_value[S->nev] = d->sensor_f[k];
+    S->ev_sensor[S->nev] = -1 - k;
+    S->nev++;
+    wrote++;
+  }
+  return wrote;
 }
 
 /* The sensors' status at (t, y, yp) into S->holds, S->rearms and S->f. */
@@ -79,6 +99,7 @@ static int settle(const psModel* m, psData* d, psSensors* S, double t, const dou
       if (!d->sensor_armed[k] && !S->rearmed[k] && S->rearms[k]) {
         arm(m, d, k, S->f[k]);
         S->nrearms++;
+        S->verbose_on[k] = 0;
         S->rearmed[k] = 1;
         up = 1;
         if (chatter(S, t)) return PS_SE_CHATTER;
@@ -116,7 +137,7 @@ int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const 
   status(m, d, S, t, y, yp);
   for (int k = 0; k < S->n; k++) {
     arm(m, d, k, S->f[k]);
-    S->fired[k] = S->rearmed[k] = 0;
+    S->fired[k] = S->rearmed[k] = S->verbose_on[k] = 0;
   }
   return settle(m, d, S, t, y, yp);
 }
@@ -135,6 +156,7 @@ int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found
     if (S->rearmed[k]) {
       arm(m, d, k, S->f[k]);
       S->nrearms++;
+      S->verbose_on[k] = 0;
     }
   for (int k = 0; k < S->n; k++)
     if (S->fired[k] && fire(m, d, S, k, S->f[k], t, y, yp)) return PS_SE_BUDGET;

@@ -664,6 +664,7 @@ typedef struct Rows {
   int nout, k;
   double *t_out, *y_out, *yp_out, *req_out;
   int cap, r, streamed;
+  psSensors* S; /* told of every row (verbose sensors), or NULL */
 } Rows;
 
 /* Write row o->r at time tm with state (y, yp) (NULL: there already) and its request
@@ -676,7 +677,17 @@ static void put_row(psIDA* s, Rows* o, double tm, const double* y, const double*
   if (y) memcpy(o->y_out + (long)o->r * n, y, sizeof(double) * (size_t)n);
   if (yp) memcpy(o->yp_out + (long)o->r * n, yp, sizeof(double) * (size_t)n);
   row_channels(s, o->r, o->r + 1, o->t_out, o->y_out, o->yp_out, o->req_out);
+  if (o->S)
+    ps_sensors_verbose(s->m, s->d, o->S, tm, o->y_out + (long)o->r * n,
+                       o->yp_out + (long)o->r * n);
   o->r++;
+}
+
+/* Whether a verbose sensor is active: the general loop then writes rows one at a time. */
+static int watching(const psSensors* S) {
+  for (int k = 0; S && k < S->n; k++)
+    if (S->verbose_on[k]) return 1;
+  return 0;
 }
 
 /* Write the rows of the output times that lie at or before t (Printer.emit_due): the current
@@ -726,8 +737,10 @@ static int instant(psIDA* s, psSensors* S, Rows* o, double t, double tend, doubl
   if (S->halt >= 0) return PS_IDA_HALTED;
   if (S->ret >= 0) return PS_IDA_RETURN;
   if (S->dt > 0) return PS_IDA_REGRID;
-  /* room for the next instant's events and row */
-  if (S->nev + S->n > S->cap || o->r + (o->nout - o->k) + 1 > o->cap) return PS_IDA_DRAIN;
+  /* room for the next instant's events and row, and the log lines of the rows left */
+  long lines = S->nverbose ? (long)S->n * (o->nout - o->k + 2) : 0;
+  if (S->nev + S->n + lines > S->cap || o->r + (o->nout - o->k) + 1 > o->cap)
+    return PS_IDA_DRAIN;
   return 0;
 }
 
@@ -739,7 +752,7 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
   int n = s->m->ny, flag = 0;
   size_t row = sizeof(double) * (size_t)n;
   int* roots = S ? S->roots : NULL;
-  Rows o = {tout, nout, 0, t_out, y_out, yp_out, req_out, cap, 0, held ? -1 : 0};
+  Rows o = {tout, nout, 0, t_out, y_out, yp_out, req_out, cap, 0, held ? -1 : 0, S};
   *tret = *t;
   int code = 0;
   while (o.k < nout) {
@@ -755,12 +768,18 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
       flag = ps_ida_solve(s, tstop, tstop, 1, tret, y, yp, roots);
       *fresh = 0;
     } else if (tout[o.k] <= tstop) {
-      /* the output times up to the stop (a root ends the batch: row r holds its state) */
+      /* the output times up to the stop (a root ends the batch: row r holds its state);
+       * one at a time while a verbose sensor is active, as the general loop */
+      int one = watching(S);
       for (; o.k < nout && tout[o.k] <= tstop; o.k++) {
         flag = ps_ida_solve(s, tout[o.k], tstop, 0, tret, y_out + (long)o.r * n,
                             yp_out + (long)o.r * n, roots);
         if (flag < 0 || flag == 2) break;
         put_row(s, &o, tout[o.k], NULL, NULL);
+        if (one) {
+          o.k++;
+          break;
+        }
       }
       if (flag >= 0) {
         int j = flag == 2 ? o.r : o.r - 1;

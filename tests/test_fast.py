@@ -174,6 +174,16 @@ SENSOR_DECKS = {
         '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" error_tol="0.01" '
         'dt="0.02" print="TRUE"/><Sensor_Event id="2" expr="DZ(10)" compare="GE" value="5" '
         'error_tol="0.01" dt="0.2"/>', extra=BOUNCE, end=6.0, tol=1e-8),
+    "verbose": lambda: _ball(
+        '<Sensor_Event id="1" expr="TIME" compare="GE" value="0.5" error_tol="1e-9" '
+        'verbose="TRUE"/>'),
+    "verbose, re-armed, halted": lambda: _ball(
+        '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" error_tol="0.01" '
+        'verbose="TRUE" print="TRUE"/><Sensor_Event id="2" expr="TIME" compare="GE" '
+        'value="4.05" halt="TRUE"/>', extra=BOUNCE, end=6.0, dt=0.05, tol=1e-8),
+    "verbose at the start, halt there": lambda: _ball(
+        '<Sensor_Event id="1" expr="DZ(10)" compare="GE" value="10" verbose="TRUE" '
+        'halt="TRUE"/>'),
     "chatter": lambda: _ball(
         '<Sensor_Event id="1" expr="TIME - 0.3 + SENVAL(1)" compare="GE" value="0" '
         'error_tol="0" evaluate_id="1"/>',
@@ -200,9 +210,9 @@ def test_sensors_decided_in_c_to_the_bit(name, cap, monkeypatch):
 
 
 def test_sensors_with_other_actions_take_the_general_loop():
-    """verbose, hmax, stepsize and zero_crossing need the general loop, and so does an evaluate
-    whose value a force reads (the state is then made consistent again)."""
-    for action in ('verbose="TRUE"', 'hmax="0.01"', 'stepsize="1e-3"', 'zero_crossing="0.1"'):
+    """hmax, stepsize and zero_crossing need the general loop, and so does an evaluate whose
+    value a force reads (the state is then made consistent again)."""
+    for action in ('hmax="0.01"', 'stepsize="1e-3"', 'zero_crossing="0.1"'):
         model = _ball(f'<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" {action}/>')
         assert not _takes_fast_path(model), action
     model = _ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" evaluate_id="1"/>',
@@ -449,7 +459,7 @@ def _random_deck(rng):
     error_tol bands and actions drawn from those the C loop decides, with random print
     intervals, a second Simulate command and first-step bounds."""
     actions = ['restart="TRUE"', 'print="TRUE"', 'dt="{:.3g}"', 'return="TRUE"',
-               'evaluate_id="1"', 'halt="TRUE"']
+               'evaluate_id="1"', 'halt="TRUE"', 'verbose="TRUE"']
     watched = [("TIME", "GE", lambda: rng.uniform(0.0, 0.6)),
                ("DZ(10)", "LT", lambda: rng.uniform(2.0, 9.0)),
                ("DZ(10)", "GE", lambda: rng.uniform(2.0, 9.0)),

@@ -431,8 +431,8 @@ int ps_control_update(const psModel* m, psData* d, const psRestart* r, psControl
                       double* y, double* yp);
 
 /* Sensor_Event elements decided in C (csrc/events.c): those whose actions need no Python
- * (store a Sensor_Evaluate no force reads, halt, restart, print, return, dt). Per sensor
- * (index k in id order)
+ * (store a Sensor_Evaluate no force reads, halt, restart, print, return, dt, verbose). Per
+ * sensor (index k in id order)
  * its actions, then the state of the run's instants, the events recorded (cap of them,
  * allocated by the caller) and scratch. */
 #define PS_SE_CHATTER 20 /* sensor events chatter (sensors.py, CHATTER_LIMIT) */
@@ -447,6 +447,9 @@ typedef struct psSensors {
   const int* prints;      /* (n) 1: write a row at the event                      */
   const int* rets;        /* (n) 1: end the Simulate command                      */
   const double* dts;      /* (n) a new print interval, 0 none                     */
+  const int* verboses;    /* (n) 1: log every output row while active             */
+  int* verbose_on;        /* (n) 1: a verbose sensor fired and not re-armed       */
+  int nverbose;           /* verbose sensors                                      */
   int* holds;             /* (n) scratch from here on                             */
   int* rearms;            /* (n)                                                  */
   int* fired;             /* (n) fired at this instant                            */
@@ -480,6 +483,12 @@ typedef struct psSensors {
  * the instant asks (S->restart, emit, halt, ret, dt). Returns PS_OK or PS_SE_CHATTER. */
 int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const double* y,
                      const double* yp);
+
+/* Record a log line (an event record of sensor -1 - k) for every verbose sensor k that is
+ * active, with its expression at (t, y, yp): an output row was written there. Returns the
+ * number of records written (none past S->cap). */
+int ps_sensors_verbose(const psModel* m, psData* d, psSensors* S, double t, const double* y,
+                       const double* yp);
 
 /* The sensors at a root of theirs at (t, y, yp), found IDA's root flags: those crossed fire
  * (armed) or re-arm (fired before), then the event iteration. Sets what the instant asks

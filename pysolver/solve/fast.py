@@ -118,6 +118,10 @@ class FastRun:
             t0, y0, yp0 = start_state(self.model, k, opts.integr_tol)
             halt = self._start(t0, y0, yp0)
             out.Y[0], out.YP[0], out.REQ[0, :len(k.channels)] = y0, yp0, k.outputs(t0, y0, yp0)
+            # row 0 is written again when a sensor at the start asks for a row (print, halt,
+            # return), as Run.apply does
+            again = self.sensors and (self.S.emit or self.S.halt >= 0 or self.S.ret >= 0)
+            self._verbose(t0, y0, yp0, 2 if again else 1)
             out.row, t_run = 1, time.perf_counter()
             if stream is not None:
                 stream.rows(out.T[:1], out.REQ[:1])
@@ -197,6 +201,14 @@ class FastRun:
             task.start(state)
         return halt
 
+    def _verbose(self, t, y, yp, times):
+        """The active verbose sensors' log lines of row 0 (written `times` times)."""
+        if self.sensors and self.S.nverbose:
+            self.sensors.reserve(times)
+            for _ in range(times):
+                lib.ps_sensors_verbose(self.k.m, self.k.d, self.S, t, self.fb("double[]", y),
+                                       self.fb("double[]", yp))
+
     def _command(self, cmd, times, fresh, out):
         """One batch of a command's print times, nothing acting: ps_ida_outputs. Returns the
         Stop that ends the run there, or None."""
@@ -231,6 +243,7 @@ class FastRun:
                 row = out.row
                 if self.sensors:
                     self.S.rows = row
+                    self.sensors.reserve(len(times) - used + 1)
                 flag = lib.ps_ida_controlled(
                     self.solver.s, self.restart, self.ctl, len(self.controls), self.S,
                     fb("double[]", times) + used, len(times) - used, cmd.end_time, 1, t,

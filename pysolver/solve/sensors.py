@@ -15,7 +15,7 @@ functions whose crossings IDA reports) are the kernel's, in C (``ps_roots`` and
 - **Chatter guard.** Over CHATTER_LIMIT events within CHATTER_WINDOW * max(1, |t|) end the run.
 
 Sensors whose actions need no Python (:func:`decided_in_c`: storing a Sensor_Evaluate no force
-reads, halt, restart, print, return, dt) are decided by the same rules in C on the batched path
+reads, halt, restart, print, return, dt, verbose) are decided by the same rules in C on the batched path
 (csrc/events.c; :class:`CSensors` hands its event records over); tests/test_fast.py holds the
 two to the same rows, events, log and counters.
 """
@@ -238,11 +238,10 @@ class Sensors(Actor):
 
 def decided_in_c(sensor, kernel):
     """Whether a sensor's instants can be decided in C (csrc/events.c, on the batched path):
-    its actions are storing a Sensor_Evaluate, halt, restart, print, return and a new print
-    interval (dt), not zero_crossing, hmax, stepsize or verbose; where forces read SENVAL, not
-    evaluate or restart (the general loop then makes the state consistent again)."""
+    its actions are storing a Sensor_Evaluate, halt, restart, print, return, a new print
+    interval (dt) and verbose, not zero_crossing, hmax or stepsize; where forces read SENVAL,
+    not evaluate or restart (the general loop then makes the state consistent again)."""
     return (sensor.zero_crossing is None and sensor.stepsize is None and sensor.hmax is None
-            and not sensor.verbose
             and not (kernel.forces_use_senval
                      and (sensor.evaluate_id is not None or sensor.restart)))
 
@@ -265,7 +264,8 @@ class CSensors:
                 "eval_slot": [s for _, s in tapes], "halts": [se.halt for se in self.sensors],
                 "restarts": [se.restart for se in self.sensors],
                 "prints": [se.print for se in self.sensors],
-                "rets": [se.ret for se in self.sensors]}
+                "rets": [se.ret for se in self.sensors],
+                "verboses": [se.verbose for se in self.sensors]}
         cap = max(cap or EVENT_CAP, n)
         self.S = S = ffi.new("psSensors *")
         self.keep = []
@@ -276,15 +276,31 @@ class CSensors:
             return ffi.cast(f"{kind} *", ffi.from_buffer(arr))
         for name, values in ints.items():
             setattr(S, name, array(values, "int"))
-        for name in ("holds", "rearms", "fired", "rearmed", "now", "roots"):
+        for name in ("holds", "rearms", "fired", "rearmed", "now", "roots", "verbose_on"):
             setattr(S, name, array(np.zeros(n), "int"))
         S.f = array(np.zeros(n), "double")
         S.dts = array([se.dt or 0.0 for se in self.sensors], "double")
+        S.n, S.nverbose = n, sum(se.verbose for se in self.sensors)
+        self._records(cap)
+        self.events, self.log = [], []
+
+    def _records(self, cap):
+        """Room for `cap` records (events, and verbose sensors' log lines)."""
+        from ..build.bindings import ffi
         self.ev = (np.zeros(cap), np.zeros(cap), np.zeros(cap, dtype=np.int32))
+        S = self.S
         S.ev_time, S.ev_value = (ffi.cast("double *", ffi.from_buffer(a)) for a in self.ev[:2])
         S.ev_sensor = ffi.cast("int *", ffi.from_buffer(self.ev[2]))
-        S.n, S.cap = n, cap
-        self.events, self.log = [], []
+        S.cap = cap
+
+    def reserve(self, rows):
+        """Room (the records drained) for an instant's events and, with verbose sensors, a log
+        line per sensor for each of `rows` rows more."""
+        S = self.S
+        need = S.n + (S.n * (rows + 2) if S.nverbose else 0)
+        if need > S.cap - S.nev:
+            self.drain()                      # the records so far, in order, first
+            self._records(max(need, S.cap))
 
     def reset(self):
         """A new run: no events, re-armings or recent firings; every sensor armed."""
@@ -298,6 +314,11 @@ class CSensors:
         :attr:`events` and :attr:`log`."""
         t, value, sensor = self.ev
         for i in range(self.S.nev if upto is None else upto):
+            if sensor[i] < 0:                    # a verbose sensor's line at an output row
+                se = self.sensors[-1 - int(sensor[i])]
+                self.log.append(f"t = {t[i]:.9g}: Sensor_Event {se.id} active (value "
+                                f"{value[i]:.6g} {se.compare} {se.value:g})")
+                continue
             se = self.sensors[int(sensor[i])]
             actions = se.actions()
             self.events.append(Event(float(t[i]), se.id, se.label, float(value[i]), actions))
