@@ -53,6 +53,9 @@ static int fire(const psModel* m, psData* d, psSensors* S, int k, double f, doub
   if (S->rets[k]) S->ret = k;
   if (S->dts[k] > 0) S->dt = S->dts[k];
   if (S->verboses[k]) S->verbose_on[k] = 1;
+  if (S->hmaxs[k] > 0) S->hmax = S->hmaxs[k];
+  if (S->stepsizes[k] > 0)
+    S->first_step = S->first_step > 0 ? fmin(S->first_step, S->stepsizes[k]) : S->stepsizes[k];
   /* room: the loop hands the records over whenever an instant could fill them */
   if (S->nev >= S->cap) return 0;
   S->ev_time[S->nev] = t;
@@ -124,7 +127,7 @@ static int settle(const psModel* m, psData* d, psSensors* S, double t, const dou
 static void begin(psSensors* S) {
   S->restart = S->emit = 0;
   S->halt = S->ret = -1;
-  S->dt = 0.0;
+  S->dt = S->hmax = S->first_step = 0.0;
   S->over = -1;
   S->instant_nev = S->nev;
 }

@@ -37,6 +37,10 @@
   X(7, SUNSparseMatrix_IndexPointers) X(8, SUNLinSol_SuperLUMT) X(0, SUNLinSolNewEmpty)          \
   X(3, SUNLinSolGetType_Dense) X(3, SUNLinSolSetup_Dense) X(3, SUNLinSolSolve_Dense)
 
+/* IDA's default step-growth limit (IDASetEtaMax), restored when a limit auto_eta switched on
+ * goes with new step bounds. */
+#define PS_IDA_ETA_MAX_DEFAULT 2.0
+
 /* A step shorter than this times |t| is at rounding level. */
 #define PS_IDA_ROUNDING 1e-10
 
@@ -93,6 +97,9 @@ struct psIDA {
   double win_h[2];        /* smallest and largest step seen in the window           */
   long acc[6];            /* IDA's counters of the run before the last restart      */
   long limited_at;        /* step at which auto_eta was switched on (0: not)        */
+  long first_limited;     /* the first such step of the run (ps_ida_stats)          */
+  double bounds[3];       /* the step bounds set: hmax, hmin, first step (0: IDA's) */
+  double base[3];         /* those of ps_ida_init (a run starts from them)          */
   psStream* stream;       /* where output rows are written as made (NULL: nowhere)  */
   char msg[256];          /* message of the last error                              */
   void (*set_threads)(int); /* SuperLU_MT's libgomp omp_set_num_threads (NULL: none)    */
@@ -265,8 +272,10 @@ static void watch(psIDA* s) {
   long dn = nst - s->win[0];
   if (dn < PS_IDA_WINDOW) return;
   if (2 * (netf - s->win[1]) > dn && s->win_h[1] < 4 * s->win_h[0] &&
-      CALL(s, IDASetEtaMax)(s->mem, s->auto_eta) == 0)
+      CALL(s, IDASetEtaMax)(s->mem, s->auto_eta) == 0) {
     s->limited_at = s->acc[0] + nst;
+    if (!s->first_limited) s->first_limited = s->limited_at;
+  }
   s->win[0] = nst;
   s->win[1] = netf;
   s->win_h[0] = s->win_h[1] = 0.0;
@@ -466,7 +475,10 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   memset(s->win, 0, sizeof(s->win));
   s->win_h[0] = s->win_h[1] = 0.0;
   s->auto_eta = 0.0;
-  s->limited_at = 0;
+  s->limited_at = s->first_limited = 0;
+  s->bounds[0] = s->base[0] = hmax;
+  s->bounds[1] = s->base[1] = hmin;
+  s->bounds[2] = s->base[2] = h0;
   if (hmax > 0) SET(s, CALL(s, IDASetMaxStep)(s->mem, hmax), "IDASetMaxStep");
   if (hmin > 0) SET(s, CALL(s, IDASetMinStep)(s->mem, hmin), "IDASetMinStep");
   if (h0 > 0) SET(s, CALL(s, IDASetInitStep)(s->mem, h0), "IDASetInitStep");
@@ -609,15 +621,39 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
 
 int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0) {
   if (!s->mem || s->limited_at || s->sparse == 2) return 1;
+  if (memcmp(s->bounds, s->base, sizeof(s->bounds)) != 0 &&
+      ps_ida_bounds(s, s->base[0], s->base[1], s->base[2]) != 0)
+    return 1;
   int flag = ps_ida_reinit(s, t0, y0, yp0);
   memset(s->acc, 0, sizeof(s->acc));
+  s->first_limited = 0;
   return flag;
+}
+
+int ps_ida_bounds(psIDA* s, double hmax, double hmin, double h0) {
+  /* 0 is IDA's default for each: no bound, no bound, its own first step */
+  int flag = CALL(s, IDASetMaxStep)(s->mem, hmax);
+  if (flag >= 0) flag = CALL(s, IDASetMinStep)(s->mem, hmin);
+  if (flag >= 0) flag = CALL(s, IDASetInitStep)(s->mem, h0);
+  /* a step-growth limit auto_eta switched on goes, as with a new IDA object */
+  if (flag >= 0 && s->limited_at) {
+    flag = CALL(s, IDASetEtaMax)(s->mem, PS_IDA_ETA_MAX_DEFAULT);
+    s->limited_at = 0;
+  }
+  if (flag < 0) {
+    snprintf(s->msg, sizeof(s->msg), "could not set IDA's step bounds: flag %d", flag);
+    return -1;
+  }
+  s->bounds[0] = hmax;
+  s->bounds[1] = hmin;
+  s->bounds[2] = h0;
+  return 0;
 }
 
 void ps_ida_stats(psIDA* s, long* out) {
   ida_counters(s, out);
   for (int i = 0; i < 6; i++) out[i] += s->acc[i];
-  out[6] = s->limited_at;
+  out[6] = s->first_limited;
 }
 
 /* Run every LoadControl update due at t (ps_control_next(c) <= t), in task order. Returns 1
@@ -638,13 +674,19 @@ static int updates_due(psIDA* s, const psRestart* r, psControl* const* c, int nc
   return any;
 }
 
-/* A cold restart of IDA at (t, y, yp), as the general driver's Run.start. */
-static void restart(psIDA* s, double t, const double* y, const double* yp, int* fresh,
-                    long* nrestarts) {
+/* A cold restart of IDA at (t, y, yp) with the largest step hmax and the first step `first`
+ * (0: the run's own), as the general driver's Run.start. Returns 0, or -1 when the bounds
+ * cannot be set. */
+static int restart(psIDA* s, double t, const double* y, const double* yp, double hmax,
+                   double first, int* fresh, long* nrestarts) {
+  double b[3] = {hmax, s->bounds[1], first > 0 ? first : s->base[2]};
+  if ((b[0] != s->bounds[0] || b[2] != s->bounds[2]) && ps_ida_bounds(s, b[0], b[1], b[2]))
+    return -1;
   s->d->last_t = t; /* restarts are not step attempts (see ps_residual) */
   ps_ida_reinit(s, t, y, yp);
   *fresh = 1;
   (*nrestarts)++;
+  return 0;
 }
 
 /* Act at t as the general driver does (Run.act_due): the updates due, then a restart. */
@@ -652,7 +694,7 @@ static int act(psIDA* s, const psRestart* r, psControl* const* c, int nctl, doub
                double* yp, int* fresh, long* nrestarts, int* ctl) {
   int due = updates_due(s, r, c, nctl, t, y, yp, ctl);
   if (due < 0) return PS_IDA_CONTROL_FAILED;
-  if (due) restart(s, t, y, yp, fresh, nrestarts);
+  if (due && restart(s, t, y, yp, s->bounds[0], 0.0, fresh, nrestarts)) return PS_IDA_BOUNDS;
   return 0;
 }
 
@@ -721,7 +763,11 @@ static int instant(psIDA* s, psSensors* S, Rows* o, double t, double tend, doubl
   S->rows = base;
   if (rc == PS_SE_BUDGET) return PS_IDA_BUDGET;
   if (rc != PS_OK) return PS_IDA_CHATTER;
-  if (S->restart) restart(s, t, y, yp, fresh, nrestarts);
+  /* a new largest step or a first step restarts too (Sensors._fire, Run.apply) */
+  if ((S->restart || S->hmax > 0 || S->first_step > 0) &&
+      restart(s, t, y, yp, S->hmax > 0 ? S->hmax : s->bounds[0], S->first_step, fresh,
+              nrestarts))
+    return PS_IDA_BOUNDS;
   S->emitted = 0;
   if (S->emit || S->halt >= 0 || S->ret >= 0) {
     if (o->r > o->streamed && o->t_out[o->r - 1] == t) {

@@ -184,6 +184,14 @@ SENSOR_DECKS = {
     "verbose at the start, halt there": lambda: _ball(
         '<Sensor_Event id="1" expr="DZ(10)" compare="GE" value="10" verbose="TRUE" '
         'halt="TRUE"/>'),
+    "hmax and stepsize": lambda: _ball(
+        '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" hmax="0.002"/>'
+        '<Sensor_Event id="2" expr="DZ(10)" compare="LT" value="3" stepsize="1e-5" '
+        'restart="TRUE"/><Sensor_Event id="3" expr="DZ(10)" compare="LT" value="2" '
+        'stepsize="1e-4"/>'),
+    "hmax at the start": lambda: _ball(
+        '<Sensor_Event id="1" expr="DZ(10)" compare="GE" value="10" hmax="0.01" '
+        'stepsize="1e-6"/>'),
     "chatter": lambda: _ball(
         '<Sensor_Event id="1" expr="TIME - 0.3 + SENVAL(1)" compare="GE" value="0" '
         'error_tol="0" evaluate_id="1"/>',
@@ -210,9 +218,9 @@ def test_sensors_decided_in_c_to_the_bit(name, cap, monkeypatch):
 
 
 def test_sensors_with_other_actions_take_the_general_loop():
-    """hmax, stepsize and zero_crossing need the general loop, and so does an evaluate whose
-    value a force reads (the state is then made consistent again)."""
-    for action in ('hmax="0.01"', 'stepsize="1e-3"', 'zero_crossing="0.1"'):
+    """zero_crossing needs the general loop (it goes back to the last converged step), and so
+    does an evaluate whose value a force reads (the state is then made consistent again)."""
+    for action in ('zero_crossing="0.1"',):
         model = _ball(f'<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" {action}/>')
         assert not _takes_fast_path(model), action
     model = _ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" evaluate_id="1"/>',
@@ -459,7 +467,8 @@ def _random_deck(rng):
     error_tol bands and actions drawn from those the C loop decides, with random print
     intervals, a second Simulate command and first-step bounds."""
     actions = ['restart="TRUE"', 'print="TRUE"', 'dt="{:.3g}"', 'return="TRUE"',
-               'evaluate_id="1"', 'halt="TRUE"', 'verbose="TRUE"']
+               'evaluate_id="1"', 'halt="TRUE"', 'verbose="TRUE"', 'hmax="{:.3g}"',
+               'stepsize="{:.1g}"']
     watched = [("TIME", "GE", lambda: rng.uniform(0.0, 0.6)),
                ("DZ(10)", "LT", lambda: rng.uniform(2.0, 9.0)),
                ("DZ(10)", "GE", lambda: rng.uniform(2.0, 9.0)),
@@ -468,7 +477,8 @@ def _random_deck(rng):
     for sid in range(1, rng.integers(1, 4) + 1):
         expr, compare, value = watched[rng.integers(len(watched))]
         chosen = rng.choice(len(actions), size=rng.integers(0, 3), replace=False)
-        acts = " ".join(actions[i].format(rng.choice([0.01, 0.05, 0.2])) for i in chosen
+        acts = " ".join(actions[i].format(rng.choice([0.01, 0.05, 0.2]) / (
+                            1e3 if "stepsize" in actions[i] else 1)) for i in chosen
                         if actions[i] != 'halt="TRUE"' or rng.random() < 0.3)
         sensors.append(f'<Sensor_Event id="{sid}" expr="{expr}" compare="{compare}" '
                        f'value="{value():.4g}" error_tol="{rng.choice([0.0, 1e-3, 0.1])}" '

@@ -431,7 +431,8 @@ int ps_control_update(const psModel* m, psData* d, const psRestart* r, psControl
                       double* y, double* yp);
 
 /* Sensor_Event elements decided in C (csrc/events.c): those whose actions need no Python
- * (store a Sensor_Evaluate no force reads, halt, restart, print, return, dt, verbose). Per
+ * (store a Sensor_Evaluate no force reads, halt, restart, print, return, dt, verbose, hmax,
+ * stepsize). Per
  * sensor (index k in id order)
  * its actions, then the state of the run's instants, the events recorded (cap of them,
  * allocated by the caller) and scratch. */
@@ -448,6 +449,8 @@ typedef struct psSensors {
   const int* rets;        /* (n) 1: end the Simulate command                      */
   const double* dts;      /* (n) a new print interval, 0 none                     */
   const int* verboses;    /* (n) 1: log every output row while active             */
+  const double* hmaxs;    /* (n) a new largest step, 0 none                       */
+  const double* stepsizes; /* (n) the first step of a restart, 0 none             */
   int* verbose_on;        /* (n) 1: a verbose sensor fired and not re-armed       */
   int nverbose;           /* verbose sensors                                      */
   int* holds;             /* (n) scratch from here on                             */
@@ -466,6 +469,8 @@ typedef struct psSensors {
   int halt;               /* the sensor that halted the run at it, -1 none        */
   int ret;                /* the sensor that ended the command at it, -1 none     */
   double dt;              /* the print interval it set, 0 none                    */
+  double hmax;            /* the largest step it set, 0 none                      */
+  double first_step;      /* the first step it asked for (the smallest), 0 none   */
   int over;               /* the sensor whose print interval passed the budget    */
   long instant_nev;       /* the first event of the last instant                  */
   long rows;              /* output rows of the run before the instant            */
@@ -659,7 +664,8 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
  * object and linear solver: IDA's state and the counters of ps_ida_stats start from zero.
  * Returns 1 when the object cannot be reused as it is (never set up, its step-growth limit
  * switched on by ps_ida_tune's auto_eta, or SuperLU_MT, whose factorization is kept between
- * runs): call ps_ida_init instead; else IDA's flag. */
+ * runs): call ps_ida_init instead; else IDA's flag. The step bounds go back to
+ * ps_ida_init's. */
 int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
 
 /* ps_ida_controlled's returns other than IDA's flags: a LoadControl update failed, the
@@ -674,6 +680,7 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
 #define PS_IDA_RETURN 5
 #define PS_IDA_REGRID 6
 #define PS_IDA_BUDGET -2002
+#define PS_IDA_BOUNDS -2003
 
 /* Advance through a Simulate command's output times tout (ending at tend; last: the command's
  * last call) with the run's actors deciding in C, exactly as the general driver does
@@ -693,13 +700,20 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
  * PS_IDA_CONTROL_FAILED (ctl: the task's index and ps_control_update's code), PS_IDA_CHATTER,
  * PS_IDA_BUDGET (S->over's print interval passes the output budget; S->rows are the rows of
  * the run before its call plus those it wrote, as the caller sets S->rows at each call),
- * PS_IDA_HALTED, PS_IDA_RETURN, PS_IDA_REGRID or PS_IDA_DRAIN. Returns early, with 0, after
+ * PS_IDA_BOUNDS (new step bounds could not be set: ps_ida_message), PS_IDA_HALTED,
+ * PS_IDA_RETURN, PS_IDA_REGRID or PS_IDA_DRAIN. Returns early, with 0, after
  * Ctrl-C (ps_interrupted). */
 int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,
                       const double* tout, int nout, double tend, int last, double* t, double* y,
                       double* yp, int* fresh, int cap, int held, double* t_out, double* y_out,
                       double* yp_out, double* req_out, int* nreached, int* nused, int* nstreamed,
                       double* tret, long* nrestarts, int* ctl);
+
+/* New step bounds for the current integration, from its next (re)start on: the largest and
+ * smallest step and the first step (0: IDA's default for each). As with a new IDA object, a
+ * step-growth limit that ps_ida_tune's auto_eta switched on is lifted. Returns 0, or -1 with
+ * a message (ps_ida_message). */
+int ps_ida_bounds(psIDA* s, double hmax, double hmin, double h0);
 
 /* IDA's counters over the whole run, restarts included: steps, residual evaluations, Jacobian
  * evaluations, error-test failures, nonlinear convergence failures, root-function evaluations,

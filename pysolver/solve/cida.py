@@ -164,6 +164,12 @@ class CIDA:
         return Step(self.tret[0], self.y.copy(), self.yp.copy(), flag,
                     self.roots.copy() if flag == ROOT_RETURN else None)
 
+    def set_bounds(self, hmax, hmin, h0):
+        """New step bounds (0: IDA's default) from the next (re)start on, as a new object would
+        have them (ps_ida_bounds)."""
+        if lib.ps_ida_bounds(self.s, hmax, hmin, h0) != 0:
+            raise self._error()
+
     def interpolate(self, t, tstop):
         """The state at t, which the last step passed: IDA's interpolant (no step, stop time or
         root search: ps_ida_interpolate)."""

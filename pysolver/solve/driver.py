@@ -130,10 +130,14 @@ class Run:
 
     # the integrator --------------------------------------------------------------------
     def start(self, first_step=None):
-        """(Re)start IDA at the current state: a cold restart (order 1, history dropped). A new
-        IDA object is built only when the step bounds change."""
+        """(Re)start IDA at the current state: a cold restart (order 1, history dropped). New
+        step bounds are set on IDA from C (ps_ida_bounds, as the batched path's C loop sets
+        them); through scikit-sundae a new IDA object is built for them."""
         bounds = (self.hmax or 0.0, self.hmin, first_step or self.options.h0_max or 0.0)
         self.kernel.d.last_t = self.t      # restarts are not step attempts (see ps_residual)
+        if self.solver is not None and bounds != self.bounds and self.plan.use_c:
+            self.solver.set_bounds(*bounds)
+            self.bounds = bounds
         if self.solver is None or bounds != self.bounds:
             self.retire_solver()
             self.solver = integrator.make(self.kernel, self.options, self.plan, bounds)

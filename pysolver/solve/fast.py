@@ -137,6 +137,10 @@ class FastRun:
             if lib.ps_ida_rerun(ida.s, t0, fb("double[]", y0), fb("double[]", yp0)) != 0:
                 ida.started = False
                 ida.init_step(t0, y0, yp0)
+            if self.sensors and (self.S.hmax > 0 or self.S.first_step > 0):
+                # sensors at the start set the first start's bounds, as Run.start does
+                base = ida.opts[2:5]
+                ida.set_bounds(self.S.hmax or base[0], base[1], self.S.first_step or base[2])
             if self.acting:
                 t, y, yp = self.state[:3]
                 t[0], y[:], yp[:], self.state[3][0] = t0, y0, yp0, 1
@@ -297,6 +301,8 @@ class FastRun:
                     return Stop(False, -400, f"{err} (t = {t[0]:.6g})")
             if flag == lib.PS_IDA_CHATTER:
                 return Stop(False, -200, self.sensors.chatter())
+            if flag == lib.PS_IDA_BOUNDS:
+                raise RuntimeError(ffi.string(lib.ps_ida_message(self.solver.s)).decode())
             if flag == lib.PS_IDA_BUDGET:
                 return Stop(False, -500, self._over_budget(cmd_end, out))
             if flag == lib.PS_IDA_HALTED:

@@ -14,10 +14,9 @@ functions whose crossings IDA reports) are the kernel's, in C (``ps_roots`` and
   ``zero_crossing``; when it fires again the bounds come back.
 - **Chatter guard.** Over CHATTER_LIMIT events within CHATTER_WINDOW * max(1, |t|) end the run.
 
-Sensors whose actions need no Python (:func:`decided_in_c`: storing a Sensor_Evaluate no force
-reads, halt, restart, print, return, dt, verbose) are decided by the same rules in C on the batched path
-(csrc/events.c; :class:`CSensors` hands its event records over); tests/test_fast.py holds the
-two to the same rows, events, log and counters.
+Sensors whose actions need no Python (:func:`decided_in_c`: all but zero_crossing) are decided
+by the same rules in C on the batched path (csrc/events.c; :class:`CSensors` hands its event
+records over); tests/test_fast.py holds the two to the same rows, events, log and counters.
 """
 import collections
 import dataclasses
@@ -238,12 +237,13 @@ class Sensors(Actor):
 
 def decided_in_c(sensor, kernel):
     """Whether a sensor's instants can be decided in C (csrc/events.c, on the batched path):
-    its actions are storing a Sensor_Evaluate, halt, restart, print, return, a new print
-    interval (dt) and verbose, not zero_crossing, hmax or stepsize; where forces read SENVAL,
-    not evaluate or restart (the general loop then makes the state consistent again)."""
-    return (sensor.zero_crossing is None and sensor.stepsize is None and sensor.hmax is None
+    every action but zero_crossing (which goes back to the last converged step); where forces
+    read SENVAL, not those that restart (evaluate, restart, hmax, stepsize: the general loop
+    then makes the state consistent again)."""
+    return (sensor.zero_crossing is None
             and not (kernel.forces_use_senval
-                     and (sensor.evaluate_id is not None or sensor.restart)))
+                     and (sensor.evaluate_id is not None or sensor.restart
+                          or sensor.hmax is not None or sensor.stepsize is not None)))
 
 
 class CSensors:
@@ -280,6 +280,8 @@ class CSensors:
             setattr(S, name, array(np.zeros(n), "int"))
         S.f = array(np.zeros(n), "double")
         S.dts = array([se.dt or 0.0 for se in self.sensors], "double")
+        S.hmaxs = array([se.hmax or 0.0 for se in self.sensors], "double")
+        S.stepsizes = array([se.stepsize or 0.0 for se in self.sensors], "double")
         S.n, S.nverbose = n, sum(se.verbose for se in self.sensors)
         self._records(cap)
         self.events, self.log = [], []
