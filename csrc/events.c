@@ -1,7 +1,6 @@
 /* Sensor_Event at an instant, in C: arming, firing and re-arming, the event iteration and the
  * chatter guard of pysolver/solve/sensors.py, for sensors whose actions are those that need no
- * Python (store a Sensor_Evaluate whose value no force reads, halt, restart, print, return,
- * a new print interval). The batched path
+ * Python (every action but zero_crossing; where a force reads SENVAL, none that restarts). The batched path
  * decides such sensors' instants here (ps_ida_controlled); the general loop runs sensors.py,
  * and tests/test_fast.py holds the two to the same rows, events and counters. */
 #include <math.h>
@@ -33,7 +32,8 @@ static void arm(const psModel* m, psData* d, int k, double f) {
 }
 
 /* Fire sensor k (its expression f): disarm it, store its Sensor_Evaluate, note what it asks
- * of the instant (restart, row, halt, return, print interval), record the event. Returns 1
+ * of the instant (restart, row, halt, return, print interval, verbose, largest step, first
+ * step), record the event. Returns 1
  * when its print interval would pass the output budget (S->over = k): the instant stops there,
  * its event unrecorded, as the general loop stops inside that sensor's action. */
 static int fire(const psModel* m, psData* d, psSensors* S, int k, double f, double t,

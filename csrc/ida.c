@@ -719,7 +719,7 @@ static void put_row(psIDA* s, Rows* o, double tm, const double* y, const double*
   if (y) memcpy(o->y_out + (long)o->r * n, y, sizeof(double) * (size_t)n);
   if (yp) memcpy(o->yp_out + (long)o->r * n, yp, sizeof(double) * (size_t)n);
   row_channels(s, o->r, o->r + 1, o->t_out, o->y_out, o->yp_out, o->req_out);
-  if (o->S)
+  if (o->S && o->S->nverbose)
     ps_sensors_verbose(s->m, s->d, o->S, tm, o->y_out + (long)o->r * n,
                        o->yp_out + (long)o->r * n);
   o->r++;
@@ -784,7 +784,7 @@ static int instant(psIDA* s, psSensors* S, Rows* o, double t, double tend, doubl
   if (S->ret >= 0) return PS_IDA_RETURN;
   if (S->dt > 0) return PS_IDA_REGRID;
   /* room for the next instant's events and row, and the log lines of the rows left */
-  long lines = S->nverbose ? (long)S->n * (o->nout - o->k + 2) : 0;
+  long lines = (long)S->nverbose * (o->nout - o->k + 2);
   if (S->nev + S->n + lines > S->cap || o->r + (o->nout - o->k) + 1 > o->cap)
     return PS_IDA_DRAIN;
   return 0;

@@ -202,10 +202,10 @@ SENSOR_DECKS = {
 @pytest.mark.parametrize("name", sorted(SENSOR_DECKS))
 @pytest.mark.parametrize("cap", [None, 1])
 def test_sensors_decided_in_c_to_the_bit(name, cap, monkeypatch):
-    """Sensors whose actions need no Python (evaluate, halt, restart, print, return, dt) are
-    decided in the batched path's C loop (csrc/events.c): the general loop's rows, events, log,
-    re-armings, restarts and message to the last bit, on every run; with room for one event at
-    a time in C (cap 1) the loop hands them over after each instant and goes on."""
+    """Sensors with every action but zero_crossing are decided in the batched path's C loop
+    (csrc/events.c): the general loop's rows, events, log, re-armings, restarts and message to
+    the last bit, on every run; with room for one event at a time in C (cap 1) the loop hands
+    them over after each instant and goes on."""
     from pysolver.solve import sensors
     monkeypatch.setattr(sensors, "EVENT_CAP", cap or sensors.EVENT_CAP)
     model = SENSOR_DECKS[name]()
@@ -463,9 +463,9 @@ def test_the_kept_run_follows_pysolver_backend(monkeypatch):
 
 
 def _random_deck(rng):
-    """A random scene of sensors (and sometimes a LoadControl task): expressions, thresholds,
-    error_tol bands and actions drawn from those the C loop decides, with random print
-    intervals, a second Simulate command and first-step bounds."""
+    """A random scene of sensors on the bouncing ball: expressions, thresholds, error_tol
+    bands and actions drawn from those the C loop decides, with random print intervals, a
+    second Simulate command and first-step bounds."""
     actions = ['restart="TRUE"', 'print="TRUE"', 'dt="{:.3g}"', 'return="TRUE"',
                'evaluate_id="1"', 'halt="TRUE"', 'verbose="TRUE"', 'hmax="{:.3g}"',
                'stepsize="{:.1g}"']

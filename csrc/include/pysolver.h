@@ -485,7 +485,7 @@ typedef struct psSensors {
 
 /* The sensors at the start of a run at (t, y, yp): every sensor armed (an EQ sensor on the
  * side it starts on), then those whose condition holds fire (the event iteration). Sets what
- * the instant asks (S->restart, emit, halt, ret, dt). Returns PS_OK or PS_SE_CHATTER. */
+ * the instant asks (S->restart, emit, halt, ret, dt, hmax, first_step). Returns PS_OK or PS_SE_CHATTER. */
 int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const double* y,
                      const double* yp);
 
@@ -497,7 +497,7 @@ int ps_sensors_verbose(const psModel* m, psData* d, psSensors* S, double t, cons
 
 /* The sensors at a root of theirs at (t, y, yp), found IDA's root flags: those crossed fire
  * (armed) or re-arm (fired before), then the event iteration. Sets what the instant asks
- * (S->restart, emit, halt, ret, dt). Returns PS_OK, PS_SE_CHATTER or PS_SE_BUDGET (a print
+ * (S->restart, emit, halt, ret, dt, hmax, first_step). Returns PS_OK, PS_SE_CHATTER or PS_SE_BUDGET (a print
  * interval would make the run's rows, S->rows before the instant and those to S->tend, pass
  * S->budget: S->over is the sensor, and the instant stops at it). */
 int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found, double t,

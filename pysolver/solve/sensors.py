@@ -296,10 +296,10 @@ class CSensors:
         S.cap = cap
 
     def reserve(self, rows):
-        """Room (the records drained) for an instant's events and, with verbose sensors, a log
-        line per sensor for each of `rows` rows more."""
+        """Room (the records drained) for an instant's events and a log line per verbose
+        sensor for each of `rows` rows more."""
         S = self.S
-        need = S.n + (S.n * (rows + 2) if S.nverbose else 0)
+        need = S.n + S.nverbose * (rows + 2)
         if need > S.cap - S.nev:
             self.drain()                      # the records so far, in order, first
             self._records(max(need, S.cap))
