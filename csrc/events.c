@@ -47,7 +47,11 @@ static int fire(const psModel* m, psData* d, psSensors* S, int k, double f, doub
     S->over = k;
     return 1;
   }
-  S->restart |= S->restarts[k];
+  /* a restart: asked for, or new step bounds, or a stored value a force reads */
+  int again = S->restarts[k] || S->hmaxs[k] > 0 || S->stepsizes[k] > 0 ||
+              (S->evaluate[k] >= 0 && S->consistent);
+  S->restart |= S->restarts[k] || (S->evaluate[k] >= 0 && S->consistent);
+  S->batch_restart |= again;
   S->emit |= S->prints[k] || S->halts[k];
   if (S->halts[k]) S->halt = k;
   if (S->rets[k]) S->ret = k;
@@ -84,6 +88,23 @@ int ps_sensors_verbose(const psModel* m, psData* d, psSensors* S, double t, cons
   return wrote;
 }
 
+/* Fire the sensors marked in `marks` (in id order): one call of sensors.py's _fire. Where
+ * forces read SENVAL and one of them restarts, yp is made consistent again at its end
+ * (ps_consistent_yp, as kernel.consistent_yp: NaN when it fails). Returns PS_OK,
+ * PS_SE_BUDGET or PS_SE_USER (a user subroutine failed there). */
+static int fire_batch(const psModel* m, psData* d, psSensors* S, const int* marks, double t,
+                      const double* y, double* yp) {
+  S->batch_restart = 0;
+  for (int k = 0; k < S->n; k++)
+    if (marks[k] && fire(m, d, S, k, S->f[k], t, y, yp)) return PS_SE_BUDGET;
+  if (!(S->batch_restart && S->consistent)) return PS_OK;
+  if (ps_consistent_yp(m, d, t, y, yp, S->cwork, S->cpiv, 4) != PS_OK) {
+    if (d->user_error) return PS_SE_USER;
+    for (int i = 0; i < m->ny; i++) yp[i] = NAN;
+  }
+  return PS_OK;
+}
+
 /* The sensors' status at (t, y, yp) into S->holds, S->rearms and S->f. */
 static void status(const psModel* m, psData* d, psSensors* S, double t, const double* y,
                    const double* yp) {
@@ -94,7 +115,7 @@ static void status(const psModel* m, psData* d, psSensors* S, double t, const do
 /* The event iteration at one instant (sensors.py, Sensors._settle): re-arm and fire until
  * nothing changes, each sensor firing and re-arming at most once. */
 static int settle(const psModel* m, psData* d, psSensors* S, double t, const double* y,
-                  const double* yp) {
+                  double* yp) {
   for (;;) {
     status(m, d, S, t, y, yp);
     int up = 0, now = 0;
@@ -113,11 +134,9 @@ static int settle(const psModel* m, psData* d, psSensors* S, double t, const dou
     }
     if (now) {
       if (chatter(S, t)) return PS_SE_CHATTER;
-      for (int k = 0; k < S->n; k++)
-        if (S->now[k]) {
-          S->fired[k] = 1;
-          if (fire(m, d, S, k, S->f[k], t, y, yp)) return PS_SE_BUDGET;
-        }
+      for (int k = 0; k < S->n; k++) S->fired[k] |= S->now[k];
+      int rc = fire_batch(m, d, S, S->now, t, y, yp);
+      if (rc != PS_OK) return rc;
     }
     if (!up && !now) return PS_OK;
   }
@@ -133,7 +152,7 @@ static void begin(psSensors* S) {
 }
 
 int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const double* y,
-                     const double* yp) {
+                     double* yp) {
   begin(S);
   S->tend = NAN; /* before the first command a print interval is not checked (Printer) */
   if (!S->n) return PS_OK;
@@ -146,7 +165,7 @@ int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const 
 }
 
 int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found, double t,
-                     const double* y, const double* yp) {
+                     const double* y, double* yp) {
   begin(S);
   for (int k = 0; k < S->n; k++) {
     S->fired[k] = found[k] != 0 && d->sensor_armed[k];
@@ -161,7 +180,11 @@ int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found
       S->nrearms++;
       S->verbose_on[k] = 0;
     }
-  for (int k = 0; k < S->n; k++)
-    if (S->fired[k] && fire(m, d, S, k, S->f[k], t, y, yp)) return PS_SE_BUDGET;
+  int any = 0;
+  for (int k = 0; k < S->n; k++) any |= S->fired[k];
+  if (any) {
+    int rc = fire_batch(m, d, S, S->fired, t, y, yp);
+    if (rc != PS_OK) return rc;
+  }
   return settle(m, d, S, t, y, yp);
 }

@@ -762,6 +762,7 @@ static int instant(psIDA* s, psSensors* S, Rows* o, double t, double tend, doubl
   int rc = ps_sensors_roots(s->m, s->d, S, S->roots, t, y, yp);
   S->rows = base;
   if (rc == PS_SE_BUDGET) return PS_IDA_BUDGET;
+  if (rc == PS_SE_USER) return PS_IDA_USER;
   if (rc != PS_OK) return PS_IDA_CHATTER;
   /* a new largest step or a first step restarts too (Sensors._fire, Run.apply) */
   if ((S->restart || S->hmax > 0 || S->first_step > 0) &&

@@ -217,16 +217,10 @@ def test_sensors_decided_in_c_to_the_bit(name, cap, monkeypatch):
         _same(res, ref, events=True)
 
 
-def test_sensors_with_other_actions_take_the_general_loop():
-    """zero_crossing needs the general loop (it goes back to the last converged step), and so
-    does an evaluate whose value a force reads (the state is then made consistent again)."""
-    for action in ('zero_crossing="0.1"',):
-        model = _ball(f'<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" {action}/>')
-        assert not _takes_fast_path(model), action
-    model = _ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" evaluate_id="1"/>',
-                  extra='<Reference_Marker id="1" body_id="1"/>'
-                        '<Sensor_Evaluate id="1" expr="VZ(10)"/><Force_Scalar_TwoBody id="9" '
-                        'type="Force" i_marker_id="10" j_marker_id="1" expr="SENVAL(1)"/>')
+def test_zero_crossing_takes_the_general_loop():
+    """zero_crossing needs the general loop: it goes back to the last converged step."""
+    model = _ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" '
+                  'zero_crossing="0.1"/>')
     assert not _takes_fast_path(model)
 
 
@@ -301,15 +295,42 @@ def test_a_halt_that_replaces_a_print_row_is_streamed_as_kept(tmp_path, monkeypa
         assert lines[-1].split(",")[-1] == "100.5" and res.request(1)[-1, 1] == 100.5
 
 
-def test_a_restart_where_forces_read_senval_takes_the_general_loop():
-    """A restart where a force reads SENVAL makes the state consistent again in Python: such a
-    sensor keeps the run on the general loop."""
-    model = _ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" restart="TRUE"/>',
-                  extra='<Reference_Marker id="1" body_id="1"/><Sensor_Evaluate id="1" '
-                        'expr="VZ(10)"/><Force_Scalar_TwoBody id="9" type="Force" '
-                        'i_marker_id="10" j_marker_id="1" expr="SENVAL(1)"/>')
+SENVAL_FORCE = ('<Reference_Marker id="1" body_id="1"/><Sensor_Evaluate id="1" '
+                'expr="-2 * VZ(10)"/><Force_Scalar_TwoBody id="9" type="Force" '
+                'i_marker_id="10" j_marker_id="1" expr="SENVAL(1)"/>')
+
+
+@pytest.mark.parametrize("sensors", [
+    '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" evaluate_id="1"/>',
+    '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" restart="TRUE"/>'
+    '<Sensor_Event id="2" expr="DZ(10)" compare="LT" value="3" evaluate_id="1" '
+    'stepsize="1e-4" print="TRUE"/>',
+    '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="8" evaluate_id="1" '
+    'hmax="0.01"/>'])
+def test_a_force_that_reads_senval_restarts_consistent_in_c(sensors, monkeypatch):
+    """A force reads SENVAL (a Sensor_Evaluate of the speed): an action that restarts makes yp
+    consistent with the new force, in C on the batched path (ps_consistent_yp, the same C the
+    general loop's kernel.consistent_yp calls), to the bit; the force acts from the event on
+    (the body's acceleration jumps)."""
+    model = _ball(sensors, extra=SENVAL_FORCE)
+    assert _takes_fast_path(model)
+    res, ref = model.run(progress=False), _general(model, monkeypatch)
+    _same(res, ref, events=True)
+    assert res.success and res.events
+    i = int(np.searchsorted(res.t, res.events[-1].time))
+    assert not np.allclose(res.yp[i + 1:, 5], res.yp[1, 5])        # vz' changed
+
+
+def test_a_restart_where_forces_read_senval_with_joints_takes_the_general_loop():
+    """With motions or joints a consistent restart is Python's (consistent()): such a sensor
+    keeps the run on the general loop."""
+    text = (DECKS / "driven_indenter.xml").read_text()
+    model = pysolver.loads(text.replace("<Post_Request", '<Sensor_Evaluate id="1" expr="1"/>'
+        '<Sensor_Event id="1" expr="TIME" compare="GE" value="0.1" evaluate_id="1"/>'
+        '<Force_Scalar_TwoBody id="99" type="Force" i_marker_id="10" j_marker_id="1" '
+        'expr="SENVAL(1)"/><Post_Request', 1))
+    assert model.compile().kernel.forces_use_senval
     assert not _takes_fast_path(model)
-    assert model.run(progress=False).stats["nrestarts"] == 1
 
 
 def _rows_budget(model, rows):
@@ -465,7 +486,7 @@ def test_the_kept_run_follows_pysolver_backend(monkeypatch):
 def _random_deck(rng):
     """A random scene of sensors on the bouncing ball: expressions, thresholds, error_tol
     bands and actions drawn from those the C loop decides, with random print intervals, a
-    second Simulate command and first-step bounds."""
+    second Simulate command, first-step bounds and sometimes a force reading SENVAL."""
     actions = ['restart="TRUE"', 'print="TRUE"', 'dt="{:.3g}"', 'return="TRUE"',
                'evaluate_id="1"', 'halt="TRUE"', 'verbose="TRUE"', 'hmax="{:.3g}"',
                'stepsize="{:.1g}"']
@@ -485,8 +506,12 @@ def _random_deck(rng):
                        f'{acts}/>')
     more = ('<Simulate analysis_type="Transient" end_time="2.5" print_interval="0.07"/>'
             if rng.random() < 0.5 else "")
-    model = _ball("".join(sensors), extra=BOUNCE, end=1.6, dt=rng.choice([0.1, 0.03]),
-                  tol=1e-7, more=more)
+    # sometimes a force reads the stored value (restarts then make yp consistent again)
+    force = ('<Reference_Marker id="1" body_id="1"/><Force_Scalar_TwoBody id="9" type="Force" '
+             'i_marker_id="10" j_marker_id="1" expr="0.5 * SENVAL(1)"/>'
+             if rng.random() < 0.3 else "")
+    model = _ball("".join(sensors), extra=BOUNCE + force, end=1.6,
+                  dt=rng.choice([0.1, 0.03]), tol=1e-7, more=more)
     return model, ({"h0_max": 0.05} if rng.random() < 0.3 else {})
 
 

@@ -438,6 +438,7 @@ int ps_control_update(const psModel* m, psData* d, const psRestart* r, psControl
  * allocated by the caller) and scratch. */
 #define PS_SE_CHATTER 20 /* sensor events chatter (sensors.py, CHATTER_LIMIT) */
 #define PS_SE_BUDGET 21  /* a sensor's print interval passes the output budget */
+#define PS_SE_USER 22    /* a user subroutine failed in an action */
 typedef struct psSensors {
   int n;                  /* sensors (m->nsensor)                                 */
   const int* evaluate;    /* (n) the d->senval slot of its Sensor_Evaluate, -1    */
@@ -453,6 +454,11 @@ typedef struct psSensors {
   const double* stepsizes; /* (n) the first step of a restart, 0 none             */
   int* verbose_on;        /* (n) 1: a verbose sensor fired and not re-armed       */
   int nverbose;           /* verbose sensors                                      */
+  int consistent;         /* 1: forces read SENVAL, so an action that restarts
+                             makes yp consistent again (ps_consistent_yp)         */
+  double* cwork;          /* (2 ny^2 + ny) its workspace, NULL without           */
+  int* cpiv;              /* (ny)                                                 */
+  int batch_restart;      /* scratch: a restart among the sensors firing together */
   int* holds;             /* (n) scratch from here on                             */
   int* rearms;            /* (n)                                                  */
   int* fired;             /* (n) fired at this instant                            */
@@ -487,7 +493,7 @@ typedef struct psSensors {
  * side it starts on), then those whose condition holds fire (the event iteration). Sets what
  * the instant asks (S->restart, emit, halt, ret, dt, hmax, first_step). Returns PS_OK or PS_SE_CHATTER. */
 int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const double* y,
-                     const double* yp);
+                     double* yp);
 
 /* Record a log line (an event record of sensor -1 - k) for every verbose sensor k that is
  * active, with its expression at (t, y, yp): an output row was written there. Returns the
@@ -501,7 +507,7 @@ int ps_sensors_verbose(const psModel* m, psData* d, psSensors* S, double t, cons
  * interval would make the run's rows, S->rows before the instant and those to S->tend, pass
  * S->budget: S->over is the sensor, and the instant stops at it). */
 int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found, double t,
-                     const double* y, const double* yp);
+                     const double* y, double* yp);
 
 /* Ctrl-C during a run: ps_interrupt_arm installs a SIGINT handler (saving the previous one)
  * whose first signal makes every later ps_residual fail at once, not recoverably, with the
@@ -681,6 +687,7 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
 #define PS_IDA_REGRID 6
 #define PS_IDA_BUDGET -2002
 #define PS_IDA_BOUNDS -2003
+#define PS_IDA_USER -2004
 
 /* Advance through a Simulate command's output times tout (ending at tend; last: the command's
  * last call) with the run's actors deciding in C, exactly as the general driver does
@@ -700,7 +707,8 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
  * PS_IDA_CONTROL_FAILED (ctl: the task's index and ps_control_update's code), PS_IDA_CHATTER,
  * PS_IDA_BUDGET (S->over's print interval passes the output budget; S->rows are the rows of
  * the run before its call plus those it wrote, as the caller sets S->rows at each call),
- * PS_IDA_BOUNDS (new step bounds could not be set: ps_ida_message), PS_IDA_HALTED,
+ * PS_IDA_BOUNDS (new step bounds could not be set: ps_ida_message), PS_IDA_USER (a user
+ * subroutine failed in a sensor's action: the kernel's message), PS_IDA_HALTED,
  * PS_IDA_RETURN, PS_IDA_REGRID or PS_IDA_DRAIN. Returns early, with 0, after
  * Ctrl-C (ps_interrupted). */
 int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,

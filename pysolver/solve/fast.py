@@ -196,6 +196,8 @@ class FastRun:
         if self.sensors:
             code = lib.ps_sensors_start(self.k.m, self.k.d, self.S, t0,
                                         self.fb("double[]", y0), self.fb("double[]", yp0))
+            if code == lib.PS_SE_USER:
+                raise UserFailure(self.k.message)
             if code != lib.PS_OK:
                 raise Stop(False, -200, self.sensors.chatter())
             halt = self.sensors.halted_by() if self.S.halt >= 0 else None
@@ -303,6 +305,8 @@ class FastRun:
                 return Stop(False, -200, self.sensors.chatter())
             if flag == lib.PS_IDA_BOUNDS:
                 raise RuntimeError(ffi.string(lib.ps_ida_message(self.solver.s)).decode())
+            if flag == lib.PS_IDA_USER:
+                return Stop(False, -400, f"{self.k.message} (t = {t[0]:.6g})")
             if flag == lib.PS_IDA_BUDGET:
                 return Stop(False, -500, self._over_budget(cmd_end, out))
             if flag == lib.PS_IDA_HALTED:

@@ -237,13 +237,22 @@ class Sensors(Actor):
 
 def decided_in_c(sensor, kernel):
     """Whether a sensor's instants can be decided in C (csrc/events.c, on the batched path):
-    every action but zero_crossing (which goes back to the last converged step); where forces
-    read SENVAL, not those that restart (evaluate, restart, hmax, stepsize: the general loop
-    then makes the state consistent again)."""
-    return (sensor.zero_crossing is None
-            and not (kernel.forces_use_senval
-                     and (sensor.evaluate_id is not None or sensor.restart
-                          or sensor.hmax is not None or sensor.stepsize is not None)))
+    every action but zero_crossing (which goes back to the last converged step). Where forces
+    read SENVAL, an action that restarts makes yp consistent again: in C for scenes without
+    motions or joints under SPARSE_THRESHOLD states (ps_consistent_yp, as
+    kernel.consistent_yp), on the general loop otherwise."""
+    restarts = (sensor.evaluate_id is not None or sensor.restart or sensor.hmax is not None
+                or sensor.stepsize is not None)
+    return sensor.zero_crossing is None and not (
+        kernel.forces_use_senval and restarts and not _dense_yp(kernel))
+
+
+def _dense_yp(kernel):
+    """Whether kernel.consistent_yp is C's ps_consistent_yp (no motions, joints or tracked
+    angles; a dense scene)."""
+    from ..options import SPARSE_THRESHOLD
+    lay = kernel.layout
+    return not (lay.lam or lay.turns) and kernel.ny < SPARSE_THRESHOLD
 
 
 class CSensors:
@@ -283,6 +292,12 @@ class CSensors:
         S.hmaxs = array([se.hmax or 0.0 for se in self.sensors], "double")
         S.stepsizes = array([se.stepsize or 0.0 for se in self.sensors], "double")
         S.n, S.nverbose = n, sum(se.verbose for se in self.sensors)
+        # where forces read SENVAL, a restart's consistent yp (ps_consistent_yp's workspace)
+        S.consistent = int(bool(kernel.forces_use_senval))
+        if S.consistent:
+            ny = kernel.ny
+            S.cwork = array(np.zeros(2 * ny * ny + ny), "double")
+            S.cpiv = array(np.zeros(ny), "int")
         self._records(cap)
         self.events, self.log = [], []
 
