@@ -792,7 +792,7 @@ static int instant(psIDA* s, psSensors* S, Rows* o, double t, double tend, doubl
 }
 
 int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,
-                      const double* tout, int nout, double tend, int last, double* t, double* y,
+                      const double* tout, int nout, double tend, double* t, double* y,
                       double* yp, int* fresh, int cap, int held, double* t_out, double* y_out,
                       double* yp_out, double* req_out, int* nreached, int* nused, int* nstreamed,
                       double* tret, long* nrestarts, int* ctl) {
@@ -858,6 +858,5 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
   *nstreamed = o.streamed;
   if (code || ps_interrupted()) return code;
   /* the command's end: the updates due there */
-  if (last) return act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);
-  return 0;
+  return act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);
 }

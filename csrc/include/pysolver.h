@@ -689,14 +689,13 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
 #define PS_IDA_BOUNDS -2003
 #define PS_IDA_USER -2004
 
-/* Advance through a Simulate command's output times tout (ending at tend; last: the command's
- * last call) with the run's actors deciding in C, exactly as the general driver does
+/* Advance through the rest of a Simulate command's output times tout (ending at tend) with the run's actors deciding in C, exactly as the general driver does
  * (pysolver/solve/driver.py, Run.integrate_command and Run.apply): the LoadControl tasks c
  * (nctl, in id order) at their update times (ps_control_update, then a cold restart; IDA stops
  * exactly there) and the sensors S (NULL: none) at their roots (ps_sensors_roots, then a
  * restart if asked, a row at the instant for print, halt and return, which replaces a row at
- * the same time); one internal step toward the stop after a restart; at the end of the
- * command's last call the updates due there. (*t, y, yp) is the current state and *fresh
+ * the same time); one internal step toward the stop after a restart; at the command's
+ * end the updates due there. (*t, y, yp) is the current state and *fresh
  * whether IDA was just (re)started, both carried from call to call. Rows go to t_out, y_out,
  * yp_out, req_out (cap rows of room, which the caller keeps at least one more than the output
  * times left): *nreached rows written, *nused output times used; *nrestarts counts the
@@ -712,7 +711,7 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
  * PS_IDA_RETURN, PS_IDA_REGRID or PS_IDA_DRAIN. Returns early, with 0, after
  * Ctrl-C (ps_interrupted). */
 int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,
-                      const double* tout, int nout, double tend, int last, double* t, double* y,
+                      const double* tout, int nout, double tend, double* t, double* y,
                       double* yp, int* fresh, int cap, int held, double* t_out, double* y_out,
                       double* yp_out, double* req_out, int* nreached, int* nused, int* nstreamed,
                       double* tret, long* nrestarts, int* ctl);

@@ -395,7 +395,6 @@ class Restart:
         r.rows = ffi.cast("int *", ffi.from_buffer(rows))
         r.nlam, r.ndisp, r.nturn = nl, len(ints["disp"]), len(ints["turns"])
         r.nu, r.nrow = len(ints["uidx"]), nr
-        self.lamv = self.keep[len(ints) + list(sizes).index("lamv")]
 
     @classmethod
     def of(cls, kernel):

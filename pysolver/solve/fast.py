@@ -66,18 +66,16 @@ class FastRun:
             self.ctl = ffi.new("psControl *[]", [task.c for task in self.controls] or 1)
             self.restart = self.controls[0].restart.r if self.controls else ffi.NULL
             self.S = sensors.S if sensors else ffi.NULL
-            self.state = (ffi.new("double *"), np.empty(kernel.ny), np.empty(kernel.ny),
-                          ffi.new("int *"), ffi.new("long *"), ffi.new("int[2]"))
+        self.loop = _Loop(kernel.ny)
         self.solver = integrator.make(kernel, options, plan, (
             options.h_max or 0.0, options.h_min or 0.0, options.h0_max or 0.0))
         # each command, its start and its print times (those of outputs.Grid, bit for bit) in
         # batches of one C call; every row's time
         self.commands, t, rows = [], 0.0, [np.zeros(1)]
-        batch = np.inf if self.acting else Grid.BATCH
         for cmd in model.commands:
             times = Grid(t, cmd.end_time, cmd.print_interval).all()
-            batches = [times[i:i + batch] for i in range(0, len(times), batch)] if \
-                batch < len(times) else [times]
+            size = len(times) if self.acting else Grid.BATCH
+            batches = [times[i:i + size] for i in range(0, len(times), size)]
             self.commands.append((cmd, t, batches))
             rows.append(times)
             t = cmd.end_time
@@ -105,8 +103,8 @@ class FastRun:
         bar, t_run = Progress(0.0, self.times[-1], progress), None
         status, message, ida_counters = 0, "The simulation finished.", None
         ida = self.solver
-        if self.acting:
-            self.state[4][0] = 0
+        loop = self.loop
+        loop.nrestarts[0] = 0
         try:
             # a new run's actors: stored values zero, every sensor armed (as Sensors does)
             k.senval[:] = 0.0
@@ -142,8 +140,7 @@ class FastRun:
                 base = ida.opts[2:5]
                 ida.set_bounds(self.S.hmax or base[0], base[1], self.S.first_step or base[2])
             if self.acting:
-                t, y, yp = self.state[:3]
-                t[0], y[:], yp[:], self.state[3][0] = t0, y0, yp0, 1
+                loop.t[0], loop.y[:], loop.yp[:], loop.fresh[0] = t0, y0, yp0, 1
                 self._commands_acting(out, bar)
             else:
                 fresh = True
@@ -161,7 +158,7 @@ class FastRun:
         except NonFinite as err:                     # as the general loop words them
             status, message = -700, str(err)
         except UserFailure as err:
-            status, message = -400, f"{err} (t = {self.state[0][0]:.6g})"
+            status, message = -400, f"{err} (t = {loop.t[0]:.6g})"
         finally:
             if self.sensors:
                 self.sensors.drain()
@@ -184,14 +181,13 @@ class FastRun:
                              steps=int(k.d.ntimes - k.d.nfail),
                              nevents=len(events), events=events,
                              nrearms=int(self.S.nrearms) if self.sensors else 0,
-                             nrestarts=int(self.state[4][0]) if self.acting else 0,
+                             nrestarts=int(loop.nrestarts[0]),
                              controllers={task.lc.id: task.records() for task in self.controls})
 
     def _start(self, t0, y0, yp0):
         """The actors' start, in the general loop's order: the sensors (those whose condition
         holds fire), then the tasks; returns the element that halts the run there, or None."""
-        if self.acting:
-            self.state[0][0] = t0
+        self.loop.t[0] = t0
         halt = None
         if self.sensors:
             code = lib.ps_sensors_start(self.k.m, self.k.d, self.S, t0,
@@ -231,7 +227,7 @@ class FastRun:
         command, called again after the sensors' event records are drained or the rows grown,
         with a new print interval's times, and in the next command after a return."""
         k, d, fb, opts = self.k, self.k.d, self.fb, self.options
-        t, y, yp, cfresh, nrestarts, ctl = self.state
+        loop = self.loop
         nused, nstreamed = ffi.new("int *"), ffi.new("int *")
         if self.sensors:                 # what a print interval may add (outputs.over_budget)
             self.S.row_bytes = 8 * (2 * k.ny + max(len(k.channels), 1))
@@ -239,9 +235,9 @@ class FastRun:
         moved = False                    # a return ended the last command early
         for ci, (cmd, _, batches) in enumerate(self.commands):
             times = batches[0]
-            self._budget(cmd, t[0], out.row)
+            self._budget(cmd, loop.t[0], out.row)
             if moved:                    # the command starts where the return left it
-                times = Grid(t[0], cmd.end_time, cmd.print_interval).all()
+                times = Grid(loop.t[0], cmd.end_time, cmd.print_interval).all()
             d.step_limit = d.ntimes - d.nfail + opts.max_num_steps        # as the driver
             used = 0
             while True:
@@ -252,19 +248,20 @@ class FastRun:
                     self.sensors.reserve(len(times) - used + 1)
                 flag = lib.ps_ida_controlled(
                     self.solver.s, self.restart, self.ctl, len(self.controls), self.S,
-                    fb("double[]", times) + used, len(times) - used, cmd.end_time, 1, t,
-                    fb("double[]", y), fb("double[]", yp), cfresh, len(out.T) - row,
+                    fb("double[]", times) + used, len(times) - used, cmd.end_time, loop.t,
+                    fb("double[]", loop.y), fb("double[]", loop.yp), loop.fresh,
+                    len(out.T) - row,
                     int(row > out.streamed), fb("double[]", out.T) + row,
                     fb("double[]", out.Y) + row * k.ny, fb("double[]", out.YP) + row * k.ny,
                     fb("double[]", out.REQ) + row * self.nout, self.reached, nused, nstreamed,
-                    self.tret, nrestarts, ctl)
+                    self.tret, loop.nrestarts, loop.ctl)
                 out.row += self.reached[0]
                 out.streamed = row + nstreamed[0]
                 used += nused[0]
                 if self.sensors:
                     self.sensors.drain()
                 if flag == lib.PS_IDA_REGRID:     # the new interval from the instant on
-                    times, used = Grid(t[0], cmd.end_time, self.S.dt).all(), 0
+                    times, used = Grid(loop.t[0], cmd.end_time, self.S.dt).all(), 0
                 elif flag != lib.PS_IDA_DRAIN:
                     break
             if out.row:
@@ -286,13 +283,13 @@ class FastRun:
     def _over_budget(self, end, out):
         """The message of a sensor's print interval past the output budget, as the general loop
         words it (Run.set_print_interval)."""
-        k, t, se = self.k, self.state[0][0], self.sensors.sensors[self.S.over]
+        k, t, se = self.k, self.loop.t[0], self.sensors.sensors[self.S.over]
         return over_budget(out.row + command_rows(t, end, se.dt), k.ny, len(k.channels),
                            f"Sensor_Event {se.id}'s dt = {se.dt:g} at t = {t:.6g}")
 
     def _acting_stop(self, flag, out, cmd_end):
         """The Stop of a call of ps_ida_controlled that ended the run, or None."""
-        t, ctl = self.state[0], self.state[5]
+        t, ctl = self.loop.t, self.loop.ctl
         if not lib.ps_interrupted():
             if flag == lib.PS_IDA_CONTROL_FAILED:
                 try:
@@ -318,7 +315,7 @@ class FastRun:
         None."""
         d = self.k.d
         if lib.ps_interrupted():
-            t = max(self.state[0][0], T[row - 1]) if self.acting else T[row - 1]
+            t = max(self.loop.t[0], T[row - 1]) if self.acting else T[row - 1]
             return Stop(False, -600, f"interrupted at t = {t:.6g}")
         if flag < 0 or d.user_error or d.steps_exceeded:
             return Stop(False, *failure(self.model, self.k, self.options, flag, self.tret[0]))
@@ -351,6 +348,17 @@ class _Out:
             new = np.empty((room,) + old.shape[1:])
             new[:self.row] = old[:self.row]
             setattr(self, name, new)
+
+
+class _Loop:
+    """The state the C loop carries from call to call (ps_ida_controlled's arguments): the
+    current time, state and rates, whether IDA was just (re)started, the restarts, and a failed
+    LoadControl update's task and code."""
+
+    def __init__(self, ny):
+        self.t, self.y, self.yp = ffi.new("double *"), np.empty(ny), np.empty(ny)
+        self.fresh, self.nrestarts, self.ctl = ffi.new("int *"), ffi.new("long *"), \
+            ffi.new("int[2]")
 
 
 class _State:
