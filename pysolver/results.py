@@ -62,7 +62,7 @@ class Result:
     """
 
     def __init__(self, *, t, y, yp, outputs, channels, state_names, success, status, message,
-                 stats, timing, meta, labels=None, events=(), log=(), statics=(),
+                 stats, timing, meta, column_map, labels=None, events=(), log=(), statics=(),
                  controllers=None, units=None):
         self.t = np.asarray(t)
         self.y = np.asarray(y)
@@ -82,8 +82,8 @@ class Result:
                              for lid, rec in (controllers or {}).items()}
         # request channels stay one (n, channels) array; request(id) builds its (n, 8) view
         self._outputs = np.asarray(outputs).reshape(len(self.t), len(channels))
-        self._column = {tuple(ch): col for col, ch in enumerate(channels)}
-        self._request_ids = sorted({rid for rid, _ in self._column if rid > 0})  # < 0: joints
+        # {(request id, channel): column} and the request ids, sorted (report.column_map)
+        self._column, self._request_ids = column_map
         self._requests = {}
         # units by channel (rid, k), "time" and "controller" (deck/dimensions.channel_units)
         self._units = units or {}

@@ -87,6 +87,7 @@ class FastRun:
         self.fb = ffi.from_buffer
         self.reached, self.tret = ffi.new("int *"), ffi.new("double *")
         self.roots = ffi.new("int[1]")
+        self.reporter = None
 
     def run(self, t_start, used, static, labels, log, progress=None, stream=None):
         """Run the model; returns its Result, or None when its outputs would pass the budget
@@ -175,14 +176,19 @@ class FastRun:
         row = out.row
         rows = (out.T[:row], out.Y[:row], out.YP[:row], out.REQ[:row, :len(k.channels)])
         events = self.sensors.events if self.sensors else []
-        return report.result(self.model, k, self.plan, (used, static, labels), rows,
-                             (status >= 0, status, message), (t_start, t_run or t_end, t_end),
-                             ida_counters or self.solver.counters(), log,
-                             steps=int(k.d.ntimes - k.d.nfail),
-                             nevents=len(events), events=events,
-                             nrearms=int(self.S.nrearms) if self.sensors else 0,
-                             nrestarts=int(loop.nrestarts[0]),
-                             controllers={task.lc.id: task.records() for task in self.controls})
+        return self._reporter((used, static, labels)).result(
+            rows, (status >= 0, status, message), (t_start, t_run or t_end, t_end),
+            ida_counters or self.solver.counters(), log, steps=int(k.d.ntimes - k.d.nfail),
+            nevents=len(events), events=events,
+            nrearms=int(self.S.nrearms) if self.sensors else 0,
+            nrestarts=int(loop.nrestarts[0]),
+            controllers={task.lc.id: task.records() for task in self.controls})
+
+    def _reporter(self, settings):
+        """The Reporter of runs with these settings (the same objects run after run: kept)."""
+        if self.reporter is None or not all(a is b for a, b in zip(self.reporter[0], settings)):
+            self.reporter = (settings, report.Reporter(self.model, self.k, self.plan, settings))
+        return self.reporter[1]
 
     def _start(self, t0, y0, yp0):
         """The actors' start, in the general loop's order: the sensors (those whose condition

@@ -89,7 +89,11 @@ def channels(model, kernel, t, outputs):
     """
     defined = kernel.defined_channels
     lines = []
-    if outputs.size == 0 or math.isfinite(outputs[:, defined].sum()):  # then all are finite
+    if outputs.size == 0:
+        return lines
+    # a finite sum: all are finite (a sum that overflows is looked at channel by channel)
+    if math.isfinite(np.add.reduce(outputs if len(defined) == outputs.shape[1]
+                                   else outputs[:, defined], axis=None)):
         return lines
     bad = ~np.isfinite(outputs)
     for col in defined[bad[:, defined].any(axis=0)]:
