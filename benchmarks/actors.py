@@ -1,9 +1,9 @@
 """What a run costs on the batched path against the general loop (issue 27 item 2), in one
-process: the sensor decks (halting sensors decided in the batched path's C loop since stop 36;
-those with dt or zero_crossing actions on the general loop, which acts from Python at each
-event), `decks/driven_indenter.xml` (a motion: batched since stop 36), and the LoadControl decks
-(updates in the C loop since stop 36; the general loop calls the same C update from Python at
-each update time).
+process: the sensor decks (every action decided in the batched path's C loop since stop 36,
+zero_crossing's restore-and-shrink since stop 37; the general loop acts from Python at each
+event, and with zero_crossing at every step), `decks/driven_indenter.xml` (a motion: batched
+since stop 36), and the LoadControl decks (updates in the C loop since stop 36; the general loop
+calls the same C update from Python at each update time).
 
 Per deck: the best of REPEAT warm runs on each path (alternated), the steps and the updates, the
 time per step and per update, and the ratio general / batched. Both paths give the same rows

@@ -1,8 +1,9 @@
-/* Sensor_Event at an instant, in C: arming, firing and re-arming, the event iteration and the
- * chatter guard of pysolver/solve/sensors.py, for sensors whose actions are those that need no
- * Python (every action but zero_crossing; where a force reads SENVAL, none that restarts). The batched path
- * decides such sensors' instants here (ps_ida_controlled); the general loop runs sensors.py,
- * and tests/test_fast.py holds the two to the same rows, events and counters. */
+/* Sensor_Event at an instant, in C: arming, firing and re-arming, the event iteration, the
+ * chatter guard and the start of a zero-crossing search of pysolver/solve/sensors.py, for
+ * sensors whose actions need no Python (where a force reads SENVAL, none that restarts in a
+ * scene with joints or motions). The batched path decides such sensors' instants here
+ * (ps_ida_controlled, which also goes back to the last converged step); the general loop runs
+ * sensors.py, and tests/test_fast.py holds the two to the same rows, events and counters. */
 #include <math.h>
 #include <string.h>
 
@@ -39,6 +40,19 @@ static void arm(const psModel* m, psData* d, int k, double f) {
 static int fire(const psModel* m, psData* d, psSensors* S, int k, double f, double t,
                 const double* y, const double* yp) {
   d->sensor_armed[k] = 0;
+  /* its search is over; the last one over brings the bounds before the searches back */
+  if (S->zc_pending[k]) {
+    S->zc_pending[k] = 0;
+    int left = 0;
+    for (int j = 0; j < S->n; j++) left |= S->zc_pending[j];
+    if (!left && S->saved) {
+      S->saved = 0;
+      S->back = 1;
+      S->back_hmax = S->saved_hmax;
+      S->back_hmin = S->saved_hmin;
+      S->restart = S->batch_restart = 1;
+    }
+  }
   if (S->evaluate[k] >= 0)
     d->senval[S->evaluate[k]] = ps_eval_tape(m, d, S->eval_tape[k], S->eval_slot[k], t, y, yp);
   /* outputs.over_budget of the rows so far and those of the new interval to the end */
@@ -55,9 +69,12 @@ static int fire(const psModel* m, psData* d, psSensors* S, int k, double f, doub
   S->emit |= S->prints[k] || S->halts[k];
   if (S->halts[k]) S->halt = k;
   if (S->rets[k]) S->ret = k;
-  if (S->dts[k] > 0) S->dt = S->dts[k];
+  if (S->dts[k] > 0) S->dt = S->interval = S->dts[k];
   if (S->verboses[k]) S->verbose_on[k] = 1;
-  if (S->hmaxs[k] > 0) S->hmax = S->hmaxs[k];
+  if (S->hmaxs[k] > 0) {
+    S->hmax = S->hmaxs[k];
+    if (S->saved) S->saved_hmax = S->hmaxs[k];   /* the bound a search gives back */
+  }
   if (S->stepsizes[k] > 0)
     S->first_step = S->first_step > 0 ? fmin(S->first_step, S->stepsizes[k]) : S->stepsizes[k];
   /* room: the loop hands the records over whenever an instant could fill them */
@@ -149,6 +166,7 @@ static void begin(psSensors* S) {
   S->dt = S->hmax = S->first_step = 0.0;
   S->over = -1;
   S->instant_nev = S->nev;
+  S->back = S->restore = 0;
 }
 
 int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const double* y,
@@ -159,8 +177,9 @@ int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const 
   status(m, d, S, t, y, yp);
   for (int k = 0; k < S->n; k++) {
     arm(m, d, k, S->f[k]);
-    S->fired[k] = S->rearmed[k] = S->verbose_on[k] = 0;
+    S->fired[k] = S->rearmed[k] = S->verbose_on[k] = S->zc_pending[k] = 0;
   }
+  S->saved = 0;
   return settle(m, d, S, t, y, yp);
 }
 
@@ -172,6 +191,19 @@ int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found
     S->rearmed[k] = found[k] != 0 && !d->sensor_armed[k];
   }
   if (chatter(S, t)) return PS_SE_CHATTER;
+  /* zero_crossing sensors seen firing for the first time (S->now) send the run back to the
+   * last converged step before t, which the caller does (nothing else happens here) */
+  double zc = 0.0;
+  for (int k = 0; k < S->n; k++) {
+    S->now[k] = S->fired[k] && S->zcs[k] > 0 && !S->zc_pending[k];
+    if (S->now[k]) zc = zc > 0 ? fmin(zc, S->zcs[k]) : S->zcs[k];
+  }
+  if (zc > 0 && S->nsnap > 0 &&
+      S->snap_t[(S->snap_first + S->nsnap - 1) % PS_SNAPS] < t) {
+    S->restore = 1;
+    S->restore_zc = zc;
+    return PS_OK;
+  }
   /* IDA saw these crossings: take them as they are, then settle the rest */
   status(m, d, S, t, y, yp);
   for (int k = 0; k < S->n; k++)

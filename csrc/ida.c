@@ -674,18 +674,49 @@ static int updates_due(psIDA* s, const psRestart* r, psControl* const* c, int nc
   return any;
 }
 
-/* A cold restart of IDA at (t, y, yp) with the largest step hmax and the first step `first`
- * (0: the run's own), as the general driver's Run.start. Returns 0, or -1 when the bounds
- * cannot be set. */
-static int restart(psIDA* s, double t, const double* y, const double* yp, double hmax,
-                   double first, int* fresh, long* nrestarts) {
-  double b[3] = {hmax, s->bounds[1], first > 0 ? first : s->base[2]};
-  if ((b[0] != s->bounds[0] || b[2] != s->bounds[2]) && ps_ida_bounds(s, b[0], b[1], b[2]))
+/* Remember the converged step (t, y, yp) with everything an action may change, as the
+ * general driver's Run.remember_step (onestep mode): the oldest of PS_SNAPS goes. */
+static void remember(psIDA* s, psSensors* S, double t, const double* y, const double* yp) {
+  const psModel* m = s->m;
+  psData* d = s->d;
+  int n = m->ny, ns = S->n, i;
+  if (S->nsnap < PS_SNAPS) {
+    i = (S->snap_first + S->nsnap++) % PS_SNAPS;
+  } else {
+    i = S->snap_first;
+    S->snap_first = (S->snap_first + 1) % PS_SNAPS;
+  }
+  S->snap_t[i] = t;
+  S->snap_hmax[i] = s->bounds[0];
+  S->snap_interval[i] = S->interval;
+  S->snap_nrearms[i] = S->nrearms;
+  S->snap_records[i] = S->drained + S->nev;
+  memcpy(S->snap_y + (long)i * n, y, sizeof(double) * (size_t)n);
+  memcpy(S->snap_yp + (long)i * n, yp, sizeof(double) * (size_t)n);
+  memcpy(S->snap_armed + (long)i * ns, d->sensor_armed, sizeof(int) * (size_t)ns);
+  memcpy(S->snap_side + (long)i * ns, d->sensor_side, sizeof(double) * (size_t)ns);
+  memcpy(S->snap_verbose + (long)i * ns, S->verbose_on, sizeof(int) * (size_t)ns);
+  memcpy(S->snap_senval + (long)i * S->nsenval, d->senval, sizeof(double) * (size_t)S->nsenval);
+}
+
+/* A cold restart of IDA at (t, y, yp) with the largest and smallest steps hmax and hmin and
+ * the first step `first` (0: the run's own), as the general driver's Run.start (which, in
+ * onestep mode, starts the remembered steps again from this one). Returns 0, or -1 when the
+ * bounds cannot be set. */
+static int restart(psIDA* s, psSensors* S, double t, const double* y, const double* yp,
+                   double hmax, double hmin, double first, int* fresh, long* nrestarts) {
+  double b[3] = {hmax, hmin, first > 0 ? first : s->base[2]};
+  if ((b[0] != s->bounds[0] || b[1] != s->bounds[1] || b[2] != s->bounds[2]) &&
+      ps_ida_bounds(s, b[0], b[1], b[2]))
     return -1;
   s->d->last_t = t; /* restarts are not step attempts (see ps_residual) */
   ps_ida_reinit(s, t, y, yp);
   *fresh = 1;
   (*nrestarts)++;
+  if (S && S->nzc) {
+    S->nsnap = 0;
+    remember(s, S, t, y, yp);
+  }
   return 0;
 }
 
@@ -694,7 +725,8 @@ static int act(psIDA* s, const psRestart* r, psControl* const* c, int nctl, doub
                double* yp, int* fresh, long* nrestarts, int* ctl) {
   int due = updates_due(s, r, c, nctl, t, y, yp, ctl);
   if (due < 0) return PS_IDA_CONTROL_FAILED;
-  if (due && restart(s, t, y, yp, s->bounds[0], 0.0, fresh, nrestarts)) return PS_IDA_BOUNDS;
+  if (due && restart(s, NULL, t, y, yp, s->bounds[0], s->bounds[1], 0.0, fresh, nrestarts))
+    return PS_IDA_BOUNDS;
   return 0;
 }
 
@@ -707,14 +739,18 @@ typedef struct Rows {
   double *t_out, *y_out, *yp_out, *req_out;
   int cap, r, streamed;
   psSensors* S; /* told of every row (verbose sensors), or NULL */
+  int hold;     /* 1: rows are streamed only before the oldest remembered step           */
+  int first;    /* the run's first row (-row0): a restore may take rows back down to it  */
 } Rows;
 
 /* Write row o->r at time tm with state (y, yp) (NULL: there already) and its request
  * channels, streaming the rows before it. */
 static void put_row(psIDA* s, Rows* o, double tm, const double* y, const double* yp) {
   int n = s->m->ny;
-  stream_rows(s, o->streamed, o->r, o->t_out, o->req_out);
-  if (o->r > o->streamed) o->streamed = o->r;
+  if (!o->hold) {
+    stream_rows(s, o->streamed, o->r, o->t_out, o->req_out);
+    if (o->r > o->streamed) o->streamed = o->r;
+  }
   o->t_out[o->r] = tm;
   if (y) memcpy(o->y_out + (long)o->r * n, y, sizeof(double) * (size_t)n);
   if (yp) memcpy(o->yp_out + (long)o->r * n, yp, sizeof(double) * (size_t)n);
@@ -764,10 +800,13 @@ static int instant(psIDA* s, psSensors* S, Rows* o, double t, double tend, doubl
   if (rc == PS_SE_BUDGET) return PS_IDA_BUDGET;
   if (rc == PS_SE_USER) return PS_IDA_USER;
   if (rc != PS_OK) return PS_IDA_CHATTER;
-  /* a new largest step or a first step restarts too (Sensors._fire, Run.apply) */
+  if (S->restore) return PS_IDA_RESTORED; /* the caller goes back (zc_restore) */
+  /* a new largest step or a first step restarts too (Sensors._fire, Run.apply); the bounds
+   * of the run before zero-crossing searches come back when the last one ends */
+  double hmax = S->hmax > 0 ? S->hmax : S->back ? S->back_hmax : s->bounds[0];
+  double hmin = S->back ? S->back_hmin : s->bounds[1];
   if ((S->restart || S->hmax > 0 || S->first_step > 0) &&
-      restart(s, t, y, yp, S->hmax > 0 ? S->hmax : s->bounds[0], S->first_step, fresh,
-              nrestarts))
+      restart(s, S, t, y, yp, hmax, hmin, S->first_step, fresh, nrestarts))
     return PS_IDA_BOUNDS;
   S->emitted = 0;
   if (S->emit || S->halt >= 0 || S->ret >= 0) {
@@ -791,15 +830,80 @@ static int instant(psIDA* s, psSensors* S, Rows* o, double t, double tend, doubl
   return 0;
 }
 
+/* Back to the last converged step before a zero_crossing sensor's first firing at *t
+ * (Sensors._restore_and_shrink, Run.restore_last_step): the state, the sensors' state and
+ * records, the largest step and print interval as they were there, the rows after it taken
+ * back; the bounds (kept for when the searches end) shrunk by S->restore_zc around the size of
+ * the last step, a log line for each sensor searched (S->now), and a restart there. Returns
+ * PS_IDA_RESTORED, or PS_IDA_BOUNDS when the bounds cannot be set. */
+static int zc_restore(psIDA* s, psSensors* S, Rows* o, double* t, double* y, double* yp,
+                      int* fresh, long* nrestarts) {
+  psData* d = s->d;
+  int n = s->m->ny, ns = S->n;
+  int last = (S->snap_first + S->nsnap - 1) % PS_SNAPS;
+  double tp = S->snap_t[last], hmax = S->snap_hmax[last];
+  /* the "current h_max": the bound then, else the size of the last step completed before */
+  double current = hmax > 0      ? hmax
+                   : S->nsnap >= 2 ? tp - S->snap_t[(last + PS_SNAPS - 1) % PS_SNAPS]
+                                   : *t - tp;
+  *t = tp;
+  memcpy(y, S->snap_y + (long)last * n, sizeof(double) * (size_t)n);
+  memcpy(yp, S->snap_yp + (long)last * n, sizeof(double) * (size_t)n);
+  memcpy(d->sensor_armed, S->snap_armed + (long)last * ns, sizeof(int) * (size_t)ns);
+  memcpy(d->sensor_side, S->snap_side + (long)last * ns, sizeof(double) * (size_t)ns);
+  memcpy(S->verbose_on, S->snap_verbose + (long)last * ns, sizeof(int) * (size_t)ns);
+  memcpy(d->senval, S->snap_senval + (long)last * S->nsenval,
+         sizeof(double) * (size_t)S->nsenval);
+  S->nrearms = S->snap_nrearms[last];
+  S->interval = S->snap_interval[last];
+  long keep = S->snap_records[last];
+  if (keep >= S->drained) {
+    S->nev = keep - S->drained;
+  } else { /* some were handed over already: the caller takes them back */
+    S->nev = 0;
+    S->undo = keep;
+  }
+  while (o->r > o->first && o->t_out[o->r - 1] > tp) o->r--;
+  if (!S->saved) {
+    S->saved = 1;
+    S->saved_hmax = hmax;
+    S->saved_hmin = s->bounds[1];
+  }
+  double new_hmax = S->restore_zc * current, new_hmin = S->restore_zc * s->bounds[1];
+  for (int k = 0; k < ns; k++) {
+    if (!S->now[k]) continue;
+    S->zc_pending[k] = 1;
+    if (S->nev >= S->cap) continue;
+    S->ev_time[S->nev] = tp;
+    S->ev_value[S->nev] = new_hmax;
+    S->ev_sensor[S->nev++] = -1 - ns - k;
+  }
+  if (restart(s, S, tp, y, yp, new_hmax, new_hmin, 0.0, fresh, nrestarts)) return PS_IDA_BOUNDS;
+  return PS_IDA_RESTORED;
+}
+
+/* Stream the rows no action can take back any more: those before the oldest remembered step
+ * (onestep mode), as the general loop's Printer.flush_stream. */
+static void flush_held(psIDA* s, const psSensors* S, Rows* o) {
+  double oldest = S->snap_t[S->snap_first];
+  int k = o->streamed;
+  while (k < o->r && o->t_out[k] < oldest) k++;
+  stream_rows(s, o->streamed, k, o->t_out, o->req_out);
+  if (k > o->streamed) o->streamed = k;
+}
+
 int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,
                       const double* tout, int nout, double tend, double* t, double* y,
-                      double* yp, int* fresh, int cap, int held, double* t_out, double* y_out,
-                      double* yp_out, double* req_out, int* nreached, int* nused, int* nstreamed,
-                      double* tret, long* nrestarts, int* ctl) {
+                      double* yp, int* fresh, int cap, int row0, int held, double* t_out,
+                      double* y_out, double* yp_out, double* req_out, int* nreached,
+                      int* nused, int* nstreamed, double* tret, long* nrestarts, int* ctl) {
   int n = s->m->ny, flag = 0;
   size_t row = sizeof(double) * (size_t)n;
   int* roots = S ? S->roots : NULL;
-  Rows o = {tout, nout, 0, t_out, y_out, yp_out, req_out, cap, 0, held ? -1 : 0, S};
+  /* zero_crossing sensors: one step at a time, every converged step remembered */
+  int onestep = S && S->nzc > 0;
+  Rows o = {tout, nout, 0, t_out, y_out, yp_out, req_out, cap, 0, -held, S, onestep, -row0};
+  if (onestep && S->nsnap == 0) remember(s, S, *t, y, yp); /* the run's start (Run.start) */
   *tret = *t;
   int code = 0;
   while (o.k < nout) {
@@ -810,8 +914,9 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
     /* IDA stops exactly at the next update, or the command's end */
     double tstop = tend;
     for (int i = 0; i < nctl; i++) tstop = fmin(tstop, ps_control_next(c[i]));
-    if (*fresh) {
-      /* the first step of a (re)start, toward the stop */
+    if (onestep) flush_held(s, S, &o);
+    if (*fresh || onestep) {
+      /* the first step of a (re)start, or every step in onestep mode, toward the stop */
       flag = ps_ida_solve(s, tstop, tstop, 1, tret, y, yp, roots);
       *fresh = 0;
     } else if (tout[o.k] <= tstop) {
@@ -846,12 +951,20 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
     if (code) break;
     if (root) {
       code = instant(s, S, &o, *t, tend, y, yp, fresh, nrestarts);
+      if (code == PS_IDA_RESTORED) code = zc_restore(s, S, &o, t, y, yp, fresh, nrestarts);
       if (code) break;
+    } else if (onestep && *t > S->snap_t[(S->snap_first + S->nsnap - 1) % PS_SNAPS]) {
+      remember(s, S, *t, y, yp);
     }
   }
-  /* the rows before the last go out now */
-  stream_rows(s, o.streamed, o.r - 1, t_out, req_out);
-  if (o.r - 1 > o.streamed) o.streamed = o.r - 1;
+  /* the rows before the last (or, in onestep mode, before the oldest remembered step) go out
+   * now */
+  if (onestep) {
+    flush_held(s, S, &o);
+  } else {
+    stream_rows(s, o.streamed, o.r - 1, t_out, req_out);
+    if (o.r - 1 > o.streamed) o.streamed = o.r - 1;
+  }
   if (s->stream && ps_stream_flush(s->stream) != 0) s->stream = NULL;
   *nreached = o.r;
   *nused = o.k;

@@ -192,6 +192,16 @@ SENSOR_DECKS = {
     "hmax at the start": lambda: _ball(
         '<Sensor_Event id="1" expr="DZ(10)" compare="GE" value="10" hmax="0.01" '
         'stepsize="1e-6"/>'),
+    "zero crossing": lambda: _load("contact_onset_zero_crossing.xml"),
+    "zero crossing after a print and a new interval": lambda: _ball(
+        '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" print="TRUE" dt="0.01"/>'
+        '<Sensor_Event id="2" expr="DZ(10)" compare="LT" value="4.97" zero_crossing="0.1"/>'),
+    "zero crossings with hmax, verbose and bounces": lambda: _ball(
+        '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" error_tol="0.01" '
+        'zero_crossing="0.3" verbose="TRUE"/><Sensor_Event id="2" expr="DZ(10)" compare="LT" '
+        'value="2" error_tol="0.01" zero_crossing="0.05" hmax="0.02" print="TRUE"/>'
+        '<Sensor_Event id="3" expr="VZ(10)" compare="EQ" value="0" error_tol="1e-3" '
+        'zero_crossing="0.5"/>', extra=BOUNCE, end=3.0, tol=1e-7),
     "chatter": lambda: _ball(
         '<Sensor_Event id="1" expr="TIME - 0.3 + SENVAL(1)" compare="GE" value="0" '
         'error_tol="0" evaluate_id="1"/>',
@@ -202,10 +212,11 @@ SENSOR_DECKS = {
 @pytest.mark.parametrize("name", sorted(SENSOR_DECKS))
 @pytest.mark.parametrize("cap", [None, 1])
 def test_sensors_decided_in_c_to_the_bit(name, cap, monkeypatch):
-    """Sensors with every action but zero_crossing are decided in the batched path's C loop
-    (csrc/events.c): the general loop's rows, events, log, re-armings, restarts and message to
-    the last bit, on every run; with room for one event at a time in C (cap 1) the loop hands
-    them over after each instant and goes on."""
+    """Sensors with every action, zero_crossing's restore-and-shrink included, are decided in
+    the batched path's C loop (csrc/events.c, csrc/ida.c): the general loop's rows, events,
+    log, re-armings, restarts and message to the last bit, on every run; with room for one
+    event at a time in C (cap 1) the loop hands them over after each instant and goes on (and
+    a restore takes back records already handed over)."""
     from pysolver.solve import sensors
     monkeypatch.setattr(sensors, "EVENT_CAP", cap or sensors.EVENT_CAP)
     model = SENSOR_DECKS[name]()
@@ -217,11 +228,30 @@ def test_sensors_decided_in_c_to_the_bit(name, cap, monkeypatch):
         _same(res, ref, events=True)
 
 
-def test_zero_crossing_takes_the_general_loop():
-    """zero_crossing needs the general loop: it goes back to the last converged step."""
-    model = _ball('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" '
-                  'zero_crossing="0.1"/>')
-    assert not _takes_fast_path(model)
+def test_zero_crossing_beside_load_control_takes_the_general_loop():
+    """Restore-and-shrink in C takes back the sensors' doings, not a LoadControl task's: a
+    zero_crossing sensor in a LoadControl deck sends its runs to the general loop."""
+    sensor = ('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="0" '
+              'zero_crossing="0.1"/><Post_Request')
+    model = pysolver.loads(LOADCONTROL.replace("<Post_Request", sensor, 1))
+    assert model.sensors and not _takes_fast_path(model)
+    assert model.run(progress=False).success
+
+
+def test_a_zero_crossing_run_streams_the_rows_it_keeps(tmp_path, monkeypatch):
+    """Rows after the last converged step are held back from the stream until no restore can
+    take them back: the streamed CSV holds the Result's rows on both paths."""
+    model = SENSOR_DECKS["zero crossings with hmax, verbose and bounces"]()
+    assert _takes_fast_path(model)
+    texts = []
+    for enabled in (True, False):
+        monkeypatch.setattr(fast, "ENABLED", enabled)
+        path = tmp_path / f"rows_{enabled}.csv"
+        res = model.run(progress=False, stream=str(path))
+        texts.append(path.read_text())
+        assert len(texts[-1].splitlines()) == len(res.t) + 1
+        assert sum("zero crossing" in line for line in res.log) >= 3
+    assert texts[0] == texts[1]
 
 
 def test_a_print_interval_past_the_output_budget(monkeypatch):
@@ -406,8 +436,7 @@ def test_a_run_that_fails_is_reported_by_the_general_path(monkeypatch):
     assert ok.success and _takes_fast_path(model)
 
 
-@pytest.mark.parametrize("name, why", [("contact_onset_zero_crossing.xml", "zero_crossing"),
-                                       ("loadcontrol_bed.py", "load control, 324 states"),
+@pytest.mark.parametrize("name, why", [("loadcontrol_bed.py", "load control, 324 states"),
                                        ("static_pendulum.xml", "a static command")])
 def test_runs_that_need_the_driver_take_it(name, why):
     model = _load(name)
@@ -501,6 +530,9 @@ def _random_deck(rng):
         acts = " ".join(actions[i].format(rng.choice([0.01, 0.05, 0.2]) / (
                             1e3 if "stepsize" in actions[i] else 1)) for i in chosen
                         if actions[i] != 'halt="TRUE"' or rng.random() < 0.3)
+        if rng.random() < 0.3:                  # restore-and-shrink
+            acts += f' zero_crossing="{rng.choice([0.05, 0.3, 0.9])}"'
+
         sensors.append(f'<Sensor_Event id="{sid}" expr="{expr}" compare="{compare}" '
                        f'value="{value():.4g}" error_tol="{rng.choice([0.0, 1e-3, 0.1])}" '
                        f'{acts}/>')

@@ -485,9 +485,41 @@ typedef struct psSensors {
   double budget;          /* the output budget in bytes                           */
   double* ev_time;        /* (cap) each event's time                              */
   double* ev_value;       /* (cap) its sensor's expression                        */
-  int* ev_sensor;         /* (cap) its sensor                                     */
+  int* ev_sensor;         /* (cap) its sensor: k an event, -1 - k a verbose line,
+                             -1 - n - k a zero-crossing line (ev_value: the hmax) */
   long nev, cap;          /* events recorded, room for them                       */
+  long drained;           /* records handed over before ev_time[0]                */
+  long undo;              /* after a restore, the records of the run to keep when
+                             it is fewer than drained (-1: none to take back)     */
+  double interval;        /* the print interval in force (Printer.dt)             */
+  /* zero_crossing (sensors.py, _restore_and_shrink) */
+  const double* zcs;      /* (n) its zero_crossing factor, 0 none                 */
+  int nzc;                /* sensors with one: IDA steps one step at a time       */
+  int* zc_pending;        /* (n) 1: a search for its crossing is under way        */
+  int saved;              /* 1: the step bounds before the searches are kept      */
+  double saved_hmax, saved_hmin;
+  int back;               /* the instant ended the searches: restart with         */
+  double back_hmax, back_hmin; /* these bounds (unless an hmax action set one)    */
+  int restore;            /* the instant goes back to the last converged step     */
+  double restore_zc;      /* and shrinks the bounds by this factor                */
+  /* the converged steps the run can go back to (Run.steps_seen), a ring of PS_SNAPS:
+   * time, state, the sensors' state, records, largest step and print interval */
+  int nsnap, snap_first, nsenval;
+  double* snap_t;         /* (PS_SNAPS)                                           */
+  double* snap_hmax;      /* (PS_SNAPS)                                           */
+  double* snap_interval;  /* (PS_SNAPS)                                           */
+  long* snap_nrearms;     /* (PS_SNAPS)                                           */
+  long* snap_records;     /* (PS_SNAPS) records of the run (drained counted)      */
+  double* snap_y;         /* (PS_SNAPS x ny)                                      */
+  double* snap_yp;        /* (PS_SNAPS x ny)                                      */
+  int* snap_armed;        /* (PS_SNAPS x n)                                       */
+  double* snap_side;      /* (PS_SNAPS x n)                                       */
+  int* snap_verbose;      /* (PS_SNAPS x n)                                       */
+  double* snap_senval;    /* (PS_SNAPS x nsenval)                                 */
 } psSensors;
+
+/* The converged steps a zero-crossing search can go back to (sensors.py keeps three). */
+#define PS_SNAPS 3
 
 /* The sensors at the start of a run at (t, y, yp): every sensor armed (an EQ sensor on the
  * side it starts on), then those whose condition holds fire (the event iteration). Sets what
@@ -502,8 +534,11 @@ int ps_sensors_verbose(const psModel* m, psData* d, psSensors* S, double t, cons
                        const double* yp);
 
 /* The sensors at a root of theirs at (t, y, yp), found IDA's root flags: those crossed fire
- * (armed) or re-arm (fired before), then the event iteration. Sets what the instant asks
- * (S->restart, emit, halt, ret, dt, hmax, first_step). Returns PS_OK, PS_SE_CHATTER or PS_SE_BUDGET (a print
+ * (armed) or re-arm (fired before), then the event iteration; but when a zero_crossing
+ * sensor fires for the first time (and a converged step before t is remembered) nothing
+ * happens but S->restore = 1 (S->restore_zc the smallest factor, S->now those sensors): the
+ * caller goes back to that step. Sets what the instant asks (S->restart, emit, halt, ret, dt,
+ * hmax, first_step; S->back with the bounds a finished search gives back). Returns PS_OK, PS_SE_CHATTER or PS_SE_BUDGET (a print
  * interval would make the run's rows, S->rows before the instant and those to S->tend, pass
  * S->budget: S->over is the sensor, and the instant stops at it). */
 int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found, double t,
@@ -688,6 +723,7 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
 #define PS_IDA_BUDGET -2002
 #define PS_IDA_BOUNDS -2003
 #define PS_IDA_USER -2004
+#define PS_IDA_RESTORED 7
 
 /* Advance through the rest of a Simulate command's output times tout (ending at tend) with the run's actors deciding in C, exactly as the general driver does
  * (pysolver/solve/driver.py, Run.integrate_command and Run.apply): the LoadControl tasks c
@@ -700,19 +736,29 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
  * yp_out, req_out (cap rows of room, which the caller keeps at least one more than the output
  * times left): *nreached rows written, *nused output times used; *nrestarts counts the
  * restarts. The rows are streamed (ps_ida_set_stream) all but the last, which a row at an
- * event may replace: held says that the row before t_out[0] is not streamed yet, and the rows
- * before index *nstreamed (from -1) are streamed on return; the caller streams the rest at
+ * event may replace: held says how many rows before t_out[0] are not streamed yet (0 or 1),
+ * and the rows before index *nstreamed (from -held) are streamed on return; the caller streams the rest at
  * the end of the run. Returns 0, IDA's flag (< 0) of a failed step with *tret its time,
  * PS_IDA_CONTROL_FAILED (ctl: the task's index and ps_control_update's code), PS_IDA_CHATTER,
  * PS_IDA_BUDGET (S->over's print interval passes the output budget; S->rows are the rows of
  * the run before its call plus those it wrote, as the caller sets S->rows at each call),
  * PS_IDA_BOUNDS (new step bounds could not be set: ps_ida_message), PS_IDA_USER (a user
  * subroutine failed in a sensor's action: the kernel's message), PS_IDA_HALTED,
- * PS_IDA_RETURN, PS_IDA_REGRID or PS_IDA_DRAIN. Returns early, with 0, after
- * Ctrl-C (ps_interrupted). */
+ * PS_IDA_RETURN, PS_IDA_REGRID, PS_IDA_DRAIN or PS_IDA_RESTORED. Returns early, with 0, after
+ * Ctrl-C (ps_interrupted).
+ *
+ * With zero_crossing sensors (S->nzc) IDA takes one step at a time and every converged step
+ * is remembered (S's snapshots, as the general loop's Run.steps_seen); a zero_crossing sensor
+ * seen firing for the first time takes the run back to the last one (the state, the sensors,
+ * the records, the rows after it: *nreached may then be negative, down to -row0, where row0
+ * rows of the run lie before t_out[0]), shrinks the step bounds and returns PS_IDA_RESTORED:
+ * call again with the print times from the last row kept on, at S->interval. Rows are then
+ * streamed only before the oldest snapshot, and held counts the rows before t_out[0] not
+ * streamed yet. */
 int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,
                       const double* tout, int nout, double tend, double* t, double* y,
-                      double* yp, int* fresh, int cap, int held, double* t_out, double* y_out,
+                      double* yp, int* fresh, int cap, int row0, int held, double* t_out,
+                      double* y_out,
                       double* yp_out, double* req_out, int* nreached, int* nused, int* nstreamed,
                       double* tret, long* nrestarts, int* ctl);
 

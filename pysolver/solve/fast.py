@@ -45,7 +45,9 @@ def fast_run(compiled, options, actors):
         # acting at instants of its own (a new actor says so through Actor.instants)
         sensors, controls, printer = deck_actors(model, kernel, [], Progress(0.0, 1.0, False))
         ok = (plan.use_c and all(cmd.analysis == "TRANSIENT" for cmd in model.commands)
-              and not any(a.instants for a in (sensors, *controls, printer)))
+              and not any(a.instants for a in (sensors, *controls, printer))
+              # restore-and-shrink in C takes back the sensors' doings, not the tasks'
+              and not (controls and sensors.needs_restore))
         c_sensors = CSensors(model, kernel) if sensors.sensors and ok else None
         cache[key] = (options, FastRun(model, kernel, options, plan, controls, c_sensors)
                       if ok else None)
@@ -181,7 +183,7 @@ class FastRun:
             ida_counters or self.solver.counters(), log, steps=int(k.d.ntimes - k.d.nfail),
             nevents=len(events), events=events,
             nrearms=int(self.S.nrearms) if self.sensors else 0,
-            nrestarts=int(loop.nrestarts[0]),
+            nrestarts=int(loop.nrestarts[0]), onestep=bool(self.sensors and self.S.nzc),
             controllers={task.lc.id: task.records() for task in self.controls})
 
     def _reporter(self, settings):
@@ -242,6 +244,8 @@ class FastRun:
         for ci, (cmd, _, batches) in enumerate(self.commands):
             times = batches[0]
             self._budget(cmd, loop.t[0], out.row)
+            if self.sensors:
+                self.S.interval = cmd.print_interval
             if moved:                    # the command starts where the return left it
                 times = Grid(loop.t[0], cmd.end_time, cmd.print_interval).all()
             d.step_limit = d.ntimes - d.nfail + opts.max_num_steps        # as the driver
@@ -256,8 +260,7 @@ class FastRun:
                     self.solver.s, self.restart, self.ctl, len(self.controls), self.S,
                     fb("double[]", times) + used, len(times) - used, cmd.end_time, loop.t,
                     fb("double[]", loop.y), fb("double[]", loop.yp), loop.fresh,
-                    len(out.T) - row,
-                    int(row > out.streamed), fb("double[]", out.T) + row,
+                    len(out.T) - row, row, row - out.streamed, fb("double[]", out.T) + row,
                     fb("double[]", out.Y) + row * k.ny, fb("double[]", out.YP) + row * k.ny,
                     fb("double[]", out.REQ) + row * self.nout, self.reached, nused, nstreamed,
                     self.tret, loop.nrestarts, loop.ctl)
@@ -268,6 +271,11 @@ class FastRun:
                     self.sensors.drain()
                 if flag == lib.PS_IDA_REGRID:     # the new interval from the instant on
                     times, used = Grid(loop.t[0], cmd.end_time, self.S.dt).all(), 0
+                elif flag == lib.PS_IDA_RESTORED:
+                    # back at the last converged step: the print times from the last row kept
+                    # on, at the interval then in force (Printer.restore)
+                    last = out.T[out.row - 1] if out.row else loop.t[0]
+                    times, used = Grid(last, cmd.end_time, self.S.interval).all(), 0
                 elif flag != lib.PS_IDA_DRAIN:
                     break
             if out.row:

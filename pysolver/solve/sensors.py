@@ -14,9 +14,10 @@ functions whose crossings IDA reports) are the kernel's, in C (``ps_roots`` and
   ``zero_crossing``; when it fires again the bounds come back.
 - **Chatter guard.** Over CHATTER_LIMIT events within CHATTER_WINDOW * max(1, |t|) end the run.
 
-Sensors whose actions need no Python (:func:`decided_in_c`: all but zero_crossing) are decided
-by the same rules in C on the batched path (csrc/events.c; :class:`CSensors` hands its event
-records over); tests/test_fast.py holds the two to the same rows, events, log and counters.
+Sensors whose actions need no Python (:func:`decided_in_c`) are decided by the same rules in C
+on the batched path (csrc/events.c, and csrc/ida.c's ps_ida_controlled for restore-and-shrink;
+:class:`CSensors` hands its event records over); tests/test_fast.py holds the two to the same
+rows, events, log and counters.
 """
 import collections
 import dataclasses
@@ -237,14 +238,13 @@ class Sensors(Actor):
 
 def decided_in_c(sensor, kernel):
     """Whether a sensor's instants can be decided in C (csrc/events.c, on the batched path):
-    every action but zero_crossing (which goes back to the last converged step). Where forces
-    read SENVAL, an action that restarts makes yp consistent again: in C for scenes without
-    motions or joints under SPARSE_THRESHOLD states (ps_consistent_yp, as
-    kernel.consistent_yp), on the general loop otherwise."""
+    every action, zero_crossing's restore-and-shrink included. Where forces read SENVAL, an
+    action that restarts makes yp consistent again: in C for scenes without motions or joints
+    under SPARSE_THRESHOLD states (ps_consistent_yp, as kernel.consistent_yp), on the general
+    loop otherwise."""
     restarts = (sensor.evaluate_id is not None or sensor.restart or sensor.hmax is not None
-                or sensor.stepsize is not None)
-    return sensor.zero_crossing is None and not (
-        kernel.forces_use_senval and restarts and not _dense_yp(kernel))
+                or sensor.stepsize is not None or sensor.zero_crossing is not None)
+    return not (kernel.forces_use_senval and restarts and not _dense_yp(kernel))
 
 
 def _dense_yp(kernel):
@@ -261,7 +261,7 @@ class CSensors:
     writes them. `cap` events (default :data:`EVENT_CAP`) are kept in C between drains."""
 
     def __init__(self, model, kernel, cap=None):
-        from ..build.bindings import ffi
+        from ..build.bindings import ffi, lib
         self.kernel = kernel
         self.sensors = [model.sensors[i] for i in kernel.sensor_ids]
         n = len(self.sensors)
@@ -292,6 +292,22 @@ class CSensors:
         S.hmaxs = array([se.hmax or 0.0 for se in self.sensors], "double")
         S.stepsizes = array([se.stepsize or 0.0 for se in self.sensors], "double")
         S.n, S.nverbose = n, sum(se.verbose for se in self.sensors)
+        # zero_crossing: the factors, the searches under way, the remembered steps
+        S.zcs = array([se.zero_crossing or 0.0 for se in self.sensors], "double")
+        S.nzc = sum(se.zero_crossing is not None for se in self.sensors)
+        S.zc_pending = array(np.zeros(n), "int")
+        snaps, ny, ns = lib.PS_SNAPS, kernel.ny, len(kernel.senval)
+        S.nsenval = ns
+        for name in ("snap_t", "snap_hmax", "snap_interval"):
+            setattr(S, name, array(np.zeros(snaps), "double"))
+        for name in ("snap_nrearms", "snap_records"):
+            arr = np.zeros(snaps, dtype=np.int64)
+            self.keep.append(arr)
+            setattr(S, name, ffi.cast("long *", ffi.from_buffer(arr)))
+        S.snap_y, S.snap_yp = (array(np.zeros(snaps * ny), "double") for _ in range(2))
+        S.snap_armed, S.snap_verbose = (array(np.zeros(snaps * n), "int") for _ in range(2))
+        S.snap_side = array(np.zeros(snaps * n), "double")
+        S.snap_senval = array(np.zeros(max(snaps * ns, 1)), "double")
         # where forces read SENVAL, a restart's consistent yp (ps_consistent_yp's workspace)
         S.consistent = int(bool(kernel.forces_use_senval))
         if S.consistent:
@@ -299,7 +315,7 @@ class CSensors:
             S.cwork = array(np.zeros(2 * ny * ny + ny), "double")
             S.cpiv = array(np.zeros(ny), "int")
         self._records(cap)
-        self.events, self.log = [], []
+        self.reset()
 
     def _records(self, cap):
         """Room for `cap` records (events, and verbose sensors' log lines)."""
@@ -320,28 +336,46 @@ class CSensors:
             self._records(max(need, S.cap))
 
     def reset(self):
-        """A new run: no events, re-armings or recent firings; every sensor armed."""
+        """A new run: no events, re-armings, recent firings, searches or remembered steps;
+        every sensor armed."""
         S = self.S
-        S.nev = S.nrearms = S.first = S.nrecent = 0
+        S.nev = S.nrearms = S.first = S.nrecent = S.drained = S.nsnap = S.snap_first = 0
+        S.saved, S.undo = 0, -1
         self.kernel.armed[:] = 1
         self.events, self.log = [], []
+        self.kinds = []                 # per record handed over: an event (True) or a line
 
     def drain(self, upto=None):
-        """Move the events recorded in C (the first `upto` of them; None: all) to
-        :attr:`events` and :attr:`log`."""
+        """Move the records made in C (the first `upto` of them; None: all) to :attr:`events`
+        and :attr:`log`, after taking back those a restore undid."""
+        S = self.S
+        if S.undo >= 0:
+            self.log, self.kinds = self.log[:S.undo], self.kinds[:S.undo]
+            self.events = self.events[:sum(self.kinds)]
+            S.drained, S.undo = len(self.kinds), -1
         t, value, sensor = self.ev
-        for i in range(self.S.nev if upto is None else upto):
-            if sensor[i] < 0:                    # a verbose sensor's line at an output row
-                se = self.sensors[-1 - int(sensor[i])]
+        n = len(self.sensors)
+        count = S.nev if upto is None else upto
+        for i in range(count):
+            code = int(sensor[i])
+            self.kinds.append(code >= 0)
+            if code < -n:                        # a zero-crossing search began
+                se = self.sensors[-1 - n - code]
+                self.log.append(f"t = {t[i]:.9g}: Sensor_Event {se.id} zero crossing: back "
+                                f"to the last converged step, hmax {value[i]:.3g}")
+                continue
+            if code < 0:                         # a verbose sensor's line at an output row
+                se = self.sensors[-1 - code]
                 self.log.append(f"t = {t[i]:.9g}: Sensor_Event {se.id} active (value "
                                 f"{value[i]:.6g} {se.compare} {se.value:g})")
                 continue
-            se = self.sensors[int(sensor[i])]
+            se = self.sensors[code]
             actions = se.actions()
             self.events.append(Event(float(t[i]), se.id, se.label, float(value[i]), actions))
             self.log.append(f"t = {t[i]:.9g}: Sensor_Event {se.id} fired (value {value[i]:.6g} "
                             f"{se.compare} {se.value:g}): {', '.join(actions) or 'log only'}")
-        self.S.nev = 0
+        S.drained += count
+        S.nev = 0
 
     def halted_by(self):
         """The element that halted the run."""
