@@ -96,17 +96,29 @@ static double maxabs(const double* v, const int* idx, int n) {
   return m;
 }
 
-/* The least-norm x (written into the state indices cols of dx, which is zeroed first) with
- * J[rows, cols] x = rhs: x = C^T (C C^T)^-1 rhs, C = J[rows, cols] (J row-major ny x ny). */
-static int least_change(const psRestart* r, int ny, const double* J, const int* rows, int nr,
-                        const int* cols, int nc, const double* rhs, double* dx) {
+/* The iteration matrix at cj into J: full (row-major ny x ny), or the values of the kernel's
+ * CSC pattern (a sparse restart). */
+static int jacobian(const psModel* m, psData* d, const psRestart* r, double t, const double* y,
+                    const double* yp, double cj, double* J) {
+  if (r->sparse) return ps_jacobian_csc(m, d, t, y, yp, cj, r->jmap, r->ntrip, J, r->jnnz);
+  return ps_jacobian(m, d, t, y, yp, cj, J);
+}
+
+/* The least-norm x (written into the velocities of dx, which is zeroed first) with
+ * J[rows, u] x = rhs, rows the reactions ks[0..nr-1]: x = C^T (C C^T)^-1 rhs, C = J[rows, u]
+ * (J row-major ny x ny). */
+static int least_change_dense(const psRestart* r, int ny, const double* J, const int* ks,
+                              int nr, const double* rhs, double* dx) {
+  const int* cols = r->uidx;
+  int nc = r->nu;
   double* CC = r->cc;
   double* z = r->z;
   for (int i = 0; i < nr; i++) {
+    long ri = (long)r->lam[ks[i]] * ny;
     for (int j = 0; j < nr; j++) {
+      long rj = (long)r->lam[ks[j]] * ny;
       double s = 0.0;
-      for (int k = 0; k < nc; k++)
-        s += J[(long)rows[i] * ny + cols[k]] * J[(long)rows[j] * ny + cols[k]];
+      for (int k = 0; k < nc; k++) s += J[ri + cols[k]] * J[rj + cols[k]];
       CC[(long)i * nr + j] = s;
     }
     z[i] = rhs[i];
@@ -115,11 +127,46 @@ static int least_change(const psRestart* r, int ny, const double* J, const int* 
   memset(dx, 0, sizeof(double) * (size_t)ny);
   for (int k = 0; k < nc; k++) {
     double s = 0.0;
-    for (int i = 0; i < nr; i++) s += J[(long)rows[i] * ny + cols[k]] * z[i];
+    for (int i = 0; i < nr; i++) s += J[(long)r->lam[ks[i]] * ny + cols[k]] * z[i];
     if (!isfinite(s)) return PS_ERR_SINGULAR;
     dx[cols[k]] = s;
   }
   return PS_OK;
+}
+
+/* least_change_dense on the pattern's values J: the reactions' rows from lrow_*. */
+static int least_change_sparse(const psRestart* r, int ny, const double* J, const int* ks,
+                               int nr, const double* rhs, double* dx) {
+  double* CC = r->cc;
+  double* z = r->z;
+  double* w = r->w;
+  for (int i = 0; i < nr; i++) {
+    int a = r->lrow_ptr[ks[i]], b = r->lrow_ptr[ks[i] + 1];
+    for (int p = a; p < b; p++)
+      if (r->is_u[r->lrow_col[p]]) w[r->lrow_col[p]] = J[r->lrow_at[p]];
+    for (int j = 0; j < nr; j++) {
+      double s = 0.0;
+      for (int p = r->lrow_ptr[ks[j]]; p < r->lrow_ptr[ks[j] + 1]; p++)
+        s += J[r->lrow_at[p]] * w[r->lrow_col[p]];
+      CC[(long)i * nr + j] = s;
+    }
+    for (int p = a; p < b; p++) w[r->lrow_col[p]] = 0.0;
+    z[i] = rhs[i];
+  }
+  if (psu_dense_solve(nr, CC, z, NULL) != PS_OK) return PS_ERR_SINGULAR;
+  memset(dx, 0, sizeof(double) * (size_t)ny);
+  for (int i = 0; i < nr; i++)
+    for (int p = r->lrow_ptr[ks[i]]; p < r->lrow_ptr[ks[i] + 1]; p++)
+      if (r->is_u[r->lrow_col[p]]) dx[r->lrow_col[p]] += J[r->lrow_at[p]] * z[i];
+  for (int k = 0; k < r->nu; k++)
+    if (!isfinite(dx[r->uidx[k]])) return PS_ERR_SINGULAR;
+  return PS_OK;
+}
+
+static int least_change(const psRestart* r, int ny, const double* J, const int* ks, int nr,
+                        const double* rhs, double* dx) {
+  return r->sparse ? least_change_sparse(r, ny, J, ks, nr, rhs, dx)
+                   : least_change_dense(r, ny, J, ks, nr, rhs, dx);
 }
 
 /* q += N(q) du: translate by du's velocities, rotate by its body angular velocities (Euler
@@ -166,14 +213,13 @@ static int assemble(const psModel* m, psData* d, const psRestart* r, double t, d
     if (it < PS_RESTART_ITERS && gmax <= 1e-13 * (1.0 + maxabs(y, NULL, ny))) return PS_OK;
     if (it == PS_RESTART_ITERS)
       return gmax <= 1e-9 * (1.0 + maxabs(y, NULL, ny)) ? PS_OK : PS_ERR_ASSEMBLY;
-    rc = ps_jacobian(m, d, t, y, yp, 0.0, r->J0);
+    rc = jacobian(m, d, r, t, y, yp, 0.0, r->J0);
     if (rc != PS_OK) return rc;
     for (int k = 0; k < nd; k++) {
-      r->rows[k] = r->lam[r->disp[k]];
+      r->rows[k] = r->disp[k];
       r->g[k] = -r->g[k];
     }
-    if (least_change(r, ny, r->J0, r->rows, nd, r->uidx, r->nu, r->g, r->dx) != PS_OK)
-      return PS_ERR_SINGULAR;
+    if (least_change(r, ny, r->J0, r->rows, nd, r->g, r->dx) != PS_OK) return PS_ERR_SINGULAR;
     move(m, y, r->dx);
   }
   return PS_OK;
@@ -191,16 +237,15 @@ static int rates(const psModel* m, psData* d, const psRestart* r, double t, doub
       y[r->rate[k]] += r->g[k];
       r->g[k] = 0.0;
     } else {
-      r->rows[nh++] = r->lam[k];
+      r->rows[nh++] = k;
     }
   }
   for (int it = 0; it < (nh ? PS_RESTART_ITERS : 0); it++) {
-    rc = ps_jacobian(m, d, t, y, yp, 0.0, r->J0);
+    rc = jacobian(m, d, r, t, y, yp, 0.0, r->J0);
     if (rc != PS_OK) return rc;
     for (int k = 0, h = 0; k < nl; k++)
       if (r->rate[k] < 0) r->z2[h++] = -r->g[k];
-    if (least_change(r, ny, r->J0, r->rows, nh, r->uidx, r->nu, r->z2, r->dx) != PS_OK)
-      return PS_ERR_SINGULAR;
+    if (least_change(r, ny, r->J0, r->rows, nh, r->z2, r->dx) != PS_OK) return PS_ERR_SINGULAR;
     for (int k = 0; k < r->nu; k++) y[r->uidx[k]] += r->dx[r->uidx[k]];
     rc = ps_residual(m, d, t, y, yp, r->res);
     if (rc != PS_OK) return rc;
@@ -214,6 +259,51 @@ static int rates(const psModel* m, psData* d, const psRestart* r, double t, doub
   return PS_OK;
 }
 
+/* The dense saddle-point system of accelerations: S and its right-hand side z. */
+static void saddle_dense(const psRestart* r, int ny, double h, const double* yp, double* S,
+                         double* z) {
+  int nr = r->nrow, nl = r->nlam, n = nr + nl;
+  for (int i = 0; i < nr; i++) {
+    int ri = r->row[i];
+    for (int j = 0; j < nr; j++) {
+      long e = (long)ri * ny + r->row[j];
+      S[(long)i * n + j] = r->J1[e] - r->J0[e];
+    }
+    for (int j = 0; j < nl; j++) S[(long)i * n + nr + j] = r->J0[(long)ri * ny + r->lam[j]];
+    z[i] = -r->res[ri];
+  }
+  for (int i = 0; i < nl; i++) {
+    int li = r->lam[i];
+    for (int j = 0; j < nr; j++) S[(long)(nr + i) * n + j] = r->J0[(long)li * ny + r->row[j]];
+    for (int j = 0; j < nl; j++) S[(long)(nr + i) * n + nr + j] = 0.0;
+    double jyp = 0.0;
+    for (int j = 0; j < ny; j++) jyp += r->J0[(long)li * ny + j] * yp[j];
+    double rt = (r->g[i] - r->res2[li]) / (2 * h);
+    z[nr + i] = -(jyp + rt);
+  }
+}
+
+/* The saddle-point system on the pattern (its values gathered from J0 and J1) and its
+ * right-hand side, factored and solved: the solution in z. */
+static int saddle_sparse(const psRestart* r, double h, const double* yp, double* z) {
+  int nr = r->nrow, nl = r->nlam;
+  for (int k = 0; k < r->snnz; k++)
+    r->sval[k] =
+        (r->s_one[k] >= 0 ? r->J1[r->s_one[k]] : 0.0) + r->s_sign[k] * r->J0[r->s_zero[k]];
+  for (int i = 0; i < nr; i++) z[i] = -r->res[r->row[i]];
+  for (int i = 0; i < nl; i++) {
+    double jyp = 0.0;
+    for (int p = r->lrow_ptr[i]; p < r->lrow_ptr[i + 1]; p++)
+      jyp += r->J0[r->lrow_at[p]] * yp[r->lrow_col[p]];
+    double rt = (r->g[i] - r->res2[r->lam[i]]) / (2 * h);
+    z[nr + i] = -(jyp + rt);
+  }
+  /* a full factorization each time: the answer does not depend on the runs before */
+  if (ps_lu_factor(r->slu, r->sval) != 0) return PS_ERR_SINGULAR;
+  ps_lu_solve(r->slu, z);
+  return PS_OK;
+}
+
 /* Step 3: accelerations and reactions from the residual rows and the time derivative of the
  * rate rows, a saddle-point system. */
 static int accelerations(const psModel* m, psData* d, const psRestart* r, double t, double* y,
@@ -222,33 +312,20 @@ static int accelerations(const psModel* m, psData* d, const psRestart* r, double
   double* S = r->saddle;
   double* z = r->rhs;
   for (int it = 0; it < PS_RESTART_ACC_ITERS; it++) {
-    int rc = ps_jacobian(m, d, t, y, yp, 0.0, r->J0);
-    if (rc == PS_OK) rc = ps_jacobian(m, d, t, y, yp, 1.0, r->J1);
+    int rc = jacobian(m, d, r, t, y, yp, 0.0, r->J0);
+    if (rc == PS_OK) rc = jacobian(m, d, r, t, y, yp, 1.0, r->J1);
     if (rc == PS_OK) rc = ps_residual(m, d, t, y, yp, r->res);
     double h = 1e-6 * fmax(1.0, fabs(t));
     if (rc == PS_OK) rc = ps_residual(m, d, t + h, y, yp, r->res2);
     for (int k = 0; k < nl && rc == PS_OK; k++) r->g[k] = r->res2[r->lam[k]];
     if (rc == PS_OK) rc = ps_residual(m, d, t - h, y, yp, r->res2);
     if (rc != PS_OK) return rc;
-    for (int i = 0; i < nr; i++) {
-      int ri = r->row[i];
-      for (int j = 0; j < nr; j++) {
-        long e = (long)ri * ny + r->row[j];
-        S[(long)i * n + j] = r->J1[e] - r->J0[e];
-      }
-      for (int j = 0; j < nl; j++) S[(long)i * n + nr + j] = r->J0[(long)ri * ny + r->lam[j]];
-      z[i] = -r->res[ri];
+    if (r->sparse) {
+      if (saddle_sparse(r, h, yp, z) != PS_OK) return PS_ERR_SINGULAR;
+    } else {
+      saddle_dense(r, ny, h, yp, S, z);
+      if (psu_dense_solve(n, S, z, NULL) != PS_OK) return PS_ERR_SINGULAR;
     }
-    for (int i = 0; i < nl; i++) {
-      int li = r->lam[i];
-      for (int j = 0; j < nr; j++) S[(long)(nr + i) * n + j] = r->J0[(long)li * ny + r->row[j]];
-      for (int j = 0; j < nl; j++) S[(long)(nr + i) * n + nr + j] = 0.0;
-      double jyp = 0.0;
-      for (int j = 0; j < ny; j++) jyp += r->J0[(long)li * ny + j] * yp[j];
-      double rt = (r->g[i] - r->res2[li]) / (2 * h);
-      z[nr + i] = -(jyp + rt);
-    }
-    if (psu_dense_solve(n, S, z, NULL) != PS_OK) return PS_ERR_SINGULAR;
     double step = 0.0, size = 0.0;
     for (int i = 0; i < nr; i++) yp[r->row[i]] += z[i];
     for (int i = 0; i < nl; i++) y[r->lam[i]] += z[nr + i];
@@ -259,6 +336,8 @@ static int accelerations(const psModel* m, psData* d, const psRestart* r, double
   }
   return PS_OK;
 }
+
+
 
 /* The restart proper (ps_restart_consistent). */
 static int restart_state(const psModel* m, psData* d, const psRestart* r, double t, double* y,
@@ -300,15 +379,22 @@ int ps_motion_reactions(const psModel* m, psData* d, const psRestart* r, double 
     if (r->mu[k] >= 0) yy[r->mu[k]] = 0.0;
   }
   int rc = ps_residual(m, d, t, yy, yp, r->res);
-  if (rc == PS_OK) rc = ps_jacobian(m, d, t, yy, yp, 0.0, r->J0);
+  if (rc == PS_OK) rc = jacobian(m, d, r, t, yy, yp, 0.0, r->J0);
   if (rc != PS_OK) return rc;
   /* least squares C x = -r over the force rows by Householder QR (C: nr x nl, nr >= nl) */
-  double* C = r->saddle;
+  double* C = r->sparse ? r->qr : r->saddle;
   double* b = r->rhs;
-  for (int i = 0; i < nr; i++) {
-    for (int j = 0; j < nl; j++) C[(long)i * nl + j] = r->J0[(long)r->row[i] * ny + r->lam[j]];
-    b[i] = -r->res[r->row[i]];
+  if (r->sparse) {
+    /* the reactions' columns of the pattern, on the force rows */
+    memset(C, 0, sizeof(double) * (size_t)nr * (size_t)nl);
+    for (int j = 0; j < nl; j++)
+      for (int p = r->jcolptr[r->lam[j]]; p < r->jcolptr[r->lam[j] + 1]; p++)
+        if (r->rowpos[r->jrowind[p]] >= 0) C[(long)r->rowpos[r->jrowind[p]] * nl + j] = r->J0[p];
+  } else {
+    for (int i = 0; i < nr; i++)
+      for (int j = 0; j < nl; j++) C[(long)i * nl + j] = r->J0[(long)r->row[i] * ny + r->lam[j]];
   }
+  for (int i = 0; i < nr; i++) b[i] = -r->res[r->row[i]];
   for (int k = 0; k < nl; k++) {
     double norm = 0.0;
     for (int i = k; i < nr; i++) norm += C[(long)i * nl + k] * C[(long)i * nl + k];

@@ -76,13 +76,15 @@ def test_sparse_lu_report_runs(monkeypatch):
 
 def test_actors_report_runs():
     """benchmarks/actors.py: every deck, its path (all batched: the sensor decks, zero_crossing
-    included, the motion and the LoadControl decks) and its updates (300 on the LoadControl
-    decks)."""
+    included, the motion and the LoadControl decks, the sparse particle bed too) and its
+    updates (300 on the LoadControl decks, 120 on the bed)."""
     out = _output(_module("actors").main, 1).splitlines()
     rows = {line.split()[0]: line.split() for line in out[1:]}
-    assert len(rows) == 7
+    assert len(rows) == 8
     for name in ("sensor_halt_acceleration.xml", "sensor_end_condition.xml",
                  "sensor_output_interval.xml", "contact_onset_zero_crossing.xml",
-                 "driven_indenter.xml", "loadcontrol_indenter.xml", "loadcontrol_hertz.xml"):
+                 "driven_indenter.xml", "loadcontrol_indenter.xml", "loadcontrol_hertz.xml",
+                 "loadcontrol_bed.py"):
         assert rows[name][1] == "batched", name
     assert rows["loadcontrol_indenter.xml"][3] == "300"
+    assert rows["loadcontrol_bed.py"][3] == "120"

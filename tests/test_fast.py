@@ -436,7 +436,27 @@ def test_a_run_that_fails_is_reported_by_the_general_path(monkeypatch):
     assert ok.success and _takes_fast_path(model)
 
 
-@pytest.mark.parametrize("name, why", [("loadcontrol_bed.py", "load control, 324 states"),
+def test_a_sparse_load_control_scene_to_the_bit(monkeypatch):
+    """The LoadControl particle bed (325 states, the sparse LU): its 120 updates and their
+    restarts (on the kernel's sparse pattern) run in the batched path's C loop, with the
+    general loop's rows, records and counters to the bit; past the sparse restart's size limit
+    (here 0) the scene restarts in Python on the general loop."""
+    from pysolver.build import restart
+    model = _load("loadcontrol_bed.py")
+    assert _takes_fast_path(model)
+    res = model.run(progress=False)
+    _same_control(res, _general(model, monkeypatch))
+    assert res.stats["nrestarts"] == 120
+    monkeypatch.setattr(restart, "SPARSE_LIMIT", 0)
+    again = _load("loadcontrol_bed.py")
+    assert not _takes_fast_path(again)
+    ref = again.run(progress=False)
+    assert ref.success and len(ref.controller(1)["time"]) == 120
+    np.testing.assert_allclose(ref.y[-1], res.y[-1], rtol=0,
+                               atol=1e-6 * np.abs(res.y[-1]).max())
+
+
+@pytest.mark.parametrize("name, why", [
                                        ("static_pendulum.xml", "a static command")])
 def test_runs_that_need_the_driver_take_it(name, why):
     model = _load(name)

@@ -163,16 +163,19 @@ def test_records_are_saved_and_plotted(tmp_path):
 
 
 @pytest.mark.parametrize("name", ["joints/slider_crank.xml", "joints/spherical_pendulum.xml",
-                                  "driven_indenter.xml", "joints/iftomm_a04_bricard.xml"])
+                                  "driven_indenter.xml", "joints/iftomm_a04_bricard.xml",
+                                  # sparse: 325 states, one motion; 2,023 states, 485 equations
+                                  "loadcontrol_bed.py", "joints/iftomm_a02_fourbar.xml"])
 def test_the_c_restart_is_consistent_in_python(name):
-    """The restart LoadControl's updates take in C (ps_restart_consistent) against
-    consistent() in Python away from the start, from a state whose positions (1e-4) and
-    velocities (1e-2) are off the constraints: the same y and yp to 1e-9 of their size, the
-    position rows then zero to 1e-10 and the force rows to 1e-8 (the rate rows hold
-    g' + c lam, c the compliance); and
-    ps_motion_reactions against consistent.reactions (least squares), 1e-9."""
+    """The restart LoadControl's updates take in C (ps_restart_consistent, dense or on the
+    kernel's sparse pattern) against consistent() in Python away from the start, from a state
+    whose positions (1e-4) and velocities (1e-2) are off the constraints: the same y and yp to
+    1e-9 of their size, the position rows then zero to 1e-10 and the force rows to 1e-8 (the
+    rate rows hold g' + c lam, c the compliance); and ps_motion_reactions against
+    consistent.reactions (least squares), 1e-9."""
     from pysolver.build.bindings import ffi, lib
-    from pysolver.build.consistent import Restart, consistent, reactions
+    from pysolver.build.consistent import consistent, reactions
+    from pysolver.build.restart import Restart
     model = pysolver.load(DECKS / name)
     k = model.compile().kernel
     res = model.run(progress=False)
@@ -187,6 +190,7 @@ def test_the_c_restart_is_consistent_in_python(name):
     yp_py = consistent(k, t, y_py)
     y_c, yp_c = y0.copy(), np.zeros_like(y0)
     rs = Restart.of(k)
+    assert rs.sparse == (k.ny >= 300)
     fb = ffi.from_buffer
     assert lib.ps_restart_consistent(k.m, k.d, rs.r, t, fb("double[]", y_c),
                                      fb("double[]", yp_c)) == lib.PS_OK

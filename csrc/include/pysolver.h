@@ -324,9 +324,14 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
 int ps_consistent_yp(const psModel* m, psData* d, double t, const double* y, double* yp,
                      double* work, int* piv, int iters);
 
+/* A sparse LU factorization (csrc/sparselu.c, below). */
+typedef struct psLU psLU;
+
 /* How a scene with motions and joints is made consistent again at a restart (csrc/control.c;
- * pysolver/build/consistent.py's consistent() away from the initial state, dense): the state
- * indices it works on and its workspace, all allocated by the caller. */
+ * pysolver/build/consistent.py's consistent() away from the initial state): the state
+ * indices it works on and its workspace, all allocated by the caller. Dense (J0, J1 and the
+ * saddle-point matrix full), or sparse: J0 and J1 then hold the values of the kernel's CSC
+ * pattern and the saddle-point system is factored by psLU. */
 typedef struct psRestart {
   int nlam;               /* reactions: motions first, then constraint equations  */
   const int* lam;         /* (nlam) each reaction's state                         */
@@ -340,8 +345,8 @@ typedef struct psRestart {
   const int* uidx;        /* (nu) their states                                    */
   int nrow;               /* the force rows: states that are not algebraic        */
   const int* row;         /* (nrow) their indices                                 */
-  double* J0;             /* (ny x ny) workspace from here on                     */
-  double* J1;             /* (ny x ny)                                            */
+  double* J0;             /* (ny x ny; sparse: jnnz) workspace from here on       */
+  double* J1;             /* (ny x ny; sparse: jnnz)                              */
   double* res;            /* (ny)                                                 */
   double* res2;           /* (ny)                                                 */
   double* dx;             /* (ny)                                                 */
@@ -350,9 +355,28 @@ typedef struct psRestart {
   double* z2;             /* (nlam)                                               */
   double* lamv;           /* (nlam)                                               */
   double* cc;             /* (nlam x nlam)                                        */
-  double* saddle;         /* ((nrow + nlam)^2)                                    */
+  double* saddle;         /* ((nrow + nlam)^2; sparse: unused)                    */
   double* rhs;            /* (nrow + nlam)                                        */
   int* rows;              /* (nlam)                                               */
+  /* a sparse scene (from SPARSE_THRESHOLD states) */
+  int sparse;             /* 1: the fields below are used                         */
+  int ntrip, jnnz;        /* the kernel's Jacobian triplets, the pattern's entries */
+  const int* jmap;        /* (ntrip) triplet -> value (ps_jacobian_csc)           */
+  const int* jcolptr;     /* (ny + 1) the pattern's columns                       */
+  const int* jrowind;     /* (jnnz) and rows                                      */
+  const int* lrow_ptr;    /* (nlam + 1) each reaction's row in the pattern:       */
+  const int* lrow_at;     /* its entries' value indices                           */
+  const int* lrow_col;    /* and columns                                          */
+  const int* is_u;        /* (ny) 1: a body's velocity                            */
+  const int* rowpos;      /* (ny) a force row's index in row, -1                  */
+  double* w;              /* (ny) zero between uses                               */
+  double* qr;             /* (nrow x nlam) ps_motion_reactions' least squares     */
+  psLU* slu;              /* the saddle-point matrix's LU on the pattern below    */
+  int snnz;               /* its entries: each J1's value s_one (-1: none) plus   */
+  const int* s_one;       /* (snnz) s_sign times J0's value s_zero                */
+  const int* s_zero;      /* (snnz)                                               */
+  const double* s_sign;   /* (snnz)                                               */
+  double* sval;           /* (snnz) its values                                    */
 } psRestart;
 
 /* Make (t, y, yp) consistent in place: the reactions zeroed, the tracked angles on their
@@ -572,9 +596,9 @@ int ps_penalty_loads(const psModel* m, psData* d, double t, const double* y, con
                      double* q);
 
 /* A sparse LU factorization of square matrices in compressed sparse columns whose pattern
- * stays fixed (csrc/sparselu.c): IDA's sparse linear solver on the C driver. Opaque; made by
- * ps_lu_new, freed by ps_lu_free. */
-typedef struct psLU psLU;
+ * stays fixed (csrc/sparselu.c): IDA's sparse linear solver on the C driver, and the sparse
+ * restart's (psRestart). Opaque (psLU, declared above); made by ps_lu_new, freed by
+ * ps_lu_free. */
 
 /* Return a factorization object for n x n matrices with the pattern colptr (n + 1), rowind
  * (colptr[n]), which must outlive it, factored in the column order colorder (n entries, a

@@ -11,18 +11,20 @@ state is made consistent at once (the body's velocity takes the new value, accel
 the reaction are solved for again) and IDA is restarted there, so no impulse enters the logged
 load.
 
-An update is one C call (``ps_control_update``, csrc/control.c) in a dense scene: the general
-driver calls it through :meth:`LoadControlTask.on_time`, the batched path (:mod:`.fast`) from
-its C loop, so the two give the same runs to the bit. A scene of SPARSE_THRESHOLD states or
-more measures and restarts in Python (``consistent.reactions`` and ``consistent_yp``) around the
-same C law, on the general driver.
+An update is one C call (``ps_control_update``, csrc/control.c): the general driver calls it
+through :meth:`LoadControlTask.on_time`, the batched path (:mod:`.fast`) from its C loop, so
+the two give the same runs to the bit; a sparse scene restarts on the kernel's sparse pattern
+(:mod:`pysolver.build.restart`). A sparse scene whose restart would pass
+``restart.SPARSE_LIMIT`` measures and restarts in Python (``consistent.reactions`` and
+``consistent_yp``) around the same C law, on the general driver.
 """
 import math
 
 import numpy as np
 
 from ..build.bindings import ffi, lib
-from ..build.consistent import Restart, reactions
+from ..build.consistent import reactions
+from ..build.restart import Restart
 from . import nonfinite
 from .actors import Actor, Flow
 from .loadlaw import FIELDS, LawParams, auto_gains
@@ -72,7 +74,8 @@ class LoadControlTask(Actor):
 
     @property
     def instants(self):
-        """Its update times are its own; the batched path runs them in C (dense scenes)."""
+        """Its update times are its own; the batched path runs them in C (unless the scene
+        restarts in Python)."""
         return self.restart is None
 
     # hooks -----------------------------------------------------------------------------
@@ -100,7 +103,8 @@ class LoadControlTask(Actor):
                                               ffi.from_buffer("double[]", run.y),
                                               ffi.from_buffer("double[]", run.yp)), t)
             return Flow(restart=True)
-        # a sparse scene: the load and the restart in Python, the law in C
+        # a scene past the sparse restart's limit: the load and the restart in Python, the
+        # law in C
         if c.contact:
             load = float(k.penalty_loads(t, run.y, run.yp)[c.u])
         else:
