@@ -69,7 +69,10 @@ static int fire(const psModel* m, psData* d, psSensors* S, int k, double f, doub
   S->emit |= S->prints[k] || S->halts[k];
   if (S->halts[k]) S->halt = k;
   if (S->rets[k]) S->ret = k;
-  if (S->dts[k] > 0) S->dt = S->interval = S->dts[k];
+  if (S->dts[k] > 0) {
+    S->dt = S->interval = S->dts[k];
+    S->anchor = t;   /* the new grid begins at the instant (Printer.set_interval) */
+  }
   if (S->verboses[k]) S->verbose_on[k] = 1;
   if (S->hmaxs[k] > 0) {
     S->hmax = S->hmaxs[k];

@@ -689,6 +689,7 @@ static void remember(psIDA* s, psSensors* S, double t, const double* y, const do
   S->snap_t[i] = t;
   S->snap_hmax[i] = s->bounds[0];
   S->snap_interval[i] = S->interval;
+  S->snap_anchor[i] = S->anchor;
   S->snap_nrearms[i] = S->nrearms;
   S->snap_records[i] = S->drained + S->nev;
   memcpy(S->snap_y + (long)i * n, y, sizeof(double) * (size_t)n);
@@ -697,6 +698,14 @@ static void remember(psIDA* s, psSensors* S, double t, const double* y, const do
   memcpy(S->snap_side + (long)i * ns, d->sensor_side, sizeof(double) * (size_t)ns);
   memcpy(S->snap_verbose + (long)i * ns, S->verbose_on, sizeof(int) * (size_t)ns);
   memcpy(S->snap_senval + (long)i * S->nsenval, d->senval, sizeof(double) * (size_t)S->nsenval);
+  /* the LoadControl tasks: schedule, law and log count, and the law's last loads */
+  for (int k = 0, at = 0; k < S->nctl; k++) {
+    const psControl* c = S->ctl[k];
+    S->snap_ctl[(long)i * S->nctl + k] = *c;
+    memcpy(S->snap_loads + (long)i * S->nloads + at, c->law.loads,
+           sizeof(double) * (size_t)c->law.window);
+    at += c->law.window;
+  }
 }
 
 /* A cold restart of IDA at (t, y, yp) with the largest and smallest steps hmax and hmin and
@@ -721,11 +730,11 @@ static int restart(psIDA* s, psSensors* S, double t, const double* y, const doub
 }
 
 /* Act at t as the general driver does (Run.act_due): the updates due, then a restart. */
-static int act(psIDA* s, const psRestart* r, psControl* const* c, int nctl, double t, double* y,
-               double* yp, int* fresh, long* nrestarts, int* ctl) {
+static int act(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,
+               double t, double* y, double* yp, int* fresh, long* nrestarts, int* ctl) {
   int due = updates_due(s, r, c, nctl, t, y, yp, ctl);
   if (due < 0) return PS_IDA_CONTROL_FAILED;
-  if (due && restart(s, NULL, t, y, yp, s->bounds[0], s->bounds[1], 0.0, fresh, nrestarts))
+  if (due && restart(s, S, t, y, yp, s->bounds[0], s->bounds[1], 0.0, fresh, nrestarts))
     return PS_IDA_BOUNDS;
   return 0;
 }
@@ -856,6 +865,14 @@ static int zc_restore(psIDA* s, psSensors* S, Rows* o, double* t, double* y, dou
          sizeof(double) * (size_t)S->nsenval);
   S->nrearms = S->snap_nrearms[last];
   S->interval = S->snap_interval[last];
+  S->anchor = S->snap_anchor[last];
+  for (int k = 0, at = 0; k < S->nctl; k++) {
+    psControl* c = (psControl*)S->ctl[k];
+    *c = S->snap_ctl[(long)last * S->nctl + k];
+    memcpy(c->law.loads, S->snap_loads + (long)last * S->nloads + at,
+           sizeof(double) * (size_t)c->law.window);
+    at += c->law.window;
+  }
   long keep = S->snap_records[last];
   if (keep >= S->drained) {
     S->nev = keep - S->drained;
@@ -902,13 +919,17 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
   int* roots = S ? S->roots : NULL;
   /* zero_crossing sensors: one step at a time, every converged step remembered */
   int onestep = S && S->nzc > 0;
+  if (S) { /* the tasks are remembered with the steps where the caller made room */
+    S->ctl = c;
+    S->nctl = S->snap_ctl ? nctl : 0;
+  }
   Rows o = {tout, nout, 0, t_out, y_out, yp_out, req_out, cap, 0, -held, S, onestep, -row0};
   if (onestep && S->nsnap == 0) remember(s, S, *t, y, yp); /* the run's start (Run.start) */
   *tret = *t;
   int code = 0;
   while (o.k < nout) {
     if (ps_interrupted()) break;
-    code = act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);
+    code = act(s, r, c, nctl, S, *t, y, yp, fresh, nrestarts, ctl);
     if (code) break;
     s->d->bad_kind = 0;
     /* IDA stops exactly at the next update, or the command's end */
@@ -948,7 +969,10 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
     *t = *tret;
     int root = flag == 2;
     code = emit_due(s, &o, *t, y, yp);
-    if (code) break;
+    if (code) {
+      *tret = o.tout[o.k]; /* the print time whose row failed (Printer.emit_due's Step) */
+      break;
+    }
     if (root) {
       code = instant(s, S, &o, *t, tend, y, yp, fresh, nrestarts);
       if (code == PS_IDA_RESTORED) code = zc_restore(s, S, &o, t, y, yp, fresh, nrestarts);
@@ -971,5 +995,5 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
   *nstreamed = o.streamed;
   if (code || ps_interrupted()) return code;
   /* the command's end: the updates due there */
-  return act(s, r, c, nctl, *t, y, yp, fresh, nrestarts, ctl);
+  return act(s, r, c, nctl, S, *t, y, yp, fresh, nrestarts, ctl);
 }

@@ -228,14 +228,67 @@ def test_sensors_decided_in_c_to_the_bit(name, cap, monkeypatch):
         _same(res, ref, events=True)
 
 
-def test_zero_crossing_beside_load_control_takes_the_general_loop():
-    """Restore-and-shrink in C takes back the sensors' doings, not a LoadControl task's: a
-    zero_crossing sensor in a LoadControl deck sends its runs to the general loop."""
-    sensor = ('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="0" '
-              'zero_crossing="0.1"/><Post_Request')
-    model = pysolver.loads(LOADCONTROL.replace("<Post_Request", sensor, 1))
-    assert model.sensors and not _takes_fast_path(model)
-    assert model.run(progress=False).success
+@pytest.mark.parametrize("cap", [None, 1])
+def test_zero_crossing_beside_load_control_to_the_bit(cap, monkeypatch):
+    """Zero-crossing sensors in a LoadControl deck (contact deeper than 0.01, a time, a printed
+    restart): the batched path's C loop remembers the tasks with the steps and gives the
+    general loop's rows, events, log and controller records to the bit."""
+    from pysolver.solve import sensors
+    monkeypatch.setattr(sensors, "EVENT_CAP", cap or sensors.EVENT_CAP)
+    found = ('<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="-0.01" zero_crossing="0.3" '
+             'print="TRUE"/><Sensor_Event id="2" expr="TIME" compare="GE" value="0.333" '
+             'zero_crossing="0.5" restart="TRUE"/><Post_Request')
+    model = pysolver.loads(LOADCONTROL.replace('end_time="3.0"', 'end_time="1.0"').replace(
+        "<Post_Request", found, 1))
+    assert _takes_fast_path(model)
+    runs = [model.run(progress=False) for _ in range(2)]
+    ref = _general(model, monkeypatch)
+    assert sum("zero crossing" in line for line in ref.log) == 2
+    for res in runs:
+        _same(res, ref, events=True)
+        for name, values in res.controller(1).items():
+            assert np.array_equal(values, ref.controller(1)[name], equal_nan=True), name
+
+
+@pytest.mark.parametrize("case", ["a new interval before", "a return before",
+                                  "a second command"])
+def test_a_zero_crossing_restore_keeps_the_print_schedule(case, monkeypatch):
+    """A restore goes back to the grid of print times in force at the step it returns to
+    (one a dt action began at an instant without a row, not one rebuilt from the last row),
+    and no further back than the command's start (not across a return or a command's end):
+    the rows' times are those of the same deck without zero_crossing, on both paths (review of stop
+    37: a print time before the restored step failed IDA's interpolation, or the schedule
+    shifted, or a return was undone and the second command lost)."""
+    from scenes import ball
+    second = '<Simulate analysis_type="Transient" end_time="2.5" print_interval="0.07"/>'
+    sensors, kw, options = {
+        "a new interval before": (
+            '<Sensor_Event id="1" expr="TIME" compare="GE" value="0.62" dt="{dt}"/>'
+            '<Sensor_Event id="2" expr="DZ(10)" compare="LT" value="7.6" {zc}/>',
+            dict(dt=0.5, tol=1e-6), {"h_max": 0.05}),
+        "a return before": (
+            '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" return="TRUE" '
+            'print="TRUE"/><Sensor_Event id="2" expr="DZ(10)" compare="LT" value="4.5" {zc}/>',
+            dict(more=second, dt=0.25), {}),
+        "a second command": (
+            '<Sensor_Event id="1" expr="DZ(10)" compare="LT" value="5" {zc}/>',
+            dict(end=1.0, more=second.replace("2.5", "2.0"), dt=0.25), {}),
+    }[case]
+    runs = {}
+    for dt in ("0.1", "0.2"):
+        for zc in ('zero_crossing="0.3"', ""):
+            model = pysolver.loads(ball(sensors.format(dt=dt, zc=zc), **kw))
+            assert _takes_fast_path(model)
+            res = model.run(progress=False, **options)
+            _same(res, _general(model, monkeypatch, **options), events=True)
+            assert res.success, res.message
+            runs[zc] = res
+        restored = runs['zero_crossing="0.3"']
+        assert any("zero crossing" in line for line in restored.log)
+        # the same times (an event's root, which a grid may begin at, moves by rounding: the
+        # zero-crossing search takes other steps to it)
+        assert len(restored.t) == len(runs[""].t) and restored.t[-1] == runs[""].t[-1]
+        np.testing.assert_allclose(restored.t, runs[""].t, rtol=0, atol=1e-9)
 
 
 def test_a_zero_crossing_run_streams_the_rows_it_keeps(tmp_path, monkeypatch):

@@ -516,6 +516,7 @@ typedef struct psSensors {
   long undo;              /* after a restore, the records of the run to keep when
                              it is fewer than drained (-1: none to take back)     */
   double interval;        /* the print interval in force (Printer.dt)             */
+  double anchor;          /* and where its grid began                             */
   /* zero_crossing (sensors.py, _restore_and_shrink) */
   const double* zcs;      /* (n) its zero_crossing factor, 0 none                 */
   int nzc;                /* sensors with one: IDA steps one step at a time       */
@@ -532,6 +533,7 @@ typedef struct psSensors {
   double* snap_t;         /* (PS_SNAPS)                                           */
   double* snap_hmax;      /* (PS_SNAPS)                                           */
   double* snap_interval;  /* (PS_SNAPS)                                           */
+  double* snap_anchor;    /* (PS_SNAPS)                                           */
   long* snap_nrearms;     /* (PS_SNAPS)                                           */
   long* snap_records;     /* (PS_SNAPS) records of the run (drained counted)      */
   double* snap_y;         /* (PS_SNAPS x ny)                                      */
@@ -540,6 +542,11 @@ typedef struct psSensors {
   double* snap_side;      /* (PS_SNAPS x n)                                       */
   int* snap_verbose;      /* (PS_SNAPS x n)                                       */
   double* snap_senval;    /* (PS_SNAPS x nsenval)                                 */
+  int nctl;               /* the run's LoadControl tasks (ps_ida_controlled's)    */
+  psControl* const* ctl;  /* (nctl) set by ps_ida_controlled                      */
+  psControl* snap_ctl;    /* (PS_SNAPS x nctl) each task as it was                */
+  double* snap_loads;     /* (PS_SNAPS x the tasks' windows) and its last loads   */
+  int nloads;             /* the tasks' windows together                          */
 } psSensors;
 
 /* The converged steps a zero-crossing search can go back to (sensors.py keeps three). */
@@ -776,7 +783,9 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
  * seen firing for the first time takes the run back to the last one (the state, the sensors,
  * the records, the rows after it: *nreached may then be negative, down to -row0, where row0
  * rows of the run lie before t_out[0]), shrinks the step bounds and returns PS_IDA_RESTORED:
- * call again with the print times from the last row kept on, at S->interval. Rows are then
+ * call again with the print times after *t of the grid of S->interval from S->anchor (the
+ * caller sets both at each command's start, and S->nsnap = 0: a restore goes back no
+ * further than the command's start). Rows are then
  * streamed only before the oldest snapshot, and held counts the rows before t_out[0] not
  * streamed yet. */
 int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,

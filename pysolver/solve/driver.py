@@ -275,6 +275,10 @@ class Run:
         if self.need_start:
             self.start(self.first_step)
             self.first_step = None
+        elif self.onestep:
+            # a zero-crossing restore goes back no further than the command's start
+            self.steps_seen.clear()
+            self.remember_step()
         # max_num_steps counts the command's converged steps; the kernel ends the run at the
         # attempt of one more (d.step_limit), on either integrator
         self.kernel.d.step_limit = self.steps() + self.options.max_num_steps

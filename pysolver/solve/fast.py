@@ -45,9 +45,7 @@ def fast_run(compiled, options, actors):
         # acting at instants of its own (a new actor says so through Actor.instants)
         sensors, controls, printer = deck_actors(model, kernel, [], Progress(0.0, 1.0, False))
         ok = (plan.use_c and all(cmd.analysis == "TRANSIENT" for cmd in model.commands)
-              and not any(a.instants for a in (sensors, *controls, printer))
-              # restore-and-shrink in C takes back the sensors' doings, not the tasks'
-              and not (controls and sensors.needs_restore))
+              and not any(a.instants for a in (sensors, *controls, printer)))
         c_sensors = CSensors(model, kernel) if sensors.sensors and ok else None
         cache[key] = (options, FastRun(model, kernel, options, plan, controls, c_sensors)
                       if ok else None)
@@ -63,6 +61,8 @@ class FastRun:
         # (ps_ida_controlled), one call per Simulate command (a first step after a restart may
         # pass any number of print times, which the general loop writes before acting)
         self.controls, self.sensors = list(controls), sensors
+        if sensors is not None:           # a zero-crossing restore takes the tasks back too
+            sensors.tasks(self.controls)
         self.acting = bool(self.controls or sensors)
         if self.acting:
             self.ctl = ffi.new("psControl *[]", [task.c for task in self.controls] or 1)
@@ -241,13 +241,15 @@ class FastRun:
             self.S.row_bytes = 8 * (2 * k.ny + max(len(k.channels), 1))
             self.S.budget = settings.output_budget()
         moved = False                    # a return ended the last command early
-        for ci, (cmd, _, batches) in enumerate(self.commands):
+        for ci, (cmd, t_cmd, batches) in enumerate(self.commands):
             times = batches[0]
             self._budget(cmd, loop.t[0], out.row)
-            if self.sensors:
-                self.S.interval = cmd.print_interval
             if moved:                    # the command starts where the return left it
                 times = Grid(loop.t[0], cmd.end_time, cmd.print_interval).all()
+            if self.sensors:             # its print grid; a restore goes back to its start
+                self.S.interval = cmd.print_interval
+                self.S.anchor = loop.t[0] if moved else t_cmd
+                self.S.nsnap = 0
             d.step_limit = d.ntimes - d.nfail + opts.max_num_steps        # as the driver
             used = 0
             while True:
@@ -272,10 +274,10 @@ class FastRun:
                 if flag == lib.PS_IDA_REGRID:     # the new interval from the instant on
                     times, used = Grid(loop.t[0], cmd.end_time, self.S.dt).all(), 0
                 elif flag == lib.PS_IDA_RESTORED:
-                    # back at the last converged step: the print times from the last row kept
-                    # on, at the interval then in force (Printer.restore)
-                    last = out.T[out.row - 1] if out.row else loop.t[0]
-                    times, used = Grid(last, cmd.end_time, self.S.interval).all(), 0
+                    # back at the last converged step: the print times after it of the grid
+                    # then in force (Printer.restore)
+                    times = Grid(self.S.anchor, cmd.end_time, self.S.interval).all()
+                    times, used = times[times > loop.t[0]], 0
                 elif flag != lib.PS_IDA_DRAIN:
                     break
             if out.row:

@@ -5,6 +5,7 @@ each print time of the current Simulate command. Its instants change nothing, so
 may hand a whole run of them to the integrator in one call (:meth:`Printer.times_before`,
 :meth:`Printer.take`), which the C driver runs without returning to Python.
 """
+import copy
 import csv
 import io
 import math
@@ -347,13 +348,13 @@ class Printer(Actor):
 
     # restore-and-shrink ---------------------------------------------------------------
     def save(self):
-        return self.dt
+        return self.dt, copy.copy(self.pending)
 
-    def restore(self, dt, t):
-        """Back at time t: rows past t are redone on the schedule of that time."""
-        self.dt = dt
+    def restore(self, snapshot, t):
+        """Back at time t: rows past t are redone on the schedule of that time (the print
+        times after t of the grid then in force, wherever it began)."""
+        self.dt, pending = snapshot
         while self.ts and self.ts.last > t:
             self._drop_last()
         self.streamed = min(self.streamed, len(self.ts))
-        last = self.ts.last if self.ts else t
-        self.pending = Grid(last, self.end, self.dt)
+        self.pending = copy.copy(pending)

@@ -10,8 +10,8 @@ functions whose crossings IDA reports) are the kernel's, in C (``ps_roots`` and
   instant sensors re-arm and fire until nothing changes; each fires and re-arms at most once
   per instant, which bounds the loop. Sensors act in id order.
 - **Restore-and-shrink** (seed 003, Comment 3). A ``zero_crossing`` sensor seen firing for the
-  first time sends the run back to the last converged step, with h_max and h_min scaled by
-  ``zero_crossing``; when it fires again the bounds come back.
+  first time sends the run back to the last converged step of the current Simulate command,
+  with h_max and h_min scaled by ``zero_crossing``; when it fires again the bounds come back.
 - **Chatter guard.** Over CHATTER_LIMIT events within CHATTER_WINDOW * max(1, |t|) end the run.
 
 Sensors whose actions need no Python (:func:`decided_in_c`) are decided by the same rules in C
@@ -298,7 +298,7 @@ class CSensors:
         S.zc_pending = array(np.zeros(n), "int")
         snaps, ny, ns = lib.PS_SNAPS, kernel.ny, len(kernel.senval)
         S.nsenval = ns
-        for name in ("snap_t", "snap_hmax", "snap_interval"):
+        for name in ("snap_t", "snap_hmax", "snap_interval", "snap_anchor"):
             setattr(S, name, array(np.zeros(snaps), "double"))
         for name in ("snap_nrearms", "snap_records"):
             arr = np.zeros(snaps, dtype=np.int64)
@@ -316,6 +316,19 @@ class CSensors:
             S.cpiv = array(np.zeros(ny), "int")
         self._records(cap)
         self.reset()
+
+    def tasks(self, controls):
+        """Room to remember the run's LoadControl tasks (their ``psControl`` and their law's
+        last loads) with each converged step, for a zero-crossing restore."""
+        from ..build.bindings import ffi, lib
+        S = self.S
+        if not controls or not S.nzc:
+            return
+        self.snap_ctl = ffi.new("psControl[]", lib.PS_SNAPS * len(controls))
+        S.snap_ctl = self.snap_ctl
+        S.nloads = sum(task.c.law.window for task in controls)
+        self.snap_loads = np.zeros(lib.PS_SNAPS * S.nloads)
+        S.snap_loads = ffi.cast("double *", ffi.from_buffer(self.snap_loads))
 
     def _records(self, cap):
         """Room for `cap` records (events, and verbose sensors' log lines)."""
