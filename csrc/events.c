@@ -113,11 +113,19 @@ int ps_sensors_verbose(const psModel* m, psData* d, psSensors* S, double t, cons
  * (ps_consistent_yp, as kernel.consistent_yp: NaN when it fails). Returns PS_OK,
  * PS_SE_BUDGET or PS_SE_USER (a user subroutine failed there). */
 static int fire_batch(const psModel* m, psData* d, psSensors* S, const int* marks, double t,
-                      const double* y, double* yp) {
+                      double* y, double* yp) {
   S->batch_restart = 0;
   for (int k = 0; k < S->n; k++)
     if (marks[k] && fire(m, d, S, k, S->f[k], t, y, yp)) return PS_SE_BUDGET;
   if (!(S->batch_restart && S->consistent)) return PS_OK;
+  if (S->whole) {
+    /* motions, joints, tracked angles or a sparse scene: the whole restart (y too) */
+    int rc = ps_restart_consistent(m, d, S->whole, t, y, yp);
+    if (rc == PS_OK) return PS_OK;
+    if (d->user_error) return PS_SE_USER;
+    S->restart_rc = rc;
+    return PS_SE_RESTART;
+  }
   if (ps_consistent_yp(m, d, t, y, yp, S->cwork, S->cpiv, 4) != PS_OK) {
     if (d->user_error) return PS_SE_USER;
     for (int i = 0; i < m->ny; i++) yp[i] = NAN;
@@ -134,7 +142,7 @@ static void status(const psModel* m, psData* d, psSensors* S, double t, const do
 
 /* The event iteration at one instant (sensors.py, Sensors._settle): re-arm and fire until
  * nothing changes, each sensor firing and re-arming at most once. */
-static int settle(const psModel* m, psData* d, psSensors* S, double t, const double* y,
+static int settle(const psModel* m, psData* d, psSensors* S, double t, double* y,
                   double* yp) {
   for (;;) {
     status(m, d, S, t, y, yp);
@@ -172,7 +180,7 @@ static void begin(psSensors* S) {
   S->back = S->restore = 0;
 }
 
-int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const double* y,
+int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, double* y,
                      double* yp) {
   begin(S);
   S->tend = NAN; /* before the first command a print interval is not checked (Printer) */
@@ -187,7 +195,7 @@ int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const 
 }
 
 int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found, double t,
-                     const double* y, double* yp) {
+                     double* y, double* yp) {
   begin(S);
   for (int k = 0; k < S->n; k++) {
     S->fired[k] = found[k] != 0 && d->sensor_armed[k];

@@ -808,6 +808,7 @@ static int instant(psIDA* s, psSensors* S, Rows* o, double t, double tend, doubl
   S->rows = base;
   if (rc == PS_SE_BUDGET) return PS_IDA_BUDGET;
   if (rc == PS_SE_USER) return PS_IDA_USER;
+  if (rc == PS_SE_RESTART) return PS_IDA_SENSOR_RESTART;
   if (rc != PS_OK) return PS_IDA_CHATTER;
   if (S->restore) return PS_IDA_RESTORED; /* the caller goes back (zc_restore) */
   /* a new largest step or a first step restarts too (Sensors._fire, Run.apply); the bounds

@@ -202,11 +202,37 @@ SENSOR_DECKS = {
         'value="2" error_tol="0.01" zero_crossing="0.05" hmax="0.02" print="TRUE"/>'
         '<Sensor_Event id="3" expr="VZ(10)" compare="EQ" value="0" error_tol="1e-3" '
         'zero_crossing="0.5"/>', extra=BOUNCE, end=3.0, tol=1e-7),
+    "a SENVAL force on a revolute pendulum": lambda: _senval_pendulum(
+        '<Sensor_Event id="1" expr="DY(20)" compare="LT" value="-1.9" error_tol="0.05" '
+        'evaluate_id="1" zero_crossing="0.2"/><Sensor_Event id="2" expr="VX(20)" compare="EQ" '
+        'value="0" error_tol="1e-3" evaluate_id="1" restart="TRUE" hmax="0.01"/>'),
+    "a SENVAL force in a sparse scene": lambda: _senval_bed(),
     "chatter": lambda: _ball(
         '<Sensor_Event id="1" expr="TIME - 0.3 + SENVAL(1)" compare="GE" value="0" '
         'error_tol="0" evaluate_id="1"/>',
         extra='<Sensor_Evaluate id="1" expr="SENVAL(1) - 1e-13"/>'),
 }
+
+
+def _senval_pendulum(sensors):
+    """The revolute pendulum with a force along the cm's position reading SENVAL(1) (half its
+    x velocity, stored by the sensors): each restart makes the whole state consistent."""
+    extra = ('<Sensor_Evaluate id="1" expr="-0.5 * VX(20)"/><Force_Scalar_TwoBody id="9" '
+             'type="Force" i_marker_id="20" j_marker_id="1" expr="SENVAL(1)"/>')
+    text = (DECKS / "joints" / "pendulum_revolute.xml").read_text()
+    return pysolver.loads(text.replace("<Post_Request", extra + sensors + "<Post_Request", 1))
+
+
+def _senval_bed():
+    """The particle bed without its LoadControl (324 states, sparse, no reactions) and a force
+    on the indenter reading its velocity, stored at t = 0.2 by a restarting sensor."""
+    text = (DECKS / "loadcontrol_bed.py").read_text()
+    start = text.index("LOADCONTROL(")
+    text = text[:start] + text[text.index(")\n", start) + 2:]
+    return pysolver.loads(text.replace("REQUEST(1,", (
+        'SENSOR(7, FUNCTION="TIME", VALUE=0.2, OPERATOR="GE", EVALUATE="VZ(10)", RESTART=True)\n'
+        'SFORCE(77, I=10, J=1, TRANSLATION=True, FUNCTION="1e-3*SENVAL(7)")\nREQUEST(1,')),
+        fmt="py")
 
 
 @pytest.mark.parametrize("name", sorted(SENSOR_DECKS))
@@ -307,6 +333,34 @@ def test_a_zero_crossing_run_streams_the_rows_it_keeps(tmp_path, monkeypatch):
     assert texts[0] == texts[1]
 
 
+def test_a_senval_restart_keeps_the_joint_and_fails_cleanly(monkeypatch):
+    """Where a force reads SENVAL in a scene with joints, a sensor's restart makes the whole
+    state consistent in C on both paths (ps_restart_consistent): through the restarts the
+    pendulum stays within 10 integr_tol (1e-8) of 2 m from its pivot (the compliant joint's
+    drift: 2.9e-8 here, 1.9e-9 without the force) and its velocity perpendicular to the arm
+    (1e-7 relative; 8.5e-9 here); a stored value that makes the force infinite ends the run with
+    status -700 and the same message on both paths."""
+    model = SENSOR_DECKS["a SENVAL force on a revolute pendulum"]()
+    res = model.run(progress=False)
+    assert res.success and res.stats["nrestarts"] >= 5
+    q = res.request(1)
+    np.testing.assert_allclose(np.hypot(q[:, 0], q[:, 1]), 2.0, rtol=0, atol=1e-7)
+    v, r = np.hypot(q[1:, 2], q[1:, 3]), np.hypot(q[1:, 0], q[1:, 1])
+    assert np.abs(q[1:, 2] * q[1:, 0] + q[1:, 3] * q[1:, 1]).max() <= 1e-7 * (v * r).max()
+    text = (DECKS / "joints" / "pendulum_revolute.xml").read_text().replace(
+        "<Post_Request", '<Sensor_Evaluate id="1" expr="1/(DY(20)-DY(20))"/>'
+        '<Force_Scalar_TwoBody id="9" type="Force" i_marker_id="20" j_marker_id="1" '
+        'expr="SENVAL(1)"/><Sensor_Event id="1" expr="TIME" compare="GE" value="1" '
+        'evaluate_id="1"/><Post_Request', 1)
+    model = pysolver.loads(text)
+    assert _takes_fast_path(model)
+    res = model.run(progress=False)
+    assert res.status == -700 and res.message.startswith(
+        "a sensor's restart at t = 1 cannot make the state consistent: non-finite value (inf) "
+        "in Force_Scalar_TwoBody 9: SENVAL(1)")
+    _same(res, _general(model, monkeypatch), events=True)
+
+
 def test_a_print_interval_past_the_output_budget(monkeypatch):
     """A dt action whose rows would pass PYSOLVER_OUTPUT_BUDGET: both paths stop there with
     status -500 and the same message, rows and events (that sensor's event is not written; an
@@ -404,16 +458,25 @@ def test_a_force_that_reads_senval_restarts_consistent_in_c(sensors, monkeypatch
     assert not np.allclose(res.yp[i + 1:, 5], res.yp[1, 5])        # vz' changed
 
 
-def test_a_restart_where_forces_read_senval_with_joints_takes_the_general_loop():
-    """With motions or joints a consistent restart is Python's (consistent()): such a sensor
-    keeps the run on the general loop."""
+def test_a_restart_where_forces_read_senval_with_a_motion_to_the_bit(monkeypatch):
+    """With a motion, a consistent restart after a Sensor_Evaluate a force reads is the whole
+    C restart on both paths: the run takes the batched path and gives the general loop's rows
+    to the bit; a sparse scene past the sparse restart's size limit (here -1: every one)
+    restarts in Python on the general loop (the particle bed below)."""
+    from pysolver.build import restart
     text = (DECKS / "driven_indenter.xml").read_text()
     model = pysolver.loads(text.replace("<Post_Request", '<Sensor_Evaluate id="1" expr="1"/>'
         '<Sensor_Event id="1" expr="TIME" compare="GE" value="0.1" evaluate_id="1"/>'
         '<Force_Scalar_TwoBody id="99" type="Force" i_marker_id="10" j_marker_id="1" '
         'expr="SENVAL(1)"/><Post_Request', 1))
-    assert model.compile().kernel.forces_use_senval
-    assert not _takes_fast_path(model)
+    assert model.compile().kernel.forces_use_senval and _takes_fast_path(model)
+    res = model.run(progress=False)
+    _same(res, _general(model, monkeypatch), events=True)
+    assert res.success and res.stats["nrestarts"] == 1
+    monkeypatch.setattr(restart, "SPARSE_LIMIT", -1)
+    bed = _senval_bed()
+    assert not _takes_fast_path(bed)
+    assert bed.run(progress=False).success
 
 
 def _rows_budget(model, rows):

@@ -463,6 +463,7 @@ int ps_control_update(const psModel* m, psData* d, const psRestart* r, psControl
 #define PS_SE_CHATTER 20 /* sensor events chatter (sensors.py, CHATTER_LIMIT) */
 #define PS_SE_BUDGET 21  /* a sensor's print interval passes the output budget */
 #define PS_SE_USER 22    /* a user subroutine failed in an action */
+#define PS_SE_RESTART 23 /* a restart could not make the state consistent (S->restart_rc) */
 typedef struct psSensors {
   int n;                  /* sensors (m->nsensor)                                 */
   const int* evaluate;    /* (n) the d->senval slot of its Sensor_Evaluate, -1    */
@@ -482,6 +483,9 @@ typedef struct psSensors {
                              makes yp consistent again (ps_consistent_yp)         */
   double* cwork;          /* (2 ny^2 + ny) its workspace, NULL without           */
   int* cpiv;              /* (ny)                                                 */
+  const psRestart* whole; /* or, with motions, joints, tracked angles or a sparse
+                             scene, the whole consistent restart (positions too)  */
+  int restart_rc;         /* the code of a restart that failed (PS_SE_RESTART)    */
   int batch_restart;      /* scratch: a restart among the sensors firing together */
   int* holds;             /* (n) scratch from here on                             */
   int* rearms;            /* (n)                                                  */
@@ -554,8 +558,12 @@ typedef struct psSensors {
 
 /* The sensors at the start of a run at (t, y, yp): every sensor armed (an EQ sensor on the
  * side it starts on), then those whose condition holds fire (the event iteration). Sets what
- * the instant asks (S->restart, emit, halt, ret, dt, hmax, first_step). Returns PS_OK or PS_SE_CHATTER. */
-int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, const double* y,
+ * the instant asks (S->restart, emit, halt, ret, dt, hmax, first_step). Where forces read
+ * SENVAL, sensors firing together that restart make (y, yp) consistent at the end of their
+ * batch: yp by ps_consistent_yp (NaN when it fails), or with S->whole the whole state by
+ * ps_restart_consistent. Returns PS_OK, PS_SE_CHATTER, PS_SE_USER or PS_SE_RESTART
+ * (S->restart_rc: ps_restart_consistent's code). */
+int ps_sensors_start(const psModel* m, psData* d, psSensors* S, double t, double* y,
                      double* yp);
 
 /* Record a log line (an event record of sensor -1 - k) for every verbose sensor k that is
@@ -569,11 +577,13 @@ int ps_sensors_verbose(const psModel* m, psData* d, psSensors* S, double t, cons
  * sensor fires for the first time (and a converged step before t is remembered) nothing
  * happens but S->restore = 1 (S->restore_zc the smallest factor, S->now those sensors): the
  * caller goes back to that step. Sets what the instant asks (S->restart, emit, halt, ret, dt,
- * hmax, first_step; S->back with the bounds a finished search gives back). Returns PS_OK, PS_SE_CHATTER or PS_SE_BUDGET (a print
- * interval would make the run's rows, S->rows before the instant and those to S->tend, pass
- * S->budget: S->over is the sensor, and the instant stops at it). */
+ * hmax, first_step; S->back with the bounds a finished search gives back); (y, yp) made
+ * consistent as ps_sensors_start does. Returns PS_OK, PS_SE_CHATTER, PS_SE_USER,
+ * PS_SE_RESTART or PS_SE_BUDGET (a print interval would make the run's rows, S->rows before
+ * the instant and those to S->tend, pass S->budget: S->over is the sensor, and the instant
+ * stops at it). */
 int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found, double t,
-                     const double* y, double* yp);
+                     double* y, double* yp);
 
 /* Ctrl-C during a run: ps_interrupt_arm installs a SIGINT handler (saving the previous one)
  * whose first signal makes every later ps_residual fail at once, not recoverably, with the
@@ -755,6 +765,7 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
 #define PS_IDA_BOUNDS -2003
 #define PS_IDA_USER -2004
 #define PS_IDA_RESTORED 7
+#define PS_IDA_SENSOR_RESTART -2005
 
 /* Advance through the rest of a Simulate command's output times tout (ending at tend) with the run's actors deciding in C, exactly as the general driver does
  * (pysolver/solve/driver.py, Run.integrate_command and Run.apply): the LoadControl tasks c
@@ -774,7 +785,8 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
  * PS_IDA_BUDGET (S->over's print interval passes the output budget; S->rows are the rows of
  * the run before its call plus those it wrote, as the caller sets S->rows at each call),
  * PS_IDA_BOUNDS (new step bounds could not be set: ps_ida_message), PS_IDA_USER (a user
- * subroutine failed in a sensor's action: the kernel's message), PS_IDA_HALTED,
+ * subroutine failed in a sensor's action: the kernel's message), PS_IDA_SENSOR_RESTART (a
+ * sensors' restart could not make the state consistent: S->restart_rc), PS_IDA_HALTED,
  * PS_IDA_RETURN, PS_IDA_REGRID, PS_IDA_DRAIN or PS_IDA_RESTORED. Returns early, with 0, after
  * Ctrl-C (ps_interrupted).
  *

@@ -21,10 +21,11 @@ from .. import settings
 from ..build.bindings import ffi, lib
 from ..build.kernel import UserFailure
 from . import integrator, report
+from .csensors import CSensors
 from .driver import Stop, deck_actors, failure, start_state
 from .loadcontrol import NonFinite
 from .outputs import Grid, Progress, command_rows, over_budget
-from .sensors import CSensors
+from .sensors import restart_failure
 
 #: Whether runs may take the fast path (tests switch it off to compare with the general path).
 ENABLED = True
@@ -202,6 +203,9 @@ class FastRun:
                                         self.fb("double[]", y0), self.fb("double[]", yp0))
             if code == lib.PS_SE_USER:
                 raise UserFailure(self.k.message)
+            if code == lib.PS_SE_RESTART:
+                raise Stop(False, -700, restart_failure(self.model, self.k, self.S.restart_rc,
+                                                        t0))
             if code != lib.PS_OK:
                 raise Stop(False, -200, self.sensors.chatter())
             halt = self.sensors.halted_by() if self.S.halt >= 0 else None
@@ -316,6 +320,9 @@ class FastRun:
                     return Stop(False, -400, f"{err} (t = {t[0]:.6g})")
             if flag == lib.PS_IDA_CHATTER:
                 return Stop(False, -200, self.sensors.chatter())
+            if flag == lib.PS_IDA_SENSOR_RESTART:
+                return Stop(False, -700, restart_failure(self.model, self.k,
+                                                         self.S.restart_rc, t[0]))
             if flag == lib.PS_IDA_BOUNDS:
                 raise RuntimeError(ffi.string(lib.ps_ida_message(self.solver.s)).decode())
             if flag == lib.PS_IDA_USER:
