@@ -23,7 +23,8 @@
   X(0, SUNContext_Create) X(0, SUNContext_Free) X(0, SUNContext_ClearErrHandlers)             \
   X(0, SUNMatDestroy) X(0, SUNLinSolFree) X(1, N_VNew_Serial) X(1, N_VGetArrayPointer)        \
   X(1, N_VDestroy) X(2, SUNDenseMatrix) X(2, SUNDenseMatrix_Data) X(3, SUNLinSol_Dense)       \
-  X(5, SUNBandMatrix) X(5, SUNBandMatrix_Data) X(6, SUNLinSol_Band) X(4, IDACreate)           \
+  X(5, SUNBandMatrix) X(5, SUNBandMatrix_Data) X(5, SUNBandMatrix_LDim) X(6, SUNLinSol_Band)   \
+  X(4, IDACreate)                                                                             \
   X(4, IDAInit) X(4, IDAReInit) X(4, IDASStolerances) X(4, IDASetUserData) X(4, IDAWFtolerances) \
   X(4, IDASetLinearSolver) X(4, IDASetJacFn) X(4, IDASetMaxNumSteps) X(4, IDASetMaxStep)      \
   X(4, IDASetMinStep) X(4, IDASetInitStep) X(4, IDASetStopTime) X(4, IDASetEtaMax)            \
@@ -442,11 +443,15 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
       s->LS = CALL(s, SUNLinSol_SuperLUMT)(s->y, s->A, 1, s->ctx);
     }
   } else if (s->band) {
-    int smu = mu + ml < n - 1 ? mu + ml : n - 1;
+    /* SUNBandMatrix stores mu + ml diagonals above the main one (room for the LU's fill),
+     * even past n - 1: the layout kernel.band_map writes (checked on the matrix made) */
+    long ldim = (long)mu + 2L * ml + 1;
     s->map = map;
     s->ntrip = ntrip;
-    s->nstore = (long)(smu + ml + 1) * n;
+    s->nstore = ldim * n;
     s->A = CALL(s, SUNBandMatrix)(n, mu, ml, s->ctx);
+    if (s->A && CALL(s, SUNBandMatrix_LDim)(s->A) != ldim)
+      return fail(s, "SUNBandMatrix (a storage layout other than mu + 2 ml + 1 rows)", -1);
     if (s->A) s->LS = CALL(s, SUNLinSol_Band)(s->y, s->A, s->ctx);
   } else {
     s->A = CALL(s, SUNDenseMatrix)(n, n, s->ctx);

@@ -36,6 +36,7 @@ sunrealtype* SUNDenseMatrix_Data(SUNMatrix a);
 SUNLinearSolver SUNLinSol_Dense(N_Vector y, SUNMatrix a, SUNContext ctx);
 SUNMatrix SUNBandMatrix(sunindextype n, sunindextype mu, sunindextype ml, SUNContext ctx);
 sunrealtype* SUNBandMatrix_Data(SUNMatrix a);
+sunindextype SUNBandMatrix_LDim(SUNMatrix a);
 SUNLinearSolver SUNLinSol_Band(N_Vector y, SUNMatrix a, SUNContext ctx);
 /* compressed-sparse-column matrices and SuperLU_MT (CSC_MAT = 0) */
 SUNMatrix SUNSparseMatrix(sunindextype m, sunindextype n, sunindextype nnz, int sparsetype,

@@ -51,6 +51,26 @@ def _closed_chain(n):
     return text.replace("<Post_Request", tie, 1)
 
 
+@pytest.mark.parametrize("nx, nz", [(3, 2), (5, 3)])
+def test_a_band_wider_than_the_matrix_runs_as_dense(nx, nz):
+    """The particle bed without its LoadControl (36 and 90 states) has bandwidths (32, 35) and
+    (86, 89): mu + ml passes n - 1, where SUNBandMatrix still stores mu + ml upper diagonals.
+    The band solver gets the dense run's rows to within the tolerance (integr_tol 1e-5; the
+    two LUs round differently); before stop 37 band storage was laid out for
+    min(n - 1, mu + ml) and every such run failed at t = 0."""
+    from helpers import DECKS
+    text = (DECKS / "loadcontrol_bed.py").read_text().replace("END=0.6", "END=0.1")
+    text = text[:text.index("LOADCONTROL(")] + text[text.index("REQUEST(1"):]
+    model = pysolver.loads(text.replace("NX, NZ = 11, 5", f"NX, NZ = {nx}, {nz}"), fmt="py")
+    mu, ml = model.compile().kernel.bandwidths()
+    assert mu + ml > model.compile().kernel.ny - 1
+    band = model.run(progress=False, linsolver="band", backend="c")
+    dense = model.run(progress=False, linsolver="dense", backend="c")
+    assert band.success and dense.success and band.meta["options"]["linsolver"] == "band"
+    assert len(band.t) == len(dense.t)
+    np.testing.assert_allclose(band.y, dense.y, rtol=0, atol=1e-5 * np.abs(dense.y).max())
+
+
 def test_auto_picks_the_sparse_lu_for_large_scenes():
     """From 300 states the sparse LU from C, for a chain (a narrow band) and a closed chain
     (no band) alike; scikit-sundae's sparse solver on request; dense below."""

@@ -291,11 +291,11 @@ class Kernel:
 
     def band_map(self, mu, ml):
         """Index in SUNDIALS band storage (column-major, leading dimension smu + ml + 1 with
-        smu = min(n - 1, mu + ml)) of each Jacobian triplet."""
+        smu = mu + ml stored upper diagonals, also where mu + ml passes n - 1: the layout
+        SUNBandMatrix makes, which ps_ida_init checks) of each Jacobian triplet."""
         self.sparsity()
         rows, cols = self._triplets
-        n = self.ny
-        smu = min(n - 1, mu + ml)
+        smu = mu + ml
         ldim = smu + ml + 1
         return np.ascontiguousarray(cols * ldim + (rows - cols + smu), dtype=np.int32)
 
