@@ -304,6 +304,19 @@ static int saddle_sparse(const psRestart* r, double h, const double* yp, double*
   return PS_OK;
 }
 
+/* A residual at t + h or t - h for the rate rows' time derivative: only the reactions' rows
+ * are read, so a value that is not finite elsewhere (a force that blows up right there) is no
+ * failure, as in consistent(); its diagnosis is dropped. */
+static int rate_residual(const psModel* m, psData* d, const psRestart* r, double t,
+                         const double* y, const double* yp, double* res) {
+  int rc = ps_residual(m, d, t, y, yp, res);
+  if (rc != PS_ERR_NONFINITE || d->user_error) return rc;
+  for (int k = 0; k < r->nlam; k++)
+    if (!isfinite(res[r->lam[k]])) return rc;
+  d->bad_kind = 0;
+  return PS_OK;
+}
+
 /* Step 3: accelerations and reactions from the residual rows and the time derivative of the
  * rate rows, a saddle-point system. */
 static int accelerations(const psModel* m, psData* d, const psRestart* r, double t, double* y,
@@ -316,9 +329,9 @@ static int accelerations(const psModel* m, psData* d, const psRestart* r, double
     if (rc == PS_OK) rc = jacobian(m, d, r, t, y, yp, 1.0, r->J1);
     if (rc == PS_OK) rc = ps_residual(m, d, t, y, yp, r->res);
     double h = 1e-6 * fmax(1.0, fabs(t));
-    if (rc == PS_OK) rc = ps_residual(m, d, t + h, y, yp, r->res2);
+    if (rc == PS_OK) rc = rate_residual(m, d, r, t + h, y, yp, r->res2);
     for (int k = 0; k < nl && rc == PS_OK; k++) r->g[k] = r->res2[r->lam[k]];
-    if (rc == PS_OK) rc = ps_residual(m, d, t - h, y, yp, r->res2);
+    if (rc == PS_OK) rc = rate_residual(m, d, r, t - h, y, yp, r->res2);
     if (rc != PS_OK) return rc;
     if (r->sparse) {
       if (saddle_sparse(r, h, yp, z) != PS_OK) return PS_ERR_SINGULAR;

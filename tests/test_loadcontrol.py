@@ -162,6 +162,21 @@ def test_records_are_saved_and_plotted(tmp_path):
     assert any(ax.get_title(loc="right") == "LoadControl 1" for ax in fig.axes)
 
 
+def test_a_force_infinite_just_after_an_update_does_not_fail_its_restart():
+    """The restart reads the rate rows' time derivative from residuals at t +- 1e-6: a force
+    1e-9 / (TIME - 0.500001), infinite exactly at t + h of the update at 0.5 and finite at the
+    update itself, leaves the restart consistent (as consistent() in Python, which reads the
+    reactions' rows alone), and the run goes on through its 100 updates (the C restart failed
+    it before stop 37, a review found)."""
+    text = (DECKS / "loadcontrol_indenter.xml").read_text().replace(
+        'end_time="3.0"', 'end_time="1.0"').replace(
+        "<Post_Request", '<Force_Scalar_TwoBody id="99" type="Force" i_marker_id="10" '
+        'j_marker_id="1" expr="1e-9/(TIME-0.500001)"/><Post_Request', 1)
+    res = pysolver.loads(text).run(progress=False)
+    assert res.success, res.message
+    assert len(res.controller(1)["time"]) == 100
+
+
 @pytest.mark.parametrize("name", ["joints/slider_crank.xml", "joints/spherical_pendulum.xml",
                                   "driven_indenter.xml", "joints/iftomm_a04_bricard.xml",
                                   # sparse: 325 states, one motion; 2,023 states, 485 equations

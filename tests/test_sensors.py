@@ -245,3 +245,19 @@ def test_senval_of_missing_id():
     with pytest.raises(pysolver.DeckError, match="evaluate id 3") as info:
         pysolver.loads(deck)
     assert info.value.attribute == "expr" and info.value.line == 4
+
+
+@pytest.mark.parametrize("fast_path", [True, False])
+def test_a_print_interval_set_at_the_start_gives_way_to_the_commands(fast_path, monkeypatch):
+    """A dt action of a sensor that holds at t = 0 fires before the first Simulate command
+    begins: that command's own print interval applies (docs/sensors.md), on both paths; the
+    same action a moment later changes the rows."""
+    from pysolver.solve import fast
+    monkeypatch.setattr(fast, "ENABLED", fast_path)
+    at_start = pysolver.loads(ball('<Sensor_Event id="1" expr="TIME" compare="GE" value="0" '
+                                   'dt="0.3"/>', end=1.0)).run(progress=False)
+    assert at_start.events[0].time == 0.0
+    np.testing.assert_allclose(at_start.t, np.linspace(0.0, 1.0, 11), rtol=0, atol=1e-12)
+    later = pysolver.loads(ball('<Sensor_Event id="1" expr="TIME" compare="GE" value="0.05" '
+                                'dt="0.3"/>', end=1.0)).run(progress=False)
+    np.testing.assert_allclose(later.t, [0.0, 0.35, 0.65, 0.95, 1.0], rtol=0, atol=1e-12)
