@@ -241,13 +241,19 @@ def init_compliance(kernel, failures=()):
     deck's initial state; a scale only, so a start where the matrix cannot be evaluated (the
     run will then report why; `failures`: the kernel's exception types) takes
     COMPLIANCE_TIME with unit gradients. Keep the bodies' weight (mass x 1 without gravity) as
-    the rate rows' force scale (:func:`set_tolerance`)."""
+    the rate rows' force scale (:func:`set_tolerance`). Its evaluations are not the run's: the
+    call counters are left as they were (a run's statistics do not depend on whether an
+    earlier run of other numbers made this one recompute it)."""
     c = kernel.arrays["compliance"]
     mu = np.array([m for m in kernel.layout.mu if m >= 0], dtype=int)
+    d = kernel.d
+    kept = (d.nres, d.njac, d.ntimes, d.nfail, d.last_t)
     try:
         got = compliance(kernel, 0.0, kernel.layout.initial_state())[mu]
     except (*failures, ValueError, ArithmeticError):
         got = np.full(len(mu), np.nan)
+    finally:
+        d.nres, d.njac, d.ntimes, d.nfail, d.last_t = kept
     c[mu] = np.where(np.isfinite(got), got, COMPLIANCE_TIME)
     mass = float(np.sum(kernel.arrays["body_mass"]))
     gravity = float(np.linalg.norm(kernel.arrays["gravity"]))
