@@ -204,7 +204,9 @@ int ps_interrupted(void) { return interrupted; }
 int ps_residual(const psModel* m, psData* d, double t, const double* y, const double* yp,
                 double* res) {
   Assembly as = {res, NULL, NULL, NULL, NULL, 0, 0, 0.0, m->ny};
-  if (interrupted) {
+  /* Ctrl-C stops the run it came in (ps_interrupted still says so after it; a model compiled
+   * or evaluated between runs is not stopped) */
+  if (interrupted && armed) {
     snprintf(d->msg, sizeof(d->msg), "interrupted");
     d->user_error = 1;     /* not recoverable: IDA returns at once */
     return PS_ERR_NONFINITE;

@@ -694,3 +694,47 @@ def test_random_sensor_scenes_to_the_bit(seed, monkeypatch):
     ref = _general(model, monkeypatch, **options)
     for res in runs:
         _same(res, ref, events=True)
+
+
+SIGINT_DECK = '''
+import os, signal
+from pysolver.msolve import *
+done = []
+def sevsub(id, time, par, npar, iflag):
+    v = float(py_sysfnc("VX", [20])[0])
+    if iflag == 0 and time >= {at} and not done:
+        done.append(1)
+        os.kill(os.getpid(), signal.SIGINT)
+    return -0.5 * v
+ACCGRAV(JGRAV=-9.81)
+PART(1, GROUND=True)
+MARKER(1, PART=1)
+MARKER(2, PART=1)
+MARKER(20, PART=2, QP=[2, 0, 0])
+MARKER(21, PART=2, QP=[0, 0, 0])
+PART(2, MASS=1, CM=20, IP=[1e-3, 1e-3, 1e-3])
+JOINT(1, TYPE="REVOLUTE", I=21, J=2)
+SFORCE(9, I=20, J=1, TRANSLATION=True, FUNCTION="SENVAL(7)")
+SENSOR(7, FUNCTION="TIME", VALUE={at}, OPERATOR="GE", EVALUATE="USER()", EVALUATE_ROUTINE=sevsub)
+REQUEST(1, F1="DX(20)", F2="DY(20)")
+INTEGRATOR(ERROR=1e-8)
+SIMULATE(TYPE="TRANSIENT", END=1.0, DTOUT=0.05)
+'''
+
+
+@pytest.mark.parametrize("at", ["0.5", "0"])
+@pytest.mark.parametrize("enabled", [True, False])
+def test_ctrl_c_during_a_sensors_restart(at, enabled, monkeypatch):
+    """Ctrl-C arriving while a sensor acts (its Python SEVSUB sends SIGINT; a force reads the
+    value, so a consistent restart follows and meets the interrupt): status -600
+    "interrupted at t = ..." with the rows so far, on both paths, at the start and later (the
+    general loop said -400 before stop 37); and the next compile and run of another model are
+    not stopped by the flag the interrupted run leaves set (they raised before)."""
+    model = pysolver.loads(SIGINT_DECK.format(at=at), fmt="py")
+    assert _takes_fast_path(model)
+    monkeypatch.setattr(fast, "ENABLED", enabled)
+    res = model.run(progress=False)
+    assert (res.status, res.message) == (-600, f"interrupted at t = {float(at):g}")
+    assert np.all(res.t <= float(at) + 1e-12)           # the rows before it (none at 0)
+    nxt = pysolver.load(DECKS / "joints" / "pendulum_revolute.xml").run(progress=False)
+    assert nxt.success, nxt.message

@@ -202,6 +202,8 @@ class FastRun:
             code = lib.ps_sensors_start(self.k.m, self.k.d, self.S, t0,
                                         self.fb("double[]", y0), self.fb("double[]", yp0))
             if code == lib.PS_SE_USER:
+                if lib.ps_interrupted():              # as the general loop words Ctrl-C
+                    raise Stop(False, -600, f"interrupted at t = {t0:.6g}")
                 raise UserFailure(self.k.message)
             if code == lib.PS_SE_RESTART:
                 raise Stop(False, -700, restart_failure(self.model, self.k, self.S.restart_rc,

@@ -263,16 +263,22 @@ def _consistent(model, kernel, t, y):
     limit. Raises NonFinite (status -700) when the state cannot be made consistent."""
     from ..build.bindings import ffi, lib
     from ..build.kernel import UserFailure
-    from .loadcontrol import NonFinite
+    from .loadcontrol import Interrupted, NonFinite
     rs = None if dense_yp(kernel) else whole_restart(kernel)
-    if rs is None:
-        return kernel.consistent_yp(t, y)
-    yp = np.zeros(kernel.ny)
-    rc = lib.ps_restart_consistent(kernel.m, kernel.d, rs.r, t, ffi.from_buffer("double[]", y),
-                                   ffi.from_buffer("double[]", yp))
-    if rc != lib.PS_OK:
-        if kernel.d.user_error:
+    try:
+        if rs is None:
+            return kernel.consistent_yp(t, y)
+        yp = np.zeros(kernel.ny)
+        rc = lib.ps_restart_consistent(kernel.m, kernel.d, rs.r, t,
+                                       ffi.from_buffer("double[]", y),
+                                       ffi.from_buffer("double[]", yp))
+        if rc != lib.PS_OK and kernel.d.user_error:
             raise UserFailure(kernel.message)
+    except UserFailure:
+        if lib.ps_interrupted():          # Ctrl-C: the driver words it (status -600)
+            raise Interrupted() from None
+        raise
+    if rc != lib.PS_OK:
         raise NonFinite(restart_failure(model, kernel, rc, t))
     return yp
 
