@@ -586,9 +586,10 @@ int ps_sensors_roots(const psModel* m, psData* d, psSensors* S, const int* found
                      double* y, double* yp);
 
 /* Ctrl-C during a run: ps_interrupt_arm installs a SIGINT handler (saving the previous one)
- * whose first signal makes every later ps_residual fail at once, not recoverably, with the
- * message "interrupted", and whose second ends the process; ps_interrupt_disarm puts the
- * previous handler back; ps_interrupted says whether the signal came. */
+ * whose first signal makes every later ps_residual fail at once until ps_interrupt_disarm,
+ * not recoverably, with the message "interrupted", and whose second ends the process;
+ * ps_interrupt_disarm puts the previous handler back; ps_interrupted says whether the signal
+ * came during the last armed run (until the next ps_interrupt_arm). */
 void ps_interrupt_arm(void);
 void ps_interrupt_disarm(void);
 int ps_interrupted(void);
