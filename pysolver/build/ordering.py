@@ -17,13 +17,19 @@ def column_order(kernel):
     """
     order = _ORDERS.get(kernel)
     if order is None:
-        import scipy.sparse.linalg as spl
-        pattern = kernel.sparsity().copy()
-        pattern.data = np.random.default_rng(0).uniform(0.5, 1.5, pattern.nnz)
-        try:
-            order = np.argsort(spl.splu(pattern, permc_spec="COLAMD").perm_c)
-        except RuntimeError:                      # structurally singular
-            order = np.arange(kernel.ny)
-        order = np.ascontiguousarray(order, dtype=np.int32)
-        _ORDERS[kernel] = order
+        order = _ORDERS[kernel] = colamd(kernel.sparsity())
     return order
+
+
+def colamd(pattern):
+    """The COLAMD column order (int32) of a square CSC `pattern`, from a factorization with
+    reproducible random values on it; the natural order if that fails (structurally
+    singular: the LU then reports the singular matrix itself)."""
+    import scipy.sparse.linalg as spl
+    values = pattern.copy()
+    values.data = np.random.default_rng(0).uniform(0.5, 1.5, values.nnz)
+    try:
+        order = np.argsort(spl.splu(values.tocsc(), permc_spec="COLAMD").perm_c)
+    except RuntimeError:
+        order = np.arange(pattern.shape[1])
+    return np.ascontiguousarray(order, dtype=np.int32)

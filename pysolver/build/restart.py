@@ -14,6 +14,7 @@ import numpy as np
 
 from ..options import SPARSE_THRESHOLD
 from .consistent import _velocities
+from .ordering import colamd
 
 #: Most doubles of the sparse restart's dense work (nlam x max(nlam, force rows)): 32 MB.
 SPARSE_LIMIT = 4_000_000
@@ -67,6 +68,8 @@ class Restart:
         """The sparse fields: the pattern, each reaction's row in it, and the saddle-point
         matrix [D[row, row] J0[row, lam]; J0[lam, row] 0] (D = J1 - J0) on its own pattern
         with the source of each entry, factored in a COLAMD column order."""
+        import scipy.sparse as sp
+
         from .bindings import ffi, lib
         r, ny = self.r, kernel.ny
         lam, row = np.asarray(ints["lam"], dtype=int), np.asarray(ints["row"], dtype=int)
@@ -117,7 +120,7 @@ class Restart:
         r.s_one, r.s_zero, r.s_sign = self._ints(one), self._ints(zero), self._doubles(sign)
         r.sval = self._doubles(len(si))
         colptr_c, rowind_c = self._ints(colptr), self._ints(si)
-        corder = self._ints(_colamd(n, colptr, si))
+        corder = self._ints(colamd(sp.csc_matrix((np.ones(len(si)), si, colptr), shape=(n, n))))
         lu = lib.ps_lu_new(n, colptr_c, rowind_c, corder)
         if lu == ffi.NULL:
             raise MemoryError("could not allocate the sparse restart's LU")
@@ -135,16 +138,3 @@ class Restart:
                 return None
             kernel._restart = cls(kernel)
         return kernel._restart
-
-
-def _colamd(n, colptr, rowind):
-    """A fill-reducing column order of the n x n pattern (SuperLU's COLAMD through SciPy, on
-    reproducible random values; the natural order when that factorization fails)."""
-    import scipy.sparse as sp
-    import scipy.sparse.linalg as spl
-    values = np.random.default_rng(0).uniform(0.5, 1.5, len(rowind))
-    matrix = sp.csc_matrix((values, rowind, colptr), shape=(n, n))
-    try:
-        return np.argsort(spl.splu(matrix, permc_spec="COLAMD").perm_c)
-    except RuntimeError:                      # structurally singular
-        return np.arange(n)

@@ -137,10 +137,7 @@ class LoadControlTask(Actor):
                     f"(load {load:g}, target {target:g})")
         if code == lib.PS_CTRL_LOG:
             return f"LoadControl {lid}: more updates than the run has room for at t = {t:.9g}"
-        why = {lib.PS_ERR_SINGULAR: "the constraint equations are singular there",
-               lib.PS_ERR_ASSEMBLY: "the position constraints cannot be held"}.get(code)
-        if why is None:
-            why = nonfinite.describe(self.model, self.kernel) or "a value is not finite"
+        why = nonfinite.restart_reason(self.model, self.kernel, code)
         return (f"LoadControl {lid}: the state cannot be made consistent with the new "
                 f"velocity at t = {t:.9g}: {why}")
 

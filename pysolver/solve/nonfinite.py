@@ -75,6 +75,14 @@ def describe(model, kernel):
 
 
 
+def restart_reason(model, kernel, code):
+    """Why a consistent restart (ps_restart_consistent) returned `code`: the constraints
+    singular, the positions unassemblable, or the kernel's diagnosis of a non-finite value."""
+    why = {lib.PS_ERR_SINGULAR: "the constraint equations are singular there",
+           lib.PS_ERR_ASSEMBLY: "the position constraints cannot be held"}.get(code)
+    return why or describe(model, kernel) or "a value is not finite"
+
+
 def channels(model, kernel, t, outputs):
     """Log lines for the request channels that are not finite somewhere: one per channel, with
     its expression and the first time (NULL channels, never defined, are left out).

@@ -286,13 +286,9 @@ def _consistent(model, kernel, t, y):
 def restart_failure(model, kernel, code, t):
     """The message of a sensors' restart at t that could not make the state consistent
     (ps_restart_consistent's `code`)."""
-    from ..build.bindings import lib
-    from . import nonfinite
-    why = {lib.PS_ERR_SINGULAR: "the constraint equations are singular there",
-           lib.PS_ERR_ASSEMBLY: "the position constraints cannot be held"}.get(code)
-    if why is None:
-        why = nonfinite.describe(model, kernel) or "a value is not finite"
-    return f"a sensor's restart at t = {t:.9g} cannot make the state consistent: {why}"
+    from .nonfinite import restart_reason
+    return (f"a sensor's restart at t = {t:.9g} cannot make the state consistent: "
+            f"{restart_reason(model, kernel, code)}")
 
 
 def dense_yp(kernel):
