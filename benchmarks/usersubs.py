@@ -1,7 +1,8 @@
 """User subroutine paths against the expression version: seed example 3 with both penalties as
 a traced Python script, a traced Python function, a Python function with a state-dependent branch
 (traced into IF), an untraceable Python function through NumPy (called from the kernel through
-cffi) and a C library, at several tolerances; time ratios to the expression
+cffi) and a C library, each of the last two also giving its partials (py_syspar / c_syspar), at
+several tolerances; time ratios to the expression
 version (best of `repeat` runs in this process), steps, and the cost of one call.
 
 Run: ``python benchmarks/usersubs.py [--repeat 5]``.
@@ -35,7 +36,7 @@ def forms(repeat, tols=(1e-4, 1e-6, 1e-8)):
         if text is not None:
             models[form] = pysolver.loads(text, fmt=fmt)
     print("Seed example 3, each penalty a user subroutine: time / expression version's time")
-    print(f"{'integr_tol':>10} {'form':>12} {'ms':>8} {'ratio':>6} {'steps':>6} {'max diff':>9}")
+    print(f"{'integr_tol':>10} {'form':>18} {'ms':>8} {'ratio':>6} {'steps':>6} {'max diff':>9}")
     rows = []
     for tol in tols:
         ref = models["expression"].run(integr_tol=tol)
@@ -45,15 +46,17 @@ def forms(repeat, tols=(1e-4, 1e-6, 1e-8)):
             t = best(lambda: model.run(integr_tol=tol), repeat)
             diff = np.abs(res.request(1)[:, :2] - ref.request(1)[:, :2]).max()
             rows.append((tol, form, t / t_ref))
-            print(f"{tol:10.0e} {form:>12} {t * 1e3:8.3f} {t / t_ref:6.2f} "
+            print(f"{tol:10.0e} {form:>18} {t * 1e3:8.3f} {t / t_ref:6.2f} "
                   f"{res.stats['steps']:6d} {diff:9.1e}")
     return models, rows
 
 
 #: Routine calls per residual of each form the kernel calls (both routines): the value, a
 #: forward and a backward step in each input the routine reads, one forward step in each it
-#: does not (C: TDISP gives DX, DY, DZ, and time; NumPy form: DX, DZ, and time).
-CALLS_PER_RESIDUAL = {"untraceable": 2 * 6, "c": 2 * 7}
+#: does not (C: TDISP gives DX, DY, DZ, and time; NumPy form: DX, DZ, and time); the forms
+#: that give their partials (c_syspar / py_syspar) only the value and the step in time.
+CALLS_PER_RESIDUAL = {"untraceable": 2 * 6, "untraceable_syspar": 2 * 2, "c": 2 * 7,
+                      "c_syspar": 2 * 2}
 
 
 def call_cost(models, repeat):
@@ -71,7 +74,7 @@ def call_cost(models, repeat):
             continue
         k = models[form].compile().kernel
         t = best(lambda: [k.residual_array(t, y, yp) for t in times], repeat) / n
-        print(f"{form:>12}: {(t - t_ref) / calls * 1e6:6.2f} us per call "
+        print(f"{form:>18}: {(t - t_ref) / calls * 1e6:6.2f} us per call "
               f"(residual {t * 1e6:.1f} us, expression version {t_ref * 1e6:.1f} us)")
 
 

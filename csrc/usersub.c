@@ -20,7 +20,7 @@
 
 #define PS_EXPORT __attribute__((visibility("default")))
 #define PS_USER_MAXPAR 64
-_Static_assert(PS_USER_CACHE == 2 + 3 * (PS_USER_MAXIN + 1), "PS_USER_CACHE layout");
+_Static_assert(PS_USER_CACHE == 3 + 3 * (PS_USER_MAXIN + 1), "PS_USER_CACHE layout");
 
 typedef void (*UserFnD)(int*, double*, double*, int*, int*, int*, double*);
 typedef void (*UserFnP)(int*, double*, double*, int*, int*, double*);
@@ -37,6 +37,10 @@ typedef struct {
   int next;             /* the key after the last one read: routines read in order */
   const double* values; /* evaluating: their current values                       */
   int error;            /* an error was reported                                  */
+  double* part;         /* partials wanted: c_syspar writes input i's here        */
+  unsigned char* got;   /* ... and sets got[i]; NULL: c_syspar's partials unused  */
+  int last;             /* the last read: array index, or NARRAYS + function code */
+  int last_n, last_ids[4], last_keys[6];   /* ... its ids and the keys it found  */
   char msg[200];
 } UserCtx;
 
@@ -125,6 +129,30 @@ static void unknown_read(UserCtx* ctx, const char* fnc, const int* ipar, int nsi
   ctx->nkeys++;
 }
 
+/* SYSARY arrays: their entries as SYSFNC function codes; angular ones take at most three ids. */
+static const struct { const char* name; int parts[6]; int n; } ARRAYS[] = {
+    {"TDISP", {F_DX, F_DY, F_DZ}, 3}, {"TVEL", {F_VX, F_VY, F_VZ}, 3},
+    {"RVEL", {F_WX, F_WY, F_WZ}, 3}, {"VEL", {F_VX, F_VY, F_VZ, F_WX, F_WY, F_WZ}, 6},
+    {"TACC", {F_ACCX, F_ACCY, F_ACCZ}, 3}};
+#define NARRAYS ((int)(sizeof(ARRAYS) / sizeof(*ARRAYS)))
+
+/* Note the keys of a read that found them all (what c_syspar will most likely name next). */
+static void remember_read(UserCtx* ctx, int what, const int* ipar, int nsize, const int* keys) {
+  int n = what < NARRAYS ? ARRAYS[what].n : 1;
+  ctx->last = nsize <= 4 ? what : -1;
+  ctx->last_n = nsize;
+  for (int i = 0; i < nsize && i < 4; i++) ctx->last_ids[i] = ipar[i];
+  for (int i = 0; i < n; i++) ctx->last_keys[i] = keys[i];
+}
+
+/* Whether ipar (nsize ids) of `what` is the last read's. */
+static int same_read(const UserCtx* ctx, int what, const int* ipar, int nsize) {
+  if (ctx->last != what || ctx->last_n != nsize) return 0;
+  for (int i = 0; i < nsize; i++)
+    if (ctx->last_ids[i] != ipar[i]) return 0;
+  return 1;
+}
+
 PS_EXPORT void c_sysfnc(const char* fnc, const int* ipar, int nsize, double* state,
                         int* errflg) {
   UserCtx* ctx = current;
@@ -139,18 +167,12 @@ PS_EXPORT void c_sysfnc(const char* fnc, const int* ipar, int nsize, double* sta
     if (i >= 0) {
       *state = ctx->values[i];
       *errflg = 0;
+      remember_read(ctx, NARRAYS + code, ipar, nsize, &i);
       return;
     }
   }
   unknown_read(ctx, fnc, ipar, nsize, errflg);
 }
-
-/* SYSARY arrays: their entries as SYSFNC function codes; angular ones take at most three ids. */
-static const struct { const char* name; int parts[6]; int n; } ARRAYS[] = {
-    {"TDISP", {F_DX, F_DY, F_DZ}, 3}, {"TVEL", {F_VX, F_VY, F_VZ}, 3},
-    {"RVEL", {F_WX, F_WY, F_WZ}, 3}, {"VEL", {F_VX, F_VY, F_VZ, F_WX, F_WY, F_WZ}, 6},
-    {"TACC", {F_ACCX, F_ACCY, F_ACCZ}, 3}};
-#define NARRAYS ((int)(sizeof(ARRAYS) / sizeof(*ARRAYS)))
 
 static int array_code(const char* fnc) {
   char name[16];
@@ -175,18 +197,75 @@ PS_EXPORT void c_sysary(const char* fnc, const int* ipar, int nsize, double* sta
     return;
   }
   *errflg = 0;
+  int keys[6], found = 0;
   for (int i = 0; i < ARRAYS[a].n; i++) {
     int code = ARRAYS[a].parts[i], e = 0;
     int nids = code >= F_WX && code <= F_WZ && nsize > 3 ? 3 : nsize;
     int k = ctx && !ctx->recording ? find_key(ctx, code, ipar, nids) : -1;
     if (k >= 0) {
       states[i] = ctx->values[k];
+      keys[found++] = k;
       continue;
     }
     c_sysfnc(FUNCTIONS[code], ipar, nids, states + i, &e);
     *errflg |= e;
   }
+  if (found == ARRAYS[a].n) remember_read(ctx, a, ipar, nsize, keys);
   *nstates = ARRAYS[a].n;
+}
+
+PS_EXPORT void c_syspar(const char* fnc, const int* ipar, int nsize, const double* states,
+                        int nstates, int* errflg) {
+  UserCtx* ctx = current;
+  *errflg = 0;
+  /* taken only when partials are wanted (not on the iflag call, nor for a plain value) */
+  if (!ctx || !ctx->got) return;
+  int a = array_code(fnc), code = a < 0 ? ps_user_fn_code(fnc) : -1, n = a >= 0 ? ARRAYS[a].n : 1;
+  int what = a >= 0 ? a : NARRAYS + code;
+  /* the common case, kept fast: the partials of the value just read */
+  if (a >= 0 || code >= 0) {
+    if (nstates == n && same_read(ctx, what, ipar, nsize)) {
+      for (int i = 0; i < n; i++) {
+        ctx->part[ctx->last_keys[i]] = states[i];
+        ctx->got[ctx->last_keys[i]] = 1;
+      }
+      return;
+    }
+  }
+  char name[16], detail[80];
+  clean_name(name, fnc);
+  *errflg = 1;
+  if (a < 0 && code < 0) {
+    fail(ctx, "c_syspar: unknown function or array ", name);
+    return;
+  }
+  if (nstates != n) {
+    snprintf(detail, sizeof(detail), "%s has %d value%s, c_syspar was given %d partials", name,
+             n, n > 1 ? "s" : "", nstates);
+    fail(ctx, "c_syspar: ", detail);
+    return;
+  }
+  int keys[6];
+  for (int i = 0; i < n; i++) {
+    int c = a >= 0 ? ARRAYS[a].parts[i] : code;
+    int nids = c >= F_WX && c <= F_WZ && nsize > 3 ? 3 : nsize;
+    keys[i] = find_key(ctx, c, ipar, nids);
+    if (keys[i] < 0) {
+      char key[PS_USER_KEY];
+      make_key(key, FUNCTIONS[c], ipar, nids);
+      fail(ctx, "c_syspar: partials in a value its iflag call did not ask for: ", key);
+      return;
+    }
+  }
+  *errflg = 0;
+  for (int i = 0; i < n; i++) {
+    ctx->part[keys[i]] = states[i];
+    ctx->got[keys[i]] = 1;
+  }
+}
+
+PS_EXPORT void c_adams_needs_partials(int* eval_jac) {
+  *eval_jac = current && current->got ? 1 : 0;
 }
 
 PS_EXPORT void c_errmes(int errflg, const char* message, int id, const char* endflag) {
@@ -257,6 +336,7 @@ static double eval(const psModel* m, int k, UserCtx* ctx, const double* z, int n
                    int chan) {
   ctx->values = z;
   ctx->next = 0;
+  ctx->last = -1;
   return call(m->user_fn[k], m->user_form[k], m->user_id[k], z[nin],
               m->user_par + m->user_par_adr[k], m->user_npar[k], dflag, 0, chan);
 }
@@ -282,18 +362,124 @@ static double eval_at(const psModel* m, int k, UserCtx* ctx, double* z, int nin,
   return f;
 }
 
+/* Evaluate at z with input i moved by h (none for i < 0), taking the partials the routine
+ * gives with c_syspar into part (got[j] = 1 for each input j it gave; got NULL: none wanted). */
+static double eval_with(const psModel* m, int k, UserCtx* ctx, double* z, int nin, int chan,
+                        int dflag, int i, double h, double* part, unsigned char* got) {
+  double zi = i >= 0 ? z[i] : 0.0;
+  if (i >= 0) z[i] = zi + h;
+  ctx->part = part;
+  ctx->got = got;
+  if (got) memset(got, 0, (size_t)nin);
+  double f = eval(m, k, ctx, z, nin, dflag, chan);
+  ctx->part = NULL;
+  ctx->got = NULL;
+  if (i >= 0) z[i] = zi;
+  return f;
+}
+
+/* Check the partial `given` in input i of a routine whose value at z is f0 against
+ * differences: the fourth-order central one, or, at a kink, either one-sided one. Returns 0,
+ * or -1 with the routine's error set (the run then ends, naming the input and both values). */
+static int check_given(const psModel* m, int k, UserCtx* ctx, double* z, int nin, int chan,
+                       int i, double f0, double given) {
+  double h = step(1e-3, z[i]);
+  double fp = eval_at(m, k, ctx, z, nin, chan, i, h, -1, 0.0);
+  double fm = eval_at(m, k, ctx, z, nin, chan, i, -h, -1, 0.0);
+  double c2 = (fp - fm) / (2.0 * h);
+  double c4 = (4.0 * c2 - (eval_at(m, k, ctx, z, nin, chan, i, 2.0 * h, -1, 0.0) -
+                           eval_at(m, k, ctx, z, nin, chan, i, -2.0 * h, -1, 0.0)) /
+                              (4.0 * h)) / 3.0;
+  double fwd = (fp - f0) / h, bwd = (f0 - fm) / h;
+  /* rounding leaves about eps |f0| / h in a difference: 1e-9 of |f0| per unit of the input */
+  double floor = 1e-9 * fmax(1.0, fabs(f0)) / fmax(1.0, fabs(z[i]));
+  if (fabs(given - c4) <= 1e-6 * (fabs(given) + fabs(c4)) + floor ||
+      fabs(given - fwd) <= 5e-2 * (fabs(given) + fabs(fwd)) + floor ||
+      fabs(given - bwd) <= 5e-2 * (fabs(given) + fabs(bwd)) + floor)
+    return 0;
+  char key[PS_USER_KEY], detail[160];
+  make_key(key, FUNCTIONS[ctx->kfn[i]], ctx->kid + 4 * i, ctx->kn[i]);
+  snprintf(detail, sizeof(detail), "%s as %.9g, but differences of its value give %.9g",
+           key, given, c4);
+  fail(ctx, "c_syspar gave the partial in ", detail);
+  return -1;
+}
+
+/* Second partials (n = nin + 1 inputs, time last) from central differences of the first
+ * partials the routine gives in all nin inputs, and time's own from differences of the value:
+ * 2 calls per input that is not flat (a routine's inputs are smooth where it gives partials).
+ * Returns 0, or -1 when a call did not give every partial (value differences are then used). */
+static int hessian_given(const psModel* m, int k, UserCtx* ctx, double* z, int nin, int chan,
+                         double f0, const int* flat, double* fij) {
+  int n = nin + 1;
+  double gp[PS_USER_MAXIN], gm[PS_USER_MAXIN], row[(PS_USER_MAXIN + 1) * PS_USER_MAXIN];
+  unsigned char okp[PS_USER_MAXIN], okm[PS_USER_MAXIN];
+  double tt = 0.0;
+  for (int i = 0; i < n; i++) {
+    double* r = row + i * nin;   /* d/dz_i of the given partials */
+    if (flat[i]) {
+      for (int j = 0; j < nin; j++) r[j] = 0.0;
+      continue;
+    }
+    double h = step(i == nin ? 1e-4 : 6e-6, z[i]);
+    double fp = eval_with(m, k, ctx, z, nin, chan, 1, i, h, gp, okp);
+    double fm = eval_with(m, k, ctx, z, nin, chan, 1, i, -h, gm, okm);
+    for (int j = 0; j < nin; j++) {
+      if (!okp[j] || !okm[j]) return -1;
+      r[j] = (gp[j] - gm[j]) / (2.0 * h);
+    }
+    if (i == nin) tt = (fp - 2.0 * f0 + fm) / (h * h);
+  }
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++)
+      fij[i * n + j] = i < nin && j < nin ? 0.5 * (row[i * nin + j] + row[j * nin + i])
+                       : i == nin && j == nin ? tt
+                                              : row[nin * nin + (i == nin ? j : i)];
+  return 0;
+}
+
+/* Second partials from differences of the value: the diagonal from +/- steps ~ eps^(1/4),
+ * the rest from one diagonal pair of steps each and the diagonal values. */
+static void hessian_differenced(const psModel* m, int k, UserCtx* ctx, double* z, int nin,
+                                int chan, double f0, const int* flat, double* fij) {
+  int n = nin + 1;
+  double fp[PS_USER_MAXIN + 1], fm[PS_USER_MAXIN + 1], H[PS_USER_MAXIN + 1];
+  for (int i = 0; i < n; i++) {
+    if (flat[i]) continue;
+    H[i] = step(1e-4, z[i]);
+    fp[i] = eval_at(m, k, ctx, z, nin, chan, i, H[i], -1, 0.0);
+    fm[i] = eval_at(m, k, ctx, z, nin, chan, i, -H[i], -1, 0.0);
+  }
+  for (int i = 0; i < n; i++)
+    for (int j = i; j < n; j++) {
+      double v = 0.0;
+      if (flat[i] || flat[j]) v = 0.0;
+      else if (i == j) v = (fp[i] - 2.0 * f0 + fm[i]) / (H[i] * H[i]);
+      else {
+        double fpp = eval_at(m, k, ctx, z, nin, chan, i, H[i], j, H[j]);
+        double fmm = eval_at(m, k, ctx, z, nin, chan, i, -H[i], j, -H[j]);
+        v = (fpp + fmm - fp[i] - fm[i] - fp[j] - fm[j] + 2.0 * f0) / (2.0 * H[i] * H[j]);
+      }
+      fij[i * n + j] = fij[j * n + i] = v;
+    }
+}
+
 int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
                   const double* zin, int nin, int order, double* out) {
   int n = nin + 1;   /* inputs, then time */
   double* cache = d->user_cache + (long)cache_index * PS_USER_CACHE;
-  double *cz = cache + 2, *cfi = cz + n, *cflat = cfi + n;
+  double *cz = cache + 2, *cfi = cz + n, *cflat = cfi + n, *checked = cache + PS_USER_CACHE - 1;
   double z[PS_USER_MAXIN + 1], *fi = out + 1, *fij = out + 1 + n;
-  double fp[PS_USER_MAXIN + 1], fm[PS_USER_MAXIN + 1], H[PS_USER_MAXIN + 1];
+  double given[PS_USER_MAXIN];
+  unsigned char got[PS_USER_MAXIN];
   int flat[PS_USER_MAXIN + 1];   /* the routine gave exactly f0 a step away in input i */
+  int sup[PS_USER_MAXIN + 1];    /* the routine gave its partial in input i (c_syspar) */
   memcpy(z, zin, sizeof(double) * (size_t)n);
   UserCtx ctx;
   ctx.recording = 0;
   ctx.error = 0;
+  ctx.part = NULL;
+  ctx.got = NULL;
   ctx.msg[0] = '\0';
   ctx.kfn = m->user_key_fn + m->user_key_adr[k];
   ctx.kn = m->user_key_n + m->user_key_adr[k];
@@ -302,11 +488,25 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
   UserCtx* prev = current;
   current = &ctx;
   /* the value and first partials of the last call at the same inputs (the residual before a
-   * Jacobian) are reused */
+   * Jacobian) are reused; the first partials are wanted from the routine (c_syspar) */
   int need = order >= 1 ? 2 : 1, hit = cache[0] >= need;
   for (int i = 0; hit && i < n; i++) hit = cz[i] == z[i];
-  double f0 = hit ? cache[1] : eval(m, k, &ctx, z, nin, 0, chan);
-  /* first partials by fourth-order central differences (Richardson's combination of the
+  double f0 = hit ? cache[1]
+                  : eval_with(m, k, &ctx, z, nin, chan, 0, -1, 0.0, order >= 1 ? given : NULL,
+                              order >= 1 ? got : NULL);
+  int nsup = 0;
+  for (int i = 0; i < n; i++) {
+    sup[i] = i < nin && (hit ? cflat[i] == 2.0 : order >= 1 && got[i]);
+    nsup += sup[i];
+  }
+  /* the partials a routine gives are checked against differences at its first evaluation
+   * with them in a run */
+  if (!hit && nsup && *checked == 0.0) {
+    for (int i = 0; i < nin && !ctx.error; i++)
+      if (sup[i]) check_given(m, k, &ctx, z, nin, chan, i, f0, given[i]);
+    *checked = 1.0;
+  }
+  /* other first partials by fourth-order central differences (Richardson's combination of the
    * steps h and 2h, h ~ eps^(1/5) relative): truncation and rounding both near 1e-13
    * relative. Second-order differences at the step ~ cbrt(eps) that balances their errors
    * carry rounding noise of about eps |f| / h, 1e-11 of a position of 100 mm: enough to fail
@@ -318,7 +518,12 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
   for (int i = 0; order >= 1 && i < n; i++) {
     if (hit) {
       fi[i] = cfi[i];
-      flat[i] = cflat[i] != 0.0;
+      flat[i] = cflat[i] == 1.0;
+      continue;
+    }
+    flat[i] = 0;
+    if (sup[i]) {
+      fi[i] = given[i];
       continue;
     }
     double h = step(d->user_coarse ? 6e-6 : 1e-3, z[i]);
@@ -334,26 +539,9 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
                  eval_at(m, k, &ctx, z, nin, chan, i, -2.0 * h, -1, 0.0)) / (4.0 * h);
     fi[i] = (4.0 * fi[i] - d2) / 3.0;
   }
-  /* second partials with a larger step (~ eps^(1/4)): the diagonal from +/- steps, the rest
-   * from one diagonal pair of steps each and the diagonal values */
-  for (int i = 0; order >= 2 && i < n; i++) {
-    if (flat[i]) continue;
-    H[i] = step(1e-4, z[i]);
-    fp[i] = eval_at(m, k, &ctx, z, nin, chan, i, H[i], -1, 0.0);
-    fm[i] = eval_at(m, k, &ctx, z, nin, chan, i, -H[i], -1, 0.0);
-  }
-  for (int i = 0; order >= 2 && i < n; i++)
-    for (int j = i; j < n; j++) {
-      double v = 0.0;
-      if (flat[i] || flat[j]) v = 0.0;
-      else if (i == j) v = (fp[i] - 2.0 * f0 + fm[i]) / (H[i] * H[i]);
-      else {
-        double fpp = eval_at(m, k, &ctx, z, nin, chan, i, H[i], j, H[j]);
-        double fmm = eval_at(m, k, &ctx, z, nin, chan, i, -H[i], j, -H[j]);
-        v = (fpp + fmm - fp[i] - fm[i] - fp[j] - fm[j] + 2.0 * f0) / (2.0 * H[i] * H[j]);
-      }
-      fij[i * n + j] = fij[j * n + i] = v;
-    }
+  if (order >= 2 && !(nin > 0 && nsup == nin &&
+                       hessian_given(m, k, &ctx, z, nin, chan, f0, flat, fij) == 0))
+    hessian_differenced(m, k, &ctx, z, nin, chan, f0, flat, fij);
   current = prev;
   if (ctx.error) {
     cache[0] = 0.0;
@@ -369,7 +557,7 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
       cz[i] = z[i];
       if (need < 2) continue;
       cfi[i] = fi[i];
-      cflat[i] = flat[i];
+      cflat[i] = sup[i] ? 2.0 : flat[i];
     }
   }
   out[0] = f0;

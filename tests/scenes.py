@@ -169,7 +169,21 @@ void PFOSUB(int *id, double *time, double *par, int *npar, int *dflag, int *ifla
 }
 '''
 
-USERSUB_FORMS = ("expression", "script", "callable", "branchy", "untraceable", "c")
+#: The NumPy form giving its partials in DX and DZ with py_syspar: not differenced in them.
+LINES_NUMPY_SYSPAR = LINES_NUMPY.replace(
+    "    return float(1 + par[1] * x - z)",
+    "    py_syspar('DX', ipar, [par[1]])\n    py_syspar('DZ', ipar, [-1.0])\n"
+    "    return float(1 + par[1] * x - z)")
+
+#: The C form giving its partials in TDISP with c_syspar (Adams' SYSPAR).
+LINES_C_SYSPAR = LINES_C.replace(
+    "  *value = 1.0 + par[1] * p[0] - p[2];\n",
+    "  *value = 1.0 + par[1] * p[0] - p[2];\n"
+    "  double dg[3] = {par[1], 0.0, -1.0};\n"
+    "  c_syspar(\"TDISP\", &m, 1, dg, 3, &err);\n")
+
+USERSUB_FORMS = ("expression", "script", "callable", "branchy", "untraceable",
+                 "untraceable_syspar", "c", "c_syspar")
 
 
 def usersub_library(folder, source=LINES_C, name="subs"):
@@ -194,7 +208,8 @@ def lines_deck(form, folder):
     ``(deck text, fmt)``. Forms: expression, script (a Python script, traced), callable (a
     function in the deck, traced), branchy (a function with a state-dependent branch, traced
     into IF), untraceable (a function through NumPy, called from the kernel), c (a C library,
-    called from the kernel)."""
+    called from the kernel), and untraceable_syspar and c_syspar (the same, giving their
+    partials with py_syspar / c_syspar)."""
     text = (DECKS / "particle_between_lines.py").read_text()
     if form == "expression":
         return text, "py"
@@ -202,14 +217,15 @@ def lines_deck(form, folder):
     if form == "script":
         (folder / "lines.py").write_text(LINES_PFOSUB)
         how = f"SCRIPT={str(folder / 'lines.py')!r}"
-    elif form == "c":
-        lib = usersub_library(folder)
+    elif form in ("c", "c_syspar"):
+        lib = usersub_library(folder, *((LINES_C, "subs") if form == "c" else
+                                        (LINES_C_SYSPAR, "subs_syspar")))
         if lib is None:
             return None, "py"
         how = f"ROUTINE={str(lib) + '::PFOSUB'!r}"
     else:
         source = {"callable": LINES_PFOSUB, "branchy": LINES_BRANCHY,
-                  "untraceable": LINES_NUMPY}[form]
+                  "untraceable": LINES_NUMPY, "untraceable_syspar": LINES_NUMPY_SYSPAR}[form]
         text = text.replace("PART(1,", source.replace("def PFOSUB", "def lines") + "\nPART(1,")
         how = "ROUTINE=lines"
     for k, sign in ((1, "1"), (2, "-1")):

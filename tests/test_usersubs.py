@@ -386,7 +386,8 @@ def test_untraceable_python_routine_is_called_from_the_kernel(tmp_path):
     _close_to_expression(res, ref, fine, err)
     (path,) = res.meta["usersubs"].values()
     assert "Python callback (not traced: float() of a state-dependent value" in path
-    assert "partials in DX(9), DY(9), TIME by central differences" in path
+    assert path.endswith("partials in DX(9), DY(9), TIME by central differences, except those "
+                         "it gives with c_syspar / py_syspar")
 
 
 def _jacobian_like_the_expression(model, seed):
@@ -552,7 +553,8 @@ def test_c_library_errors(c_library, tmp_path):
 
 # -- seed example 3 in every form ---------------------------------------------------------------
 
-@pytest.mark.parametrize("form", ["script", "callable", "branchy", "untraceable", "c"])
+@pytest.mark.parametrize("form", ["script", "callable", "branchy", "untraceable",
+                                  "untraceable_syspar", "c", "c_syspar"])
 def test_two_lines_in_every_form(tmp_path, form):
     """Seed example 3 with both penalties as user subroutines (tests/scenes.py): traced
     forms give the expression version's answers and steps; the forms the kernel calls stay
@@ -633,3 +635,207 @@ def test_kernel_called_routines_run_in_generated_c(tmp_path, looped, monkeypatch
         a, b = model.run(), model.run(kernel="tapes")
         assert a.meta["kernel"] == "generated" and b.meta["kernel"] == "tapes"
         assert a.success and b.success and a.stats["steps"] == b.stats["steps"]
+
+
+# -- partials a routine gives (c_syspar / py_syspar, Adams' SYSPAR) ----------------------------
+
+C_SYSPAR = r"""
+#include <math.h>
+#include "pysolver_usersub.h"
+
+static long counts[3];   /* calls; calls that were asked for partials; calls that were not */
+long count(int i) { return counts[i]; }
+
+static void lines(double *par, double *value, int give, double kink) {
+  int m = (int)par[0], n, err, asked;
+  double p[3];
+  c_adams_needs_partials(&asked);
+  counts[0]++;
+  counts[asked ? 1 : 2]++;
+  c_sysary("TDISP", &m, 1, p, &n, &err);
+  *value = 1.0 + par[1] * p[0] - p[2] + kink * fabs(p[0] - 100.0);
+  double dg[3] = {par[1] + kink * (p[0] >= 100.0 ? 1.0 : -1.0), 0.0, -1.0};
+  if (give > 1 || (give == 1 && asked)) c_syspar("TDISP", &m, 1, dg, 3, &err);
+}
+
+void ALWAYS(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+            double *value) { lines(par, value, 2, 0.0); }
+void ASKED(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+           double *value) { lines(par, value, 1, 0.0); }
+void NEVER(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+           double *value) { lines(par, value, 0, 0.0); }
+void KINK(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+          double *value) { lines(par, value, 2, 0.1); }
+
+void WRONG(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+           double *value) {
+  int m = (int)par[0], err;
+  double x, z, dx = 1.0;   /* right for line 1 only */
+  c_sysfnc("DX", &m, 1, &x, &err);
+  c_sysfnc("DZ", &m, 1, &z, &err);
+  *value = 1.0 + par[1] * x - z;
+  c_syspar("DX", &m, 1, &dx, 1, &err);
+}
+
+void UNASKED(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+             double *value) {
+  int m = (int)par[0], err;
+  double x, z, d = 0.0;
+  c_sysfnc("DX", &m, 1, &x, &err);
+  c_sysfnc("DZ", &m, 1, &z, &err);
+  *value = 1.0 + par[1] * x - z;
+  c_syspar("DY", &m, 1, &d, 1, &err);
+}
+
+void SHORT(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+           double *value) {
+  int m = (int)par[0], n, err;
+  double p[3], d[2] = {par[1], 0.0};
+  c_sysary("TDISP", &m, 1, p, &n, &err);
+  *value = 1.0 + par[1] * p[0] - p[2];
+  c_syspar("TDISP", &m, 1, d, 2, &err);
+}
+
+void BEAD(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+          double *value) {
+  int marker = (int)par[0], err;
+  double x, y, dx, dy = 1.0;
+  c_sysfnc("DX", &marker, 1, &x, &err);
+  c_sysfnc("DY", &marker, 1, &y, &err);
+  *value = y - cosh(x);
+  dx = -sinh(x);
+  c_syspar("DY", &marker, 1, &dy, 1, &err);
+  c_syspar("DX", &marker, 1, &dx, 1, &err);
+}
+"""
+
+
+@pytest.fixture(scope="module")
+def syspar_library(tmp_path_factory):
+    from scenes import usersub_library
+    lib = usersub_library(tmp_path_factory.mktemp("syspar"), C_SYSPAR, "syspar")
+    if lib is None:
+        pytest.skip("no C compiler on this machine to build the test's subroutine library")
+    return lib
+
+
+def _lines(lib, routine, expr="1+DX(10)-DZ(10)", expr2="1-DX(10)-DZ(10)"):
+    """Seed example 3 with both lines' penalties the C routine `routine` (or, with
+    routine None, the expressions given)."""
+    text = (DECKS / "particle_between_lines.py").read_text()
+    for old, new, sign in (("1+DX(10)-DZ(10)", expr, "1"), ("1-DX(10)-DZ(10)", expr2, "-1")):
+        assert f'FUNCTION="{old}"' in text
+        text = text.replace(f'FUNCTION="{old}"', f'FUNCTION="{new}"' if routine is None else
+                            f'FUNCTION="USER(10, {sign})", ROUTINE="{lib}::{routine}"')
+    return pysolver.loads(text, fmt="py")
+
+
+def _counter(lib):
+    import ctypes
+    handle = ctypes.CDLL(str(lib))      # already loaded by the model, with c_sysary resolved
+    handle.count.restype = ctypes.c_long
+    return lambda i: handle.count(i)
+
+
+@pytest.mark.parametrize("tol", [1e-6, 1e-10])
+def test_given_partials_replace_differences(syspar_library, tol):
+    """A routine that gives its partials with c_syspar runs the expression version's steps to
+    rounding (its partials are exact) and is called at most twice per evaluation (the value,
+    and one step in time, which is flat), six times per Jacobian (differences of the given
+    partials in DX, DY, DZ) and 24 times once per run (the partials checked against fourth-order
+    differences): under 0.4x the calls of the same routine differenced."""
+    ref = _lines(syspar_library, None).run(integr_tol=tol)
+    given, differenced = _lines(syspar_library, "ALWAYS"), _lines(syspar_library, "NEVER")
+    given.compile(), differenced.compile()
+    count = _counter(syspar_library)
+    c0 = count(0)
+    res = given.run(integr_tol=tol)
+    calls = count(0) - c0
+    assert differenced.run(integr_tol=tol).success
+    plain_calls = count(0) - c0 - calls
+    assert res.success and res.stats["steps"] == ref.stats["steps"]
+    assert np.abs(res.request(1)[:, :4] - ref.request(1)[:, :4]).max() <= 1e-12
+    st = res.stats
+    assert calls <= 2 * 2 * (st["nres"] + st["outputs"]) + 2 * 8 * st["njac"] + 2 * 12
+    assert calls <= 0.4 * plain_calls
+
+
+def test_given_partials_only_when_asked(syspar_library):
+    """c_adams_needs_partials says when partials are wanted: a routine that gives them only
+    then runs exactly as one that always does; the differencing calls (in time) do not ask."""
+    always, asked = _lines(syspar_library, "ALWAYS"), _lines(syspar_library, "ASKED")
+    always.compile(), asked.compile()
+    count = _counter(syspar_library)
+    a = always.run()
+    before = [count(i) for i in range(3)]
+    b = asked.run()
+    n = [count(i) - before[i] for i in range(3)]
+    np.testing.assert_array_equal(a.request(1), b.request(1))
+    assert a.stats == b.stats
+    assert n[1] > 0 and n[2] > 0 and n[1] + n[2] == n[0]
+
+
+def test_given_partials_jacobian_is_the_exact_one(syspar_library):
+    """Second partials from differences of the given first ones: the bead's routine
+    (y - cosh x, partials -sinh x and 1) has the expression version's iteration matrix, and
+    so do the straight lines (their given partials are constant: the second partials are 0)."""
+    bead = pysolver.loads(bead_xml(f'type="USERSUB" usrsub_dll_name="{syspar_library}" '
+                                   'usrsub_fnc_name="BEAD" usrsub_param_string="USER(9)"'))
+    _jacobian_like_the_expression(bead, 3)
+    lines, exact = _lines(syspar_library, "ALWAYS").compile().kernel, \
+        _lines(syspar_library, None).compile().kernel
+    rng = np.random.default_rng(4)
+    for _ in range(3):
+        y, yp = rng.normal(size=lines.ny) * 50, rng.normal(size=lines.ny)
+        np.testing.assert_allclose(lines.jacobian_array(0.3, y, yp, 7.0),
+                                   exact.jacobian_array(0.3, y, yp, 7.0), rtol=1e-12, atol=1e-9)
+
+
+def test_given_partials_are_checked(syspar_library):
+    """Wrong partials end the run naming the value and both numbers; at a kink (the particle
+    starts at x = 100, where |x - 100| bends) a one-sided partial is accepted; a partial in a
+    value the iflag call did not ask for, or the wrong count, ends the run with c_syspar's
+    message."""
+    wrong = _lines(syspar_library, "WRONG").run()
+    assert not wrong.success and wrong.status == -400
+    assert ("user subroutine (id 2): c_syspar gave the partial in DX(10) as 1, but differences "
+            "of its value give -1") in wrong.message
+    kinked = _lines(syspar_library, None, "1+DX(10)-DZ(10)+0.1*ABS(DX(10)-100)",
+                    "1-DX(10)-DZ(10)+0.1*ABS(DX(10)-100)")
+    ref, fine = kinked.run(integr_tol=1e-10), kinked.run(integr_tol=1e-12)
+    err = np.abs(ref.request(1)[:, :4] - fine.request(1)[:, :4]).max()
+    _close_to_expression(_lines(syspar_library, "KINK").run(integr_tol=1e-10), ref, fine, err)
+    for routine, message in (
+            ("UNASKED", "c_syspar: partials in a value its iflag call did not ask for: DY(10)"),
+            ("SHORT", "c_syspar: TDISP has 3 values, c_syspar was given 2 partials")):
+        res = _lines(syspar_library, routine).run()
+        assert not res.success and message in res.message
+        assert res.message.startswith(("user subroutine (id 1): ", "user subroutine (id 2): "))
+
+
+def test_py_syspar(tmp_path):
+    """py_syspar from an untraceable Python routine: the expression version's answers and steps
+    to rounding; wrong partials are reported; a traced routine that calls it is still traced
+    (tracing differentiates exactly); outside a routine it is an error."""
+    from scenes import LINES_NUMPY_SYSPAR, LINES_PFOSUB, lines_deck
+    expr_text, _ = lines_deck("expression", tmp_path)
+    ref = pysolver.loads(expr_text, fmt="py").run(integr_tol=1e-10)
+    text, _ = lines_deck("untraceable_syspar", tmp_path)
+    res = pysolver.loads(text, fmt="py").run(integr_tol=1e-10)
+    assert res.success and res.stats["steps"] == ref.stats["steps"]
+    assert np.abs(res.request(1)[:, :4] - ref.request(1)[:, :4]).max() <= 1e-12
+    bad = text.replace("py_syspar('DZ', ipar, [-1.0])", "py_syspar('DZ', ipar, [1.0])")
+    res = pysolver.loads(bad, fmt="py").run()
+    assert not res.success
+    assert "c_syspar gave the partial in DZ(10) as 1, but differences of its value give -1" \
+        in res.message
+    traced = text.replace(LINES_NUMPY_SYSPAR.replace("def PFOSUB", "def lines"),
+                          LINES_PFOSUB.replace("def PFOSUB", "def lines").replace(
+                              "    return 1", "    py_syspar('DX', ipar, [par[1]])\n"
+                              "    return 1"))
+    assert traced != text
+    res = pysolver.loads(traced, fmt="py").run(integr_tol=1e-10)
+    assert all("traced into the kernel" in p for p in res.meta["usersubs"].values())
+    np.testing.assert_allclose(res.request(1)[:, :4], ref.request(1)[:, :4], atol=1e-9)
+    with pytest.raises(RuntimeError, match="py_syspar works only inside a user subroutine"):
+        pysolver.msolve.py_syspar("DX", [10], [1.0])

@@ -108,8 +108,10 @@ enum psElement {
 #define PS_USER_KEY 32   /* bytes of one canonical input key */
 #define PS_USER_MAXIN 16 /* most inputs one routine may declare */
 /* doubles of one PS_OP_USER instruction's cache: what it holds (0 nothing, 1 the value,
- * 2 also the first partials), the value, then the inputs (with time), partials and flat flags */
-#define PS_USER_CACHE 53 /* 2 + 3 (PS_USER_MAXIN + 1) */
+ * 2 also the first partials), the value, then the inputs (with time), partials, how each
+ * partial was found (0 differences, 1 flat, 2 given by the routine), and last whether the
+ * partials the routine gives were checked in this run */
+#define PS_USER_CACHE 54 /* 3 + 3 (PS_USER_MAXIN + 1) */
 
 /* Status codes returned by kernel functions. */
 #define PS_OK 0

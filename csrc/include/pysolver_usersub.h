@@ -15,7 +15,8 @@
  * par holds the numbers of USER(p1, ..., pn); npar their count. iflag is 1 on the first call,
  * which pysolver makes once to learn which system values the routine reads (c_sysfnc then
  * returns 0): a routine must ask for every value it may use on that call. dflag is 1 while
- * pysolver differences the routine for its partial derivatives.
+ * pysolver differences the routine for its partial derivatives. A routine that knows its
+ * partials gives them with c_syspar, and is then called far less often.
  */
 #ifndef PYSOLVER_USERSUB_H
 #define PYSOLVER_USERSUB_H
@@ -35,6 +36,21 @@ void c_sysfnc(const char *fnc, const int *ipar, int nsize, double *state, int *e
  * values into states. */
 void c_sysary(const char *fnc, const int *ipar, int nsize, double *states, int *nstates,
               int *errflg);
+
+/* Give the partial derivatives of the routine's result in values it read (Adams' SYSPAR):
+ * fnc, ipar and nsize as in the c_sysfnc or c_sysary call, states the partials of the result
+ * in each of the nstates values that call returned. pysolver then uses them instead of
+ * differencing the routine in those values (it still differences time, and the rest); it
+ * checks them against differences at the routine's first evaluation with them in each run,
+ * and ends the run naming the value when they disagree. Ignored on the iflag call and when
+ * no partials are wanted; *errflg is 1 (and the run ends) for a value the iflag call did not
+ * ask for or a wrong nstates. */
+void c_syspar(const char *fnc, const int *ipar, int nsize, const double *states, int nstates,
+              int *errflg);
+
+/* Set *eval_jac to 1 when the call in progress wants the routine's partials (c_syspar), else
+ * 0 (Adams' ADAMS_NEEDS_PARTIALS): a routine may skip computing them then. */
+void c_adams_needs_partials(int *eval_jac);
 
 /* Report an error when errflg is nonzero: the evaluation fails and the run ends with
  * success=False and this message. */

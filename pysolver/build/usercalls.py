@@ -74,7 +74,8 @@ def bind(model):
         set_trees(model, kind, el, trees)
         model.usersub_paths[f"{ctx.tag} {el.id}"] = (
             f"{sub.describe()}: {how}, called from the kernel; its partials in "
-            f"{', '.join(keys + ['TIME'])} by central differences")
+            f"{', '.join(keys + ['TIME'])} by central differences, except those it gives "
+            "with c_syspar / py_syspar")
     from ..deck.references import check_references
     check_references(model)
 
@@ -131,7 +132,7 @@ def _callback(ctx, sub, form, model):
     plain = form == lib.PS_USER_PLAIN
 
     def call(id, time, dflag, iflag, value):
-        prev = tracer.enter_live(reader.read)
+        prev = tracer.enter_live(reader.read, _c_syspar)
         try:
             reader.values = lib.ps_user_values()
             out = fn(id[0], time[0], list(par), len(par), iflag) if plain else \
@@ -188,20 +189,37 @@ class _Reader:
 
 
 _REQUESTS = {}                     # (fnc, ids) -> its C arguments, made once
-_OUT = threading.local()           # per thread: the double and int c_sysfnc writes
+_OUT = threading.local()           # per thread: what c_sysfnc and c_syspar write and read
+
+
+def _request(fnc, ids):
+    """The C arguments (name, ids, their count) of a read of (fnc, ids), made once."""
+    ints = [int(i) for i in ids]
+    req = _REQUESTS[(fnc, tuple(ids))] = (str(fnc).upper().encode(),
+                                          ffi.new("int[]", ints or [0]), len(ints))
+    return req
 
 
 def _c_sysfnc(fnc, ids):
     """What c_sysfnc gives the routine for (fnc, ids)."""
-    key = (fnc, tuple(ids))
-    req = _REQUESTS.get(key)
-    if req is None:
-        ints = [int(i) for i in ids]
-        req = _REQUESTS[key] = (str(fnc).upper().encode(), ffi.new("int[]", ints or [0]),
-                                len(ints))
+    req = _REQUESTS.get((fnc, tuple(ids))) or _request(fnc, ids)
     out = getattr(_OUT, "v", None)
     if out is None:
         out = _OUT.v = (ffi.new("double *"), ffi.new("int *"))
     state, err = out
     lib.c_sysfnc(req[0], req[1], req[2], state, err)
     return [state[0], err[0]]
+
+
+def _c_syspar(fnc, ids, partials):
+    """py_syspar inside a kernel call: c_syspar with the routine's partials; its errflg."""
+    req = _REQUESTS.get((fnc, tuple(ids))) or _request(fnc, ids)
+    out = getattr(_OUT, "p", None)
+    if out is None:
+        out = _OUT.p = (ffi.new("double[6]"), ffi.new("int *"))
+    buf, err = out
+    n = len(partials)
+    for i, v in enumerate(partials[:6]):
+        buf[i] = v
+    lib.c_syspar(req[0], req[1], req[2], buf, n, err)
+    return err[0]

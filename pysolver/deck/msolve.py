@@ -34,7 +34,7 @@ __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE
            "LOADCONTROL", "VARIABLE",
            "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "SENSOR_EVALUATE", "EQUILIBRIUM",
            "RESOUTPUT", "H3DOUTPUT",
-           "py_sysfnc", "py_sysary", "py_errmes"]
+           "py_sysfnc", "py_sysary", "py_syspar", "py_errmes"]
 
 #: User subroutines: ROUTINE= a Python function (or its name in SCRIPT=), SCRIPT=, INTERPRETER=;
 #: FUNCTION="USER(p1, ..., pn)" gives its parameters.
@@ -495,4 +495,4 @@ def STOP():
     _emit("STOP", "Stop", {})
 
 
-from .tracer import py_errmes, py_sysary, py_sysfnc  # noqa: E402  (user subroutine data access)
+from .tracer import py_errmes, py_sysary, py_sysfnc, py_syspar  # noqa: E402  (user subroutine data access)

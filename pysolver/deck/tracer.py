@@ -309,6 +309,19 @@ def py_sysary(fnc, ids):
     return [[measure(f, i) for f, i in parts], 0]
 
 
+def py_syspar(fnc, ids, partials):
+    """Give the partials of the routine's result in values it read (Adams' SYSPAR): `fnc` and
+    `ids` as in the py_sysfnc / py_sysary call, `partials` one number per value it returned.
+    Returns errflg (0). A routine called from the kernel is then not differenced in those
+    values; while a routine is traced it does nothing (tracing differentiates exactly).
+    """
+    live = getattr(_ACTIVE, "syspar", None)
+    if getattr(_ACTIVE, "on", False) or live is None:
+        _mode("py_syspar")
+        return 0
+    return live(fnc, ids, partials)
+
+
 def py_errmes(errflg, message, id, endflag="STOP"):
     """Report a user subroutine's error (MotionSolve's py_errmes): raises when errflg is set."""
     if errflg:
@@ -338,16 +351,18 @@ class active:
         return False
 
 
-def enter_live(reader):
-    """Make py_sysfnc read real values through `reader(fnc, ids)` (a routine called from the
-    kernel) until :func:`leave_live` restores what this returns."""
-    prev = (getattr(_ACTIVE, "on", False), getattr(_ACTIVE, "live", None))
-    _ACTIVE.on, _ACTIVE.live = False, reader
+def enter_live(reader, syspar=None):
+    """Make py_sysfnc read real values through `reader(fnc, ids)` and py_syspar give partials
+    through `syspar(fnc, ids, partials)` (a routine called from the kernel) until
+    :func:`leave_live` restores what this returns."""
+    prev = (getattr(_ACTIVE, "on", False), getattr(_ACTIVE, "live", None),
+            getattr(_ACTIVE, "syspar", None))
+    _ACTIVE.on, _ACTIVE.live, _ACTIVE.syspar = False, reader, syspar
     return prev
 
 
 def leave_live(prev):
-    _ACTIVE.on, _ACTIVE.live = prev
+    _ACTIVE.on, _ACTIVE.live, _ACTIVE.syspar = prev
 
 
 def tree_of(value):

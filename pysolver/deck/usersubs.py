@@ -228,7 +228,8 @@ def python_routine(ctx, sub, model, traced=False):
     if sub.script not in scripts:
         namespace = {"__name__": "__pysolver_usersub__", "__file__": sub.script,
                      "py_sysfnc": tracer.py_sysfnc, "py_sysary": tracer.py_sysary,
-                     "py_errmes": tracer.py_errmes, "__builtins__": _builtins()}
+                     "py_errmes": tracer.py_errmes, "py_syspar": tracer.py_syspar,
+                     "__builtins__": _builtins()}
         try:
             with open(sub.script, encoding="utf-8") as fh:
                 code = compile(fh.read(), sub.script, "exec")
