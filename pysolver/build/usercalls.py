@@ -218,8 +218,8 @@ def _c_syspar(fnc, ids, partials):
     if out is None:
         out = _OUT.p = (ffi.new("double[6]"), ffi.new("int *"))
     buf, err = out
-    n = len(partials)
-    for i, v in enumerate(partials[:6]):
-        buf[i] = v
+    values = [float(v) for v in partials]
+    n = len(values)
+    buf[0:min(n, 6)] = values[:6]
     lib.c_syspar(req[0], req[1], req[2], buf, n, err)
     return err[0]

@@ -316,10 +316,10 @@ def py_syspar(fnc, ids, partials):
     values; while a routine is traced it does nothing (tracing differentiates exactly).
     """
     live = getattr(_ACTIVE, "syspar", None)
-    if getattr(_ACTIVE, "on", False) or live is None:
-        _mode("py_syspar")
-        return 0
-    return live(fnc, ids, partials)
+    if live is not None and not _ACTIVE.on:
+        return live(fnc, ids, partials)
+    _mode("py_syspar")              # tracing: nothing to do; outside a routine: the error
+    return 0
 
 
 def py_errmes(errflg, message, id, endflag="STOP"):
