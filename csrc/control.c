@@ -304,7 +304,9 @@ static int saddle_sparse(const psRestart* r, double h, const double* yp, double*
     double rt = (r->g[i] - r->res2[r->lam[i]]) / (2 * h);
     z[nr + i] = -(jyp + rt);
   }
-  /* a full factorization each time: the answer does not depend on the runs before */
+  /* a full factorization each time, forgetting which entries were nonzero before: the
+   * answer does not depend on the runs before */
+  ps_lu_forget(r->slu);
   if (ps_lu_factor(r->slu, r->sval) != 0) return PS_ERR_SINGULAR;
   ps_lu_solve(r->slu, z);
   return PS_OK;

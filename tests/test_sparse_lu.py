@@ -118,6 +118,46 @@ def test_a_stale_pivot_sends_the_replay_back_to_a_full_factorization():
     assert lu.counts() == [2, 1, 1]
 
 
+def test_zero_entries_stay_out_of_the_pattern_until_they_are_nonzero():
+    """Entries of the pattern whose value is zero (a planar mechanism's out-of-plane
+    couplings) grow no fill: a full factorization leaves them out (fewer entries of L and U
+    than with the same entries at 1e-300). A replay that meets one of them nonzero says so
+    (1) and the factorization after it takes it in; from then on it is in the pattern, zero
+    or not, until ps_lu_forget. Every solve is exact to rounding."""
+    rng = np.random.default_rng(3)
+    A = _saddle(80, 25, 9)
+    off = np.flatnonzero((A.indices != np.repeat(np.arange(A.shape[1]), np.diff(A.indptr)))
+                         & (A.data != 0.0))
+    zeroed = rng.choice(off, len(off) // 2, replace=False)
+    Z = A.copy()
+    Z.data[zeroed] = 0.0
+    tiny = Z.copy()
+    tiny.data[zeroed] = 1e-300
+    full, pruned = LU(A), LU(A)
+    assert full.factor(tiny) == 0 and pruned.factor(Z) == 0
+    assert lib.ps_lu_nnz(pruned.f) < 0.8 * lib.ps_lu_nnz(full.f)
+    b = rng.standard_normal(A.shape[0])
+
+    def exact(lu, M):
+        x = lu.solve(b)
+        assert np.abs(M @ x - b).max() <= 1e-12 * abs(M).max() * np.abs(x).max()
+
+    exact(pruned, Z)
+    small = lib.ps_lu_nnz(pruned.f)
+    W = Z.copy()
+    W.data[zeroed[0]] = 0.5                   # a left-out entry is nonzero now
+    assert pruned.refactor(W) == 1
+    assert pruned.factor(W) == 0
+    exact(pruned, W)
+    assert lib.ps_lu_nnz(pruned.f) >= small
+    assert pruned.refactor(Z) == 0            # zero again: still in the pattern, replayed
+    exact(pruned, Z)
+    assert pruned.counts() == [2, 2, 1]
+    lib.ps_lu_forget(pruned.f)
+    assert pruned.refactor(Z) == -1 and pruned.factor(Z) == 0
+    assert lib.ps_lu_nnz(pruned.f) == small
+
+
 def test_singular_and_unfactored_matrices_are_reported():
     """A zero column is found at its step (k + 1); a replay before any factorization is -1;
     a non-finite value is no pivot."""

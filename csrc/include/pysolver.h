@@ -630,19 +630,20 @@ psLU* ps_lu_new(int n, const int* colptr, const int* rowind, const int* colorder
 void ps_lu_free(psLU* f);
 
 /* Factor the matrix with values values (in the pattern's order) with threshold partial
- * pivoting that prefers the diagonal. Returns 0; k + 1 when step k finds no nonzero finite
- * pivot (the matrix is singular to working precision, or not finite); -1 when out of
- * memory. */
+ * pivoting that prefers the diagonal. Entries that are zero now and were zero in every
+ * factorization since the last ps_lu_forget are left out. Returns 0; k + 1 when step k finds
+ * no nonzero finite pivot (the matrix is singular to working precision, or not finite); -1
+ * when out of memory. */
 int ps_lu_factor(psLU* f, const double* values);
 
 /* Factor new values with the pivots and the patterns of L and U of the last successful
  * ps_lu_factor. Returns 0; 1 when a pivot is no longer acceptable (zero, not finite, or below
- * 1e-3 of the largest entry under it): call ps_lu_factor; -1 when there is no factorization
- * to replay. */
+ * 1e-3 of the largest entry under it) or an entry that factorization left out is nonzero:
+ * call ps_lu_factor; -1 when there is no factorization to replay. */
 int ps_lu_refactor(psLU* f, const double* values);
 
-/* Forget the pivots: the next ps_lu_refactor returns -1, so a run that restarts factors as a
- * fresh one would, and gives the same answer. */
+/* Forget the pivots and which entries were nonzero: the next ps_lu_refactor returns -1, so a
+ * run that restarts factors as a fresh one would, and gives the same answer. */
 void ps_lu_forget(psLU* f);
 
 /* Solve A x = b in place (b: n entries) with the last successful factorization. */
