@@ -383,11 +383,12 @@ static double eval_with(const psModel* m, int k, UserCtx* ctx, double* z, int ni
  * differences of the value at the steps h0 / 16^s (h0 ~ 1e-3 |z_i|, s = 0..3: a smaller step
  * resolves what curves within a larger one, or stays in a domain a larger one leaves): the
  * fourth-order central one, or, at a kink, either second-order one-sided one. A match within
- * 1e-6 relative plus the values' rounding is taken at once; without one, the difference of
- * each kind whose error estimate is least (4 times its gap to the next lower order, and, for
- * the central one, the fourth difference of the values: their noise) must match within that
- * estimate. Returns 0, or -1 with the routine's error set (the run then ends, naming the
- * input, the partial and the surest central difference). */
+ * 1e-6 relative at a step where the values' rounding is below that is taken at once (most
+ * routines: at the first step, four calls); without one, the difference of each kind whose
+ * error estimate is least (4 times its gap to the next lower order, and, for the central one,
+ * the fourth difference of the values: their noise) must match within that estimate. Returns
+ * 0, or -1 with the routine's error set (the run then ends, naming the input, the partial
+ * and the surest central difference). */
 static int check_given(const psModel* m, int k, UserCtx* ctx, double* z, int nin, int chan,
                        int i, double f0, double given) {
   double best[3] = {NAN, NAN, NAN}, err[3] = {INFINITY, INFINITY, INFINITY};
@@ -409,7 +410,8 @@ static int check_given(const psModel* m, int k, UserCtx* ctx, double* z, int nin
     double e[3] = {4.0 * fabs(d[0] - c2) + fabs(d4) / h, 8.0 * fabs(d[1] - (f[3] - f[2]) / h),
                    8.0 * fabs(d[2] - (f[2] - f[1]) / h)};
     for (int q = 0; q < 3; q++) {
-      if (fabs(given - d[q]) <= 1e-6 * (fabs(given) + fabs(d[q])) + fl) return 0;
+      double tol = 1e-6 * (fabs(given) + fabs(d[q]));
+      if (fl <= tol && fabs(given - d[q]) <= tol + fl) return 0;
       if (e[q] + fl < err[q]) best[q] = d[q], err[q] = e[q] + fl;
     }
   }

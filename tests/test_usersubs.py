@@ -697,8 +697,8 @@ void SHORT(int *id, double *time, double *par, int *npar, int *dflag, int *iflag
   c_syspar("TDISP", &m, 1, d, 2, &err);
 }
 
-/* lines(par, value, 2, 0) with the partial in DX a little off (2 %), or the value and
- * partials scaled to 1e-12 with the partial in DX twice what it is */
+/* lines(par, value, 2, 0) with the partial in DX a little off (2 %); the value and partials
+ * scaled to 1e-12, or to 1e-2 on top of 1e6, with the partial in DX twice what it is */
 void NEAR(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
           double *value) {
   int m = (int)par[0], n, err;
@@ -715,6 +715,15 @@ void TINY(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
   c_sysary("TDISP", &m, 1, p, &n, &err);
   *value = 1e-12 * (1.0 + par[1] * p[0] - p[2]);
   double dg[3] = {2e-12 * par[1], 0.0, -1e-12};
+  c_syspar("TDISP", &m, 1, dg, 3, &err);
+}
+void OFFSET(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+            double *value) {
+  int m = (int)par[0], n, err;
+  double p[3];
+  c_sysary("TDISP", &m, 1, p, &n, &err);
+  *value = 1e6 + 1e-2 * (1.0 + par[1] * p[0] - p[2]);
+  double dg[3] = {2e-2 * par[1], 0.0, -1e-2};
   c_syspar("TDISP", &m, 1, dg, 3, &err);
 }
 
@@ -879,19 +888,23 @@ def test_given_partials_a_little_off_or_given_late_are_caught(syspar_library):
     """The check compares at the tolerance of the differences it takes (the value is linear
     here: they are exact), not 5 % one-sided (which took a DX partial 2 % or 8 % off: the run
     succeeded with forces 3 N off); with the value's own rounding, not 1e-9 of a unit (which
-    took any partial of a value near 1e-12); and each partial the first time the routine gives
+    took any partial of a value near 1e-12), at steps where that rounding is small (a value
+    near 1e6 that changes by 1e-2 per mm); and each partial the first time the routine gives
     it, not only those of the first evaluation (LATE gives DZ's, 10 % off, once x < 50: the
     run succeeded with forces 16 N off)."""
-    for routine, message in (
-            ("NEAR", "user subroutine (id 2): c_syspar gave the partial in DX(10) as -1.02, "
-                     "but differences of its value give -1 (t = 0)"),
-            ("TINY", "user subroutine (id 2): c_syspar gave the partial in DX(10) as -2e-12, "
-                     "but differences of its value give -1e-12 (t = 0)"),
-            ("LATE", r"user subroutine \(id 2\): c_syspar gave the partial in DZ\(10\) as "
-                     r"-1\.1, but differences of its value give -1 \(t = 0\.14\d+\)")):
+    said = re.compile(r"user subroutine \(id 2\): c_syspar gave the partial in (\w+)\(10\) as "
+                      r"(\S+), but differences of its value give (\S+) \(t = (\S+)\)")
+    for routine, value, given, differences, t in (("NEAR", "DX", -1.02, -1.0, 0.0),
+                                                  ("TINY", "DX", -2e-12, -1e-12, 0.0),
+                                                  ("OFFSET", "DX", -2e-2, -1e-2, 0.0),
+                                                  ("LATE", "DZ", -1.1, -1.0, 0.145)):
         res = _lines(syspar_library, routine).run()
         assert not res.success and res.status == -400
-        assert res.message == message if routine != "LATE" else re.fullmatch(message, res.message)
+        got = said.fullmatch(res.message)
+        assert got is not None, res.message
+        assert got[1] == value and float(got[2]) == given
+        assert float(got[3]) == pytest.approx(differences, rel=1e-6)
+        assert float(got[4]) == pytest.approx(t, abs=0.005)
 
 
 CURVE_DECK = """from pysolver.msolve import *
