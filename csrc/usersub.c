@@ -12,6 +12,7 @@
 #define _GNU_SOURCE
 #include <ctype.h>
 #include <dlfcn.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -379,28 +380,47 @@ static double eval_with(const psModel* m, int k, UserCtx* ctx, double* z, int ni
 }
 
 /* Check the partial `given` in input i of a routine whose value at z is f0 against
- * differences: the fourth-order central one, or, at a kink, either one-sided one. Returns 0,
- * or -1 with the routine's error set (the run then ends, naming the input and both values). */
+ * differences of the value at the steps h0 / 16^s (h0 ~ 1e-3 |z_i|, s = 0..3: a smaller step
+ * resolves what curves within a larger one, or stays in a domain a larger one leaves): the
+ * fourth-order central one, or, at a kink, either second-order one-sided one. A match within
+ * 1e-6 relative at a step where the values' rounding is below that is taken at once (most
+ * routines: at the first step, four calls); without one, the difference of each kind whose
+ * error estimate is least (4 times its gap to the next lower order, and, for the central one,
+ * the fourth difference of the values: their noise) must match within that estimate. Returns
+ * 0, or -1 with the routine's error set (the run then ends, naming the input, the partial
+ * and the surest central difference). */
 static int check_given(const psModel* m, int k, UserCtx* ctx, double* z, int nin, int chan,
                        int i, double f0, double given) {
-  double h = step(1e-3, z[i]);
-  double fp = eval_at(m, k, ctx, z, nin, chan, i, h, -1, 0.0);
-  double fm = eval_at(m, k, ctx, z, nin, chan, i, -h, -1, 0.0);
-  double c2 = (fp - fm) / (2.0 * h);
-  double c4 = (4.0 * c2 - (eval_at(m, k, ctx, z, nin, chan, i, 2.0 * h, -1, 0.0) -
-                           eval_at(m, k, ctx, z, nin, chan, i, -2.0 * h, -1, 0.0)) /
-                              (4.0 * h)) / 3.0;
-  double fwd = (fp - f0) / h, bwd = (f0 - fm) / h;
-  /* rounding leaves about eps |f0| / h in a difference: 1e-9 of |f0| per unit of the input */
-  double floor = 1e-9 * fmax(1.0, fabs(f0)) / fmax(1.0, fabs(z[i]));
-  if (fabs(given - c4) <= 1e-6 * (fabs(given) + fabs(c4)) + floor ||
-      fabs(given - fwd) <= 5e-2 * (fabs(given) + fabs(fwd)) + floor ||
-      fabs(given - bwd) <= 5e-2 * (fabs(given) + fabs(bwd)) + floor)
-    return 0;
+  double best[3] = {NAN, NAN, NAN}, err[3] = {INFINITY, INFINITY, INFINITY};
+  for (int s = 0; s < 4; s++) {
+    double h = ldexp(step(1e-3, z[i]), -4 * s), f[5] = {0.0, 0.0, f0, 0.0, 0.0}, big = 0.0;
+    int finite = 1;
+    for (int j = 0; j < 5; j++) {
+      if (j != 2) f[j] = eval_at(m, k, ctx, z, nin, chan, i, (j - 2) * h, -1, 0.0);
+      finite = finite && isfinite(f[j]);
+      big = fmax(big, fabs(f[j]));
+    }
+    if (!finite) continue;
+    /* rounding leaves about eps |f| / h in a difference */
+    double fl = 1e3 * DBL_EPSILON * big / h, c2 = (f[3] - f[1]) / (2.0 * h);
+    double d4 = f[0] - 4.0 * f[1] + 6.0 * f[2] - 4.0 * f[3] + f[4];
+    double d[3] = {(8.0 * (f[3] - f[1]) - (f[4] - f[0])) / (12.0 * h),
+                   (4.0 * f[3] - f[4] - 3.0 * f[2]) / (2.0 * h),
+                   (3.0 * f[2] - 4.0 * f[1] + f[0]) / (2.0 * h)};
+    double e[3] = {4.0 * fabs(d[0] - c2) + fabs(d4) / h, 8.0 * fabs(d[1] - (f[3] - f[2]) / h),
+                   8.0 * fabs(d[2] - (f[2] - f[1]) / h)};
+    for (int q = 0; q < 3; q++) {
+      double tol = 1e-6 * (fabs(given) + fabs(d[q]));
+      if (fl <= tol && fabs(given - d[q]) <= tol + fl) return 0;
+      if (e[q] + fl < err[q]) best[q] = d[q], err[q] = e[q] + fl;
+    }
+  }
+  for (int q = 0; q < 3; q++)
+    if (fabs(given - best[q]) <= 1e-6 * (fabs(given) + fabs(best[q])) + err[q]) return 0;
   char key[PS_USER_KEY], detail[160];
   make_key(key, FUNCTIONS[ctx->kfn[i]], ctx->kid + 4 * i, ctx->kn[i]);
   snprintf(detail, sizeof(detail), "%s as %.9g, but differences of its value give %.9g",
-           key, given, c4);
+           key, given, best[0]);
   fail(ctx, "c_syspar gave the partial in ", detail);
   return -1;
 }
@@ -499,12 +519,16 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
     sup[i] = i < nin && (hit ? cflat[i] == 2.0 : order >= 1 && got[i]);
     nsup += sup[i];
   }
-  /* the partials a routine gives are checked against differences at its first evaluation
-   * with them in a run */
-  if (!hit && nsup && *checked == 0.0) {
+  /* each partial a routine gives is checked against differences the first time it is given
+   * in a run (a routine may give some only on some branches) */
+  if (!hit && nsup) {
+    long done = (long)*checked;
     for (int i = 0; i < nin && !ctx.error; i++)
-      if (sup[i]) check_given(m, k, &ctx, z, nin, chan, i, f0, given[i]);
-    *checked = 1.0;
+      if (sup[i] && !(done >> i & 1)) {
+        check_given(m, k, &ctx, z, nin, chan, i, f0, given[i]);
+        done |= 1L << i;
+      }
+    *checked = (double)done;
   }
   /* other first partials by fourth-order central differences (Richardson's combination of the
    * steps h and 2h, h ~ eps^(1/5) relative): truncation and rounding both near 1e-13

@@ -147,6 +147,35 @@ def test_a_gcosub_holds_a_point_on_its_sphere(tmp_path, form):
     np.testing.assert_allclose(res.request(1)[:, 3], 1.0, rtol=0, atol=1e-9)
 
 
+GCOSUB_SYSPAR = GCOSUB_C.replace(
+    "  *value = x * x + y * y + z * z - par[1] * par[1];\n",
+    "  *value = x * x + y * y + z * z - par[1] * par[1];\n"
+    "  double d[3] = {par[2] * x, 2.0 * y, 2.0 * z};   /* USER(9, 1, 2): right */\n"
+    "  c_syspar(\"DX\", &marker, 1, d, 1, &err);\n"
+    "  c_syspar(\"DY\", &marker, 1, d + 1, 1, &err);\n"
+    "  c_syspar(\"DZ\", &marker, 1, d + 2, 1, &err);\n")
+
+
+def test_a_gcosub_giving_its_partials(tmp_path):
+    """GCOSUB with c_syspar: right partials give the expression's run within 1e-7; a wrong one
+    ends the run with success=False and c_syspar's message, as for the other kinds (the
+    redundancy probe at compile time raised it instead)."""
+    lib = _library(tmp_path, GCOSUB_SYSPAR, "gcosub_syspar")
+    ref = pysolver.loads(SPHERE.format(gcon=GCON_EXPR)).run()
+    for factor in (2, 3):
+        res = pysolver.loads(SPHERE.format(gcon=f'<Constraint_General id="3" usrsub_dll_name='
+                                                f'"{lib}" usrsub_param_string="USER(9, 1, '
+                                                f'{factor})"/>')).run()
+        if factor == 2:
+            assert res.success, res.message
+            np.testing.assert_allclose(res.request(1)[:, :4], ref.request(1)[:, :4], rtol=0,
+                                       atol=1e-7)
+        else:
+            assert not res.success
+            assert res.message == ("user subroutine (id 3): c_syspar gave the partial in DX(9) "
+                                   "as 3, but differences of its value give 2 (t = 0)")
+
+
 def test_the_statements_take_the_routines(tmp_path):
     """MOTION(..., ROUTINE=) and GCON(..., ROUTINE=, FUNCTION="USER(...)") in a Python deck."""
     deck = tmp_path / "driven.py"

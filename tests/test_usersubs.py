@@ -2,6 +2,7 @@
 kernel's expressions, they give the expression version's answers, steps and exact Jacobian; and
 every bad input is a DeckError that says where."""
 import math
+import re
 
 import numpy as np
 import pytest
@@ -696,6 +697,76 @@ void SHORT(int *id, double *time, double *par, int *npar, int *dflag, int *iflag
   c_syspar("TDISP", &m, 1, d, 2, &err);
 }
 
+/* lines(par, value, 2, 0) with the partial in DX a little off (2 %); the value and partials
+ * scaled to 1e-12, or to 1e-2 on top of 1e6, with the partial in DX twice what it is */
+void NEAR(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+          double *value) {
+  int m = (int)par[0], n, err;
+  double p[3];
+  c_sysary("TDISP", &m, 1, p, &n, &err);
+  *value = 1.0 + par[1] * p[0] - p[2];
+  double dg[3] = {1.02 * par[1], 0.0, -1.0};
+  c_syspar("TDISP", &m, 1, dg, 3, &err);
+}
+void TINY(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+          double *value) {
+  int m = (int)par[0], n, err;
+  double p[3];
+  c_sysary("TDISP", &m, 1, p, &n, &err);
+  *value = 1e-12 * (1.0 + par[1] * p[0] - p[2]);
+  double dg[3] = {2e-12 * par[1], 0.0, -1e-12};
+  c_syspar("TDISP", &m, 1, dg, 3, &err);
+}
+void OFFSET(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+            double *value) {
+  int m = (int)par[0], n, err;
+  double p[3];
+  c_sysary("TDISP", &m, 1, p, &n, &err);
+  *value = 1e6 + 1e-2 * (1.0 + par[1] * p[0] - p[2]);
+  double dg[3] = {2e-2 * par[1], 0.0, -1e-2};
+  c_syspar("TDISP", &m, 1, dg, 3, &err);
+}
+
+/* the partial in DX always; the one in DZ, 10 % off, only once x < 50 */
+void LATE(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+          double *value) {
+  int m = (int)par[0], err;
+  double x, z, dx = par[1], dz = -1.1;
+  c_sysfnc("DX", &m, 1, &x, &err);
+  c_sysfnc("DZ", &m, 1, &z, &err);
+  *value = 1.0 + par[1] * x - z;
+  c_syspar("DX", &m, 1, &dx, 1, &err);
+  if (x < 50.0) c_syspar("DZ", &m, 1, &dz, 1, &err);
+}
+
+/* g = z - c(x), its partials given: USER(marker, 0, a, L) c = a cos(x / L); USER(marker, 1,
+ * a, x0) c = a / (x - x0); USER(marker, 2, a, x0) c = a max(0, x0 - x)^2 (a contact);
+ * USER(marker, 3, r) c = sqrt(r^2 - x^2) (a circle, not defined past x = r) */
+void CURVE(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+           double *value) {
+  int m = (int)par[0], err, kind = (int)par[1];
+  double x, z, c, dc, one = 1.0;
+  c_sysfnc("DX", &m, 1, &x, &err);
+  c_sysfnc("DZ", &m, 1, &z, &err);
+  if (kind == 0) {
+    c = par[2] * cos(x / par[3]);
+    dc = -par[2] / par[3] * sin(x / par[3]);
+  } else if (kind == 1) {
+    c = par[2] / (x - par[3]);
+    dc = -c / (x - par[3]);
+  } else if (kind == 2) {
+    c = par[2] * fmax(0.0, par[3] - x) * fmax(0.0, par[3] - x);
+    dc = -2.0 * par[2] * fmax(0.0, par[3] - x);
+  } else {
+    c = sqrt(par[2] * par[2] - x * x);
+    dc = -x / c;
+  }
+  *value = z - c;
+  dc = -dc;
+  c_syspar("DX", &m, 1, &dc, 1, &err);
+  c_syspar("DZ", &m, 1, &one, 1, &err);
+}
+
 void BEAD(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
           double *value) {
   int marker = (int)par[0], err;
@@ -811,6 +882,73 @@ def test_given_partials_are_checked(syspar_library):
         res = _lines(syspar_library, routine).run()
         assert not res.success and message in res.message
         assert res.message.startswith(("user subroutine (id 1): ", "user subroutine (id 2): "))
+
+
+def test_given_partials_a_little_off_or_given_late_are_caught(syspar_library):
+    """The check compares at the tolerance of the differences it takes (the value is linear
+    here: they are exact), not 5 % one-sided (which took a DX partial 2 % or 8 % off: the run
+    succeeded with forces 3 N off); with the value's own rounding, not 1e-9 of a unit (which
+    took any partial of a value near 1e-12), at steps where that rounding is small (a value
+    near 1e6 that changes by 1e-2 per mm); and each partial the first time the routine gives
+    it, not only those of the first evaluation (LATE gives DZ's, 10 % off, once x < 50: the
+    run succeeded with forces 16 N off)."""
+    said = re.compile(r"user subroutine \(id 2\): c_syspar gave the partial in (\w+)\(10\) as "
+                      r"(\S+), but differences of its value give (\S+) \(t = (\S+)\)")
+    for routine, value, given, differences, t in (("NEAR", "DX", -1.02, -1.0, 0.0),
+                                                  ("TINY", "DX", -2e-12, -1e-12, 0.0),
+                                                  ("OFFSET", "DX", -2e-2, -1e-2, 0.0),
+                                                  ("LATE", "DZ", -1.1, -1.0, 0.145)):
+        res = _lines(syspar_library, routine).run()
+        assert not res.success and res.status == -400
+        got = said.fullmatch(res.message)
+        assert got is not None, res.message
+        assert got[1] == value and float(got[2]) == given
+        assert float(got[3]) == pytest.approx(differences, rel=1e-6)
+        assert float(got[4]) == pytest.approx(t, abs=0.005)
+
+
+CURVE_DECK = """from pysolver.msolve import *
+UNITS(MASS="KILOGRAM", LENGTH="MILLIMETER", TIME="SECOND", FORCE="NEWTON")
+PART(1, GROUND=True)
+MARKER(1, PART=1)
+MARKER(10, PART=2, QP=[{x}, 0, {z}])
+POINT_MASS(2, MASS=1.0, CM=10)
+ACCGRAV(KGRAV=-9810)
+PFORCE(1, FUNCTION="{function}", {routine}PENALTY=1e4, PENALTY1=1e2)
+REQUEST(1, F1="DX(10)", F2="DZ(10)", F3="PFORCE(1)")
+SIMULATE(TYPE="TRANSIENT", END=0.05, DTOUT=0.005)
+"""
+
+
+@pytest.mark.parametrize("x, par, expr", [
+    (1e4, "0, 50, 10", "DZ(10)-50*COS(DX(10)/10)"),
+    (1e5, "0, 50, 10", "DZ(10)-50*COS(DX(10)/10)"),
+    (1e3, "1, 1e3, 995", "DZ(10)-1e3/(DX(10)-995)"),
+    (1e4, "1, 1e4, 9990", "DZ(10)-1e4/(DX(10)-9990)"),
+    (1e3, "2, 1, 1000.1", "DZ(10)-MAX(0, 1000.1-DX(10))**2"),
+    (999, "3, 1000", "DZ(10)-SQRT(1e6-DX(10)**2)")], ids=str)
+def test_given_partials_of_curves_far_out_are_taken(syspar_library, x, par, expr):
+    """Right partials of values that curve within the first difference step (1e-3 of the
+    position: 8 mm at 1e4 mm) are taken, the check going to smaller steps: a cosine of
+    wavelength 63 mm at 1e4 and 1e5 mm, 1 / gap 5 and 10 mm wide, a contact 0.1 mm deep at
+    1000 mm, a circle 1 mm from its edge (a larger step leaves it); each ended the run at its
+    first evaluation before. The residual there is the expression version's to rounding, and
+    the run (from 1 mm off the curve) its answers to the integration's tolerance."""
+    kind, a, b = (float(v) for v in (par + ", 0").split(",")[:3])
+    curve = {0: lambda: a * math.cos(x / b), 1: lambda: a / (x - b),
+             2: lambda: a * max(0.0, b - x) ** 2, 3: lambda: math.sqrt(a * a - x * x)}
+    z = curve[kind]() + 1.0
+    user, exact = (pysolver.loads(CURVE_DECK.format(x=x, z=z, function=f, routine=r), fmt="py")
+                   for f, r in ((f"USER(10, {par})", f'ROUTINE="{syspar_library}::CURVE", '),
+                                (expr, "")))
+    k, e = user.compile().kernel, exact.compile().kernel
+    y = k.layout.initial_state()
+    np.testing.assert_allclose(k.residual_array(0.0, y, 0 * y), e.residual_array(0.0, y, 0 * y),
+                               rtol=1e-9, atol=1e-9)
+    res, ref = user.run(integr_tol=1e-9), exact.run(integr_tol=1e-9)
+    assert res.success and ref.success, res.message
+    a, b = res.request(1)[:, :3], ref.request(1)[:, :3]
+    assert (np.abs(a - b).max(axis=0) <= 1e-6 * np.abs(b).max(axis=0)).all()
 
 
 def test_py_syspar(tmp_path):

@@ -109,8 +109,8 @@ enum psElement {
 #define PS_USER_MAXIN 16 /* most inputs one routine may declare */
 /* doubles of one PS_OP_USER instruction's cache: what it holds (0 nothing, 1 the value,
  * 2 also the first partials), the value, then the inputs (with time), partials, how each
- * partial was found (0 differences, 1 flat, 2 given by the routine), and last whether the
- * partials the routine gives were checked in this run */
+ * partial was found (0 differences, 1 flat, 2 given by the routine), and last the inputs
+ * whose given partials were checked in this run (bit i for input i) */
 #define PS_USER_CACHE 54 /* 3 + 3 (PS_USER_MAXIN + 1) */
 
 /* Status codes returned by kernel functions. */

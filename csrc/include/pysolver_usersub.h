@@ -41,8 +41,8 @@ void c_sysary(const char *fnc, const int *ipar, int nsize, double *states, int *
  * fnc, ipar and nsize as in the c_sysfnc or c_sysary call, states the partials of the result
  * in each of the nstates values that call returned. pysolver then uses them instead of
  * differencing the routine in those values (it still differences time, and the rest); it
- * checks them against differences at the routine's first evaluation with them in each run,
- * and ends the run naming the value when they disagree. Ignored on the iflag call and when
+ * checks each against differences of the value the first time it is given in a run, and
+ * ends the run naming the value when they disagree. Ignored on the iflag call and when
  * no partials are wanted; *errflg is 1 (and the run ends) for a value the iflag call did not
  * ask for or a wrong nstates. */
 void c_syspar(const char *fnc, const int *ipar, int nsize, const double *states, int nstates,

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..build import Kernel
 from ..build.consistent import AssemblyError, redundant
+from ..build.kernel import UserFailure
 from ..build.params import Parameters
 from .run import run_model
 
@@ -54,7 +55,8 @@ class CompiledModel:
         probe = Kernel(self.model, False, "tapes")
         try:
             self.removed = redundant(probe, 0.0, probe.layout.initial_state())
-        except (AssemblyError, np.linalg.LinAlgError, ValueError, ArithmeticError):
+        except (AssemblyError, np.linalg.LinAlgError, ValueError, ArithmeticError,
+                UserFailure):
             pass                          # each run says why (solve.driver.start_state)
         if self.removed:
             per = {}
