@@ -699,33 +699,21 @@ void SHORT(int *id, double *time, double *par, int *npar, int *dflag, int *iflag
 
 /* lines(par, value, 2, 0) with the partial in DX a little off (2 %); the value and partials
  * scaled to 1e-12, or to 1e-2 on top of 1e6, with the partial in DX twice what it is */
+/* offset + scale g, giving the partial in DX times dx_factor */
+static void scaled(double *par, double *value, double scale, double offset, double dx_factor) {
+  int m = (int)par[0], n, err;
+  double p[3];
+  c_sysary("TDISP", &m, 1, p, &n, &err);
+  *value = offset + scale * (1.0 + par[1] * p[0] - p[2]);
+  double dg[3] = {dx_factor * scale * par[1], 0.0, -scale};
+  c_syspar("TDISP", &m, 1, dg, 3, &err);
+}
 void NEAR(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
-          double *value) {
-  int m = (int)par[0], n, err;
-  double p[3];
-  c_sysary("TDISP", &m, 1, p, &n, &err);
-  *value = 1.0 + par[1] * p[0] - p[2];
-  double dg[3] = {1.02 * par[1], 0.0, -1.0};
-  c_syspar("TDISP", &m, 1, dg, 3, &err);
-}
+          double *value) { scaled(par, value, 1.0, 0.0, 1.02); }
 void TINY(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
-          double *value) {
-  int m = (int)par[0], n, err;
-  double p[3];
-  c_sysary("TDISP", &m, 1, p, &n, &err);
-  *value = 1e-12 * (1.0 + par[1] * p[0] - p[2]);
-  double dg[3] = {2e-12 * par[1], 0.0, -1e-12};
-  c_syspar("TDISP", &m, 1, dg, 3, &err);
-}
+          double *value) { scaled(par, value, 1e-12, 0.0, 2.0); }
 void OFFSET(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
-            double *value) {
-  int m = (int)par[0], n, err;
-  double p[3];
-  c_sysary("TDISP", &m, 1, p, &n, &err);
-  *value = 1e6 + 1e-2 * (1.0 + par[1] * p[0] - p[2]);
-  double dg[3] = {2e-2 * par[1], 0.0, -1e-2};
-  c_syspar("TDISP", &m, 1, dg, 3, &err);
-}
+            double *value) { scaled(par, value, 1e-2, 1e6, 2.0); }
 
 /* the partial in DX always; the one in DZ, 10 % off, only once x < 50 */
 void LATE(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
