@@ -16,10 +16,13 @@ DECKS = ["catenary_bead.xml", "particle_between_lines.xml", "torque_free_spin.xm
 @pytest.mark.parametrize("name", DECKS)
 def test_c_and_sksundae_backends_agree(decks, name):
     model = pysolver.load(decks / name)
-    # scikit-sundae's IDA keeps its own Newton coefficient 0.33 and step growth 2
-    c = model.run(backend="c", nonlin_conv_coef=0.33, max_step_growth=2)
+    # scikit-sundae's IDA keeps its own Newton coefficient 0.33 and step growth 2, and
+    # factors with SUNDIALS' dense solver
+    c = model.run(backend="c", nonlin_conv_coef=0.33, max_step_growth=2,
+                  linsolver="sundials_dense")
     py = model.run(backend="sksundae")
     assert c.meta["options"]["backend"] == "c" and py.meta["options"]["backend"] == "sksundae"
+    assert c.meta["options"]["linsolver"] == "sundials_dense"
     assert c.success and py.success
     np.testing.assert_array_equal(c.t, py.t)
     np.testing.assert_allclose(c.request(1), py.request(1), rtol=1e-9, atol=1e-12)
@@ -55,3 +58,24 @@ def test_band_and_sparse_solvers_for_a_chain_match_scikit_sundaes():
     for res in (band, lu):
         assert res.stats["steps"] == sparse.stats["steps"]
         assert np.nanmax(np.abs(res.request(1) - sparse.request(1))) < 1e-10
+
+
+@pytest.mark.parametrize("name", ["catenary_bead.xml", "particle_between_lines.xml",
+                                  "torque_free_spin.xml", "spinning_top.xml",
+                                  "stiff_penalty_pendulum.xml"])
+def test_small_dense_lu_is_as_accurate_as_sundials_dense(decks, name):
+    """Dense scenes up to 16 states are factored by pysolver's own LU on the C driver
+    (csrc/ida.c small_setup: SUNDIALS' pivots and operations, a multiplication by each
+    pivot's reciprocal where SUNDIALS divides). Its solves differ from SUNDIALS' at rounding
+    level, which a run may carry into other steps, so each run is checked against one at
+    1e-12: within 3x the other's error either way, in at most 1.2x its steps."""
+    model = pysolver.load(decks / name)
+    fine = model.run(integr_tol=1e-12, linsolver="sundials_dense")
+    own, ref = (model.run(integr_tol=1e-9, linsolver=ls) for ls in ("auto", "sundials_dense"))
+    assert own.meta["options"]["linsolver"] == "dense"
+    assert ref.meta["options"]["linsolver"] == "sundials_dense"
+    assert own.success and ref.success and model.compile().kernel.ny <= 16
+    err_own, err_ref = (np.nanmax(np.abs(r.y - fine.y)) for r in (own, ref))
+    assert err_own <= 3 * err_ref + 1e-12 and err_ref <= 3 * err_own + 1e-12
+    assert own.stats["steps"] <= 1.2 * ref.stats["steps"]
+    assert ref.stats["steps"] <= 1.2 * own.stats["steps"]

@@ -90,9 +90,12 @@ def test_seed3_at_penalty_1e10(decks, s):
                                                    f'smoothing_factor="{s:g}"')
     res = pysolver.loads(text).run(backend="c")
     assert res.success, res.message
-    # the bouncing is chaotic: rounding changes the step count (measured 8,473 and 16,468);
-    # the bound catches a step-growth limit switched on by the impacts (measured 54,438)
-    assert res.stats["steps"] < 30000
+    # the bouncing is chaotic: rounding changes the step count, 11,548 to 112,242 over runs
+    # at integr_tol within 2e-4 of 1e-6 with either dense solver (stop 38: 32 runs); what
+    # must not happen is the step-growth limit switched on by the impacts (it was once:
+    # 54,438 steps), or a run that creeps
+    assert res.stats["growth_limited_at"] is None
+    assert res.stats["steps"] < 300000
     x, z = res.request(1)[:, 0], res.request(1)[:, 1]
     vx, vz = res.y[:, 3], res.y[:, 5]
     energy = 0.5 * (vx ** 2 + vz ** 2) + 9810 * z   # kinetic + gravity, <= total (potential >= 0)
@@ -126,7 +129,10 @@ def rigid_pendulum_distance(res):
 def test_penalty_pendulum_over_eight_decades():
     """A point-mass pendulum on a critically damped penalty rod, k = 1e2 ... 1e10: every run
     completes in its step budget, and the distance from the rigid pendulum falls as 1/k until
-    the tolerance takes over (measured 0.60, 1.4e-2, 1.4e-4, 1.9e-5, 1.1e-5)."""
+    the tolerance takes over (measured 0.60, 1.4e-2, 1.4e-4, 1.9e-5, 1.1e-5). Where the
+    tolerance rules, the error is a matter of the step sequence, which rounding changes: at
+    integr_tol within 1e-4 of 1e-8, k = 1e8 gave 5.7e-6..1.9e-5 and k = 1e10 1.1e-5..7.3e-5
+    (stop 38, nine runs each with either dense solver), so the bound is twice the largest."""
     err = {}
     for k, budget in PENDULUM_BUDGET.items():
         # the C driver: its step-growth limit is what keeps k >= 1e6 short
@@ -135,7 +141,7 @@ def test_penalty_pendulum_over_eight_decades():
         assert res.stats["steps"] <= budget, (k, res.stats["steps"])
         err[k] = rigid_pendulum_distance(res)
     assert 60 < err[1e4] / err[1e6] < 150           # O(1/k) in the model-limited range
-    assert err[1e8] < 4e-5 and err[1e10] < 4e-5
+    assert err[1e8] < 4e-5 and err[1e10] < 1.5e-4
 
 
 def _resident_bytes():

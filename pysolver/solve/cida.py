@@ -88,10 +88,13 @@ class CIDA:
     tune : tuple (eta_max, nlconv, auto_eta) or None
         See ``ps_ida_tune``: a fixed step-growth limit, the Newton convergence coefficient and
         the limit switched on when the error test fails most steps (0: IDA's defaults).
+    sundials_dense : bool
+        A dense matrix is factored by SUNDIALS' dense solver even when it is small (pysolver's
+        own LU otherwise, up to 16 states).
     """
 
     def __init__(self, kernel, rtol, atol, max_step=0.0, min_step=0.0, first_step=0.0,
-                 max_num_steps=500, band=None, tune=None, sparse=False):
+                 max_num_steps=500, band=None, tune=None, sparse=False, sundials_dense=False):
         self.k = kernel
         table = _loaded()
         if table is None:
@@ -124,7 +127,7 @@ class CIDA:
             self.rowind = np.ascontiguousarray(pattern.indices, dtype=np.int32)
             self.nnz = int(pattern.nnz)
         elif band is None:
-            self.band = (-1, -1)
+            self.band = (lib.PS_IDA_SUNDIALS_DENSE if sundials_dense else -1, -1)
             self.map = np.zeros(1, dtype=np.int32)
             self.ntrip = 0
         else:

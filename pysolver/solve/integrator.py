@@ -32,11 +32,14 @@ class Plan:
     use_c: bool
     sparse: object            # False; True (scikit-sundae); "lu" or "superlu_mt" (C driver)
     band: tuple = None        # (mu, ml) for IDA's band solver
+    sundials_dense: bool = False   # dense: SUNDIALS' solver at every size (C driver)
 
     @property
     def linsolver(self):
         if self.band:
             return "band"
+        if self.sundials_dense:
+            return "sundials_dense"
         return "superlu_mt" if self.sparse == "superlu_mt" else "sparse" if self.sparse \
             else "dense"
 
@@ -77,9 +80,9 @@ def plan(kernel, options):
                              "C (exact Jacobian, the scikit-sundae wheel's SUNDIALS "
                              "libraries)")
     if use_c:
-        return Plan(True, solver if sparse else False, band)
+        return Plan(True, solver if sparse else False, band, ls == "sundials_dense")
     # through scikit-sundae: its dense solver, or SciPy's sparse LU for the rest
-    return Plan(False, ls != "dense", None)
+    return Plan(False, ls not in ("dense", "sundials_dense"), None)
 
 
 def make(kernel, options, the_plan, bounds):
@@ -90,7 +93,7 @@ def make(kernel, options, the_plan, bounds):
         tune = (options.max_step_growth or 0.0, options.nonlin_conv_coef or NONLIN_CONV_COEF,
                 AUTO_STEP_GROWTH)
         return cida.CIDA(kernel, tol, tol, *bounds, mxsteps, band=the_plan.band, tune=tune,
-                         sparse=the_plan.sparse)
+                         sparse=the_plan.sparse, sundials_dense=the_plan.sundials_dense)
     if the_plan.sparse:
         lin = dict(linsolver="sparse", sparsity=kernel.sparsity(), jacfn=kernel.jacobian_csc_fn())
     else:
