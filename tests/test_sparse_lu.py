@@ -158,6 +158,46 @@ def test_zero_entries_stay_out_of_the_pattern_until_they_are_nonzero():
     assert lib.ps_lu_nnz(pruned.f) == small
 
 
+def test_fall_backs_leave_nothing_behind():
+    """An entry that toggles between zero and nonzero costs one fall-back, the first time it
+    is nonzero, and is replayed from then on. After ps_lu_forget nothing of the object's past
+    (entries nonzero only in an earlier matrix, a replay that met a stale pivot, a singular
+    factorization) shows: it factors and solves bit for bit as a fresh one does, so a restart
+    does not depend on the runs before."""
+    rng = np.random.default_rng(4)
+    A = _saddle(60, 20, 4)
+    rows = A.indices
+    cols = np.repeat(np.arange(A.shape[1]), np.diff(A.indptr))
+    off = np.flatnonzero((rows != cols) & (A.data != 0.0))
+    A.data[rng.choice(off[1:], len(off) // 2, replace=False)] = 0.0     # zeros that matter
+    toggle = off[0]
+    Z = A.copy()
+    Z.data[toggle] = 0.0
+    lu = LU(A)
+    assert lu.factor(Z) == 0
+    for k in range(6):
+        rc = lu.refactor(A if k % 2 == 0 else Z)
+        assert rc == (1 if k == 0 else 0)
+        if rc:
+            assert lu.factor(A) == 0
+    assert lu.counts() == [2, 6, 1]
+    full = A.copy()
+    full.data[full.data == 0.0] = 1.0                    # every entry in the pattern
+    assert lu.factor(full) == 0
+    stale = A.copy()
+    stale.data[(rows == cols) & (rows < 60)] = 1e-9      # the mass diagonal's pivots collapse
+    assert lu.refactor(stale) == 1
+    dead = A.copy()
+    dead.data[:] = 0.0
+    assert lu.factor(dead) == 1                          # singular at its first step
+    lib.ps_lu_forget(lu.f)
+    fresh = LU(A)
+    assert lu.factor(A) == 0 and fresh.factor(A) == 0
+    b = rng.standard_normal(A.shape[0])
+    assert np.array_equal(lu.solve(b), fresh.solve(b))
+    assert lib.ps_lu_nnz(lu.f) == lib.ps_lu_nnz(fresh.f)
+
+
 def test_singular_and_unfactored_matrices_are_reported():
     """A zero column is found at its step (k + 1); a replay before any factorization is -1;
     a non-finite value is no pivot."""

@@ -653,7 +653,7 @@ void ps_lu_solve(const psLU* f, double* b);
 long ps_lu_nnz(const psLU* f);
 
 /* Write the factorization's counts: full factorizations, replays (ps_lu_refactor), and
- * replays that found a stale pivot (out: 3 entries). */
+ * replays that fell back (a stale pivot, or a nonzero entry left out; out: 3 entries). */
 void ps_lu_counts(const psLU* f, long* out);
 
 /* SUNDIALS IDA opened at run time from shared libraries, and one integration with it
