@@ -68,12 +68,16 @@ def test_a_penalty_past_double_precision_is_a_failed_run(penalty):
     assert f"Force_Penalty 1's penalty = {float(penalty):g} is past what double precision " \
            "can carry" in res.message
     better = float(re.search(r"use penalty <= (\S+) ", res.message).group(1))
-    assert better == 1e11 if penalty == "1E15" else better < 1e20
+    # at 1e15 the ratio the suggestion is made from sits at 0.0099-0.0100, where the final
+    # state's rounding (which this penalty follows) decides between 1e11 and 1e10; both
+    # give the right answer (next test)
+    assert better in (1e10, 1e11) if penalty == "1E15" else better < 1e20
     assert len(res.t) == 301                      # the rows are kept
 
 
-def test_the_suggested_penalty_gives_the_right_answer():
-    res = _bead("1E11").run()
+@pytest.mark.parametrize("penalty", ["1E10", "1E11"])
+def test_the_suggested_penalty_gives_the_right_answer(penalty):
+    res = _bead(penalty).run()
     assert res.success, res.message
     assert res.request(1)[-1, 0] == pytest.approx(BEAD_X3, abs=1e-3)
 
