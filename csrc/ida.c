@@ -61,9 +61,6 @@ static const struct { int lib; const char* name; } FNS[F_COUNT] = {SUNDIALS_FNS(
 #define PS_FIRST_OPTIONAL 7
 #define PS_OPTIONAL_FN(k) (FNS[k].lib >= PS_FIRST_OPTIONAL || (k) >= F_SUNLinSolNewEmpty)
 
-/* Dense scenes of at most this many states are factored by pysolver's own small LU. */
-#define PS_IDA_SMALL 16
-
 /* Steps per window over which watch() counts IDA's error-test failures. */
 #define PS_IDA_WINDOW 50
 
@@ -84,11 +81,10 @@ struct psIDA {
   int sparse;             /* CSC matrix filled through map: 1 factored by lu,
                              2 by SuperLU_MT (0: dense or band)                     */
   psLU* lu;               /* the sparse LU of a sparse integration (sparse == 1)    */
-  int small;              /* 1: a dense matrix of at most PS_IDA_SMALL states, factored
-                             by small_setup / small_solve                          */
-  double lu_small[PS_IDA_SMALL * PS_IDA_SMALL]; /* its LU, column-major            */
-  int piv[PS_IDA_SMALL];       /* row exchanged with row k at step k                */
-  double rpiv[PS_IDA_SMALL];   /* reciprocals of its pivots                         */
+  int own_dense;          /* 1: a dense matrix factored by pysolver's own LU
+                             (dense_setup / dense_solve)                           */
+  double* rpiv;           /* (ny) reciprocals of its pivots                         */
+  int* piv;               /* (ny) row exchanged with row k at step k                */
   int slot[4];            /* the word of a linear solver object that points to its
                              operations, and where gettype, setup and solve sit in
                              that table (-1: unknown, no solver of pysolver's own)  */
@@ -185,16 +181,15 @@ static int ls_solve(SUNLinearSolver ls, SUNMatrix a, N_Vector x, N_Vector b, sun
   return 0;
 }
 
-/* Factor a small dense matrix (column-major) with partial pivoting into s->lu_small, as
- * SUNDIALS' dense LU does (the same pivots and operations) but keeping the pivots'
- * reciprocals; a zero or non-finite pivot is a recoverable failure. */
-static int small_setup(SUNLinearSolver ls, SUNMatrix a) {
+/* Factor a dense matrix (column-major) in place with partial pivoting, as SUNDIALS' dense LU
+ * does (the same pivots and operations) but keeping the pivots' reciprocals; a zero or
+ * non-finite pivot is a recoverable failure. */
+static int dense_setup(SUNLinearSolver ls, SUNMatrix a) {
   psIDA* s = LS_CONTENT(ls);
   int n = s->m->ny;
-  double* lu = s->lu_small;
-  memcpy(lu, CALL(s, SUNDenseMatrix_Data)(a), sizeof(double) * (size_t)(n * n));
+  double* lu = CALL(s, SUNDenseMatrix_Data)(a);
   for (int k = 0; k < n; k++) {
-    double* ck = lu + k * n;
+    double* ck = lu + (long)k * n;
     int p = k;
     for (int i = k + 1; i < n; i++)
       if (fabs(ck[i]) > fabs(ck[p])) p = i;
@@ -202,15 +197,15 @@ static int small_setup(SUNLinearSolver ls, SUNMatrix a) {
     if (!(fabs(ck[p]) > 0.0) || !isfinite(ck[p])) return 808; /* SUNLS_LUFACT_FAIL */
     if (p != k)
       for (int j = 0; j < n; j++) {
-        double t = lu[j * n + k];
-        lu[j * n + k] = lu[j * n + p];
-        lu[j * n + p] = t;
+        double t = lu[(long)j * n + k];
+        lu[(long)j * n + k] = lu[(long)j * n + p];
+        lu[(long)j * n + p] = t;
       }
     double r = 1.0 / ck[k];
     s->rpiv[k] = r;
     for (int i = k + 1; i < n; i++) ck[i] *= r;
     for (int j = k + 1; j < n; j++) {
-      double* cj = lu + j * n;
+      double* cj = lu + (long)j * n;
       double u = cj[k];
       if (u != 0.0)
         for (int i = k + 1; i < n; i++) cj[i] -= ck[i] * u;
@@ -219,15 +214,14 @@ static int small_setup(SUNLinearSolver ls, SUNMatrix a) {
   return 0;
 }
 
-/* Solve with the factors of small_setup: SUNDIALS' dense solve with a multiplication by each
+/* Solve with the factors of dense_setup: SUNDIALS' dense solve with a multiplication by each
  * pivot's reciprocal where it divides (a chain of divisions was most of its time on a
  * six-state scene), and the columns of zero entries skipped. */
-static int small_solve(SUNLinearSolver ls, SUNMatrix a, N_Vector x, N_Vector b, sunrealtype tol) {
-  (void)a;
+static int dense_solve(SUNLinearSolver ls, SUNMatrix a, N_Vector x, N_Vector b, sunrealtype tol) {
   (void)tol;
   psIDA* s = LS_CONTENT(ls);
   int n = s->m->ny;
-  const double* lu = s->lu_small;
+  const double* lu = CALL(s, SUNDenseMatrix_Data)(a);
   double* v = CALL(s, N_VGetArrayPointer)(x);
   memcpy(v, CALL(s, N_VGetArrayPointer)(b), sizeof(double) * (size_t)n);
   for (int k = 0; k < n; k++) {
@@ -241,13 +235,13 @@ static int small_solve(SUNLinearSolver ls, SUNMatrix a, N_Vector x, N_Vector b, 
   for (int k = 0; k < n; k++) {
     double vk = v[k];
     if (vk != 0.0)
-      for (int i = k + 1; i < n; i++) v[i] -= lu[k * n + i] * vk;
+      for (int i = k + 1; i < n; i++) v[i] -= lu[(long)k * n + i] * vk;
   }
   for (int k = n - 1; k >= 0; k--) {
     double vk = v[k] * s->rpiv[k];
     v[k] = vk;
     if (vk != 0.0)
-      for (int i = 0; i < k; i++) v[i] -= lu[k * n + i] * vk;
+      for (int i = 0; i < k; i++) v[i] -= lu[(long)k * n + i] * vk;
   }
   return 0;
 }
@@ -413,10 +407,14 @@ static int root_fn(sunrealtype t, N_Vector yy, N_Vector yp, sunrealtype* g, void
 static void release(psIDA* s) {
   if (s->mem) CALL(s, IDAFree)(&s->mem);
   /* the own solver's content is s itself: not SUNDIALS' to free */
-  if (s->LS && (s->sparse == 1 || s->small)) LS_CONTENT(s->LS) = NULL;
+  if (s->LS && (s->sparse == 1 || s->own_dense)) LS_CONTENT(s->LS) = NULL;
   if (s->LS) CALL(s, SUNLinSolFree)(s->LS);
   ps_lu_free(s->lu);
   s->lu = NULL;
+  free(s->rpiv);
+  free(s->piv);
+  s->rpiv = NULL;
+  s->piv = NULL;
   if (s->A) CALL(s, SUNMatDestroy)(s->A);
   if (s->y) CALL(s, N_VDestroy)(s->y);
   if (s->yp) CALL(s, N_VDestroy)(s->yp);
@@ -475,7 +473,7 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
                 const int* colptr, const int* rowind, int nnz, const int* colorder) {
   int n = m->ny;
   release(s);
-  s->small = 0;
+  s->own_dense = 0;
   s->m = m;
   s->d = d;
   s->hit = 0;
@@ -537,10 +535,16 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
     if (s->A) s->LS = CALL(s, SUNLinSol_Band)(s->y, s->A, s->ctx);
   } else {
     s->A = CALL(s, SUNDenseMatrix)(n, n, s->ctx);
-    /* a small matrix: pysolver's own LU (SUNDIALS' dense solve, through its calls and
-     * column pointers, was a fifth of seed example 3's run) */
-    s->small = n <= PS_IDA_SMALL && s->slot[0] >= 0 && mu != PS_IDA_SUNDIALS_DENSE;
-    if (s->A && s->small) s->LS = own_solver_with(s, (void*)small_setup, (void*)small_solve);
+    /* pysolver's own LU (SUNDIALS' dense solve, through its chain of divisions, calls and
+     * column pointers, was a fifth of seed example 3's run; 1.02-1.46x faster runs from 6 to
+     * 173 states) */
+    s->own_dense = s->slot[0] >= 0 && mu != PS_IDA_SUNDIALS_DENSE;
+    if (s->own_dense) {
+      s->rpiv = malloc(sizeof(double) * (size_t)n);
+      s->piv = malloc(sizeof(int) * (size_t)n);
+      if (!s->rpiv || !s->piv) return fail(s, "malloc", -1);
+    }
+    if (s->A && s->own_dense) s->LS = own_solver_with(s, (void*)dense_setup, (void*)dense_solve);
     else if (s->A) s->LS = CALL(s, SUNLinSol_Dense)(s->y, s->A, s->ctx);
   }
   if (!s->A || !s->LS)

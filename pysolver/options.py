@@ -69,14 +69,13 @@ class Options:
         0.33 on scikit-sundae.
     linsolver : {"auto", "dense", "band", "sparse", "superlu_mt", "sundials_dense"}
         "auto": dense below 300 states, sparse above. "dense": on the C driver pysolver's own
-        LU up to 16 states, SUNDIALS' dense solver above (through scikit-sundae, its dense
-        solver). "sparse": compressed sparse columns factored by pysolver's sparse LU on the
-        C driver (SciPy's SuperLU through scikit-sundae); "band": IDA's band solver with the
-        Jacobian's bandwidths (C driver); "superlu_mt": SUNDIALS' SuperLU_MT (C driver);
-        "sundials_dense": SUNDIALS' dense solver at every size. The last three for
-        comparison: the sparse LU is as fast as the band solver on chains and faster than
-        SuperLU_MT (docs/numerics.md, "The sparse LU"), and the small LU faster than
-        SUNDIALS' dense one.
+        dense LU (through scikit-sundae, SUNDIALS' dense solver). "sparse": compressed sparse
+        columns factored by pysolver's sparse LU on the C driver (SciPy's SuperLU through
+        scikit-sundae); "band": IDA's band solver with the Jacobian's bandwidths (C driver);
+        "superlu_mt": SUNDIALS' SuperLU_MT (C driver); "sundials_dense": SUNDIALS' dense
+        solver on the C driver too. The last three for comparison: the sparse LU is as fast
+        as the band solver on chains and faster than SuperLU_MT (docs/numerics.md, "The
+        sparse LU"), and the dense LU faster than SUNDIALS' dense one.
     jacobian : {"exact", "dq"}
         The kernel's exact iteration matrix, or IDA's difference quotients (comparison only).
     backend : {"auto", "c", "sksundae"} or None

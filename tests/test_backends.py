@@ -62,20 +62,24 @@ def test_band_and_sparse_solvers_for_a_chain_match_scikit_sundaes():
 
 @pytest.mark.parametrize("name", ["catenary_bead.xml", "particle_between_lines.xml",
                                   "torque_free_spin.xml", "spinning_top.xml",
-                                  "stiff_penalty_pendulum.xml"])
-def test_small_dense_lu_is_as_accurate_as_sundials_dense(decks, name):
-    """Dense scenes up to 16 states are factored by pysolver's own LU on the C driver
-    (csrc/ida.c small_setup: SUNDIALS' pivots and operations, a multiplication by each
-    pivot's reciprocal where SUNDIALS divides). Its solves differ from SUNDIALS' at rounding
-    level, which a run may carry into other steps, so each run is checked against one at
-    1e-12: within 3x the other's error either way, in at most 1.2x its steps."""
+                                  "stiff_penalty_pendulum.xml", "joints/pendulum_revolute.xml",
+                                  "joints/spherical_pendulum.xml"])
+def test_dense_lu_is_as_accurate_as_sundials_dense(decks, name):
+    """Dense scenes are factored by pysolver's own LU on the C driver (csrc/ida.c
+    dense_setup: SUNDIALS' pivots and operations, a multiplication by each pivot's reciprocal
+    where SUNDIALS divides). Its solves differ from SUNDIALS' at rounding level, which a run
+    may carry into other steps, so each run is checked against one at 1e-12: the
+    differential states within 3x the other's error either way, in at most 1.2x its steps.
+    (A joint's reactions, which IDA's error test leaves out, are as accurate as the last
+    Newton iterate: 1.4e-5 and 3.3e-4 at 1e-9 on the spherical pendulum, one per solver.)"""
     model = pysolver.load(decks / name)
+    diff = np.asarray(model.compile().kernel.arrays["state_alg"]) == 0
     fine = model.run(integr_tol=1e-12, linsolver="sundials_dense")
     own, ref = (model.run(integr_tol=1e-9, linsolver=ls) for ls in ("auto", "sundials_dense"))
     assert own.meta["options"]["linsolver"] == "dense"
     assert ref.meta["options"]["linsolver"] == "sundials_dense"
-    assert own.success and ref.success and model.compile().kernel.ny <= 16
-    err_own, err_ref = (np.nanmax(np.abs(r.y - fine.y)) for r in (own, ref))
+    assert own.success and ref.success
+    err_own, err_ref = (np.nanmax(np.abs(r.y - fine.y)[:, diff]) for r in (own, ref))
     assert err_own <= 3 * err_ref + 1e-12 and err_ref <= 3 * err_own + 1e-12
     assert own.stats["steps"] <= 1.2 * ref.stats["steps"]
     assert ref.stats["steps"] <= 1.2 * own.stats["steps"]

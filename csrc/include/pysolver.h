@@ -681,7 +681,7 @@ int ps_ida_has_superlumt(const psIDA* s);
 
 /* ps_ida_init's mu selecting a sparse solver: pysolver's sparse LU (csrc/sparselu.c), or
  * SUNDIALS' SuperLU_MT on one thread (kept for comparison); or SUNDIALS' dense solver for a
- * dense matrix of any size (kept for comparison: small ones are pysolver's own LU). */
+ * dense matrix (kept for comparison; pysolver's own dense LU otherwise). */
 enum { PS_IDA_SPARSE = -2, PS_IDA_SUPERLU_MT = -3, PS_IDA_SUNDIALS_DENSE = -4 };
 
 /* Return a new integration object using the functions of a table from ps_ida_load (not
@@ -713,8 +713,8 @@ const char* ps_ida_message(const psIDA* s);
  * compressed-sparse-column matrix with the fixed pattern colptr (ny + 1) and rowind (nnz),
  * filled from the triplets at the value indices map, factored by pysolver's sparse LU in the
  * column order colorder (ny entries; NULL: natural order) or by SuperLU_MT on one thread;
- * otherwise dense: factored by pysolver's own LU up to 16 states (SUNDIALS' dense solver
- * above, or always with mu = PS_IDA_SUNDIALS_DENSE). map, colptr, rowind and colorder must outlive the integration. Returns
+ * otherwise dense: factored by pysolver's own LU (by SUNDIALS' dense solver with
+ * mu = PS_IDA_SUNDIALS_DENSE). map, colptr, rowind and colorder must outlive the integration. Returns
  * PS_OK, or -1 with a message (ps_ida_message); a failed set-up frees what it built. */
 int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* y0,
                 const double* yp0, double rtol, double atol, double hmax, double hmin, double h0,

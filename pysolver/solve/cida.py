@@ -89,8 +89,8 @@ class CIDA:
         See ``ps_ida_tune``: a fixed step-growth limit, the Newton convergence coefficient and
         the limit switched on when the error test fails most steps (0: IDA's defaults).
     sundials_dense : bool
-        A dense matrix is factored by SUNDIALS' dense solver even when it is small (pysolver's
-        own LU otherwise, up to 16 states).
+        A dense matrix is factored by SUNDIALS' dense solver (pysolver's own dense LU
+        otherwise).
     """
 
     def __init__(self, kernel, rtol, atol, max_step=0.0, min_step=0.0, first_step=0.0,

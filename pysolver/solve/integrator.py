@@ -32,7 +32,7 @@ class Plan:
     use_c: bool
     sparse: object            # False; True (scikit-sundae); "lu" or "superlu_mt" (C driver)
     band: tuple = None        # (mu, ml) for IDA's band solver
-    sundials_dense: bool = False   # dense: SUNDIALS' solver at every size (C driver)
+    sundials_dense: bool = False   # dense: SUNDIALS' solver, not pysolver's own (C driver)
 
     @property
     def linsolver(self):
