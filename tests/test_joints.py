@@ -26,7 +26,9 @@ def _with(text, **attrs):
 def test_revolute_pendulum_period_is_the_elliptic_integrals():
     """Released horizontally, the pendulum is at the bottom (x = 0) at every odd quarter period
     T/4 = K(1/2) / w0 and back at the start at T: the time error there, |x| / |v|, is below
-    1e-9 of the period at a tight tolerance."""
+    1e-9 of the period at a tight tolerance, and the height at T/2 and T and the position at T
+    within 200 x the tolerance x the 2 m length (4e-9 m; measured 3.6e-10..1.7e-9 m over
+    integr_tol within 1e-4 of 1e-11, either dense solver, stop 38: rounding moves it)."""
     period = float(4 * ellipk(0.5) / np.sqrt(PENDULUM_W2))
     text = _with((JOINTS / "pendulum_revolute.xml").read_text(), end_time=period,
                  print_interval=period / 4)
@@ -37,7 +39,7 @@ def test_revolute_pendulum_period_is_the_elliptic_integrals():
     speed = np.hypot(q[:, 2], q[:, 3])
     bottom = [1, 3]
     assert np.all(np.abs(q[bottom, 0]) / speed[bottom] < 1e-9 * period)
-    assert np.abs(q[[0, 2, 4], 1]).max() < 1e-9 and np.abs(q[4, :2] - [2, 0]).max() < 1e-9
+    assert np.abs(q[[0, 2, 4], 1]).max() < 4e-9 and np.abs(q[4, :2] - [2, 0]).max() < 4e-9
     # energy (0 at the start) within 100 x the tolerance of m g L (the global error: tens of
     # the local tolerance; 3e-10 to 6e-10 of m g L measured) and the joint's gap at every row
     assert np.abs(q[:, 5]).max() < 100 * 1e-11 * 9.81 * 2 and np.abs(q[:, 6]).max() < 1e-10
