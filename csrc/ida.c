@@ -61,6 +61,9 @@ static const struct { int lib; const char* name; } FNS[F_COUNT] = {SUNDIALS_FNS(
 #define PS_FIRST_OPTIONAL 7
 #define PS_OPTIONAL_FN(k) (FNS[k].lib >= PS_FIRST_OPTIONAL || (k) >= F_SUNLinSolNewEmpty)
 
+/* SUNLS_LUFACT_FAIL: a singular matrix, a failure IDA recovers from with a smaller step. */
+#define PS_LS_LUFACT_FAIL 808
+
 /* Steps per window over which watch() counts IDA's error-test failures. */
 #define PS_IDA_WINDOW 50
 
@@ -168,7 +171,7 @@ static int ls_setup(SUNLinearSolver ls, SUNMatrix a) {
   const double* v = CALL(s, SUNSparseMatrix_Data)(a);
   if (ps_lu_refactor(s->lu, v) == 0) return 0;
   int rc = ps_lu_factor(s->lu, v);
-  return rc == 0 ? 0 : rc > 0 ? 808 /* SUNLS_LUFACT_FAIL */ : -1;
+  return rc == 0 ? 0 : rc > 0 ? PS_LS_LUFACT_FAIL : -1;
 }
 
 static int ls_solve(SUNLinearSolver ls, SUNMatrix a, N_Vector x, N_Vector b, sunrealtype tol) {
@@ -194,7 +197,7 @@ static int dense_setup(SUNLinearSolver ls, SUNMatrix a) {
     for (int i = k + 1; i < n; i++)
       if (fabs(ck[i]) > fabs(ck[p])) p = i;
     s->piv[k] = p;
-    if (!(fabs(ck[p]) > 0.0) || !isfinite(ck[p])) return 808; /* SUNLS_LUFACT_FAIL */
+    if (!(fabs(ck[p]) > 0.0) || !isfinite(ck[p])) return PS_LS_LUFACT_FAIL;
     if (p != k)
       for (int j = 0; j < n; j++) {
         double t = lu[(long)j * n + k];

@@ -52,6 +52,8 @@ struct psLU {
   int* stack;       /* (n) depth-first search stack                                 */
   int* pstack;      /* (n) where each stacked node resumes                          */
   int* mark;        /* (n) column stamp of the rows visited                         */
+  int* unseen;      /* (nnz) the entries left out by the last factorization ...      */
+  long nunseen;     /* ... and how many: all a replay checks                         */
   unsigned char* seen; /* (nnz) 1: the entry was nonzero in a factorization since the
                           last ps_lu_forget; the others are left out of the pattern   */
   int valid;        /* 1: pivots and patterns of a factorization are in place       */
@@ -75,6 +77,7 @@ void ps_lu_free(psLU* f) {
   free(f->pstack);
   free(f->mark);
   free(f->seen);
+  free(f->unseen);
   free(f);
 }
 
@@ -106,7 +109,8 @@ psLU* ps_lu_new(int n, const int* colptr, const int* rowind, const int* colorder
   f->pstack = malloc(sn * sizeof(int));
   f->mark = malloc(sn * sizeof(int));
   f->seen = calloc((size_t)(nnz > 0 ? nnz : 1), 1);
-  if (!f->seen || !f->q || !f->pinv || !f->Lp || !f->Up || !f->Li || !f->Lx || !f->Ui || !f->Ux || !f->x ||
+  f->unseen = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof(int));
+  if (!f->seen || !f->unseen || !f->q || !f->pinv || !f->Lp || !f->Up || !f->Li || !f->Lx || !f->Ui || !f->Ux || !f->x ||
       !f->y || !f->xi || !f->stack || !f->pstack || !f->mark) {
     ps_lu_free(f);
     return NULL;
@@ -178,7 +182,11 @@ int ps_lu_factor(psLU* f, const double* Ax) {
     f->pinv[i] = -1;
     f->mark[i] = -1;
   }
-  for (long p = 0; p < f->Ap[n]; p++) f->seen[p] |= Ax[p] != 0.0;
+  f->nunseen = 0;
+  for (long p = 0; p < f->Ap[n]; p++) {
+    f->seen[p] |= Ax[p] != 0.0;
+    if (!f->seen[p]) f->unseen[f->nunseen++] = (int)p;
+  }
   for (int k = 0; k < n; k++) {
     int col = f->q[k];
     f->Lp[k] = (int)lnz;
@@ -240,8 +248,8 @@ int ps_lu_refactor(psLU* f, const double* Ax) {
   int n = f->n;
   f->counts[1]++;
   /* a nonzero outside the pattern: the next factorization takes it in */
-  for (long p = 0; p < f->Ap[n]; p++)
-    if (Ax[p] != 0.0 && !f->seen[p]) {
+  for (long u = 0; u < f->nunseen; u++)
+    if (Ax[f->unseen[u]] != 0.0) {
       f->counts[2]++;
       return 1;
     }
