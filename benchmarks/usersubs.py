@@ -53,9 +53,10 @@ def forms(repeat, tols=(1e-4, 1e-6, 1e-8)):
 
 #: Routine calls per residual of each form the kernel calls (both routines): the value, a
 #: forward and a backward step in each input the routine reads, one forward step in each it
-#: does not (C: TDISP gives DX, DY, DZ, and time; NumPy form: DX, DZ, and time); the forms
-#: that give their partials (c_syspar / py_syspar) only the value and the step in time.
-CALLS_PER_RESIDUAL = {"untraceable": 2 * 6, "untraceable_syspar": 2 * 2, "c": 2 * 7,
+#: does not (C: TDISP gives DX, DY, DZ, and time; NumPy form: DX and DZ; its time argument is
+#: never read, which its bytecode shows, so it is not stepped in time); the forms that give
+#: their partials (c_syspar / py_syspar): the value, and for C the step in time.
+CALLS_PER_RESIDUAL = {"untraceable": 2 * 5, "untraceable_syspar": 2 * 1, "c": 2 * 7,
                       "c_syspar": 2 * 2}
 
 

@@ -283,6 +283,14 @@ const double* ps_user_values(void) {
   return current && !current->recording ? current->values : NULL;
 }
 
+int ps_user_give(int key, double partial) {
+  UserCtx* ctx = current;
+  if (!ctx || !ctx->got || key < 0 || key >= ctx->nknown) return 1;
+  ctx->part[key] = partial;
+  ctx->got[key] = 1;
+  return 0;
+}
+
 void* ps_user_open(const char* path, const char* name, char* msg, int msglen) {
   Dl_info info;
   /* make c_sysfnc and friends visible to libraries opened from here on */
@@ -538,14 +546,19 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
    * 1.1-2.3x the expression version's steps, 5-50x its convergence failures; fourth order:
    * its steps), and they take half the calls: runs at loose tolerances use them
    * (d->user_coarse). An input whose first step leaves the value exactly unchanged (time,
-   * usually) is taken as not read. */
+   * usually) is taken as not read; time is not stepped at all for a routine that never reads
+   * its time argument (user_timeless: a Python routine, from its bytecode). */
   for (int i = 0; order >= 1 && i < n; i++) {
     if (hit) {
       fi[i] = cfi[i];
       flat[i] = cflat[i] == 1.0;
       continue;
     }
-    flat[i] = 0;
+    flat[i] = i == nin && m->user_timeless[k];
+    if (flat[i]) {
+      fi[i] = 0.0;
+      continue;
+    }
     if (sup[i]) {
       fi[i] = given[i];
       continue;

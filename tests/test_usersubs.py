@@ -387,8 +387,78 @@ def test_untraceable_python_routine_is_called_from_the_kernel(tmp_path):
     _close_to_expression(res, ref, fine, err)
     (path,) = res.meta["usersubs"].values()
     assert "Python callback (not traced: float() of a state-dependent value" in path
-    assert path.endswith("partials in DX(9), DY(9), TIME by central differences, except those "
-                         "it gives with c_syspar / py_syspar")
+    assert path.endswith("partials in DX(9), DY(9) by central differences, except those it "
+                         "gives with c_syspar / py_syspar (it never reads its time argument)")
+
+
+#: UNTRACEABLE on a catenary that sinks with time: y = cosh(x) - 0.5 t (a routine that reads
+#: its time argument, so the kernel differences it in time too).
+SINKING = UNTRACEABLE.replace("return float(y - np.cosh(-x))",
+                              "return float(y - np.cosh(-x) + 0.5 * time)").replace(
+    "return float(y - np.cosh(x))", "return float(y - np.cosh(x) + 0.5 * time)")
+
+
+def test_a_routine_reading_time_is_differenced_in_time(tmp_path):
+    """The sinking catenary as a routine the kernel calls gives its expression's answers (the
+    penalty's rate needs dg/dt = 0.5: without it the damping would act on the wrong rate)."""
+    text = (DECKS / "catenary_bead.xml").read_text().replace(
+        'expr="dy(9) - cosh(dx(9))"', 'expr="dy(9) - cosh(dx(9)) + 0.5 * time"')
+    ref, fine, err = _reference_error(text)
+    res = pysolver.loads(_deck_with(tmp_path, SINKING)).run(integr_tol=1e-10)
+    _close_to_expression(res, ref, fine, err)
+    (path,) = res.meta["usersubs"].values()
+    assert "partials in DX(9), DY(9), TIME by central differences" in path
+    assert "never reads" not in path
+
+
+def _f_plain(id, time, par, npar, dflag, iflag):
+    return par[0]
+
+
+def _f_reads(id, time, par, npar, dflag, iflag):
+    return par[0] + time
+
+
+def _f_deleted(id, time, par, npar, dflag, iflag):
+    del time
+    return par[0]
+
+
+def _f_captured(id, time, par, npar, dflag, iflag):
+    return (lambda: time)()
+
+
+def _f_comprehension(id, time, par, npar, dflag, iflag):
+    return sum([time * p for p in par])
+
+
+def _f_locals(id, time, par, npar, dflag, iflag):
+    return locals()["t" + "ime"]
+
+
+def _f_eval(id, time, par, npar, dflag, iflag):
+    return eval("time")
+
+
+def _f_args(*args):
+    return args[1]
+
+
+class _Callable:
+    def __call__(self, id, time, par, npar, dflag, iflag):
+        return 0.0
+
+
+@pytest.mark.parametrize("fn,reads", [
+    (_f_plain, False), (_f_deleted, False), (_f_reads, True), (_f_captured, True),
+    (_f_comprehension, True), (_f_locals, True), (_f_eval, True), (_f_args, True),
+    (_Callable(), True), (_Callable().__call__, True), (lambda id, t, *rest: 0.0, False),
+    (lambda id, t, *rest: t, True), (math.hypot, True)])
+def test_reads_time_is_false_only_for_code_that_never_loads_it(fn, reads):
+    """Whether a Python routine may read its time argument, from its bytecode: any doubt
+    (introspection, a closure, a callable that is not a plain function) counts as a read."""
+    from pysolver.build.usercalls import reads_time
+    assert reads_time(fn) is reads
 
 
 def _jacobian_like_the_expression(model, seed):
@@ -409,32 +479,38 @@ def test_callback_jacobian_matches_the_exact_one(tmp_path):
     _jacobian_like_the_expression(pysolver.loads(_deck_with(tmp_path, UNTRACEABLE)), 5)
 
 
-def test_jacobian_reuses_the_residuals_partials_only_at_the_same_state(tmp_path):
+@pytest.mark.parametrize("reads_time", [False, True])
+def test_jacobian_reuses_the_residuals_partials_only_at_the_same_state(tmp_path, reads_time):
     """After a residual at the same state the Jacobian reuses the routine's value and first
     partials (bit for bit the matrix it computes alone) and calls it only for second
     differences: 2 per input it reads (DX, DY) and 2 for the pair, 6 in all; alone it also
-    makes the 10 first-order calls (value, +/- h and +/- 2h in DX and in DY: fourth-order
-    differences; one step in time, which is flat). At another state nothing is reused."""
+    makes the 9 first-order calls (value, +/- h and +/- 2h in DX and in DY: fourth-order
+    differences), and one step in time (flat: 0 * time) when the routine reads its time
+    argument. At another state nothing is reused."""
     counted = UNTRACEABLE.replace("def PFOSUB(id, time, par, npar, dflag, iflag):\n",
                                   "CALLS = []\n\n\ndef PFOSUB(id, time, par, npar, dflag, "
                                   "iflag):\n    CALLS.append(iflag)\n")
+    if reads_time:
+        counted = counted.replace("    CALLS.append(iflag)\n",
+                                  "    CALLS.append(iflag + 0.0 * time)\n")
     model = pysolver.loads(_deck_with(tmp_path, counted))
     k = model.compile().kernel
     calls = next(iter(model.compile().model._scripts.values()))["CALLS"]
     rng = np.random.default_rng(8)
     ya, ypa, yb, ypb = (rng.normal(size=k.ny) for _ in range(4))
+    first = 10 if reads_time else 9
     k.reset_counters()
     del calls[:]
     alone = k.jacobian_array(0.3, ya, ypa, 7.0)
-    assert len(calls) == 16
+    assert len(calls) == first + 6
     k.reset_counters()
     k.residual_array(0.3, ya, ypa)
-    assert len(calls) == 16 + 10
+    assert len(calls) == 2 * first + 6
     np.testing.assert_array_equal(k.jacobian_array(0.3, ya, ypa, 7.0), alone)
-    assert len(calls) == 16 + 10 + 6
+    assert len(calls) == 2 * first + 12
     k.residual_array(0.3, yb, ypb)
     np.testing.assert_array_equal(k.jacobian_array(0.3, ya, ypa, 7.0), alone)
-    assert len(calls) == 16 + 10 + 6 + 10 + 16
+    assert len(calls) == 4 * first + 18
 
 
 def test_a_routine_failing_during_the_run_ends_it_with_its_message(tmp_path):
@@ -965,3 +1041,28 @@ def test_py_syspar(tmp_path):
     np.testing.assert_allclose(res.request(1)[:, :4], ref.request(1)[:, :4], atol=1e-9)
     with pytest.raises(RuntimeError, match="py_syspar works only inside a user subroutine"):
         pysolver.msolve.py_syspar("DX", [10], [1.0])
+
+
+def test_py_syspar_of_an_array_and_a_wrong_count(tmp_path):
+    """py_syspar of a TDISP array read with py_sysary goes through c_syspar: the expression
+    version's steps and answers to rounding; one partial too many for DX is the run's error,
+    in c_syspar's words."""
+    from scenes import LINES_NUMPY_SYSPAR, lines_deck
+    expr_text, _ = lines_deck("expression", tmp_path)
+    ref = pysolver.loads(expr_text, fmt="py").run(integr_tol=1e-10)
+    text, _ = lines_deck("untraceable_syspar", tmp_path)
+    body = LINES_NUMPY_SYSPAR.replace("def PFOSUB", "def lines")
+    assert body in text
+    array = body.replace(
+        'x, z = np.array([py_sysfnc("DX", ipar)[0], py_sysfnc("DZ", ipar)[0]], dtype=float)',
+        'x, _, z = np.array(py_sysary("TDISP", ipar)[0], dtype=float)').replace(
+        "    py_syspar('DX', ipar, [par[1]])\n    py_syspar('DZ', ipar, [-1.0])\n",
+        "    py_syspar('TDISP', ipar, [par[1], 0.0, -1.0])\n")
+    assert array.count("TDISP") == 2
+    res = pysolver.loads(text.replace(body, array), fmt="py").run(integr_tol=1e-10)
+    assert res.success and res.stats["steps"] == ref.stats["steps"]
+    assert np.abs(res.request(1)[:, :4] - ref.request(1)[:, :4]).max() <= 1e-12
+    two = body.replace("py_syspar('DX', ipar, [par[1]])", "py_syspar('DX', ipar, [par[1], 1.0])")
+    res = pysolver.loads(text.replace(body, two), fmt="py").run(integr_tol=1e-10)
+    assert not res.success
+    assert "c_syspar: DX has 1 value, c_syspar was given 2 partials" in res.message

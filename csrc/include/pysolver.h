@@ -246,6 +246,7 @@ typedef struct psModel {
   double* user_par;       /* (npar total x 1)                                   */
   int* user_key_adr;      /* (nuser x 1) first declared input in user_key_*     */
   int* user_nkey;         /* (nuser x 1) number of declared inputs              */
+  int* user_timeless;     /* (nuser x 1) 1: never reads its time argument       */
   int* user_key_fn;       /* (nkey total x 1) function code (ps_user_fn_code)   */
   int* user_key_n;        /* (nkey total x 1) number of ids                     */
   int* user_key_ids;      /* (nkey total x 4) the ids                           */
@@ -902,6 +903,12 @@ void ps_user_fail(const char* message);
  * order (what c_sysfnc answers from), or NULL outside an evaluating call. A Python routine
  * reads them from here instead of calling c_sysfnc for each. */
 const double* ps_user_values(void);
+
+/* Give the partial of the routine being called in its declared input `key` (py_syspar for one
+ * value the routine read, found by its key without c_syspar's parsing). Returns 0, or 1 when
+ * no partials are wanted now (outside an evaluating call, or a call for the value alone) or
+ * `key` is not one of its inputs; nothing is written then. */
+int ps_user_give(int key, double partial);
 
 /* Return the rate of change of the kinetic energy, sum of m v.v' + w.(I w') over bodies, in
  * model units (the root function of MKEAM's kinetic-energy peaks). */

@@ -42,6 +42,7 @@ class Routine:
     par: tuple
     keys: list            # canonical inputs, e.g. ["DX(9)", "DY(9)"]
     keep: object = None   # what must stay alive while the kernel may call fn
+    timeless: bool = False    # never reads its time argument: not differenced in time
 
 
 def bind(model):
@@ -55,8 +56,9 @@ def bind(model):
         form = _FORM[CONVENTIONS[ctx.tag][1][4]]
         if sub.library:
             fn, keep, how = _library(ctx, sub), None, f"C library {sub.library}"
+            timeless = False
         else:
-            fn, keep = _callback(ctx, sub, form, model)
+            fn, keep, timeless = _callback(ctx, sub, form, model)
             how = f"Python callback ({sub.untraced})"
         if len(sub.par) > 64:
             raise ctx.error("at most 64 USER(...) parameters", sub.attribute)
@@ -67,15 +69,17 @@ def bind(model):
         if keep is not None:
             keep[1].keys = keys         # the Python routine reads them by name
         k = len(model.user_routines)
-        model.user_routines.append(Routine(fn, form, el.id, tuple(sub.par), keys, keep))
+        model.user_routines.append(Routine(fn, form, el.id, tuple(sub.par), keys, keep,
+                                           timeless))
         inputs = [_key_tree(ctx, sub, key) for key in keys]
         nvalues = CONVENTIONS[ctx.tag][2]
         trees = [("user", k, chan, inputs) for chan in range(nvalues)]
         set_trees(model, kind, el, trees)
         model.usersub_paths[f"{ctx.tag} {el.id}"] = (
             f"{sub.describe()}: {how}, called from the kernel; its partials in "
-            f"{', '.join(keys + ['TIME'])} by central differences, except those it gives "
-            "with c_syspar / py_syspar")
+            f"{', '.join(keys + ([] if timeless else ['TIME'])) or 'nothing'} by central "
+            "differences, except those it gives with c_syspar / py_syspar"
+            + (" (it never reads its time argument)" if timeless else ""))
     from ..deck.references import check_references
     check_references(model)
 
@@ -121,8 +125,9 @@ def _key_tree(ctx, sub, key):
 def _callback(ctx, sub, form, model):
     """A cffi callback running the Python routine with MotionSolve's Python arguments.
 
-    Returns the callback and a :class:`_Reader`, whose ``keys`` :func:`bind` sets once the
-    iflag call has declared them."""
+    Returns the callback, a :class:`_Reader`, whose ``keys`` :func:`bind` sets once the
+    iflag call has declared them, and whether the routine never reads its time argument
+    (:func:`reads_time`)."""
     from ..deck.usersubs import python_routine
     fn = python_routine(ctx, sub, model)
     nvalues = CONVENTIONS[ctx.tag][2]
@@ -132,7 +137,7 @@ def _callback(ctx, sub, form, model):
     plain = form == lib.PS_USER_PLAIN
 
     def call(id, time, dflag, iflag, value):
-        prev = tracer.enter_live(reader.read, _c_syspar)
+        prev = tracer.enter_live(reader.read, reader.syspar)
         try:
             reader.values = lib.ps_user_values()
             out = fn(id[0], time[0], list(par), len(par), iflag) if plain else \
@@ -158,7 +163,41 @@ def _callback(ctx, sub, form, model):
         def entry(id, time, par, npar, iflag, value):
             call(id, time, 0, iflag[0], value)
     cb = ffi.callback(_SIGNATURE[form], entry)
-    return ffi.cast("void *", cb), (cb, reader)
+    return ffi.cast("void *", cb), (cb, reader), not reads_time(fn)
+
+
+#: Names whose use lets a function read its arguments without naming them.
+_INTROSPECTION = frozenset({"locals", "vars", "eval", "exec", "_getframe", "currentframe",
+                            "f_locals", "getargvalues", "stack"})
+
+
+def reads_time(fn):
+    """Whether the Python routine `fn` may read its second positional argument, time.
+
+    False only for a plain function whose code provably never loads that argument: it is a
+    named positional parameter, no instruction reads it, no nested function captures it and
+    the code names nothing that reads a frame's locals (``locals``, ``vars``, ``eval``,
+    ``exec``, frame inspection). Any other callable (a method, a partial, a decorated
+    wrapper taking ``*args``, a builtin) is taken to read it. Its result then does not change
+    with time at fixed inputs, so the kernel need not difference it in time.
+    """
+    import dis
+    import types
+    if not isinstance(fn, types.FunctionType):
+        return True
+    code = fn.__code__
+    if code.co_argcount < 2:
+        return True
+    name = code.co_varnames[1]
+    if name in code.co_cellvars or _INTROSPECTION & set(code.co_names):
+        return True
+    # any instruction naming it but a plain store or delete counts as a read (superinstructions
+    # such as 3.13's STORE_FAST_LOAD_FAST name two variables)
+    for ins in dis.get_instructions(code):
+        args = ins.argval if isinstance(ins.argval, tuple) else (ins.argval,)
+        if name in args and ins.opname not in ("STORE_FAST", "DELETE_FAST"):
+            return True
+    return False
 
 
 class _Reader:
@@ -186,6 +225,16 @@ class _Reader:
         if i is None:
             return _c_sysfnc(fnc, ids)
         return [self.values[i], 0]
+
+    def syspar(self, fnc, ids, partials):
+        """py_syspar: the partial in one declared value straight to the kernel by its key;
+        anything else (an array, a count that is wrong, a value not declared) through
+        c_syspar, which takes or words it."""
+        i = self.index.get((fnc, tuple(ids)))
+        if i is not None and len(partials) == 1:
+            lib.ps_user_give(i, float(partials[0]))
+            return 0
+        return _c_syspar(fnc, ids, partials)
 
 
 _REQUESTS = {}                     # (fnc, ids) -> its C arguments, made once

@@ -315,9 +315,9 @@ def py_syspar(fnc, ids, partials):
     Returns errflg (0). A routine called from the kernel is then not differenced in those
     values; while a routine is traced it does nothing (tracing differentiates exactly).
     """
-    live = getattr(_ACTIVE, "syspar", None)
-    if live is not None and not _ACTIVE.on:
-        return live(fnc, ids, partials)
+    mode = getattr(_ACTIVE, "mode", None)
+    if mode is not None and mode is not _TRACING and mode[1] is not None:
+        return mode[1](fnc, ids, partials)
     _mode("py_syspar")              # tracing: nothing to do; outside a routine: the error
     return 0
 
@@ -328,26 +328,32 @@ def py_errmes(errflg, message, id, endflag="STOP"):
         raise SysfncError(f"{message} (id {id})")
 
 
+#: The thread's mode (``_ACTIVE.mode``) while a routine is traced; inside a kernel call it is
+#: the pair (reader, syspar) of :func:`enter_live`, outside both None. One attribute, so a
+#: kernel call switches it with one read and one write.
+_TRACING = ("tracing",)
+
+
 def _mode(what):
     """None while tracing; the live reader inside a kernel call; else an error."""
-    if getattr(_ACTIVE, "on", False):
+    mode = getattr(_ACTIVE, "mode", None)
+    if mode is _TRACING:
         return None
-    live_fn = getattr(_ACTIVE, "live", None)
-    if live_fn is None:
+    if mode is None:
         raise RuntimeError(f"{what} works only inside a user subroutine that pysolver calls")
-    return live_fn
+    return mode[0]
 
 
 class active:
     """Context in which py_sysfnc and friends build traced values."""
 
     def __enter__(self):
-        self.prev = getattr(_ACTIVE, "on", False)
-        _ACTIVE.on = True
+        self.prev = getattr(_ACTIVE, "mode", None)
+        _ACTIVE.mode = _TRACING
         return self
 
     def __exit__(self, *exc):
-        _ACTIVE.on = self.prev
+        _ACTIVE.mode = self.prev
         return False
 
 
@@ -355,14 +361,13 @@ def enter_live(reader, syspar=None):
     """Make py_sysfnc read real values through `reader(fnc, ids)` and py_syspar give partials
     through `syspar(fnc, ids, partials)` (a routine called from the kernel) until
     :func:`leave_live` restores what this returns."""
-    prev = (getattr(_ACTIVE, "on", False), getattr(_ACTIVE, "live", None),
-            getattr(_ACTIVE, "syspar", None))
-    _ACTIVE.on, _ACTIVE.live, _ACTIVE.syspar = False, reader, syspar
+    prev = getattr(_ACTIVE, "mode", None)
+    _ACTIVE.mode = (reader, syspar)
     return prev
 
 
 def leave_live(prev):
-    _ACTIVE.on, _ACTIVE.live, _ACTIVE.syspar = prev
+    _ACTIVE.mode = prev
 
 
 def tree_of(value):
