@@ -1,6 +1,34 @@
 /* Generalized forces of loads on bodies, shared by the element kinds (csrc/assembly.h). */
 #include "assembly.h"
 
+/* A planar body's generalized forces (Fx, Fy, Mz about its origin); a scene is planar only
+ * when nothing loads a body out of its plane (pysolver/build/planar.py), so F_z, M_x and M_y
+ * have nowhere to go. */
+static void planar_load(const psModel* m, psData* d, const psuHD* c, int tape, int slot,
+                        int ua, const double* P, const double* F, const double* Mo,
+                        double sign, Assembly* as) {
+  int s = c->stride;
+  double* Q = ps_tmp(m, d, F_Q);
+  double* sc = ps_tmp(m, d, F_SC);
+  double* p = ps_tmp(m, d, F_P);
+  psu_hd_const(c, Q, 0.0);
+  if (F) {
+    for (int i = 0; i < 2; i++) {
+      psu_hd_lin(c, sc, sign, F + i * s, 0.0, NULL, 0.0);
+      ps_scatter(m, c, tape, ua + i, sc, as);
+    }
+    /* (P - r) x F, its z component */
+    const double* r = ps_bc(m, d, slot, PS_BC_R);
+    for (int i = 0; i < 2; i++) psu_hd_lin(c, p + i * s, 1.0, P + i * s, -1.0, r + i * s, 0.0);
+    psu_hd_mul(c, Q, p, F + s);
+    psu_hd_mul(c, sc, p + s, F);
+    psu_hd_lin(c, Q, 1.0, Q, -1.0, sc, 0.0);
+  }
+  if (Mo) psu_hd_lin(c, Q, 1.0, Q, 1.0, Mo + 2 * s, 0.0);
+  psu_hd_lin(c, Q, sign, Q, 0.0, NULL, 0.0);
+  ps_scatter(m, c, tape, ua + 2, Q, as);
+}
+
 void ps_apply_at(const psModel* m, psData* d, const psuHD* c, int tape, int slot,
                  const double* P, const double* F, const double* Mo, double sign, Assembly* as) {
   if (slot < 0) return;
@@ -8,6 +36,10 @@ void ps_apply_at(const psModel* m, psData* d, const psuHD* c, int tape, int slot
   int b = m->tbody_body[m->tape_body_adr[tape] + slot];
   int ua = m->body_uadr[b];
   double* Q = ps_tmp(m, d, F_Q);
+  if (m->body_type[b] == PS_BODY_PLANAR) {
+    planar_load(m, d, c, tape, slot, ua, P, F, Mo, sign, as);
+    return;
+  }
   for (int i = 0; i < 3; i++) {
     if (F) {
       psu_hd_lin(c, Q, sign, F + i * s, 0.0, NULL, 0.0);
@@ -44,7 +76,7 @@ void ps_apply_load(const psModel* m, psData* d, const psuHD* c, int tape, int mk
                    const double* F, const double* Mo, double sign, Assembly* as) {
   if (slot < 0 || m->marker_body[mk] < 0) return;
   double* P = ps_tmp(m, d, F_PT);
-  if (F && m->body_type[m->tbody_body[m->tape_body_adr[tape] + slot]] == PS_BODY_RIGID)
+  if (F && m->body_type[m->tbody_body[m->tape_body_adr[tape] + slot]] != PS_BODY_POINT)
     ps_marker_pos(m, d, c, mk, slot, P);
   ps_apply_at(m, d, c, tape, slot, P, F, Mo, sign, as);
 }

@@ -4,6 +4,7 @@
  * entries. ps_body_cache seeds those entries and derives rotation matrices, global angular
  * velocities and accelerations once per tape run; the marker functions build on that cache.
  */
+#include <math.h>
 #include <stddef.h>
 
 #include "internal.h"
@@ -70,6 +71,45 @@ static void rotation_from_e(const psModel* m, psData* d, const psuHD* c, double*
   for (int i = 0; i < 9; i++) psu_hd_mul(c, A + i * s, A + i * s, inv);
 }
 
+/* A planar body (PS_BODY_PLANAR): q = (x, y, rz), u = (vx, vy, wz). Its origin is at
+ * (x, y, z0), its axes A = Rz(rz) A0, its velocity (vx, vy, 0), angular velocity (0, 0, wz)
+ * and angular acceleration (0, 0, wz'); ps_body_cache seeded r, v, acc from the state's first
+ * three entries, which hold (x, y, rz), (vx, vy, wz), (vx', vy', wz'): they move to their
+ * places here. */
+static void planar_cache(const psModel* m, psData* d, const psuHD* c, int b, int slot,
+                         const double* y, const double* yp, int qp, int up, int ap) {
+  int s = c->stride, qa = m->body_qadr[b], ua = m->body_uadr[b];
+  const double* P = m->body_plane + 10 * b;
+  double* r = ps_bc(m, d, slot, PS_BC_R);
+  double* A = ps_bc(m, d, slot, PS_BC_A);
+  double* v = ps_bc(m, d, slot, PS_BC_V);
+  double* w = ps_bc(m, d, slot, PS_BC_W);
+  double* acc = ps_bc(m, d, slot, PS_BC_ACC);
+  double* al = ps_bc(m, d, slot, PS_BC_AL);
+  double* th = ps_tmp(m, d, TMP_C1);
+  double* cs = ps_tmp(m, d, TMP_C1 + 1);
+  double* sn = ps_tmp(m, d, TMP_C1 + 2);
+  psu_hd_var(c, th, y[qa + 2], qp >= 0 ? qp + 2 : -1);
+  psu_hd_const(c, r + 2 * s, P[9]);
+  psu_hd_var(c, w + 2 * s, y[ua + 2], up >= 0 ? up + 2 : -1);
+  psu_hd_var(c, al + 2 * s, yp ? yp[ua + 2] : 0.0, ap >= 0 ? ap + 2 : -1);
+  for (int i = 0; i < 2; i++) {
+    psu_hd_const(c, w + i * s, 0.0);
+    psu_hd_const(c, al + i * s, 0.0);
+  }
+  psu_hd_const(c, v + 2 * s, 0.0);
+  psu_hd_const(c, acc + 2 * s, 0.0);
+  double ct = cos(th[0]), st = sin(th[0]);
+  psu_hd_unary(c, cs, th, ct, -st, -ct);
+  psu_hd_unary(c, sn, th, st, ct, -st);
+  /* A = Rz(rz) A0: rows 0 and 1 turn, row 2 is A0's */
+  for (int j = 0; j < 3; j++) {
+    psu_hd_lin(c, A + j * s, P[j], cs, -P[3 + j], sn, 0.0);
+    psu_hd_lin(c, A + (3 + j) * s, P[j], sn, P[3 + j], cs, 0.0);
+    psu_hd_const(c, A + (6 + j) * s, P[6 + j]);
+  }
+}
+
 void ps_body_cache(const psModel* m, psData* d, const psuHD* c, int tape, double t,
                    const double* y, const double* yp) {
   int s = c->stride;
@@ -95,6 +135,10 @@ void ps_body_cache(const psModel* m, psData* d, const psuHD* c, int tape, double
     }
     /* a point body has no rotation: the marker functions never read its A, w, alpha, e */
     if (m->body_type[b] == PS_BODY_POINT) continue;
+    if (m->body_type[b] == PS_BODY_PLANAR) {
+      planar_cache(m, d, c, b, slot, y, yp, qp, up, ap);
+      continue;
+    }
     /* rotation: Euler parameters, body angular velocity, and their global images */
     for (int i = 0; i < 4; i++) psu_hd_var(c, e + i * s, y[qa + 3 + i], qp >= 0 ? qp + 3 + i : -1);
     rotation_from_e(m, d, c, A, e);

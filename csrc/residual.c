@@ -18,15 +18,18 @@ static void inertia_rows(const psModel* m, double t, const double* y, const doub
   (void)t;
   int J = as->deriv;
   for (int b = 0; b < m->nbody; b++) {
-    int qa = m->body_qadr[b], ua = m->body_uadr[b];
+    int qa = m->body_qadr[b], ua = m->body_uadr[b], planar = m->body_type[b] == PS_BODY_PLANAR;
     double mass = m->body_mass[b];
     for (int i = 0; i < 3; i++) {
+      /* a planar body's third row is Izz wz' (no gravity about z) */
+      double mi = planar && i == 2 ? m->body_inertia[9 * b + 8] : mass;
+      double gi = planar && i == 2 ? 0.0 : m->gravity[i];
       as->res[qa + i] = yp[qa + i] - y[ua + i];
-      as->res[ua + i] = mass * (yp[ua + i] - m->gravity[i]);
+      as->res[ua + i] = mi * (yp[ua + i] - gi);
       if (J) {
         jadd(as, qa + i, qa + i, as->cj);
         jadd(as, qa + i, ua + i, -1.0);
-        jadd(as, ua + i, ua + i, as->cj * mass);
+        jadd(as, ua + i, ua + i, as->cj * mi);
       }
     }
     if (m->body_type[b] != PS_BODY_RIGID) continue;
@@ -415,6 +418,11 @@ double ps_power(const psModel* m, const double* y, const double* yp) {
   double p = 0.0;
   for (int b = 0; b < m->nbody; b++) {
     int ua = m->body_uadr[b];
+    if (m->body_type[b] == PS_BODY_PLANAR) {
+      p += m->body_mass[b] * (y[ua] * yp[ua] + y[ua + 1] * yp[ua + 1]) +
+           m->body_inertia[9 * b + 8] * y[ua + 2] * yp[ua + 2];
+      continue;
+    }
     for (int i = 0; i < 3; i++) p += m->body_mass[b] * y[ua + i] * yp[ua + i];
     if (m->body_type[b] != PS_BODY_RIGID) continue;
     const double* I = m->body_inertia + 9 * b;

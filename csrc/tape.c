@@ -266,7 +266,9 @@ static void gdot(const psModel* m, psData* d, const psuHD* c, int tape, const do
     if (m->tbody_q[adr + slot] < 0) continue;
     int nu = m->body_type[m->tbody_body[adr + slot]] == PS_BODY_RIGID ? 6 : 3;
     for (int i = 0; i < nu; i++) {
-      const double* u = i < 3 ? ps_bc(m, d, slot, PS_BC_V) + i * c->stride
+      /* a planar body's third u is wz, the z component of its global angular velocity */
+      const double* u = i < 3 ? ps_bc(m, d, slot, i == 2 && m->body_type[m->tbody_body[adr +
+                                slot]] == PS_BODY_PLANAR ? PS_BC_W : PS_BC_V) + i * c->stride
                               : ps_bc(m, d, slot, PS_BC_WB) + (i - 3) * c->stride;
       ps_rate_coeff(m, d, &c1, g, tape, slot, i, ci, sc);
       psu_hd_mul(&c1, ci, ci, u);

@@ -242,9 +242,11 @@ class Model:
         return "\n".join(lines)
 
     def num_states(self) -> int:
-        """IDA states: 6 per point body, 13 per rigid body, 1 per motion (2 for a displacement
-        or an acceleration), 2 per joint equation and per Constraint_General (its reactions at
-        the velocity and the position level)."""
+        """IDA states of the 3-D model: 6 per point body, 13 per rigid body, 1 per motion (2 for
+        a displacement or an acceleration), 2 per joint equation and per Constraint_General
+        (its reactions at the velocity and the position level). A planar scene runs with
+        fewer (6 per body, 4 per revolute: docs/numerics.md, "Planar scenes"); redundant
+        equations are left out too; ``model.compile().kernel.ny`` is the count run."""
         return (sum({"point": 6, "rigid": 13}.get(b.kind, 0) for b in self.bodies.values())
                 + sum(1 + (m.val_type != "V") for m in self.motions.values())
                 + sum(2 * len(catalogue.JOINT_EQUATIONS[j.type]) for j in self.joints.values())

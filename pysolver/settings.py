@@ -11,6 +11,9 @@
 ``PYSOLVER_OUTPUT_BUDGET``      bytes of output rows a run may hold (default 2 GiB)
 ``PYSOLVER_USERSUB_DIR``        folders searched for user subroutine scripts and libraries
 ``PYSOLVER_NO_INPLACE_BUILD``   set: a source checkout never builds its C kernel in place
+``PYSOLVER_PLANAR``             ``off``: integrate every scene in 3-D, planar ones too (read
+                                when a model is compiled; default: planar scenes in planar
+                                coordinates, docs/numerics.md "Planar scenes")
 ==============================  ===========================================================
 """
 import os
@@ -94,6 +97,12 @@ def output_budget():
 def usersub_dirs():
     """The folders of ``PYSOLVER_USERSUB_DIR`` (os.pathsep-separated), in order."""
     return [d for d in os.environ.get("PYSOLVER_USERSUB_DIR", "").split(os.pathsep) if d]
+
+
+def planar():
+    """Whether planar scenes are integrated in planar coordinates (``PYSOLVER_PLANAR`` is not
+    ``off``, ``0``, ``no`` or ``false``)."""
+    return (_get("PYSOLVER_PLANAR") or "").strip().lower() not in ("off", "0", "no", "false")
 
 
 def no_inplace_build():

@@ -20,6 +20,8 @@ extern "C" {
 /* Body kinds. */
 #define PS_BODY_POINT 0 /* 3 translational DOF: q = (x, y, z), u = (vx, vy, vz) */
 #define PS_BODY_RIGID 1 /* q = (x, y, z, e0, e1, e2, e3), u = (vx, vy, vz, wx, wy, wz) body frame */
+#define PS_BODY_PLANAR 2 /* a rigid body in the global x-y plane: q = (x, y, rz), u = (vx, vy, wz),
+                          * its axes Rz(rz) A0 and its z fixed (body_plane) */
 
 /* Kinds of a basis entry: what a local derivative direction of a tape stands for. A tape's
  * basis lists the positions q of its bodies, then time, then their velocities u, then u'. */
@@ -179,7 +181,9 @@ typedef struct psModel {
   int* body_qadr;         /* (nbody x 1) index of the body's first q in y       */
   int* body_uadr;         /* (nbody x 1) index of the body's first u in y       */
   double* body_mass;      /* (nbody x 1)                                        */
-  double* body_inertia;   /* (nbody x 9) inertia tensor in the body frame       */
+  double* body_inertia;   /* (nbody x 9) inertia tensor in the body frame; of a  */
+                          /* planar body, in global axes at rz = 0 (zz used)    */
+  double* body_plane;     /* (nbody x 10) a planar body's A0 (row-major), z     */
 
   /* markers */
   int* marker_body;       /* (nmarker x 1) body index, -1 for ground            */

@@ -22,6 +22,11 @@ from ..errors import DeckError
 from ..rotations import e_from_rot
 from . import angles, energy, netforce, splines
 from .bindings import lib
+from .planar import global_inertia as planar_global_inertia
+from .planar import initial_state as planar_initial_state
+from .planar import plane_rows as planar_plane_rows
+from .planar import removed_rows as planar_removed_rows
+from .planar import scene_planar
 
 W = lib.PS_INSTR_WIDTH
 # the catalogue's C enum names as the extension's values
@@ -43,19 +48,31 @@ FROZEN_TIME = "MKEAM/time"
 
 
 class Layout:
-    """Where each body's coordinates live in the state vector."""
+    """Where each body's coordinates live in the state vector.
 
-    def __init__(self, model, removed=()):
+    `planar`: the ids of the bodies integrated in planar coordinates (x, y, rz, vx, vy, wz);
+    None decides from the model (:func:`pysolver.build.planar.planar_bodies`, unless
+    ``PYSOLVER_PLANAR=off``); a planar scene also leaves out its revolutes' out-of-plane
+    equations."""
+
+    def __init__(self, model, removed=(), planar=None):
+        if planar is None:
+            planar = scene_planar(model)
+        self.planar = frozenset(planar)
+        removed = set(removed) | set(planar_removed_rows(model, self.planar))
         self.bodies = [b for _, b in sorted(model.bodies.items()) if b.kind != "ground"]
         self.index = {b.id: i for i, b in enumerate(self.bodies)}
         self.qadr, self.uadr, self.names = [], [], []
         off = 0
         for b in self.bodies:
-            nq, nu = (3, 3) if b.kind == "point" else (7, 6)
+            nq, nu = (3, 3) if b.kind == "point" or b.id in self.planar else (7, 6)
             self.qadr.append(off)
             self.uadr.append(off + nq)
-            qn = ["x", "y", "z"] + (["e0", "e1", "e2", "e3"] if nu == 6 else [])
-            un = ["vx", "vy", "vz"] + (["wx", "wy", "wz"] if nu == 6 else [])
+            if b.id in self.planar:
+                qn, un = ["x", "y", "rz"], ["vx", "vy", "wz"]
+            else:
+                qn = ["x", "y", "z"] + (["e0", "e1", "e2", "e3"] if nu == 6 else [])
+                un = ["vx", "vy", "vz"] + (["wx", "wy", "wz"] if nu == 6 else [])
             self.names += [f"body{b.id}.{n}" for n in qn + un]
             off += nq + nu
         # per Motion_Marker its reaction lam (an algebraic state); a displacement motion also
@@ -133,6 +150,9 @@ class Layout:
         change them between runs)."""
         y = np.zeros(self.ny)
         for b, qa, ua in zip(self.bodies, self.qadr, self.uadr):
+            if b.id in self.planar:
+                y[qa:qa + 3], y[ua:ua + 3] = planar_initial_state(b)
+                continue
             y[qa:qa + 3] = b.pos
             y[ua:ua + 3] = b.vel
             if b.kind == "rigid":
@@ -255,10 +275,10 @@ class _Tape:
 class Compiler:
     """Turns a Model into psModel arrays (see csrc/include/pysolver.h)."""
 
-    def __init__(self, model, conservative=False, removed=()):
+    def __init__(self, model, conservative=False, removed=(), planar=None):
         self.model = model
         self.conservative = conservative   # MKEAM: velocity-dependent terms (damping) removed
-        self.layout = Layout(model, removed)
+        self.layout = Layout(model, removed, planar)
         self.consts, self._cidx = [], {}
         self.params, self.param_slots = {}, set()   # sweep parameters: path -> const slot
         self.markers = sorted(model.markers)
@@ -862,7 +882,8 @@ class Compiler:
             # basis: positions of every body, then time, then velocities, then u'
             slots = [(lay.bodies[bi], bi, need_u, need_a) for bi, need_u, need_a, _ in t.bodies]
             tb_w.extend(int(need_w) for *_, need_w in t.bodies)
-            sizes = [(3, 3) if b.kind == "point" else (7, 6) for b, *_ in slots]
+            sizes = [(3, 3) if b.kind == "point" or b.id in lay.planar else (7, 6)
+                     for b, *_ in slots]
             n = 0
             for (_, bi, _, _), (nq, _) in zip(slots, sizes):
                 tb_body.append(bi)
@@ -911,15 +932,21 @@ class Compiler:
                 mbody.append(lay.index[b.id])
                 mpos.append(b.rot.T @ (m.pos - b.pos))
                 mrot.append(b.rot.T @ m.rot)
-        inertia = [b.inertia if b.kind == "rigid" else np.zeros((3, 3)) for b in lay.bodies]
+        # a planar body's inertia in global axes at rz = 0 (its zz is Izz), and its plane
+        inertia = [planar_global_inertia(b) if b.id in lay.planar else
+                   b.inertia if b.kind == "rigid" else np.zeros((3, 3)) for b in lay.bodies]
+        plane = [planar_plane_rows(b) if b.id in lay.planar else [0.0] * 10
+                 for b in lay.bodies]
         return dict(
             ny=lay.ny, nbody=len(lay.bodies), nmarker=len(self.markers), ntape=len(self.tapes),
             nout=len(self.out),
             hd_stride=stride,
             max_slots=max(tlen, default=1) or 1, max_bslots=max(tnbody, default=1) or 1,
             gravity=list(model.gravity), force_scale=model.force_scale,
-            body_type=i32([lib.PS_BODY_POINT if b.kind == "point" else lib.PS_BODY_RIGID
+            body_type=i32([lib.PS_BODY_POINT if b.kind == "point" else
+                           lib.PS_BODY_PLANAR if b.id in lay.planar else lib.PS_BODY_RIGID
                            for b in lay.bodies]),
+            body_plane=f64(np.array(plane).reshape(-1)),
             body_qadr=i32(lay.qadr), body_uadr=i32(lay.uadr),
             body_mass=f64([b.mass for b in lay.bodies]),
             body_inertia=f64(np.array(inertia).reshape(-1)),

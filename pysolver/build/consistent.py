@@ -288,13 +288,15 @@ def set_tolerance(kernel, tol, failures=()):
 
 def _positions(lay):
     """The state indices of every body's positions q."""
-    return np.concatenate([np.arange(qa, qa + (3 if b.kind == "point" else 7))
+    return np.concatenate([np.arange(qa, qa + (3 if b.kind == "point" or b.id in lay.planar
+                                              else 7))
                            for b, qa in zip(lay.bodies, lay.qadr)]).astype(int)
 
 
 def _velocities(lay):
     """The state indices of every body's velocities u."""
-    return np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" else 6))
+    return np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" or b.id in lay.planar
+                                              else 6))
                            for b, ua in zip(lay.bodies, lay.uadr)]).astype(int)
 
 
@@ -361,8 +363,8 @@ def _move(lay, y, du):
     """q += N(q) du: translate by du's velocities, rotate by its body angular velocities (Euler
     parameters renormalised)."""
     for b, qa, ua in zip(lay.bodies, lay.qadr, lay.uadr):
-        y[qa:qa + 3] += du[ua:ua + 3]
-        if b.kind != "rigid":
+        y[qa:qa + 3] += du[ua:ua + 3]       # a planar body's (x, y, rz) by (vx, vy, wz)
+        if b.kind != "rigid" or b.id in lay.planar:
             continue
         e, w = y[qa + 3:qa + 7].copy(), du[ua + 3:ua + 6]
         e += 0.5 * G(e) @ w

@@ -24,6 +24,7 @@ from ..deck.validate import value_rule
 from ..errors import DeckError
 from ..options import DECK_NAMES
 from .energy import energy_paths
+from .planar import global_inertia, planar_bodies, plane_rows
 
 _STATIC = ("max_ke_tol", "max_dq_tol", "max_num_iter", "max_imbalance", "max_error",
            "stability", "compliance_delta", "tlimit", "alimit")
@@ -140,6 +141,7 @@ class Parameters:
             if path not in self._base:
                 self._base[path] = self._get(path)
             self._set(path, v)
+        self._sync_planar(case)
         return options
 
     def reset(self):
@@ -147,6 +149,29 @@ class Parameters:
         for path, v in self._base.items():
             self._set(path, v)
         self._base.clear()
+        self._sync_planar(None)
+
+    def _sync_planar(self, case):
+        """A planar kernel's body_plane and global inertias from the bodies' numbers; a case
+        that takes the scene out of its plane (gravity, a velocity or an inertia product out
+        of it, a joint marker off its height) puts the deck's values back and is a
+        DeckError."""
+        k = self.kernel
+        planar = k.layout.planar
+        if not planar:
+            return
+        if case is not None and planar_bodies(self.model) != planar:
+            self.reset()
+            paths = ", ".join(str(p) for p in case)
+            raise DeckError(f"sweep case {{{paths}}}: the model runs as a planar scene "
+                            "(docs/numerics.md, \"Planar scenes\") and these numbers take it out "
+                            "of its plane; set PYSOLVER_PLANAR=off before compiling it to "
+                            "run such cases in 3-D")
+        for b in k.layout.bodies:
+            if b.id in planar:
+                row = k.layout.index[b.id]
+                k.arrays["body_plane"][10 * row:10 * row + 10] = plane_rows(b)
+                k.arrays["body_inertia"][9 * row:9 * row + 9] = global_inertia(b).reshape(-1)
 
     # one path -----------------------------------------------------------------------------
     def _get(self, path):

@@ -69,6 +69,10 @@ class CompiledModel:
                                                     f"{', '.join(ks)}")
                             for (kind, cid), ks in per.items())
             self.notes.append(f"redundant constraints removed ({len(self.removed)}): {eqs}")
+        if probe.layout.planar:
+            self.notes.append(f"planar scene: {len(probe.layout.planar)} bodies integrated in "
+                              "(x, y, rz), the revolutes' out-of-plane equations left out "
+                              "(docs/numerics.md, \"Planar scenes\")")
         if kind == "tapes" and not self.removed:
             return probe
         return Kernel(self.model, False, kind, self.removed)

@@ -1,11 +1,14 @@
 """Where everything is at a run's output rows: each body's position and orientation, read
 from the states a Result keeps (``res.y``: per point body q = (x, y, z), per rigid body
-q = (x, y, z, e0..e3); columns named ``body<id>.x`` ... by the kernel's layout), and each
+q = (x, y, z, e0..e3), per body of a planar scene q = (x, y, rz); columns named ``body<id>.x``
+... by the kernel's layout), and each
 marker's frame on its body, from the model's marker records as the kernel places it
 (``pysolver/build/compiler.py``: s = A0^T (p0 - r0), axes A0^T M0)."""
 import contextlib
 
 import numpy as np
+
+from ..rotations import e_from_rot
 
 
 @contextlib.contextmanager
@@ -57,6 +60,16 @@ def quaternion(R):
     return q / np.linalg.norm(q)
 
 
+def planar_euler(rz, rot):
+    """Unit Euler parameters of the axes Rz(rz) rot (rz an array of angles)."""
+    e0 = e_from_rot(np.asarray(rot, dtype=float))       # rot's own, then a turn about z
+    half = 0.5 * np.asarray(rz, dtype=float)
+    c, s = np.cos(half), np.sin(half)
+    # (c, 0, 0, s) * e0, the quaternion product
+    return np.column_stack([c * e0[0] - s * e0[3], c * e0[1] - s * e0[2],
+                            c * e0[2] + s * e0[1], c * e0[3] + s * e0[0]])
+
+
 class Poses:
     """Body poses at output rows and marker frames on bodies.
 
@@ -97,6 +110,13 @@ class Poses:
             if qa is None:
                 raise ValueError(f"the Result has no states of body {bid}: it is not a run "
                                  f"of this model")
+            if f"body{bid}.rz" in column:
+                # a planar body (pysolver.build.planar): (x, y, rz), its z and its axes at
+                # rz = 0 those it started with
+                self.pos[bid] = np.column_stack([y[:, qa], y[:, qa + 1],
+                                                 np.full(len(self.t), b.pos[2])])
+                self.euler[bid] = planar_euler(y[:, qa + 2], b.rot)
+                continue
             self.pos[bid] = y[:, qa:qa + 3]
             if b.kind == "rigid":
                 e = y[:, qa + 3:qa + 7]

@@ -62,6 +62,9 @@ class Assembly:
             mass = s.par("body_mass", b)
             for i in range(3):
                 self.res[qa + i] = g.sub(yp[qa + i], y[ua + i])
+                if kb["planar"] and i == 2:       # Izz wz', no gravity about z
+                    self.res[ua + i] = g.mul(s.par("body_inertia", b, 8), yp[ua + i])
+                    continue
                 self.res[ua + i] = g.mul(mass, g.sub(yp[ua + i], s.par("gravity", 0, i)))
             if not kb["rigid"]:
                 continue
@@ -99,6 +102,17 @@ class Assembly:
             return
         kb = s.body(s.slot_body(tape, slot))
         ua = kb["ua"]
+        if kb["planar"]:                  # (Fx, Fy, Mz about the origin): csrc/assembly.c
+            Q = g.zero
+            if F is not None:
+                for i in range(2):
+                    self.scatter(ua + i, g.lin(sign, F[i]))
+                p = g.vsub(P, kb["r"])
+                Q = g.sub(g.mul(p[0], F[1]), g.mul(p[1], F[0]))
+            if Mo is not None:
+                Q = g.add(Q, Mo[2])
+            self.scatter(ua + 2, g.lin(sign, Q))
+            return
         if F is not None:
             for i in range(3):
                 self.scatter(ua + i, g.lin(sign, F[i]))
@@ -116,8 +130,8 @@ class Assembly:
         s = self.s
         if slot < 0 or s.a["marker_body"][mk] < 0:
             return
-        rigid = s.body(s.slot_body(tape, slot))["rigid"]
-        P = s.pos(tape, mk, slot) if F is not None and rigid else None
+        kb = s.body(s.slot_body(tape, slot))
+        P = s.pos(tape, mk, slot) if F is not None and (kb["rigid"] or kb["planar"]) else None
         self.apply_at(tape, slot, P, F, Mo, sign)
 
     def _sforce(self, tape, f, mode, mi, mj):

@@ -70,7 +70,7 @@ def literal(v):
 
 
 #: Doubles per object in the model arrays a ``par`` leaf reads (1 unless listed).
-STRIDE = {"marker_pos": 3, "marker_rot": 9, "body_inertia": 9}
+STRIDE = {"marker_pos": 3, "marker_rot": 9, "body_inertia": 9, "body_plane": 10}
 
 
 def plain_leaf(op, arg):

@@ -71,7 +71,7 @@ class Part:
             a = self.a
             got = self._ids[1][b] = len(self.tables[1])
             self.tables[1].append(b)
-            nq, nu = (7, 6) if a["body_type"][b] == lib.PS_BODY_RIGID else (3, 3)
+            nq, nu = (7, 6) if a["body_type"][b] == lib.PS_BODY_RIGID else (3, 3)  # planar too
             for adr, n, out in ((a["body_qadr"][b], nq, self.qadr), (a["body_uadr"][b], nu,
                                                                      self.uadr)):
                 first = len(self.tables[0])
@@ -195,7 +195,7 @@ class Template:
             return f"m->gravity[{comp}]"
         if array == "compliance":                      # per state, like y
             return f"m->compliance[I[{obj}]]"
-        base = {"body_mass": nq, "body_inertia": nq, "marker_pos": nq + nb,
+        base = {"body_mass": nq, "body_inertia": nq, "body_plane": nq, "marker_pos": nq + nb,
                 "marker_rot": nq + nb, "consts": nq + nb + nm}[array] + obj
         stride = STRIDE.get(array, 1)
         index = f"I[{base}]" if stride == 1 else f"{stride} * I[{base}] + {comp}"

@@ -75,7 +75,10 @@ class Scene:
         g, a, y, yp = self.g, self.a, self.y, self.yp
         qa, ua = int(a["body_qadr"][b]), int(a["body_uadr"][b])
         k = {"r": y[qa:qa + 3], "v": y[ua:ua + 3], "acc": yp[ua:ua + 3],
-             "rigid": a["body_type"][b] == lib.PS_BODY_RIGID, "qa": qa, "ua": ua}
+             "rigid": a["body_type"][b] == lib.PS_BODY_RIGID, "qa": qa, "ua": ua,
+             "planar": a["body_type"][b] == lib.PS_BODY_PLANAR, "u": y[ua:ua + 3]}
+        if k["planar"]:
+            return self._planar(b, k)
         if not k["rigid"]:
             return k
         e = y[qa + 3:qa + 7]
@@ -100,6 +103,20 @@ class Scene:
         k.update(e=e, A=A, wb=wb, w=self.mat_vec(A, wb), al=self.mat_vec(A, yp[ua + 3:ua + 6]))
         return k
 
+    def _planar(self, b, k):
+        """A planar body (csrc/kinematics.c planar_cache): origin (x, y, z0), axes
+        Rz(rz) A0, velocity (vx, vy, 0), angular velocity (0, 0, wz)."""
+        g, y, yp, qa, ua = self.g, self.y, self.yp, k["qa"], k["ua"]
+        P = [self.par("body_plane", b, i) for i in range(10)]
+        th = y[qa + 2]
+        c, s = g.fn("cos", th), g.fn("sin", th)
+        A = ([g.sub(g.mul(P[j], c), g.mul(P[3 + j], s)) for j in range(3)]
+             + [g.add(g.mul(P[j], s), g.mul(P[3 + j], c)) for j in range(3)] + P[6:9])
+        k.update(r=[y[qa], y[qa + 1], P[9]], v=[y[ua], y[ua + 1], g.zero],
+                 acc=[yp[ua], yp[ua + 1], g.zero], A=A, w=[g.zero, g.zero, y[ua + 2]],
+                 al=[g.zero, g.zero, yp[ua + 2]])
+        return k
+
     def mat_vec(self, A, v):
         g = self.g
         return [g.add(g.add(g.mul(A[3 * i], v[0]), g.mul(A[3 * i + 1], v[1])),
@@ -112,6 +129,7 @@ class Scene:
         return mk < 0 or slot < 0 or self.a["marker_body"][mk] < 0
 
     def on_point(self, mk):
+        """Whether marker mk is on a point body (translated, never rotated)."""
         return self.a["body_type"][self.a["marker_body"][mk]] == lib.PS_BODY_POINT
 
     def offset(self, kb, mk):
@@ -351,14 +369,14 @@ class Scene:
         return out
 
     def nu(self, b):
-        return 6 if self.body(b)["rigid"] else 3
+        return 6 if self.body(b)["rigid"] else 3   # a planar body's u: (vx, vy, wz)
 
     def gdot(self, t, gnode):
         g = self.g
         out = g.diff(gnode, self.time)
         for b in self.tape_bodies(t):
             kb = self.body(b)
-            u = list(kb["v"]) + (list(kb["wb"]) if kb["rigid"] else [])
+            u = list(kb["v"]) + list(kb["wb"]) if kb["rigid"] else list(kb["u"])
             for i in range(self.nu(b)):
                 out = g.add(out, g.mul(self.rate_coeff(gnode, b, i), u[i]))
         return out

@@ -1,0 +1,112 @@
+"""Planar scenes: rigid bodies that can only move in the global x-y plane, integrated in planar
+coordinates.
+
+A scene whose rigid bodies are held in a plane by revolute joints about the global z axis,
+with gravity, initial velocities and every body's inertia giving no load out of that plane,
+moves in the plane: its exact 3-D motion has z, the rotations about x and y, and the joints'
+out-of-plane reactions constant (zero reactions). pysolver then integrates each body in
+(x, y, rz) and (vx, vy, wz) (``PS_BODY_PLANAR``: 6 states instead of 13) and leaves out each
+revolute's three out-of-plane equations (their reactions are zero), where the 3-D model
+integrates all of them; the answers are the same motion (IFToMM A02: 970 unknowns instead of
+2,023). Which scenes qualify is decided from the loaded numbers (:func:`planar_bodies`), strictly:
+any element that could push a body out of its plane keeps the whole scene in 3-D. The
+decision is documented in docs/numerics.md ("Planar scenes").
+"""
+import numpy as np
+
+from .. import settings
+
+#: Tables of element kinds a planar scene may have (records that act on no body, or only
+#: read it): anything else, a force, a motion, a sensor, keeps the scene in 3-D.
+ALLOWED = frozenset({"markers", "bodies", "joints", "requests", "graphics", "variables",
+                     "splines"})
+
+#: Out-of-plane parts of derived numbers (unit axes, inertia products over the largest
+#: principal moment, angular velocity over its size) below this count as zero.
+TOL = 1e-12
+
+#: A revolute's equations out of the plane (catalogue.JOINT_EQUATIONS["REVOLUTE"]: d along
+#: global z, and its z axis's dot products with the other marker's x and y).
+OUT_OF_PLANE = (2, 3, 4)
+
+
+def scene_planar(model):
+    """:func:`planar_bodies`, or none when ``PYSOLVER_PLANAR=off``."""
+    return planar_bodies(model) if settings.planar() else frozenset()
+
+
+def planar_bodies(model):
+    """The ids of the moving bodies to integrate in planar coordinates: all of them when the
+    scene is planar, else an empty frozenset.
+
+    A scene is planar when every moving body is a Body_Rigid; it has only the element kinds in
+    :data:`ALLOWED`, every joint a REVOLUTE between markers whose z axes are the global z
+    axis (either sense) at the same height; only Transient Simulate commands; gravity without
+    a z component; and each body starts with no z velocity, an angular velocity about global
+    z only, and global z a principal axis of its inertia at its centre of mass.
+    """
+    from .. import catalogue
+    bodies = [b for b in model.bodies.values() if b.kind != "ground"]
+    if not bodies or any(b.kind != "rigid" for b in bodies):
+        return frozenset()
+    for element in catalogue.ELEMENTS:
+        if element.table not in ALLOWED and getattr(model, element.table):
+            return frozenset()
+    if any(cmd.analysis != "TRANSIENT" for cmd in model.commands) or model.gravity[2] != 0.0:
+        return frozenset()
+    for b in bodies:
+        if not _in_plane(b):
+            return frozenset()
+    for jo in model.joints.values():
+        if jo.type != "REVOLUTE" or getattr(jo, "virtual", False):
+            return frozenset()
+        i, j = model.markers[jo.i], model.markers[jo.j]
+        if not (_z_axis(i.rot) and _z_axis(j.rot)):
+            return frozenset()
+        scale = 1.0 + max(abs(i.pos[2]), abs(j.pos[2]))
+        if abs(i.pos[2] - j.pos[2]) > TOL * scale:
+            return frozenset()
+    return frozenset(b.id for b in bodies)
+
+
+def _z_axis(rot):
+    """Whether a frame's z axis (third column) is the global z axis, either sense."""
+    z = np.asarray(rot, dtype=float)[:, 2]
+    return abs(z[0]) <= TOL and abs(z[1]) <= TOL
+
+
+def _in_plane(b):
+    """Whether rigid body b starts moving in the x-y plane with no out-of-plane load of its
+    own (its velocity, its angular velocity and the inertia about global z)."""
+    if b.vel[2] != 0.0:
+        return False
+    w = b.rot @ np.asarray(b.omega, dtype=float)          # global angular velocity
+    if abs(w[0]) > TOL * np.linalg.norm(w) or abs(w[1]) > TOL * np.linalg.norm(w):
+        return False
+    Ig = global_inertia(b)
+    big = max(np.abs(Ig).max(), np.finfo(float).tiny)
+    return abs(Ig[0, 2]) <= TOL * big and abs(Ig[1, 2]) <= TOL * big
+
+
+def global_inertia(b):
+    """Body b's inertia tensor about its centre of mass in global axes at t = 0."""
+    return b.rot @ np.asarray(b.inertia, dtype=float) @ b.rot.T
+
+
+def removed_rows(model, bodies):
+    """The joint equations a planar scene leaves out: every revolute's out-of-plane ones."""
+    if not bodies:
+        return ()
+    return tuple(("joint", jid, k) for jid in sorted(model.joints) for k in OUT_OF_PLANE)
+
+
+def plane_rows(b):
+    """Body b's ``body_plane`` entries: its axes at rz = 0 (row-major 3 x 3) and its z."""
+    return list(np.asarray(b.rot, dtype=float).reshape(-1)) + [float(b.pos[2])]
+
+
+def initial_state(b):
+    """Body b's planar (x, y, rz) and (vx, vy, wz) at t = 0 (rz measured from its axes at
+    t = 0)."""
+    w = b.rot @ np.asarray(b.omega, dtype=float)
+    return [b.pos[0], b.pos[1], 0.0], [b.vel[0], b.vel[1], w[2]]
