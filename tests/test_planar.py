@@ -1,0 +1,137 @@
+"""Planar scenes (pysolver/build/planar.py): rigid bodies held in the x-y plane by revolutes
+about z run in (x, y, rz) with the out-of-plane equations left out, give the 3-D model's
+motion and reactions, conserve energy, and anything that could leave the plane keeps a scene
+in 3-D. The planar kinematics' Jacobian and generated C are checked with every test deck
+(tests/decks/planar_fourbar.xml in test_jacobian.py and test_codegen.py)."""
+import re
+
+import numpy as np
+import pytest
+
+import pysolver
+from pysolver.build.planar import planar_bodies
+from pysolver.viewer.poses import Poses
+
+from helpers import DECKS, TEST_DECKS
+
+FOURBAR = (TEST_DECKS / "planar_fourbar.xml").read_text()
+MASSES = {20: 1.0, 30: 2.0, 40: 1.5}       # cg marker -> mass
+
+
+def _run(monkeypatch, planar, text=FOURBAR, **options):
+    monkeypatch.setenv("PYSOLVER_PLANAR", planar)
+    model = pysolver.loads(text)
+    return model, model.run(**options)
+
+
+def _energy(model, res):
+    """Kinetic energy (request 1, channel 8: KE(0)) plus the bodies' potential energy m g y
+    of their centres of mass (their cg markers' heights)."""
+    poses = Poses(model, res.t, res.y, res.state_names)
+    return res.request(1)[:, 7] + sum(m * 9.81 * poses.marker_position(mk)[:, 1]
+                                      for mk, m in MASSES.items())
+
+
+def test_the_four_bar_runs_planar_with_the_3d_models_motion_and_reactions(monkeypatch):
+    """Against the 3-D model at 1e-12 (73 unknowns, joint 4's out-of-plane equations found
+    redundant): the planar run (34 unknowns) at 1e-10 gives the requests' positions, angles
+    and rates within 1e-7, the joints' reactions within 1e-6 relative (measured 3.1e-8 and
+    8.7e-8; the 3-D model at 1e-10: 4.2e-8 and 4.8e-8), and exactly nothing out of the
+    plane."""
+    _, ref = _run(monkeypatch, "off", integr_tol=1e-12)
+    model, res = _run(monkeypatch, "auto", integr_tol=1e-10)
+    assert res.success and ref.success
+    assert model.compile().kernel.ny == 34
+    assert res.state_names[:6] == ["body2.x", "body2.y", "body2.rz", "body2.vx", "body2.vy",
+                                   "body2.wz"]
+    assert any("planar scene: 3 bodies" in line for line in res.log)
+    np.testing.assert_array_equal(res.t, ref.t)
+    a, b = res.request(1), ref.request(1)
+    assert np.abs(a[:, :6] - b[:, :6]).max() < 1e-7
+    assert np.all(a[:, 2] == 0.2)                    # DZ(32): the plane's height
+    for jid in (1, 2, 3, 4):
+        ja, jb = res.joint(jid), ref.joint(jid)
+        assert np.abs(ja - jb).max() <= 1e-6 * np.abs(jb).max()
+        # no force along z, no torque about x or y (global components)
+        assert np.all(ja[:, 3] == 0.0) and np.all(ja[:, 5:7] == 0.0)
+
+
+def test_the_planar_four_bar_conserves_energy(monkeypatch):
+    """No damping, no work by the joints: kinetic plus potential energy constant within
+    1e-8 relative at 1e-10 through 1 s (measured 2.6e-9; 9.8e-9 at 1e-9, 2.2e-7 at 1e-8)."""
+    model, res = _run(monkeypatch, "auto", integr_tol=1e-10)
+    e = _energy(model, res)
+    assert np.abs(e - e[0]).max() <= 1e-8 * np.abs(e).max()
+
+
+def test_the_pendulum_and_a02_run_planar(monkeypatch):
+    """The revolute pendulum (10 unknowns instead of 23) and IFToMM A02 (970 instead of
+    2,023) are planar scenes; PYSOLVER_PLANAR=off keeps them in 3-D."""
+    for deck, planar, three_d in (("pendulum_revolute.xml", 10, 23),
+                                  ("iftomm_a02_fourbar.xml", 970, 2023)):
+        for mode, ny in (("auto", planar), ("off", three_d)):
+            monkeypatch.setenv("PYSOLVER_PLANAR", mode)
+            assert pysolver.load(DECKS / "joints" / deck).compile().kernel.ny == ny
+
+
+@pytest.mark.parametrize("change", [
+    ('grav_z="0"', 'grav_z="-0.1"'),                                        # gravity
+    ('w_ic_z="2"', 'w_ic_z="2" w_ic_x="0.1"'),                             # a tumble
+    ('w_ic_z="2"', 'w_ic_z="2" v_ic_z="0.1"'),                             # leaving the plane
+    ('inertia_xy="0.01"', 'inertia_xy="0.01" inertia_xz="0.001"'),         # a wobble
+    ('<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2"/>',       # a tilted axis
+     '<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2" theta="0.001"/>'),
+    ('<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2"/>',       # off the plane
+     '<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2001"/>'),
+    ('type="REVOLUTE" i_marker_id="41"', 'type="SPHERICAL" i_marker_id="41"'),
+    ('<Force_Gravity', '<Force_Scalar_TwoBody id="1" type="Force" i_marker_id="22" '
+                       'j_marker_id="4" expr="1"/><Force_Gravity'),
+    ('</Model>', '<Motion_Joint id="1" joint_id="1" val_type="V" expr="2"/></Model>'),
+    ('</MotionSolve>', '<Simulate analysis_type="Static"/></MotionSolve>'),
+])
+def test_anything_that_could_leave_the_plane_keeps_the_scene_3d(change):
+    """Each change gives the scene something out of the plane, or an element pysolver does
+    not reason about: the scene runs in 3-D (no planar body)."""
+    old, new = change
+    assert old in FOURBAR
+    assert planar_bodies(pysolver.loads(FOURBAR)) == {2, 3, 4}
+    assert planar_bodies(pysolver.loads(FOURBAR.replace(old, new, 1))) == frozenset()
+
+
+def test_a_point_body_keeps_the_scene_3d():
+    text = (DECKS / "particle_between_lines.xml").read_text()
+    assert planar_bodies(pysolver.loads(text)) == frozenset()
+
+
+def test_sweep_cases_of_a_planar_scene(monkeypatch):
+    """A case changing a mass, an inertia or the plane's gravity runs planar and gives the
+    3-D model's answer with the same numbers (within 1e-7); a case that leaves the plane is
+    a DeckError naming it, and the deck's values are back for the next run."""
+    case = {"Body_Rigid/3/mass": 3.0, "Body_Rigid/2/inertia_zz": 0.1,
+            "Force_Gravity/grav_x": 1.0}
+    monkeypatch.setenv("PYSOLVER_PLANAR", "off")
+    ref = pysolver.loads(FOURBAR).run(params=case, integr_tol=1e-11)
+    monkeypatch.setenv("PYSOLVER_PLANAR", "auto")
+    model = pysolver.loads(FOURBAR)
+    plain = model.run(integr_tol=1e-10)
+    res = model.run(params=case, integr_tol=1e-10)
+    assert res.success and np.abs(res.request(1)[:, :6] - ref.request(1)[:, :6]).max() < 1e-7
+    assert np.abs(res.request(1)[:, :2] - plain.request(1)[:, :2]).max() > 1e-3
+    with pytest.raises(pysolver.DeckError, match=re.escape(
+            "sweep case {Force_Gravity/grav_z}: the model runs as a planar scene")):
+        model.run(params={"Force_Gravity/grav_z": -1.0})
+    again = model.run(integr_tol=1e-10)
+    np.testing.assert_array_equal(again.request(1), plain.request(1))
+
+
+def test_the_animation_draws_planar_bodies_where_the_3d_run_has_them(monkeypatch):
+    """Marker positions and axes from a planar run's states (x, y, rz and the body's axes at
+    the start) agree with the 3-D run's within 1e-7 at 1e-11."""
+    poses = {}
+    for mode in ("off", "auto"):
+        model, res = _run(monkeypatch, mode, integr_tol=1e-11)
+        poses[mode] = Poses(model, res.t, res.y, res.state_names)
+    a, b = poses["auto"], poses["off"]
+    for mk in (20, 22, 30, 32, 41, 42):
+        assert np.abs(a.marker_position(mk) - b.marker_position(mk)).max() < 1e-7
+        assert np.abs(a.marker_axes(mk) - b.marker_axes(mk)).max() < 1e-7
