@@ -284,6 +284,9 @@ typedef struct psData {
   int user_coarse;        /* 1: user routines' first partials by second-order
                              central differences (runs at loose tolerances, half
                              the calls), 0: fourth-order (ps_user_point)        */
+  double* trig;           /* (ny x 3) generated C's cosine and sine of a state entry
+                             (a planar body's rz): the angle they are of, then
+                             them; a NaN angle forgets (psg_trig)              */
   double* user_cache;     /* (nusercache x PS_USER_CACHE) the last evaluation of
                              each PS_OP_USER instruction, reused by the Jacobian
                              at the same state; zero it to forget               */

@@ -104,6 +104,7 @@ class Kernel:
             "sensor_side": np.ones(max(self.nsensor, 1)),
             "user_cache": np.zeros(max(arrays["nusercache"], 1) * lib.PS_USER_CACHE),
             "bad_y": np.zeros(self.ny),      # the state of the last non-finite value
+            "trig": np.full(3 * max(self.ny, 1), np.nan),   # generated C's psg_trig
         }
         self.armed = np.ones(max(self.nsensor, 1), dtype=np.int32)
         self._flags = (np.zeros(max(self.nsensor, 1), dtype=np.int32),

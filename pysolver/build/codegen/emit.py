@@ -25,6 +25,19 @@ __attribute__((visibility("default"))) int (*psg_user_point)(const psModel*, psD
                                                             int, const double*, int, int,
                                                             double*) = 0;
 
+/* cos (k = 1) and sin (k = 2) of the state entry y[i] = th, computed once per value of it
+ * (d->trig: a planar body's angle is read by every element on the body, and by the residual
+ * and the Jacobian at one state). */
+static inline double psg_trig(psData* d, long i, double th, int k) {
+  double* c = d->trig + 3 * i;
+  if (c[0] != th) {
+    c[0] = th;
+    c[1] = cos(th);
+    c[2] = sin(th);
+  }
+  return c[k];
+}
+
 /* pi as a literal: math.h defines none under ISO C (gcc -std=c99). */
 #define PSG_PI 3.141592653589793
 
@@ -107,6 +120,8 @@ class Emitter:
         if isinstance(op, str):
             return _FORMAT[op].format(*a)
         if op[0] == "fn":
+            if op[1] in ("cos", "sin") and g.op[args[0]] == "y":     # "y[<index>]"
+                return f"psg_trig(d, {a[0][2:-1]}, {a[0]}, {1 if op[1] == 'cos' else 2})"
             return f"{UNARY_C[op[1]]}({a[0]})"
         if op[0] == "step":
             return f"psg_step({op[1]}, {op[2]}, {', '.join(a)})"
