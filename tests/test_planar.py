@@ -10,6 +10,7 @@ import pytest
 
 import pysolver
 from pysolver.build.planar import planar_bodies
+from pysolver.deck.dimensions import state_unit
 from pysolver.viewer.poses import Poses
 
 from helpers import DECKS, TEST_DECKS
@@ -45,6 +46,8 @@ def test_the_four_bar_runs_planar_with_the_3d_models_motion_and_reactions(monkey
     assert res.state_names[:6] == ["body2.x", "body2.y", "body2.rz", "body2.vx", "body2.vy",
                                    "body2.wz"]
     assert any("planar scene: 3 bodies" in line for line in res.log)
+    assert [state_unit(model, n) for n in res.state_names[:6]] == ["m", "m", "rad", "m/s",
+                                                                  "m/s", "rad/s"]
     np.testing.assert_array_equal(res.t, ref.t)
     a, b = res.request(1), ref.request(1)
     assert np.abs(a[:, :6] - b[:, :6]).max() < 1e-7

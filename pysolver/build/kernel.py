@@ -107,8 +107,7 @@ class Kernel:
             "trig": np.full(3 * max(self.ny, 1), np.nan),   # generated C's psg_trig
         }
         self.armed = np.ones(max(self.nsensor, 1), dtype=np.int32)
-        self._flags = (np.zeros(max(self.nsensor, 1), dtype=np.int32),
-                       np.zeros(max(self.nsensor, 1), dtype=np.int32))
+        self._flags = tuple(np.zeros(max(self.nsensor, 1), dtype=np.int32) for _ in range(2))
         d = ffi.new("psData *")
         self.d = d
         self._set_work()

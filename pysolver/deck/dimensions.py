@@ -256,10 +256,11 @@ def channel_units(model):
     return out
 
 
-#: Units of a body's coordinates by the name's last part (Euler parameters have none).
+#: Units of a body's coordinates by the name's last part (Euler parameters have none; a
+#: planar scene's body turns by rz, an angle).
 _BODY_STATES = {**dict.fromkeys(("x", "y", "z"), LENGTH),
                 **dict.fromkeys(("vx", "vy", "vz"), VELOCITY),
-                **dict.fromkeys(("e0", "e1", "e2", "e3"), NONE),
+                **dict.fromkeys(("e0", "e1", "e2", "e3"), NONE), "rz": ANGLE,
                 **dict.fromkeys(("wx", "wy", "wz"), ANGULAR_VELOCITY)}
 
 
