@@ -138,3 +138,25 @@ def test_the_animation_draws_planar_bodies_where_the_3d_run_has_them(monkeypatch
     for mk in (20, 22, 30, 32, 41, 42):
         assert np.abs(a.marker_position(mk) - b.marker_position(mk)).max() < 1e-7
         assert np.abs(a.marker_axes(mk) - b.marker_axes(mk)).max() < 1e-7
+
+
+def test_a_runs_start_is_remembered_only_for_the_same_numbers(monkeypatch):
+    """The consistent start (assembly, velocities, accelerations and reactions) is computed
+    once for equal numbers and again whenever one changes (a case's mass, gravity, the
+    tolerance's compliance, another initial velocity): each run's answers are the same as a
+    fresh kernel's, bit for bit."""
+    from pysolver.build import consistent
+    calls = []
+    real = consistent._consistent
+    monkeypatch.setattr(consistent, "_consistent", lambda *a: calls.append(1) or real(*a))
+    model = pysolver.loads(FOURBAR)
+    runs = [({}, 1e-9), ({}, 1e-9), ({"Body_Rigid/3/mass": 3.0}, 1e-9),
+            ({"Force_Gravity/grav_x": 1.0}, 1e-9), ({}, 1e-8),
+            ({"Body_Rigid/2/w_ic_z": 1.0}, 1e-8), ({"Body_Rigid/2/w_ic_z": 1.0}, 1e-8)]
+    for params, tol in runs:
+        res = model.run(params=params, integr_tol=tol)
+        fresh = pysolver.loads(FOURBAR).run(params=params, integr_tol=tol)
+        np.testing.assert_array_equal(res.y, fresh.y)
+        np.testing.assert_array_equal(res.yp, fresh.yp)
+    # computed by every run but the two that repeat the one before, and by the fresh models
+    assert len(calls) == 2 * len(runs) - 2

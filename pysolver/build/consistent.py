@@ -75,6 +75,30 @@ def consistent(kernel, t, y, iters=8, initial=False):
         d.ntimes, d.nfail, d.last_t, d.step_limit = kept
 
 
+def start(kernel, t, y):
+    """:func:`consistent` at a run's initial state (in place; returns yp), remembered per
+    kernel: a run that starts from the same numbers as the last (every number of the kernel's
+    arrays, gravity, the stored sensor values, t and y) gets the same state and rates,
+    bit for bit, without recomputing them (the revolute pendulum's warm run: 0.15 ms of
+    Python of 0.5 ms). A kernel that calls user routines always recomputes (a routine may
+    keep state between calls), as does a start that failed."""
+    if kernel.model_calls_routines:
+        return consistent(kernel, t, y, initial=True)
+    a = kernel.arrays
+    key = b"".join([np.ascontiguousarray(v).tobytes() for v in a.values()
+                    if isinstance(v, np.ndarray) and v.dtype == np.float64]
+                   + [np.array([t, *kernel.m.gravity]).tobytes(),
+                      kernel.senval.tobytes(), np.ascontiguousarray(y, float).tobytes()])
+    got = kernel.__dict__.get("_start")
+    if got is not None and got[0] == key:
+        y[:] = got[1]
+        return got[2].copy()
+    yp = consistent(kernel, t, y, initial=True)
+    if np.all(np.isfinite(yp)) and not kernel.d.bad_kind:
+        kernel.__dict__["_start"] = (key, y.copy(), yp.copy())
+    return yp
+
+
 def _consistent(kernel, t, y, iters, initial):
     """consistent() proper."""
     lay = kernel.layout

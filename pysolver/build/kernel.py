@@ -8,7 +8,7 @@ from ..options import SPARSE_THRESHOLD
 from . import usercalls
 from .bindings import ffi, lib
 from .compiler import Compiler
-from .consistent import consistent, init_compliance
+from .consistent import consistent, init_compliance, start
 
 ROUNDING = 1e-10     # trial times this close (times |t|) to a non-finite residual: rounding
 
@@ -45,8 +45,8 @@ class Kernel:
     channels : list of (request id, channel index)
         Meaning of each entry of :meth:`outputs`.
     codegen : dict
-        Which kernel runs: ``{"kernel": "generated", "generate": s, "compile": s, "cached":
-        bool, "path": ...}`` or ``{"kernel": "tapes", "why": ...}``.
+        Which kernel runs: ``{"kernel": "generated", "generate": s, "compile": s, "cached": bool,
+        "path": ...}`` or ``{"kernel": "tapes", "why": ...}``.
     """
 
     def __init__(self, model, conservative=False, kind="auto", removed=()):
@@ -64,6 +64,7 @@ class Kernel:
         self.params = comp.params               # sweep parameters: path -> slot in consts
         self.marker_index = dict(comp.midx)     # marker id -> its row in the marker arrays
         self.forces_use_senval = comp.forces_use_senval
+        self.model_calls_routines = bool(model.user_routines)   # C or untraced Python
         self.elements = comp.elements      # the element table: (kind, id, tape, ints)
         self.motion_slots = comp.motion_slots   # motion id -> (tape, slot) of its measure
         self.nsensor = arrays["nsensor"]
@@ -108,8 +109,7 @@ class Kernel:
         }
         self.armed = np.ones(max(self.nsensor, 1), dtype=np.int32)
         self._flags = tuple(np.zeros(max(self.nsensor, 1), dtype=np.int32) for _ in range(2))
-        d = ffi.new("psData *")
-        self.d = d
+        self.d = ffi.new("psData *")
         self._set_work()
         self._out = np.zeros(max(arrays["nout"], 1))
         self._sparse = None
@@ -386,7 +386,7 @@ class Kernel:
         made consistent too, in place, at the `initial` state with the motions' ic_disp and
         ic_vel (pysolver.build.consistent)."""
         if self.layout.lam or self.layout.turns:
-            return consistent(self, t, y, initial=initial)
+            return start(self, t, y) if initial else consistent(self, t, y)
         sparse = self.ny >= SPARSE_THRESHOLD
         if not sparse:                     # in C: a residual, two Jacobians, LU, per step
             if self._cyp is None:
