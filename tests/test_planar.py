@@ -143,8 +143,8 @@ def test_the_animation_draws_planar_bodies_where_the_3d_run_has_them(monkeypatch
 def test_a_runs_start_is_remembered_only_for_the_same_numbers(monkeypatch):
     """The consistent start (assembly, velocities, accelerations and reactions) is computed
     once for equal numbers and again whenever one changes (a case's mass, gravity, the
-    tolerance's compliance, another initial velocity): each run's answers are the same as a
-    fresh kernel's, bit for bit."""
+    tolerance's compliance, another initial velocity): each run's answers and statistics are
+    a fresh kernel's, bit for bit."""
     from pysolver.build import consistent
     calls = []
     real = consistent._consistent
@@ -158,5 +158,6 @@ def test_a_runs_start_is_remembered_only_for_the_same_numbers(monkeypatch):
         fresh = pysolver.loads(FOURBAR).run(params=params, integr_tol=tol)
         np.testing.assert_array_equal(res.y, fresh.y)
         np.testing.assert_array_equal(res.yp, fresh.yp)
+        assert res.stats == fresh.stats            # a reused start counts its evaluations
     # computed by every run but the two that repeat the one before, and by the fresh models
     assert len(calls) == 2 * len(runs) - 2
