@@ -71,6 +71,18 @@ static void rotation_from_e(const psModel* m, psData* d, const psuHD* c, double*
   for (int i = 0; i < 9; i++) psu_hd_mul(c, A + i * s, A + i * s, inv);
 }
 
+/* The entries of body slot `slot` in the cache that every kind of body fills. */
+typedef struct {
+  double *r, *A, *v, *w, *acc, *al;
+} BodySlots;
+
+static BodySlots body_slots(const psModel* m, psData* d, int slot) {
+  BodySlots k = {ps_bc(m, d, slot, PS_BC_R),   ps_bc(m, d, slot, PS_BC_A),
+                 ps_bc(m, d, slot, PS_BC_V),   ps_bc(m, d, slot, PS_BC_W),
+                 ps_bc(m, d, slot, PS_BC_ACC), ps_bc(m, d, slot, PS_BC_AL)};
+  return k;
+}
+
 /* A planar body (PS_BODY_PLANAR): q = (x, y, rz), u = (vx, vy, wz). Its origin is at
  * (x, y, z0), its axes A = Rz(rz) A0, its velocity (vx, vy, 0), angular velocity (0, 0, wz)
  * and angular acceleration (0, 0, wz'); ps_body_cache seeded r, v, acc from the state's first
@@ -80,12 +92,8 @@ static void planar_cache(const psModel* m, psData* d, const psuHD* c, int b, int
                          const double* y, const double* yp, int qp, int up, int ap) {
   int s = c->stride, qa = m->body_qadr[b], ua = m->body_uadr[b];
   const double* P = m->body_plane + 10 * b;
-  double* r = ps_bc(m, d, slot, PS_BC_R);
-  double* A = ps_bc(m, d, slot, PS_BC_A);
-  double* v = ps_bc(m, d, slot, PS_BC_V);
-  double* w = ps_bc(m, d, slot, PS_BC_W);
-  double* acc = ps_bc(m, d, slot, PS_BC_ACC);
-  double* al = ps_bc(m, d, slot, PS_BC_AL);
+  BodySlots k = body_slots(m, d, slot);
+  double *r = k.r, *A = k.A, *v = k.v, *w = k.w, *acc = k.acc, *al = k.al;
   double* th = ps_tmp(m, d, TMP_C1);
   double* cs = ps_tmp(m, d, TMP_C1 + 1);
   double* sn = ps_tmp(m, d, TMP_C1 + 2);
@@ -119,12 +127,8 @@ void ps_body_cache(const psModel* m, psData* d, const psuHD* c, int tape, double
     int b = m->tbody_body[adr + slot];
     int qp = m->tbody_q[adr + slot], up = m->tbody_u[adr + slot], ap = m->tbody_a[adr + slot];
     int qa = m->body_qadr[b], ua = m->body_uadr[b];
-    double* r = ps_bc(m, d, slot, PS_BC_R);
-    double* A = ps_bc(m, d, slot, PS_BC_A);
-    double* v = ps_bc(m, d, slot, PS_BC_V);
-    double* w = ps_bc(m, d, slot, PS_BC_W);
-    double* acc = ps_bc(m, d, slot, PS_BC_ACC);
-    double* al = ps_bc(m, d, slot, PS_BC_AL);
+    BodySlots k = body_slots(m, d, slot);
+    double *r = k.r, *A = k.A, *v = k.v, *w = k.w, *acc = k.acc, *al = k.al;
     double* e = ps_bc(m, d, slot, PS_BC_E);
     double* wb = ps_bc(m, d, slot, PS_BC_WB);
     /* translation */
