@@ -87,6 +87,8 @@ def test_the_pendulum_and_a02_run_planar(monkeypatch):
     ('<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2"/>',       # off the plane
      '<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2001"/>'),
     ('type="REVOLUTE" i_marker_id="41"', 'type="SPHERICAL" i_marker_id="41"'),
+    ('<Reference_Marker id="20" body_id="2" pos_y="0.5" pos_z="0.2"',      # a joint off a
+     '<Reference_Marker id="20" body_id="2" pos_y="0.5" pos_z="0.3"'),     # body's cm height
     ('<Force_Gravity', '<Force_Scalar_TwoBody id="1" type="Force" i_marker_id="22" '
                        'j_marker_id="4" expr="1"/><Force_Gravity'),
     ('</Model>', '<Motion_Joint id="1" joint_id="1" val_type="V" expr="2"/></Model>'),
@@ -161,3 +163,22 @@ def test_a_runs_start_is_remembered_only_for_the_same_numbers(monkeypatch):
         assert res.stats == fresh.stats            # a reused start counts its evaluations
     # computed by every run but the two that repeat the one before, and by the fresh models
     assert len(calls) == 2 * len(runs) - 2
+
+
+def test_a_pivot_above_the_centre_of_mass_keeps_the_pendulum_3d(monkeypatch):
+    """The revolute pendulum with its pivot 0.5 m above the centre of mass's plane moves in
+    its plane, but its joint carries an out-of-plane torque (the in-plane joint force's
+    moment about the centre of mass, 11.3 N m about x at 1 s): the scene runs in 3-D, so its
+    reactions are the 3-D model's (a planar run reported zero)."""
+    text = (DECKS / "joints" / "pendulum_revolute.xml").read_text()
+    for mk in ('id="2" body_id="1"', 'id="21" body_id="2"'):
+        old = f'<Reference_Marker {mk} pos_x="0" pos_y="0" pos_z="0"'
+        assert old in text
+        text = text.replace(old, old[:-2] + '0.5"')
+    text = text.replace('end_time="5"', 'end_time="1"')
+    assert planar_bodies(pysolver.loads(text)) == frozenset()
+    _, ref = _run(monkeypatch, "off", text)
+    _, res = _run(monkeypatch, "auto", text)
+    assert res.success and ref.success
+    np.testing.assert_array_equal(res.joint(1), ref.joint(1))
+    assert abs(ref.joint(1)[-1, 5]) > 10.0

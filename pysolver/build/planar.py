@@ -41,7 +41,8 @@ def planar_bodies(model):
 
     A scene is planar when every moving body is a Body_Rigid; it has only the element kinds in
     :data:`ALLOWED`, every joint a REVOLUTE between markers whose z axes are the global z
-    axis (either sense) at the same height; only Transient Simulate commands; gravity without
+    axis (either sense) at the same height, that of the centre of mass of each moving body
+    they are on; only Transient Simulate commands; gravity without
     a z component; and each body starts with no z velocity, an angular velocity about global
     z only, and global z a principal axis of its inertia at its centre of mass.
     """
@@ -63,10 +64,18 @@ def planar_bodies(model):
         i, j = model.markers[jo.i], model.markers[jo.j]
         if not (_z_axis(i.rot) and _z_axis(j.rot)):
             return frozenset()
-        scale = 1.0 + max(abs(i.pos[2]), abs(j.pos[2]))
-        if abs(i.pos[2] - j.pos[2]) > TOL * scale:
+        if not all(_at_height(m, model.bodies[m.body], i.pos[2]) for m in (i, j)):
             return frozenset()
     return frozenset(b.id for b in bodies)
+
+
+def _at_height(marker, body, z):
+    """Whether a joint marker is at height z and, on a moving body, at the height of its
+    centre of mass: an in-plane joint force at another height has a moment about x or y on
+    the body that the 3-D joint carries as an out-of-plane reaction (not zero)."""
+    zs = [marker.pos[2]] + ([body.pos[2]] if body.kind != "ground" else [])
+    scale = 1.0 + max(abs(v) for v in zs + [z])
+    return all(abs(v - z) <= TOL * scale for v in zs)
 
 
 def _z_axis(rot):
