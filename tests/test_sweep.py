@@ -157,3 +157,19 @@ def test_cli_sweep_writes_the_table_and_resumes(tmp_path, capsys):
                "1", "-j", "0", "-o", str(tmp_path / "lhs"), "-q"]
     assert main(sampled) == 0
     capsys.readouterr()
+
+
+def test_a_gravity_case_runs_as_a_deck_with_that_gravity():
+    """A case's gravity reaches the joints' compliance, which follows the bodies' weight
+    (pysolver.build.consistent): the revolute pendulum under grav_y = -100 gives, bit for
+    bit, the answers of a deck written with that gravity (the compliance once stayed at the
+    deck's -9.81)."""
+    text = (DECKS / "joints" / "pendulum_revolute.xml").read_text()
+    heavy = text.replace('grav_y="-9.81"', 'grav_y="-100"')
+    assert heavy != text
+    model = pysolver.loads(text)
+    model.run()
+    res = model.run(params={"Force_Gravity/grav_y": -100.0})
+    ref = pysolver.loads(heavy).run()
+    np.testing.assert_array_equal(res.y, ref.y)
+    assert res.stats == ref.stats

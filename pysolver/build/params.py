@@ -209,7 +209,7 @@ class Parameters:
             self._set_marker(path, int(key[0]), "xyz".index(key[1][-1]), v)
         elif kind == "Force_Gravity":
             m.gravity["xyz".index(key[0][-1])] = v
-            k.m.gravity = list(m.gravity)
+            k.m.gravity = k.arrays["gravity"] = list(m.gravity)   # the compliance reads both
         elif kind == "Sensor_Event":
             sid = int(key[0])
             _assign(m.sensors[sid], **{key[1]: v})

@@ -109,7 +109,7 @@ class CompiledModel:
 def _follow(twin, kernel):
     """Give `twin` (a kernel of the same scene) the numbers pysolver.build.params may have
     changed in `kernel`: masses, inertias, marker positions, gravity and sweep parameters."""
-    for key in ("body_mass", "body_inertia", "marker_pos"):
+    for key in ("body_mass", "body_inertia", "body_plane", "marker_pos"):
         twin.arrays[key][:] = kernel.arrays[key]
     for path, slot in kernel.params.items():
         if path in twin.params:
