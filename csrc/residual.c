@@ -294,7 +294,8 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
   for (int b = 0; b < m->nbody; b++) {
     int u = m->body_uadr[b];
     double a = 0.0, f = 0.0, most = 0.0;
-    for (int c = 0; c < 3; c++) {
+    /* a planar body's third velocity row is its moment row (Izz wz'), not a force row */
+    for (int c = 0; c < (m->body_type[b] == PS_BODY_PLANAR ? 2 : 3); c++) {
       a += yp[u + c] * yp[u + c];
       f += net[u + c] * net[u + c];
       if (noise[u + c] > most) most = noise[u + c];
