@@ -1,7 +1,7 @@
 """Planar scenes (pysolver/build/planar.py): rigid bodies held in the x-y plane by revolutes
-about z run in (x, y, rz) with the out-of-plane equations left out, give the 3-D model's
-motion and reactions, conserve energy, and anything that could leave the plane keeps a scene
-in 3-D. The planar kinematics' Jacobian and generated C are checked with every test deck
+about z, loaded by gravity and scalar forces in the plane, run in (x, y, rz) with the
+out-of-plane equations left out, give the 3-D model's motion and reactions, conserve energy,
+and anything that could leave the plane keeps a scene in 3-D. The planar kinematics' Jacobian and generated C are checked with every test deck
 (tests/decks/planar_fourbar.xml in test_jacobian.py and test_codegen.py)."""
 import re
 
@@ -27,18 +27,22 @@ def _run(monkeypatch, planar, text=FOURBAR, **options):
 
 def _energy(model, res):
     """Kinetic energy (request 1, channel 8: KE(0)) plus the bodies' potential energy m g y
-    of their centres of mass (their cg markers' heights)."""
+    of their centres of mass (their cg markers' heights) and the two springs' (request 3:
+    the spring's length, the torsion spring's angle)."""
     poses = Poses(model, res.t, res.y, res.state_names)
-    return res.request(1)[:, 7] + sum(m * 9.81 * poses.marker_position(mk)[:, 1]
-                                      for mk, m in MASSES.items())
+    springs = res.request(3)
+    return (res.request(1)[:, 7] + sum(m * 9.81 * poses.marker_position(mk)[:, 1]
+                                       for mk, m in MASSES.items())
+            + 0.5 * 20.0 * (springs[:, 0] - 1.5) ** 2 + 0.5 * 3.0 * springs[:, 1] ** 2)
 
 
 def test_the_four_bar_runs_planar_with_the_3d_models_motion_and_reactions(monkeypatch):
     """Against the 3-D model at 1e-12 (73 unknowns, joint 4's out-of-plane equations found
     redundant): the planar run (34 unknowns) at 1e-10 gives the requests' positions, angles
-    and rates within 1e-7, the joints' reactions within 1e-6 relative (measured 3.1e-8 and
-    8.7e-8; the 3-D model at 1e-10: 4.2e-8 and 4.8e-8), and exactly nothing out of the
-    plane."""
+    and rates within 1e-7, the joints' reactions within 1e-6 relative (measured 5.7e-9 and
+    1.1e-7; the 3-D model at 1e-10: 1.8e-8 and 1.1e-7), and exactly nothing out of the
+    plane. The scalar forces (a spring and a torsion spring) load the planar bodies as
+    (Fx, Fy, Mz)."""
     _, ref = _run(monkeypatch, "off", integr_tol=1e-12)
     model, res = _run(monkeypatch, "auto", integr_tol=1e-10)
     assert res.success and ref.success
@@ -60,8 +64,9 @@ def test_the_four_bar_runs_planar_with_the_3d_models_motion_and_reactions(monkey
 
 
 def test_the_planar_four_bar_conserves_energy(monkeypatch):
-    """No damping, no work by the joints: kinetic plus potential energy constant within
-    1e-8 relative at 1e-10 through 1 s (measured 2.6e-9; 9.8e-9 at 1e-9, 2.2e-7 at 1e-8)."""
+    """No damping, no work by the joints: kinetic plus potential energy (gravity's and the
+    two springs') constant within 1e-8 relative at 1e-10 through 1 s (measured 2.9e-10;
+    9.2e-9 at 1e-9, 7.8e-8 at 1e-8)."""
     model, res = _run(monkeypatch, "auto", integr_tol=1e-10)
     e = _energy(model, res)
     assert np.abs(e - e[0]).max() <= 1e-8 * np.abs(e).max()
@@ -89,8 +94,16 @@ def test_the_pendulum_and_a02_run_planar(monkeypatch):
     ('type="REVOLUTE" i_marker_id="41"', 'type="SPHERICAL" i_marker_id="41"'),
     ('<Reference_Marker id="20" body_id="2" pos_y="0.5" pos_z="0.2"',      # a joint off a
      '<Reference_Marker id="20" body_id="2" pos_y="0.5" pos_z="0.3"'),     # body's cm height
-    ('<Force_Gravity', '<Force_Scalar_TwoBody id="1" type="Force" i_marker_id="22" '
-                       'j_marker_id="4" expr="1"/><Force_Gravity'),
+    ('type="Force" i_marker_id="33"', 'type="Force" is_action_only="TRUE" i_marker_id="33"'),
+    ('<Reference_Marker id="5" body_id="1" pos_x="1.5" pos_y="3" pos_z="0.2"/>',  # a slant
+     '<Reference_Marker id="5" body_id="1" pos_x="1.5" pos_y="3" pos_z="0.5"/>'),
+    ('<Reference_Marker id="5" body_id="1" pos_x="1.5" pos_y="3" pos_z="0.2"/>',  # off axis
+     '<Reference_Marker id="5" body_id="1" pos_x="1.5" pos_y="3" pos_z="0.2"/>'
+     '<Reference_Marker id="6" body_id="1" pos_z="0.2" theta="0.3"/>'
+     '<Force_Scalar_TwoBody id="3" type="Torque" i_marker_id="43" j_marker_id="6" '
+     'expr="1"/>'),
+    ('<Force_Gravity', '<Force_Vector_OneBody id="1" type="ForceOnly" marker_id="22" '
+                       'ref_marker_id="1" fx_expression="1"/><Force_Gravity'),
     ('</Model>', '<Motion_Joint id="1" joint_id="1" val_type="V" expr="2"/></Model>'),
     ('</MotionSolve>', '<Simulate analysis_type="Static"/></MotionSolve>'),
 ])

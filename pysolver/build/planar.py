@@ -17,9 +17,10 @@ import numpy as np
 from .. import settings
 
 #: Tables of element kinds a planar scene may have (records that act on no body, or only
-#: read it): anything else, a force, a motion, a sensor, keeps the scene in 3-D.
-ALLOWED = frozenset({"markers", "bodies", "joints", "requests", "graphics", "variables",
-                     "splines"})
+#: read it, and joints and scalar forces, each checked): anything else, a vector force, a
+#: motion, a sensor, keeps the scene in 3-D.
+ALLOWED = frozenset({"markers", "bodies", "joints", "sforces", "requests", "graphics",
+                     "variables", "splines"})
 
 #: Out-of-plane parts of derived numbers (unit axes, inertia products over the largest
 #: principal moment, angular velocity over its size) below this count as zero.
@@ -42,7 +43,9 @@ def planar_bodies(model):
     A scene is planar when every moving body is a Body_Rigid; it has only the element kinds in
     :data:`ALLOWED`, every joint a REVOLUTE between markers whose z axes are the global z
     axis (either sense) at the same height, that of the centre of mass of each moving body
-    they are on; only Transient Simulate commands; gravity without
+    they are on; every Force_Scalar_TwoBody a torque about a z axis along global z, or a
+    force between two markers at that same kind of height (not action-only); only Transient
+    Simulate commands; gravity without
     a z component; and each body starts with no z velocity, an angular velocity about global
     z only, and global z a principal axis of its inertia at its centre of mass.
     """
@@ -66,7 +69,22 @@ def planar_bodies(model):
             return frozenset()
         if not all(_at_height(m, model.bodies[m.body], i.pos[2]) for m in (i, j)):
             return frozenset()
+    if not all(_in_plane_force(model, sf) for sf in model.sforces.values()):
+        return frozenset()
     return frozenset(b.id for b in bodies)
+
+
+def _in_plane_force(model, sf):
+    """Whether a Force_Scalar_TwoBody acts in the plane only: a torque about J's z axis along
+    global z, or a force along the line between I and J at the height of I and J and of
+    the centres of mass of the moving bodies they are on (whatever its magnitude's
+    expression). An action-only force acts along J's z axis: out of the plane."""
+    i, j = model.markers[sf.i], model.markers[sf.j]
+    if sf.action_only:
+        return False
+    if sf.torque:
+        return _z_axis(j.rot)
+    return all(_at_height(m, model.bodies[m.body], i.pos[2]) for m in (i, j))
 
 
 def _at_height(marker, body, z):
