@@ -17,10 +17,10 @@ import numpy as np
 from .. import settings
 
 #: Tables of element kinds a planar scene may have (records that act on no body, or only
-#: read it, and joints and scalar forces, each checked): anything else, a vector force, a
-#: motion, a sensor, keeps the scene in 3-D.
-ALLOWED = frozenset({"markers", "bodies", "joints", "sforces", "requests", "graphics",
-                     "variables", "splines"})
+#: read it, and joints, scalar forces and motions, each checked): anything else, a vector
+#: force, a sensor, keeps the scene in 3-D.
+ALLOWED = frozenset({"markers", "bodies", "joints", "sforces", "motions", "requests",
+                     "graphics", "variables", "splines"})
 
 #: Out-of-plane parts of derived numbers (unit axes, inertia products over the largest
 #: principal moment, angular velocity over its size) below this count as zero.
@@ -44,8 +44,9 @@ def planar_bodies(model):
     :data:`ALLOWED`, every joint a REVOLUTE between markers whose z axes are the global z
     axis (either sense) at the same height, that of the centre of mass of each moving body
     they are on; every Force_Scalar_TwoBody a torque about a z axis along global z, or a
-    force between two markers at that same kind of height (not action-only); only Transient
-    Simulate commands; gravity without
+    force between two markers at that same kind of height (not action-only); every motion a
+    rotation about a J marker's z axis along global z (a Motion_Joint on a revolute, or a
+    Motion_Marker B3); only Transient Simulate commands; gravity without
     a z component; and each body starts with no z velocity, an angular velocity about global
     z only, and global z a principal axis of its inertia at its centre of mass.
     """
@@ -70,6 +71,10 @@ def planar_bodies(model):
         if not all(_at_height(m, model.bodies[m.body], i.pos[2]) for m in (i, j)):
             return frozenset()
     if not all(_in_plane_force(model, sf) for sf in model.sforces.values()):
+        return frozenset()
+    # a driven rotation about z: its reaction is a torque about z
+    if not all(mo.direction == "B3" and _z_axis(model.markers[mo.j].rot)
+               for mo in model.motions.values()):
         return frozenset()
     return frozenset(b.id for b in bodies)
 
