@@ -109,6 +109,9 @@ def test_the_pendulum_and_a02_run_planar(monkeypatch):
     ('</Model>', '<Reference_Marker id="7" body_id="1" pos_z="0.2" theta="0.3"/>'
                  '<Motion_Marker id="1" i_marker_id="21" j_marker_id="7" direction="B3" '
                  'val_type="V" expr="2"/></Model>'),
+    ('</Model>', '<Reference_Marker id="7" body_id="2" pos_z="0.2" theta="0.3"/>'
+                 '<Motion_Marker id="1" i_marker_id="7" j_marker_id="1" direction="B3" '
+                 'val_type="V" expr="2"/></Model>'),
     ('</MotionSolve>', '<Simulate analysis_type="Static"/></MotionSolve>'),
 ])
 def test_anything_that_could_leave_the_plane_keeps_the_scene_3d(change):

@@ -45,8 +45,8 @@ def planar_bodies(model):
     axis (either sense) at the same height, that of the centre of mass of each moving body
     they are on; every Force_Scalar_TwoBody a torque about a z axis along global z, or a
     force between two markers at that same kind of height (not action-only); every motion a
-    rotation about a J marker's z axis along global z (a Motion_Joint on a revolute, or a
-    Motion_Marker B3); only Transient Simulate commands; gravity without
+    rotation about z between markers whose z axes are along global z (a Motion_Joint on a
+    revolute, or a Motion_Marker B3); only Transient Simulate commands; gravity without
     a z component; and each body starts with no z velocity, an angular velocity about global
     z only, and global z a principal axis of its inertia at its centre of mass.
     """
@@ -72,9 +72,10 @@ def planar_bodies(model):
             return frozenset()
     if not all(_in_plane_force(model, sf) for sf in model.sforces.values()):
         return frozenset()
-    # a driven rotation about z: its reaction is a torque about z
-    if not all(mo.direction == "B3" and _z_axis(model.markers[mo.j].rot)
-               for mo in model.motions.values()):
+    # a driven rotation about z between frames turning about z: its reaction is a torque
+    # about z (a tilted I frame would give AZ's gradient, and the torque, an x or y part)
+    if not all(mo.direction == "B3" and _z_axis(model.markers[mo.i].rot)
+               and _z_axis(model.markers[mo.j].rot) for mo in model.motions.values()):
         return frozenset()
     return frozenset(b.id for b in bodies)
 
