@@ -238,8 +238,19 @@ class Model:
         for c in self.commands:
             lines.append(f"Simulate {c.analysis.lower()}: end_time={c.end_time:g}"
                          + (f" print_interval={c.print_interval:g}" if c.print_interval else ""))
-        lines.append(f"states: {self.num_states()}")
+        lines.append(self._states_line())
         return "\n".join(lines)
+
+    def _states_line(self):
+        """The summary's state count: the 3-D model's, and once compiled the count run (a
+        planar scene's, or without redundant equations) when it differs."""
+        full = self.num_states()
+        compiled = next(iter(self._compiled.values()), None)
+        if compiled is None or compiled.kernel.ny == full:
+            return f"states: {full}"
+        why = ("a planar scene" if compiled.kernel.layout.planar else
+               "redundant equations left out")
+        return f"states: {compiled.kernel.ny} integrated ({full} in 3-D; {why})"
 
     def num_states(self) -> int:
         """IDA states of the 3-D model: 6 per point body, 13 per rigid body, 1 per motion (2 for

@@ -349,6 +349,8 @@ class Result:
         ------
         ValueError
             No model is known, or the run has no output rows.
+        TypeError
+            `model` is not a Model (a path: the page is written by ``.save(path)``).
         """
         from .viewer import Animation
         origin = self.__dict__.get("_origin")

@@ -11,7 +11,8 @@
 ``PYSOLVER_OUTPUT_BUDGET``      bytes of output rows a run may hold (default 2 GiB)
 ``PYSOLVER_USERSUB_DIR``        folders searched for user subroutine scripts and libraries
 ``PYSOLVER_NO_INPLACE_BUILD``   set: a source checkout never builds its C kernel in place
-``PYSOLVER_PLANAR``             ``off``: integrate every scene in 3-D, planar ones too (read
+``PYSOLVER_PLANAR``             ``off`` (``0``, ``no``, ``false``): integrate every scene in
+                                3-D, planar ones too (read
                                 when a model is compiled; default: planar scenes in planar
                                 coordinates, docs/numerics.md "Planar scenes")
 ==============================  ===========================================================

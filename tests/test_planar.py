@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import pysolver
-from pysolver.build.planar import planar_bodies
+from pysolver.build.planar import looks_planar, planar_bodies, why_not
 from pysolver.deck.dimensions import state_unit
 from pysolver.viewer.poses import Poses
 
@@ -82,45 +82,67 @@ def test_the_pendulum_and_a02_run_planar(monkeypatch):
             assert pysolver.load(DECKS / "joints" / deck).compile().kernel.ny == ny
 
 
-@pytest.mark.parametrize("change", [
-    ('grav_z="0"', 'grav_z="-0.1"'),                                        # gravity
-    ('w_ic_z="2"', 'w_ic_z="2" w_ic_x="0.1"'),                             # a tumble
-    ('w_ic_z="2"', 'w_ic_z="2" v_ic_z="0.1"'),                             # leaving the plane
-    ('inertia_xy="0.01"', 'inertia_xy="0.01" inertia_xz="0.001"'),         # a wobble
-    ('<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2"/>',       # a tilted axis
-     '<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2" theta="0.001"/>'),
-    ('<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2"/>',       # off the plane
-     '<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2001"/>'),
-    ('type="REVOLUTE" i_marker_id="41"', 'type="SPHERICAL" i_marker_id="41"'),
-    ('<Reference_Marker id="20" body_id="2" pos_y="0.5" pos_z="0.2"',      # a joint off a
-     '<Reference_Marker id="20" body_id="2" pos_y="0.5" pos_z="0.3"'),     # body's cm height
-    ('type="Force" i_marker_id="33"', 'type="Force" is_action_only="TRUE" i_marker_id="33"'),
-    ('<Reference_Marker id="5" body_id="1" pos_x="1.5" pos_y="3" pos_z="0.2"/>',  # a slant
-     '<Reference_Marker id="5" body_id="1" pos_x="1.5" pos_y="3" pos_z="0.5"/>'),
-    ('<Reference_Marker id="5" body_id="1" pos_x="1.5" pos_y="3" pos_z="0.2"/>',  # off axis
-     '<Reference_Marker id="5" body_id="1" pos_x="1.5" pos_y="3" pos_z="0.2"/>'
-     '<Reference_Marker id="6" body_id="1" pos_z="0.2" theta="0.3"/>'
-     '<Force_Scalar_TwoBody id="3" type="Torque" i_marker_id="43" j_marker_id="6" '
-     'expr="1"/>'),
-    ('<Force_Gravity', '<Force_Vector_OneBody id="1" type="ForceOnly" marker_id="22" '
-                       'ref_marker_id="1" fx_expression="1"/><Force_Gravity'),
-    ('</Model>', '<Motion_Marker id="1" i_marker_id="22" j_marker_id="1" direction="X" '
-                 'val_type="D" expr="0"/></Model>'),
-    ('</Model>', '<Reference_Marker id="7" body_id="1" pos_z="0.2" theta="0.3"/>'
-                 '<Motion_Marker id="1" i_marker_id="21" j_marker_id="7" direction="B3" '
-                 'val_type="V" expr="2"/></Model>'),
-    ('</Model>', '<Reference_Marker id="7" body_id="2" pos_z="0.2" theta="0.3"/>'
-                 '<Motion_Marker id="1" i_marker_id="7" j_marker_id="1" direction="B3" '
-                 'val_type="V" expr="2"/></Model>'),
-    ('</MotionSolve>', '<Simulate analysis_type="Static"/></MotionSolve>'),
+@pytest.mark.parametrize("change,reason", [
+    (('grav_z="0"', 'grav_z="-0.1"'), "gravity has a z component"),
+    (('w_ic_z="2"', 'w_ic_z="2" w_ic_x="0.1"'),
+     "body 2's initial angular velocity is not about global z"),
+    (('w_ic_z="2"', 'w_ic_z="2" v_ic_z="0.1"'), "body 2's initial velocity has a z component"),
+    (('inertia_xy="0.01"', 'inertia_xy="0.01" inertia_xz="0.001"'),
+     "body 2's inertia has global xz or yz products"),
+    (('<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2"/>',       # a tilted axis
+      '<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2" theta="0.001"/>'),
+     "Constraint_Joint 4's z axes are not along global z"),
+    (('<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2"/>',       # off the plane
+      '<Reference_Marker id="4" body_id="1" pos_x="3" pos_z="0.2001"/>'),
+     "Constraint_Joint 4's markers are not at the height"),
+    (('type="REVOLUTE" i_marker_id="41"', 'type="SPHERICAL" i_marker_id="41"'),
+     "Constraint_Joint 3 is not a REVOLUTE"),
+    (('<Reference_Marker id="20" body_id="2" pos_y="0.5" pos_z="0.2"',      # a joint off a
+      '<Reference_Marker id="20" body_id="2" pos_y="0.5" pos_z="0.3"'),     # body's cm height
+     "Constraint_Joint 1's markers are not at the height"),
+    (('type="Force" i_marker_id="33"', 'type="Force" is_action_only="TRUE" i_marker_id="33"'),
+     "Force_Scalar_TwoBody 1 acts out of the plane"),
+    (('<Reference_Marker id="5" body_id="1" pos_x="1.5" pos_y="3" pos_z="0.2"/>',  # a slant
+      '<Reference_Marker id="5" body_id="1" pos_x="1.5" pos_y="3" pos_z="0.5"/>'),
+     "Force_Scalar_TwoBody 1 acts out of the plane"),
+    (('<Reference_Marker id="5" body_id="1" pos_x="1.5" pos_y="3" pos_z="0.2"/>',  # off axis
+      '<Reference_Marker id="5" body_id="1" pos_x="1.5" pos_y="3" pos_z="0.2"/>'
+      '<Reference_Marker id="6" body_id="1" pos_z="0.2" theta="0.3"/>'
+      '<Force_Scalar_TwoBody id="3" type="Torque" i_marker_id="43" j_marker_id="6" '
+      'expr="1"/>'), "Force_Scalar_TwoBody 3 acts out of the plane"),
+    (('<Force_Gravity', '<Force_Vector_OneBody id="1" type="ForceOnly" marker_id="22" '
+                        'ref_marker_id="1" fx_expression="1"/><Force_Gravity'),
+     "it has vforces (not taken in a planar scene)"),
+    (('</Model>', '<Motion_Marker id="1" i_marker_id="22" j_marker_id="1" direction="X" '
+                  'val_type="D" expr="0"/></Model>'), "motion 1 is not a rotation about global z"),
+    (('</Model>', '<Reference_Marker id="7" body_id="1" pos_z="0.2" theta="0.3"/>'
+                  '<Motion_Marker id="1" i_marker_id="21" j_marker_id="7" direction="B3" '
+                  'val_type="V" expr="2"/></Model>'), "motion 1 is not a rotation about global z"),
+    (('</Model>', '<Reference_Marker id="7" body_id="2" pos_z="0.2" theta="0.3"/>'
+                  '<Motion_Marker id="1" i_marker_id="7" j_marker_id="1" direction="B3" '
+                  'val_type="V" expr="2"/></Model>'), "motion 1 is not a rotation about global z"),
+    (('</MotionSolve>', '<Simulate analysis_type="Static"/></MotionSolve>'),
+     "it has a Simulate command that is not Transient"),
 ])
-def test_anything_that_could_leave_the_plane_keeps_the_scene_3d(change):
+def test_anything_that_could_leave_the_plane_keeps_the_scene_3d(change, reason):
     """Each change gives the scene something out of the plane, or an element pysolver does
-    not reason about: the scene runs in 3-D (no planar body)."""
+    not reason about: the scene runs in 3-D (no planar body), and why_not says why; a run's
+    log says so when all its joints are revolutes about z (a scene that looks planar)."""
     old, new = change
     assert old in FOURBAR
     assert planar_bodies(pysolver.loads(FOURBAR)) == {2, 3, 4}
-    assert planar_bodies(pysolver.loads(FOURBAR.replace(old, new, 1))) == frozenset()
+    model = pysolver.loads(FOURBAR.replace(old, new, 1))
+    assert planar_bodies(model) == frozenset()
+    assert reason in why_not(model)
+    if looks_planar(model):
+        assert f"not a planar scene, integrated in 3-D: {why_not(model)}" in \
+            model.compile("tapes").notes
+
+
+def test_planar_off_is_said_in_the_log(monkeypatch):
+    monkeypatch.setenv("PYSOLVER_PLANAR", "off")
+    res = pysolver.loads(FOURBAR).run(integr_tol=1e-6)
+    assert "integrated in 3-D: PYSOLVER_PLANAR=off" in res.log
 
 
 def test_a_point_body_keeps_the_scene_3d():
@@ -143,8 +165,11 @@ def test_sweep_cases_of_a_planar_scene(monkeypatch):
     assert res.success and np.abs(res.request(1)[:, :6] - ref.request(1)[:, :6]).max() < 1e-7
     assert np.abs(res.request(1)[:, :2] - plain.request(1)[:, :2]).max() > 1e-3
     with pytest.raises(pysolver.DeckError, match=re.escape(
-            "sweep case {Force_Gravity/grav_z}: the model runs as a planar scene")):
-        model.run(params={"Force_Gravity/grav_z": -1.0})
+            "parameters {Force_Gravity/grav_z=-1, Body_Rigid/3/mass=3}: the model was compiled "
+            "as a planar scene (docs/numerics.md, \"Planar scenes\") and with these numbers "
+            "gravity has a z component; to run them, set PYSOLVER_PLANAR=off and load the "
+            "model again (it then runs in 3-D)")):
+        model.run(params={"Force_Gravity/grav_z": -1.0, "Body_Rigid/3/mass": 3.0})
     again = model.run(integr_tol=1e-10)
     np.testing.assert_array_equal(again.request(1), plain.request(1))
 
@@ -221,3 +246,18 @@ def test_a_driven_crank_runs_planar_with_the_3d_models_motion_and_drive(monkeypa
     for jid in (1, 2, 3, 4):
         ja, jb = res.joint(jid), ref.joint(jid)
         assert np.abs(ja - jb).max() <= 1e-6 * np.abs(jb).max()
+
+
+def test_check_says_how_many_states_run(monkeypatch, tmp_path):
+    """`pysolver check` (Model.summary after compiling) gives the count a run integrates,
+    and the 3-D model's; res.animate takes the model, and a path is a clear TypeError."""
+    monkeypatch.setenv("PYSOLVER_PLANAR", "auto")
+    model = pysolver.loads(FOURBAR)
+    assert model.summary().splitlines()[-1] == "states: 79"
+    model.check()
+    assert model.summary().splitlines()[-1] == "states: 34 integrated (79 in 3-D; a planar scene)"
+    res = model.run(integr_tol=1e-6)
+    with pytest.raises(TypeError, match=re.escape("animate() takes the Model that made the "
+                                                  "run, not 'out.html': write the page with "
+                                                  "res.animate().save(path)")):
+        res.animate("out.html")

@@ -387,8 +387,9 @@ def test_untraceable_python_routine_is_called_from_the_kernel(tmp_path):
     _close_to_expression(res, ref, fine, err)
     (path,) = res.meta["usersubs"].values()
     assert "Python callback (not traced: float() of a state-dependent value" in path
-    assert path.endswith("partials in DX(9), DY(9) by central differences, except those it "
-                         "gives with c_syspar / py_syspar (it never reads its time argument)")
+    assert path.endswith("partials in DX(9), DY(9) (not TIME: it never reads its time "
+                         "argument) by central differences, except those it gives with "
+                         "c_syspar / py_syspar")
 
 
 #: UNTRACEABLE on a catenary that sinks with time: y = cosh(x) - 0.5 t (a routine that reads

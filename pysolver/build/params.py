@@ -24,7 +24,7 @@ from ..deck.validate import value_rule
 from ..errors import DeckError
 from ..options import DECK_NAMES
 from .energy import energy_paths
-from .planar import global_inertia, planar_bodies, plane_rows
+from .planar import global_inertia, plane_rows, why_not
 
 _STATIC = ("max_ke_tol", "max_dq_tol", "max_num_iter", "max_imbalance", "max_error",
            "stability", "compliance_delta", "tlimit", "alimit")
@@ -160,13 +160,14 @@ class Parameters:
         planar = k.layout.planar
         if not planar:
             return
-        if case is not None and planar_bodies(self.model) != planar:
+        why = None if case is None else why_not(self.model)
+        if why is not None:
             self.reset()
-            paths = ", ".join(str(p) for p in case)
-            raise DeckError(f"sweep case {{{paths}}}: the model runs as a planar scene "
-                            "(docs/numerics.md, \"Planar scenes\") and these numbers take it out "
-                            "of its plane; set PYSOLVER_PLANAR=off before compiling it to "
-                            "run such cases in 3-D")
+            paths = ", ".join(f"{p}={v:g}" for p, v in case.items())
+            raise DeckError(f"parameters {{{paths}}}: the model was compiled as a planar scene "
+                            "(docs/numerics.md, \"Planar scenes\") and with these numbers "
+                            f"{why}; to run them, set PYSOLVER_PLANAR=off and load the model "
+                            "again (it then runs in 3-D)")
         for b in k.layout.bodies:
             if b.id in planar:
                 row = k.layout.index[b.id]

@@ -38,7 +38,7 @@ def scene_planar(model):
 
 def planar_bodies(model):
     """The ids of the moving bodies to integrate in planar coordinates: all of them when the
-    scene is planar, else an empty frozenset.
+    scene is planar, else an empty frozenset (:func:`why_not`).
 
     A scene is planar when every moving body is a Body_Rigid; it has only the element kinds in
     :data:`ALLOWED`, every joint a REVOLUTE between markers whose z axes are the global z
@@ -50,34 +50,59 @@ def planar_bodies(model):
     a z component; and each body starts with no z velocity, an angular velocity about global
     z only, and global z a principal axis of its inertia at its centre of mass.
     """
+    if why_not(model) is not None:
+        return frozenset()
+    return frozenset(b.id for b in model.bodies.values() if b.kind != "ground")
+
+
+def looks_planar(model):
+    """Whether the scene's joints are all revolutes about global z (a user would call it a
+    planar mechanism): when it is not planar, its log says why (:func:`why_not`)."""
+    return bool(model.joints) and all(
+        jo.type == "REVOLUTE" and _z_axis(model.markers[jo.i].rot)
+        and _z_axis(model.markers[jo.j].rot) for jo in model.joints.values())
+
+
+def why_not(model):
+    """None for a planar scene (:func:`planar_bodies`), else the first reason it is not, as
+    a phrase ("gravity has a z component")."""
     from .. import catalogue
     bodies = [b for b in model.bodies.values() if b.kind != "ground"]
-    if not bodies or any(b.kind != "rigid" for b in bodies):
-        return frozenset()
+    if not bodies:
+        return "it has no moving body"
+    for b in bodies:
+        if b.kind != "rigid":
+            return f"body {b.id} is a point body"
     for element in catalogue.ELEMENTS:
         if element.table not in ALLOWED and getattr(model, element.table):
-            return frozenset()
-    if any(cmd.analysis != "TRANSIENT" for cmd in model.commands) or model.gravity[2] != 0.0:
-        return frozenset()
+            return f"it has {element.table} (not taken in a planar scene)"
+    if any(cmd.analysis != "TRANSIENT" for cmd in model.commands):
+        return "it has a Simulate command that is not Transient"
+    if model.gravity[2] != 0.0:
+        return "gravity has a z component"
     for b in bodies:
-        if not _in_plane(b):
-            return frozenset()
+        why = _in_plane(b)
+        if why:
+            return f"body {b.id}'s {why}"
     for jo in model.joints.values():
-        if jo.type != "REVOLUTE" or getattr(jo, "virtual", False):
-            return frozenset()
         i, j = model.markers[jo.i], model.markers[jo.j]
+        if jo.type != "REVOLUTE" or getattr(jo, "virtual", False):
+            return f"Constraint_Joint {jo.id} is not a REVOLUTE"
         if not (_z_axis(i.rot) and _z_axis(j.rot)):
-            return frozenset()
+            return f"Constraint_Joint {jo.id}'s z axes are not along global z"
         if not all(_at_height(m, model.bodies[m.body], i.pos[2]) for m in (i, j)):
-            return frozenset()
-    if not all(_in_plane_force(model, sf) for sf in model.sforces.values()):
-        return frozenset()
+            return (f"Constraint_Joint {jo.id}'s markers are not at the height of the centres "
+                    "of mass of their bodies")
+    for sf in model.sforces.values():
+        if not _in_plane_force(model, sf):
+            return f"Force_Scalar_TwoBody {sf.id} acts out of the plane"
     # a driven rotation about z between frames turning about z: its reaction is a torque
     # about z (a tilted I frame would give AZ's gradient, and the torque, an x or y part)
-    if not all(mo.direction == "B3" and _z_axis(model.markers[mo.i].rot)
-               and _z_axis(model.markers[mo.j].rot) for mo in model.motions.values()):
-        return frozenset()
-    return frozenset(b.id for b in bodies)
+    for mo in model.motions.values():
+        if not (mo.direction == "B3" and _z_axis(model.markers[mo.i].rot)
+                and _z_axis(model.markers[mo.j].rot)):
+            return f"motion {mo.id} is not a rotation about global z"
+    return None
 
 
 def _in_plane_force(model, sf):
@@ -109,16 +134,19 @@ def _z_axis(rot):
 
 
 def _in_plane(b):
-    """Whether rigid body b starts moving in the x-y plane with no out-of-plane load of its
-    own (its velocity, its angular velocity and the inertia about global z)."""
+    """None when rigid body b starts moving in the x-y plane with no out-of-plane load of its
+    own (its velocity, its angular velocity and the inertia about global z), else what is
+    out of the plane."""
     if b.vel[2] != 0.0:
-        return False
+        return "initial velocity has a z component"
     w = b.rot @ np.asarray(b.omega, dtype=float)          # global angular velocity
     if abs(w[0]) > TOL * np.linalg.norm(w) or abs(w[1]) > TOL * np.linalg.norm(w):
-        return False
+        return "initial angular velocity is not about global z"
     Ig = global_inertia(b)
     big = max(np.abs(Ig).max(), np.finfo(float).tiny)
-    return abs(Ig[0, 2]) <= TOL * big and abs(Ig[1, 2]) <= TOL * big
+    if abs(Ig[0, 2]) > TOL * big or abs(Ig[1, 2]) > TOL * big:
+        return "inertia has global xz or yz products (z is not a principal axis)"
+    return None
 
 
 def global_inertia(b):

@@ -77,9 +77,9 @@ def bind(model):
         set_trees(model, kind, el, trees)
         model.usersub_paths[f"{ctx.tag} {el.id}"] = (
             f"{sub.describe()}: {how}, called from the kernel; its partials in "
-            f"{', '.join(keys + ([] if timeless else ['TIME'])) or 'nothing'} by central "
-            "differences, except those it gives with c_syspar / py_syspar"
-            + (" (it never reads its time argument)" if timeless else ""))
+            f"{', '.join(keys + ([] if timeless else ['TIME'])) or 'nothing'}"
+            + (" (not TIME: it never reads its time argument)" if timeless else "")
+            + " by central differences, except those it gives with c_syspar / py_syspar")
     from ..deck.references import check_references
     check_references(model)
 

@@ -8,10 +8,13 @@ holds one CompiledModel per kind of kernel; ``model.run(...)`` is ``model.compil
 """
 import numpy as np
 
+from .. import settings
 from ..build import Kernel
 from ..build.consistent import AssemblyError, redundant
 from ..build.kernel import UserFailure
 from ..build.params import Parameters
+from ..build.planar import looks_planar
+from ..build.planar import why_not as why_not_planar
 from .run import run_model
 
 
@@ -69,10 +72,14 @@ class CompiledModel:
                                                     f"{', '.join(ks)}")
                             for (kind, cid), ks in per.items())
             self.notes.append(f"redundant constraints removed ({len(self.removed)}): {eqs}")
-        if probe.layout.planar:
-            self.notes.append(f"planar scene: {len(probe.layout.planar)} bodies integrated in "
+        n = len(probe.layout.planar)
+        if n:
+            self.notes.append(f"planar scene: {n} bod{'y' if n == 1 else 'ies'} integrated in "
                               "(x, y, rz), the revolutes' out-of-plane equations left out "
                               "(docs/numerics.md, \"Planar scenes\")")
+        elif looks_planar(self.model):
+            self.notes.append(f"not a planar scene, integrated in 3-D: {why_not_planar(self.model)}"
+                              if settings.planar() else "integrated in 3-D: PYSOLVER_PLANAR=off")
         if kind == "tapes" and not self.removed:
             return probe
         return Kernel(self.model, False, kind, self.removed)

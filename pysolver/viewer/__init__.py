@@ -33,6 +33,9 @@ class Animation:
     """
 
     def __init__(self, result, model, params=None, max_frames=MAX_FRAMES):
+        if isinstance(model, (str, os.PathLike)):
+            raise TypeError(f"animate() takes the Model that made the run, not {model!r}: "
+                            "write the page with res.animate().save(path)")
         self.scene = Scene(result, model, params=params, max_frames=max_frames)
         self._html = None
 
