@@ -264,12 +264,13 @@ static void gdot(const psModel* m, psData* d, const psuHD* c, int tape, const do
   int adr = m->tape_body_adr[tape];
   for (int slot = 0; slot < m->tape_nbody[tape]; slot++) {
     if (m->tbody_q[adr + slot] < 0) continue;
-    int nu = m->body_type[m->tbody_body[adr + slot]] == PS_BODY_RIGID ? 6 : 3;
+    int type = m->body_type[m->tbody_body[adr + slot]];
+    int nu = type == PS_BODY_RIGID ? 6 : 3;
     for (int i = 0; i < nu; i++) {
-      /* a planar body's third u is wz, the z component of its global angular velocity */
-      const double* u = i < 3 ? ps_bc(m, d, slot, i == 2 && m->body_type[m->tbody_body[adr +
-                                slot]] == PS_BODY_PLANAR ? PS_BC_W : PS_BC_V) + i * c->stride
-                              : ps_bc(m, d, slot, PS_BC_WB) + (i - 3) * c->stride;
+      /* u: the origin's velocity, then the body-frame angular velocity; a planar body's
+       * third u is wz, the z component of its global angular velocity */
+      int which = i >= 3 ? PS_BC_WB : type == PS_BODY_PLANAR && i == 2 ? PS_BC_W : PS_BC_V;
+      const double* u = ps_bc(m, d, slot, which) + (i % 3) * c->stride;
       ps_rate_coeff(m, d, &c1, g, tape, slot, i, ci, sc);
       psu_hd_mul(&c1, ci, ci, u);
       psu_hd_lin(&c1, out, 1.0, out, 1.0, ci, 0.0);

@@ -50,22 +50,20 @@ FROZEN_TIME = "MKEAM/time"
 class Layout:
     """Where each body's coordinates live in the state vector.
 
-    `planar`: the ids of the bodies integrated in planar coordinates (x, y, rz, vx, vy, wz);
-    None decides from the model (:func:`pysolver.build.planar.planar_bodies`, unless
-    ``PYSOLVER_PLANAR=off``); a planar scene also leaves out its revolutes' out-of-plane
-    equations."""
+    ``planar``: the ids of the bodies integrated in planar coordinates (x, y, rz, vx, vy, wz),
+    decided from the model (:func:`pysolver.build.planar.scene_planar`); a planar scene also
+    leaves out its revolutes' out-of-plane equations. ``sizes``: each body's (nq, nu)."""
 
-    def __init__(self, model, removed=(), planar=None):
-        if planar is None:
-            planar = scene_planar(model)
-        self.planar = frozenset(planar)
+    def __init__(self, model, removed=()):
+        self.planar = scene_planar(model)
         removed = set(removed) | set(planar_removed_rows(model, self.planar))
         self.bodies = [b for _, b in sorted(model.bodies.items()) if b.kind != "ground"]
         self.index = {b.id: i for i, b in enumerate(self.bodies)}
+        self.sizes = [(3, 3) if b.kind == "point" or b.id in self.planar else (7, 6)
+                      for b in self.bodies]
         self.qadr, self.uadr, self.names = [], [], []
         off = 0
-        for b in self.bodies:
-            nq, nu = (3, 3) if b.kind == "point" or b.id in self.planar else (7, 6)
+        for b, (nq, nu) in zip(self.bodies, self.sizes):
             self.qadr.append(off)
             self.uadr.append(off + nq)
             if b.id in self.planar:
@@ -275,10 +273,10 @@ class _Tape:
 class Compiler:
     """Turns a Model into psModel arrays (see csrc/include/pysolver.h)."""
 
-    def __init__(self, model, conservative=False, removed=(), planar=None):
+    def __init__(self, model, conservative=False, removed=()):
         self.model = model
         self.conservative = conservative   # MKEAM: velocity-dependent terms (damping) removed
-        self.layout = Layout(model, removed, planar)
+        self.layout = Layout(model, removed)
         self.consts, self._cidx = [], {}
         self.params, self.param_slots = {}, set()   # sweep parameters: path -> const slot
         self.markers = sorted(model.markers)
@@ -882,8 +880,7 @@ class Compiler:
             # basis: positions of every body, then time, then velocities, then u'
             slots = [(lay.bodies[bi], bi, need_u, need_a) for bi, need_u, need_a, _ in t.bodies]
             tb_w.extend(int(need_w) for *_, need_w in t.bodies)
-            sizes = [(3, 3) if b.kind == "point" or b.id in lay.planar else (7, 6)
-                     for b, *_ in slots]
+            sizes = [lay.sizes[bi] for _, bi, *_ in slots]
             n = 0
             for (_, bi, _, _), (nq, _) in zip(slots, sizes):
                 tb_body.append(bi)

@@ -317,16 +317,14 @@ def set_tolerance(kernel, tol, failures=()):
 
 def _positions(lay):
     """The state indices of every body's positions q."""
-    return np.concatenate([np.arange(qa, qa + (3 if b.kind == "point" or b.id in lay.planar
-                                              else 7))
-                           for b, qa in zip(lay.bodies, lay.qadr)]).astype(int)
+    return np.concatenate([np.arange(qa, qa + nq)
+                           for (nq, _), qa in zip(lay.sizes, lay.qadr)]).astype(int)
 
 
 def _velocities(lay):
     """The state indices of every body's velocities u."""
-    return np.concatenate([np.arange(ua, ua + (3 if b.kind == "point" or b.id in lay.planar
-                                              else 6))
-                           for b, ua in zip(lay.bodies, lay.uadr)]).astype(int)
+    return np.concatenate([np.arange(ua, ua + nu)
+                           for (_, nu), ua in zip(lay.sizes, lay.uadr)]).astype(int)
 
 
 class AssemblyError(ValueError):

@@ -146,6 +146,8 @@ class Parameters:
 
     def reset(self):
         """The deck's values everywhere."""
+        if not self._base:
+            return
         for path, v in self._base.items():
             self._set(path, v)
         self._base.clear()

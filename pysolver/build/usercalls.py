@@ -8,8 +8,10 @@ partials are differenced (csrc/usersub.c). The element's expression becomes the 
 ``('user', routine, channel, [input trees])``.
 """
 import dataclasses
+import dis
 import math
 import threading
+import types
 
 from ..deck import expr as ex
 from ..deck import tracer
@@ -181,8 +183,6 @@ def reads_time(fn):
     wrapper taking ``*args``, a builtin) is taken to read it. Its result then does not change
     with time at fixed inputs, so the kernel need not difference it in time.
     """
-    import dis
-    import types
     if not isinstance(fn, types.FunctionType):
         return True
     code = fn.__code__
