@@ -109,6 +109,19 @@ struct psIDA {
   double bounds[3];       /* the step bounds set: hmax, hmin, first step (0: IDA's) */
   double base[3];         /* those of ps_ida_init (a run starts from them)          */
   psStream* stream;       /* where output rows are written as made (NULL: nowhere)  */
+  int* hold;              /* (nhold) states the scene may hold at their start values
+                             (ps_ida_hold), ascending                               */
+  int nhold;              /* their number                                          */
+  int holdable;           /* 1: this integration may hold them (a dense matrix, and
+                             a state left to integrate)                            */
+  int held;               /* 1: this integration holds them: IDA's vectors have the
+                             nl live states, the kernel sees full ones (fy, fyp)    */
+  int nl;                 /* states IDA integrates (ny when nothing is held)       */
+  int* live;              /* (nl) the state each of IDA's entries is               */
+  double *fy, *fyp, *fr;  /* (ny) full state, rate and residual of a held run       */
+  double* fjac;           /* (ny x ny) full dense Jacobian of a held run            */
+  double wscale;          /* sqrt(nl / ny): IDA's norms over nl entries then equal
+                             those over all ny, the held ones' errors being zero    */
   char msg[256];          /* message of the last error                              */
   void (*set_threads)(int); /* SuperLU_MT's libgomp omp_set_num_threads (NULL: none)    */
 };
@@ -117,6 +130,33 @@ struct psIDA {
  * (SUNDIALS 7.5 put a field between the two). */
 #define LS_CONTENT(ls) (*(void**)(ls))
 #define LS_OPS(s, ls) (((void***)(ls))[(s)->slot[0]])
+
+/* Held states (ps_ida_hold): a state the scene holds at its start value (a point body's
+ * coordinate nothing moves, and its velocity) is left out of IDA's vectors, error test and
+ * matrix; the kernel still sees the full state, the held entries at their values of the last
+ * (re)start and their rates zero. */
+
+/* IDA's vector v (s->nl entries) into the full state `full`; its held entries stay. */
+static void scatter(const psIDA* s, const double* v, double* full) {
+  for (int k = 0; k < s->nl; k++) full[s->live[k]] = v[k];
+}
+
+/* The live entries of the full state `full` into IDA's vector v. */
+static void gather(const psIDA* s, const double* full, double* v) {
+  for (int k = 0; k < s->nl; k++) v[k] = full[s->live[k]];
+}
+
+/* Whether the states ps_ida_hold named can be held from a start with rates yp0: each one's
+ * rate is zero there (a position's is its velocity, a velocity's its load). */
+static int at_rest(const psIDA* s, const double* yp0) {
+  for (int i = 0; i < s->nhold; i++)
+    if (yp0[s->hold[i]] != 0.0) return 0;
+  return s->nhold > 0;
+}
+
+/* IDA's vector v as a full state into out: the held entries from `full` (s->fy: their held
+ * values; s->fyp: zero rates), the rest from v. */
+static void put_full(psIDA* s, N_Vector v, double* out, const double* full);
 
 /* Find where a linear solver object keeps its table of operations, and where gettype, setup
  * and solve sit in that table (both changed between SUNDIALS versions): an empty solver holds
@@ -179,7 +219,7 @@ static int ls_solve(SUNLinearSolver ls, SUNMatrix a, N_Vector x, N_Vector b, sun
   (void)tol;
   psIDA* s = LS_CONTENT(ls);
   __typeof__(&N_VGetArrayPointer) data = CALL(s, N_VGetArrayPointer);
-  memcpy(data(x), data(b), sizeof(double) * (size_t)s->m->ny);
+  memcpy(data(x), data(b), sizeof(double) * (size_t)s->nl);
   ps_lu_solve(s->lu, data(x));
   return 0;
 }
@@ -189,7 +229,7 @@ static int ls_solve(SUNLinearSolver ls, SUNMatrix a, N_Vector x, N_Vector b, sun
  * non-finite pivot is a recoverable failure. */
 static int dense_setup(SUNLinearSolver ls, SUNMatrix a) {
   psIDA* s = LS_CONTENT(ls);
-  int n = s->m->ny;
+  int n = s->nl;
   double* lu = CALL(s, SUNDenseMatrix_Data)(a);
   for (int k = 0; k < n; k++) {
     double* ck = lu + (long)k * n;
@@ -223,7 +263,7 @@ static int dense_setup(SUNLinearSolver ls, SUNMatrix a) {
 static int dense_solve(SUNLinearSolver ls, SUNMatrix a, N_Vector x, N_Vector b, sunrealtype tol) {
   (void)tol;
   psIDA* s = LS_CONTENT(ls);
-  int n = s->m->ny;
+  int n = s->nl;
   const double* lu = CALL(s, SUNDenseMatrix_Data)(a);
   double* v = CALL(s, N_VGetArrayPointer)(x);
   memcpy(v, CALL(s, N_VGetArrayPointer)(b), sizeof(double) * (size_t)n);
@@ -324,10 +364,32 @@ int ps_ida_has_superlumt(const psIDA* s) { return has_csc(s) && s->fn[F_SUNLinSo
 static int res_fn(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* ud) {
   psIDA* s = (psIDA*)ud;
   __typeof__(&N_VGetArrayPointer) data = CALL(s, N_VGetArrayPointer);
+  double *y = data(yy), *ypv = data(yp), *r = data(rr);
+  if (s->held) {
+    scatter(s, y, s->fy);
+    scatter(s, ypv, s->fyp);
+    y = s->fy;
+    ypv = s->fyp;
+    r = s->fr;
+  }
   /* a non-finite residual is a recoverable failure: IDA retries with a smaller step, unless
    * the step is already at rounding level (the solution itself runs into the NaN: it would
    * creep towards it forever); an error a user subroutine reported is not: the run ends */
-  if (ps_residual(s->m, s->d, t, data(yy), data(yp), data(rr)) == PS_OK) return 0;
+  if (ps_residual(s->m, s->d, t, y, ypv, r) == PS_OK) {
+    if (!s->held) return 0;
+    /* a held state's own equation must hold exactly at rest, or holding it was wrong: the
+     * run ends rather than answer for a scene it did not integrate */
+    for (int i = 0; i < s->nhold; i++)
+      if (r[s->hold[i]] != 0.0) {
+        s->d->user_error = 1;
+        snprintf(s->d->msg, sizeof(s->d->msg),
+                 "state %d was held at rest, but its equation gives %.6g at t = %.9g "
+                 "(run with PYSOLVER_HELD=off and report this)", s->hold[i], r[s->hold[i]], t);
+        return -1;
+      }
+    gather(s, r, data(rr));
+    return 0;
+  }
   if (s->d->user_error) return -1;
   sunrealtype h = 1.0;
   CALL(s, IDAGetCurrentStep)(s->mem, &h);
@@ -388,6 +450,17 @@ static int jac_fn(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yp, N_Vec
   }
   double* a = CALL(s, SUNDenseMatrix_Data)(J);
   int n = s->m->ny;
+  if (s->held) {
+    /* the full matrix, then its live rows and columns, column-major */
+    scatter(s, data(yy), s->fy);
+    scatter(s, data(yp), s->fyp);
+    int rc = ps_jacobian(s->m, s->d, t, s->fy, s->fyp, cj, s->fjac);
+    for (int j = 0; j < s->nl; j++)
+      for (int i = 0; i < s->nl; i++)
+        a[(long)j * s->nl + i] = s->fjac[(long)s->live[i] * n + s->live[j]];
+    if (rc == PS_OK) return 0;
+    return s->d->user_error ? -1 : 1;
+  }
   /* the kernel writes row-major; the dense matrix is column-major: transpose in place */
   int rc = ps_jacobian(s->m, s->d, t, data(yy), data(yp), cj, a);
   for (int i = 0; i < n; i++)
@@ -403,7 +476,10 @@ static int jac_fn(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yp, N_Vec
 static int root_fn(sunrealtype t, N_Vector yy, N_Vector yp, sunrealtype* g, void* ud) {
   psIDA* s = (psIDA*)ud;
   __typeof__(&N_VGetArrayPointer) data = CALL(s, N_VGetArrayPointer);
-  return ps_roots(s->m, s->d, t, data(yy), data(yp), g);
+  if (!s->held) return ps_roots(s->m, s->d, t, data(yy), data(yp), g);
+  scatter(s, data(yy), s->fy);
+  scatter(s, data(yp), s->fyp);
+  return ps_roots(s->m, s->d, t, s->fy, s->fyp, g);
 }
 
 /* Free the current integration's SUNDIALS objects; s itself and its table stay. */
@@ -418,6 +494,14 @@ static void release(psIDA* s) {
   free(s->piv);
   s->rpiv = NULL;
   s->piv = NULL;
+  free(s->live);
+  free(s->fy);
+  free(s->fyp);
+  free(s->fr);
+  free(s->fjac);
+  s->live = NULL;
+  s->fy = s->fyp = s->fr = s->fjac = NULL;
+  s->held = s->holdable = 0;
   if (s->A) CALL(s, SUNMatDestroy)(s->A);
   if (s->y) CALL(s, N_VDestroy)(s->y);
   if (s->yp) CALL(s, N_VDestroy)(s->yp);
@@ -434,6 +518,7 @@ static void release(psIDA* s) {
 void ps_ida_delete(psIDA* s) {
   if (!s) return;
   release(s);
+  free(s->hold);
   free(s);
 }
 
@@ -451,7 +536,10 @@ static int fail(psIDA* s, const char* what, int flag) {
     if (flag_ < 0) return fail(s, name, flag_);     \
   } while (0)
 
-/* IDA's error weights 1 / (rtol |y_i| + atol), zero for the reactions (algebraic states):
+/* IDA's error weights 1 / (rtol |y_i| + atol), times wscale when states are held (IDA's
+ * root-mean-square norms over the live entries then equal those over every state, as if the
+ * held ones, whose errors are zero, were integrated: the same steps), zero for the reactions
+ * (algebraic states):
  * they are outside the error test (IDASetSuppressAlg) and, with a zero weight, outside the
  * corrector's convergence test too. A reaction's correction follows the velocities' (M u' =
  * f - G^T lam): once those have converged, so have the reactions along every direction the
@@ -465,8 +553,9 @@ static int weights(N_Vector y, N_Vector ewt, void* user_data) {
   psIDA* s = user_data;
   const double* v = CALL(s, N_VGetArrayPointer)(y);
   double* w = CALL(s, N_VGetArrayPointer)(ewt);
-  for (int i = 0; i < s->m->ny; i++)
-    w[i] = s->m->state_alg[i] ? 0.0 : 1.0 / (s->rtol * fabs(v[i]) + s->atol);
+  for (int k = 0; k < s->nl; k++)
+    w[k] = s->m->state_alg[s->live ? s->live[k] : k]
+               ? 0.0 : s->wscale / (s->rtol * fabs(v[k]) + s->atol);
   return 0;
 }
 
@@ -479,25 +568,55 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   s->own_dense = 0;
   s->m = m;
   s->d = d;
+  s->nl = n;
+  s->wscale = 1.0;
+  for (int i = 0; i < s->nhold; i++)
+    if (s->hold[i] < 0 || s->hold[i] >= n || (i > 0 && s->hold[i] <= s->hold[i - 1]))
+      return fail(s, "ps_ida_hold (a state index out of order or range)", -1);
+  /* held states: a dense matrix, a start at rest in them, and a state left to integrate */
+  int dense = !(mu >= 0 && ml >= 0) && mu != PS_IDA_SPARSE && mu != PS_IDA_SUPERLU_MT;
+  s->holdable = dense && s->nhold < n;
+  if (s->holdable && at_rest(s, yp0)) {
+    s->live = malloc(sizeof(int) * (size_t)(n - s->nhold));
+    s->fy = malloc(sizeof(double) * (size_t)n);
+    s->fyp = calloc((size_t)n, sizeof(double));
+    s->fr = malloc(sizeof(double) * (size_t)n);
+    s->fjac = malloc(sizeof(double) * (size_t)n * (size_t)n);
+    if (!s->live || !s->fy || !s->fyp || !s->fr || !s->fjac) return fail(s, "malloc", -1);
+    s->held = 1;
+    s->nl = 0;
+    for (int i = 0, h = 0; i < n; i++) {
+      if (h < s->nhold && s->hold[h] == i) h++;
+      else s->live[s->nl++] = i;
+    }
+    memcpy(s->fy, y0, sizeof(double) * (size_t)n);
+    s->wscale = sqrt((double)s->nl / (double)n);
+  }
   s->hit = 0;
   for (int i = 0; i < m->ny; i++) s->hit |= m->state_alg[i];
   s->msg[0] = '\0';
   SET(s, CALL(s, SUNContext_Create)(0, &s->ctx), "SUNContext_Create");
   CALL(s, SUNContext_ClearErrHandlers)(s->ctx); /* C never prints: flags are returned */
+  n = s->nl; /* IDA's size from here on */
   s->y = CALL(s, N_VNew_Serial)(n, s->ctx);
   s->yp = CALL(s, N_VNew_Serial)(n, s->ctx);
   s->yi = CALL(s, N_VNew_Serial)(n, s->ctx);
   s->ypi = CALL(s, N_VNew_Serial)(n, s->ctx);
   if (!s->y || !s->yp || !s->yi || !s->ypi) return fail(s, "N_VNew_Serial", -1);
-  memcpy(CALL(s, N_VGetArrayPointer)(s->y), y0, sizeof(double) * (size_t)n);
-  memcpy(CALL(s, N_VGetArrayPointer)(s->yp), yp0, sizeof(double) * (size_t)n);
+  if (s->held) {
+    gather(s, y0, CALL(s, N_VGetArrayPointer)(s->y));
+    gather(s, yp0, CALL(s, N_VGetArrayPointer)(s->yp));
+  } else {
+    memcpy(CALL(s, N_VGetArrayPointer)(s->y), y0, sizeof(double) * (size_t)n);
+    memcpy(CALL(s, N_VGetArrayPointer)(s->yp), yp0, sizeof(double) * (size_t)n);
+  }
   s->mem = CALL(s, IDACreate)(s->ctx);
   if (!s->mem) return fail(s, "IDACreate", -1);
   SET(s, CALL(s, IDAInit)(s->mem, res_fn, t0, s->y, s->yp), "IDAInit");
   SET(s, CALL(s, IDASetUserData)(s->mem, s), "IDASetUserData");
   s->rtol = rtol;
   s->atol = atol;
-  if (s->hit)
+  if (s->hit || s->held)
     SET(s, CALL(s, IDAWFtolerances)(s->mem, weights), "IDAWFtolerances");
   else
     SET(s, CALL(s, IDASStolerances)(s->mem, rtol, atol), "IDASStolerances");
@@ -557,13 +676,13 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   SET(s, CALL(s, IDASetJacFn)(s->mem, jac_fn), "IDASetJacFn");
   SET(s, CALL(s, IDASetMaxNumSteps)(s->mem, mxsteps), "IDASetMaxNumSteps");
   int nalg = 0;
-  for (int i = 0; i < n; i++) nalg += m->state_alg[i];
+  for (int i = 0; i < m->ny; i++) nalg += m->state_alg[i];
   if (nalg > 0) {
     /* reactions are algebraic: out of the error test (IDA copies id) */
     N_Vector id = CALL(s, N_VNew_Serial)(n, s->ctx);
     if (!id) return fail(s, "N_VNew_Serial", -1);
     double* v = CALL(s, N_VGetArrayPointer)(id);
-    for (int i = 0; i < n; i++) v[i] = m->state_alg[i] ? 0.0 : 1.0;
+    for (int i = 0; i < n; i++) v[i] = m->state_alg[s->held ? s->live[i] : i] ? 0.0 : 1.0;
     int flag = CALL(s, IDASetId)(s->mem, id);
     CALL(s, N_VDestroy)(id);
     if (flag < 0) return fail(s, "IDASetId", flag);
@@ -609,8 +728,19 @@ static void ida_counters(psIDA* s, long* c) {
 
 int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0) {
   int n = s->m->ny;
-  memcpy(CALL(s, N_VGetArrayPointer)(s->y), y0, sizeof(double) * (size_t)n);
-  memcpy(CALL(s, N_VGetArrayPointer)(s->yp), yp0, sizeof(double) * (size_t)n);
+  if (s->held) {
+    /* the held states keep the values of this start; they must be at rest in it */
+    if (!at_rest(s, yp0)) {
+      snprintf(s->msg, sizeof(s->msg), "a restart moves a state this integration holds");
+      return PS_IDA_HELD;
+    }
+    memcpy(s->fy, y0, sizeof(double) * (size_t)n);
+    gather(s, y0, CALL(s, N_VGetArrayPointer)(s->y));
+    gather(s, yp0, CALL(s, N_VGetArrayPointer)(s->yp));
+  } else {
+    memcpy(CALL(s, N_VGetArrayPointer)(s->y), y0, sizeof(double) * (size_t)n);
+    memcpy(CALL(s, N_VGetArrayPointer)(s->yp), yp0, sizeof(double) * (size_t)n);
+  }
   /* IDA's counters restart from zero: keep those of the run so far */
   long c[6];
   ida_counters(s, c);
@@ -623,7 +753,6 @@ int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0) {
 
 int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret, double* y,
                  double* yp, int* rootsfound) {
-  int n = s->m->ny;
   /* constraints hold at the steps, not on IDA's interpolant between them: with reactions,
    * every requested time is a step's end; one the last step already passed (a print time a
    * rounding error after the restart it began at) is interpolated, as without reactions */
@@ -635,8 +764,8 @@ int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret,
   int flag = CALL(s, IDASetStopTime)(s->mem, tstop);
   if (flag < 0) return flag;
   flag = CALL(s, IDASolve)(s->mem, tout, tret, s->y, s->yp, onestep ? 2 : 1);
-  memcpy(y, CALL(s, N_VGetArrayPointer)(s->y), sizeof(double) * (size_t)n);
-  memcpy(yp, CALL(s, N_VGetArrayPointer)(s->yp), sizeof(double) * (size_t)n);
+  put_full(s, s->y, y, s->fy);
+  put_full(s, s->yp, yp, s->fyp);
   if (flag == 2 && rootsfound) CALL(s, IDAGetRootInfo)(s->mem, rootsfound);
   return flag;
 }
@@ -644,11 +773,34 @@ int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret,
 int ps_ida_interpolate(psIDA* s, double t, double* y, double* yp) {
   int flag = CALL(s, IDAGetSolution)(s->mem, t, s->yi, s->ypi);
   if (flag < 0) return flag;
-  size_t row = sizeof(double) * (size_t)s->m->ny;
-  memcpy(y, CALL(s, N_VGetArrayPointer)(s->yi), row);
-  memcpy(yp, CALL(s, N_VGetArrayPointer)(s->ypi), row);
+  put_full(s, s->yi, y, s->fy);
+  put_full(s, s->ypi, yp, s->fyp);
   return 0;
 }
+
+static void put_full(psIDA* s, N_Vector v, double* out, const double* full) {
+  const double* a = CALL(s, N_VGetArrayPointer)(v);
+  if (!s->held) {
+    memcpy(out, a, sizeof(double) * (size_t)s->nl);
+    return;
+  }
+  memcpy(out, full, sizeof(double) * (size_t)s->m->ny);
+  scatter(s, a, out);
+}
+
+int ps_ida_hold(psIDA* s, const int* hold, int nhold) {
+  free(s->hold);
+  s->hold = NULL;
+  s->nhold = 0;
+  if (nhold <= 0) return 0;
+  s->hold = malloc(sizeof(int) * (size_t)nhold);
+  if (!s->hold) return -1;
+  memcpy(s->hold, hold, sizeof(int) * (size_t)nhold);
+  s->nhold = nhold;
+  return 0;
+}
+
+int ps_ida_held(const psIDA* s) { return s->held ? s->nhold : 0; }
 
 void ps_ida_set_stream(psIDA* s, psStream* st) { s->stream = st; }
 
@@ -719,6 +871,8 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
 
 int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0) {
   if (!s->mem || s->limited_at || s->sparse == 2) return 1;
+  /* a start that can hold states this integration does not, or the other way round */
+  if (s->holdable && at_rest(s, yp0) != s->held) return 1;
   if (memcmp(s->bounds, s->base, sizeof(s->bounds)) != 0 &&
       ps_ida_bounds(s, s->base[0], s->base[1], s->base[2]) != 0)
     return 1;
@@ -817,7 +971,7 @@ static int restart(psIDA* s, psSensors* S, double t, const double* y, const doub
       ps_ida_bounds(s, b[0], b[1], b[2]))
     return -1;
   s->d->last_t = t; /* restarts are not step attempts (see ps_residual) */
-  ps_ida_reinit(s, t, y, yp);
+  if (ps_ida_reinit(s, t, y, yp) == PS_IDA_HELD) return -1;
   *fresh = 1;
   (*nrestarts)++;
   if (S && S->nzc) {

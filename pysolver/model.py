@@ -246,10 +246,15 @@ class Model:
         planar scene's, or without redundant equations) when it differs."""
         full = self.num_states()
         compiled = next(iter(self._compiled.values()), None)
-        if compiled is None or compiled.kernel.ny == full:
+        if compiled is None:
             return f"states: {full}"
-        why = ("a planar scene" if compiled.kernel.layout.planar else
-               "redundant equations left out")
+        from .build.held import describe as describe_held
+        layout = compiled.kernel.layout
+        held = (f" (IDA holds {len(layout.held)} at rest: "
+                f"{describe_held(layout.held_axes)})" if layout.held else "")
+        if compiled.kernel.ny == full:
+            return f"states: {full}{held}"
+        why = "a planar scene" if layout.planar else "redundant equations left out"
         return f"states: {compiled.kernel.ny} integrated ({full} in 3-D; {why})"
 
     def num_states(self) -> int:

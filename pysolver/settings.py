@@ -106,6 +106,12 @@ def planar():
     return (_get("PYSOLVER_PLANAR") or "").strip().lower() not in ("off", "0", "no", "false")
 
 
+def held():
+    """Whether states a scene holds at their start values are left out of IDA's vectors
+    (``PYSOLVER_HELD`` is not ``off``, ``0``, ``no`` or ``false``; pysolver/build/held.py)."""
+    return (_get("PYSOLVER_HELD") or "").strip().lower() not in ("off", "0", "no", "false")
+
+
 def no_inplace_build():
     """Whether ``PYSOLVER_NO_INPLACE_BUILD`` forbids building the C kernel in a checkout."""
     return bool(os.environ.get("PYSOLVER_NO_INPLACE_BUILD"))

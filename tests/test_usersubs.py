@@ -874,12 +874,15 @@ def _counter(lib):
 
 
 @pytest.mark.parametrize("tol", [1e-6, 1e-10])
-def test_given_partials_replace_differences(syspar_library, tol):
+def test_given_partials_replace_differences(syspar_library, tol, monkeypatch):
     """A routine that gives its partials with c_syspar runs the expression version's steps to
     rounding (its partials are exact) and is called at most twice per evaluation (the value,
     and one step in time, which is flat), six times per Jacobian (differences of the given
     partials in DX, DY, DZ) and 24 times once per run (the partials checked against fourth-order
     differences): under 0.4x the calls of the same routine differenced."""
+    # the expression version integrated as the routine's is (all six states: a routine that
+    # reads TDISP reads y, which the expression version's particle holds)
+    monkeypatch.setenv("PYSOLVER_HELD", "off")
     ref = _lines(syspar_library, None).run(integr_tol=tol)
     given, differenced = _lines(syspar_library, "ALWAYS"), _lines(syspar_library, "NEVER")
     given.compile(), differenced.compile()
@@ -1016,11 +1019,14 @@ def test_given_partials_of_curves_far_out_are_taken(syspar_library, x, par, expr
     assert (np.abs(a - b).max(axis=0) <= 1e-6 * np.abs(b).max(axis=0)).all()
 
 
-def test_py_syspar(tmp_path):
+def test_py_syspar(tmp_path, monkeypatch):
     """py_syspar from an untraceable Python routine: the expression version's answers and steps
     to rounding; wrong partials are reported; a traced routine that calls it is still traced
     (tracing differentiates exactly); outside a routine it is an error."""
     from scenes import LINES_NUMPY_SYSPAR, LINES_PFOSUB, lines_deck
+    # the expression version integrated as the routine's is (all six states: a routine that
+    # reads TDISP reads y, which the expression version's particle holds)
+    monkeypatch.setenv("PYSOLVER_HELD", "off")
     expr_text, _ = lines_deck("expression", tmp_path)
     ref = pysolver.loads(expr_text, fmt="py").run(integr_tol=1e-10)
     text, _ = lines_deck("untraceable_syspar", tmp_path)
@@ -1044,11 +1050,14 @@ def test_py_syspar(tmp_path):
         pysolver.msolve.py_syspar("DX", [10], [1.0])
 
 
-def test_py_syspar_of_an_array_and_a_wrong_count(tmp_path):
+def test_py_syspar_of_an_array_and_a_wrong_count(tmp_path, monkeypatch):
     """py_syspar of a TDISP array read with py_sysary goes through c_syspar: the expression
     version's steps and answers to rounding; one partial too many for DX is the run's error,
     in c_syspar's words."""
     from scenes import LINES_NUMPY_SYSPAR, lines_deck
+    # the expression version integrated as the routine's is (all six states: a routine that
+    # reads TDISP reads y, which the expression version's particle holds)
+    monkeypatch.setenv("PYSOLVER_HELD", "off")
     expr_text, _ = lines_deck("expression", tmp_path)
     ref = pysolver.loads(expr_text, fmt="py").run(integr_tol=1e-10)
     text, _ = lines_deck("untraceable_syspar", tmp_path)

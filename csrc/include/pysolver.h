@@ -737,8 +737,24 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
  * Call right after ps_ida_init. Returns PS_OK, or -1 with a message (ps_ida_message). */
 int ps_ida_tune(psIDA* s, double eta_max, double nlconv, double auto_eta);
 
+/* Name the states a scene may hold at their start values (ascending indices; none: nhold
+ * 0), for the next ps_ida_init: a point body's coordinate that nothing moves, and its
+ * velocity (pysolver/build/held.py). An integration with a dense matrix that starts with
+ * every one of them at rest (its rate zero in yp0) leaves them out of IDA's vectors, error
+ * test and matrix; the kernel and every state this object returns are still full, the held
+ * entries at their values of the last (re)start. Each residual checks that their equations
+ * hold exactly (else the run ends with a message). Returns 0, or -1 when out of memory. */
+int ps_ida_hold(psIDA* s, const int* hold, int nhold);
+
+/* The number of states the current integration holds (0: IDA integrates all of them). */
+int ps_ida_held(const psIDA* s);
+
+/* ps_ida_reinit's return when the integration holds states and the restart's yp0 moves one
+ * (ps_ida_hold): call ps_ida_init, which then integrates every state. */
+#define PS_IDA_HELD -2006
+
 /* Cold-restart the current integration at (t0, y0, yp0); the counters of ps_ida_stats keep
- * counting. Returns IDA's flag. */
+ * counting. Returns IDA's flag, or PS_IDA_HELD. */
 int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0);
 
 /* One IDASolve call toward tout (one internal step if onestep) never passing tstop; copies the
@@ -759,8 +775,9 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
 /* Start a new run of the integration set up by ps_ida_init at (t0, y0, yp0), keeping its IDA
  * object and linear solver: IDA's state and the counters of ps_ida_stats start from zero.
  * Returns 1 when the object cannot be reused as it is (never set up, its step-growth limit
- * switched on by ps_ida_tune's auto_eta, or SuperLU_MT, whose factorization is kept between
- * runs): call ps_ida_init instead; else IDA's flag. The step bounds go back to
+ * switched on by ps_ida_tune's auto_eta, SuperLU_MT, whose factorization is kept between
+ * runs, or a start that can hold states this integration does not, or the other way round):
+ * call ps_ida_init instead; else IDA's flag. The step bounds go back to
  * ps_ida_init's. */
 int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0);
 

@@ -22,6 +22,7 @@ from ..errors import DeckError
 from ..rotations import e_from_rot
 from . import angles, energy, netforce, splines
 from .bindings import lib
+from .held import held_states, scene_held
 from .planar import global_inertia as planar_global_inertia
 from .planar import initial_state as planar_initial_state
 from .planar import plane_rows as planar_plane_rows
@@ -52,10 +53,13 @@ class Layout:
 
     ``planar``: the ids of the bodies integrated in planar coordinates (x, y, rz, vx, vy, wz),
     decided from the model (:func:`pysolver.build.planar.scene_planar`); a planar scene also
-    leaves out its revolutes' out-of-plane equations. ``sizes``: each body's (nq, nu)."""
+    leaves out its revolutes' out-of-plane equations. ``sizes``: each body's (nq, nu).
+    ``held_axes``: {point body id: global axes nothing moves it along}, and ``held`` their
+    states (:mod:`pysolver.build.held`), which IDA leaves out."""
 
     def __init__(self, model, removed=()):
         self.planar = scene_planar(model)
+        self.held_axes = scene_held(model)
         removed = set(removed) | set(planar_removed_rows(model, self.planar))
         self.bodies = [b for _, b in sorted(model.bodies.items()) if b.kind != "ground"]
         self.index = {b.id: i for i, b in enumerate(self.bodies)}
@@ -73,6 +77,7 @@ class Layout:
                 un = ["vx", "vy", "vz"] + (["wx", "wy", "wz"] if nu == 6 else [])
             self.names += [f"body{b.id}.{n}" for n in qn + un]
             off += nq + nu
+        self.held = held_states(model, self, self.held_axes)
         # per Motion_Marker its reaction lam (an algebraic state); a displacement motion also
         # mu, which holds it at the position level, an acceleration motion the driven
         # velocity w, which integrates its expression; then per joint equation lam and mu, then

@@ -130,6 +130,12 @@ class CIDA:
             self.band = (lib.PS_IDA_SUNDIALS_DENSE if sundials_dense else -1, -1)
             self.map = np.zeros(1, dtype=np.int32)
             self.ntrip = 0
+            # the states the scene holds at their start values (build/held.py): left out of
+            # IDA when a start is at rest in them (ps_ida_hold)
+            held = np.asarray(getattr(kernel.layout, "held", ()), dtype=np.int32)
+            if len(held) and lib.ps_ida_hold(self.s, ffi.cast("int *", ffi.from_buffer(held)),
+                                             len(held)) != 0:
+                raise MemoryError("could not allocate an IDA object")
         else:
             self.band = band
             self.map = kernel.band_map(*band)
@@ -155,8 +161,13 @@ class CIDA:
             if rc != 0 or (self.tune and lib.ps_ida_tune(self.s, *self.tune) != 0):
                 raise self._error()
             self.started = True
-        else:
-            lib.ps_ida_reinit(self.s, t0, fb("double[]", y0), fb("double[]", yp0))
+        elif lib.ps_ida_reinit(self.s, t0, fb("double[]", y0),
+                               fb("double[]", yp0)) == lib.PS_IDA_HELD:
+            # the restart moves a held state (an actor set its velocity): from here on IDA
+            # integrates every state
+            self.started = False
+            lib.ps_ida_hold(self.s, ffi.NULL, 0)
+            self.init_step(t0, y0, yp0)
 
     def step(self, tout, tstop, onestep=False):
         """One IDASolve call toward tout, never past tstop."""
@@ -197,6 +208,10 @@ class CIDA:
         step = Step(self.tret[0], Y[j].copy(), YP[j].copy(), flag,
                     self.roots.copy() if flag == ROOT_RETURN else None)
         return step, Y[:k], YP[:k], REQ[:k, :self.k.arrays["nout"]], k
+
+    def held(self):
+        """The number of states the current integration holds (0: IDA has every one)."""
+        return int(lib.ps_ida_held(self.s))
 
     def counters(self):
         """IDA's counters over this object's life, restarts included."""
