@@ -248,10 +248,10 @@ class Model:
         compiled = next(iter(self._compiled.values()), None)
         if compiled is None:
             return f"states: {full}"
-        from .build.held import describe as describe_held
         layout = compiled.kernel.layout
-        held = (f" (IDA holds {len(layout.held)} at rest: "
-                f"{describe_held(layout.held_axes)})" if layout.held else "")
+        held = ", ".join(f"body {bid}'s " + " and ".join("xyz"[a] for a in axes)
+                         for bid, axes in sorted(layout.held_axes.items()))
+        held = f" (IDA holds {len(layout.held)} at rest: {held})" if layout.held else ""
         if compiled.kernel.ny == full:
             return f"states: {full}{held}"
         why = "a planar scene" if layout.planar else "redundant equations left out"

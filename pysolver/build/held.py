@@ -120,10 +120,3 @@ def held_states(model, layout, held):
         out += [layout.qadr[i] + a for a in axes] + [layout.uadr[i] + a for a in axes]
     return tuple(sorted(out))
 
-
-def describe(held):
-    """A phrase naming the held coordinates {body id: axes} ("body 2's y")."""
-    names = "xyz"
-    parts = [f"body {bid}'s " + " and ".join(names[a] for a in axes)
-             for bid, axes in sorted(held.items())]
-    return ", ".join(parts)
