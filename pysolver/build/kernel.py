@@ -340,7 +340,8 @@ class Kernel:
         self.d.user_error = 0
         self.d.step_limit = 0
         self.d.steps_exceeded = 0
-        self._work["user_cache"][:] = 0.0     # user subroutines are evaluated afresh
+        if self.arrays["nusercache"]:
+            self._work["user_cache"][:] = 0.0     # user subroutines are evaluated afresh
 
     @property
     def message(self):

@@ -16,6 +16,7 @@ rule in :mod:`pysolver.options`): a penalty of 0 or -1e4, a smoothing factor of 
 a number or a step count of 2.5 is the DeckError a deck with that value gets.
 """
 import dataclasses
+import math
 
 import numpy as np
 
@@ -45,6 +46,11 @@ _NOT_IN_SCHEMA = {("Reference_Variable", "value"): "float"}
 
 _KINDS = {}                     # path -> (element, attribute, kind, its Ctx), as looked up
 
+#: Numbers check_value takes as they are, and the elements whose values have rules beyond
+#: their kind (deck.validate.value_rule).
+_REALS = (int, float, np.floating, np.integer)
+_RULED = frozenset({"Param_Transient", "Force_Gravity"})
+
 
 def _assign(rec, **changes):
     """Change numbers of a record of a compiled model's own scene (its working copy: the loaded
@@ -64,11 +70,15 @@ def check_value(path, value):
         kind = _NOT_IN_SCHEMA.get((tag, attr)) or SCHEMA[tag][attr][0]
         got = _KINDS[path] = (tag, attr, kind, Ctx(None, tag, {}, None, {}))
     tag, attr, kind, ctx = got
-    try:
-        v = convert(ctx, attr, kind, value)
-    except DeckError as err:
-        raise _error(path, err.reason) from None
-    problem = value_rule(tag, attr, v)        # the loader's rules beyond the kind
+    # a finite real for a real attribute, the usual case, without the loader's general path
+    v = float(value) if isinstance(value, _REALS) and not isinstance(value, bool) else None
+    if v is None or not (math.isfinite(v) and (kind == "float" or (
+            kind == "pos" and v > 0) or (kind == "nonneg" and v >= 0))):
+        try:
+            v = convert(ctx, attr, kind, value)
+        except DeckError as err:
+            raise _error(path, err.reason) from None
+    problem = tag in _RULED and value_rule(tag, attr, v)   # the loader's rules beyond the kind
     if problem:
         raise _error(path, f"got {v:g}; {problem}")
     return v
@@ -87,6 +97,8 @@ class Parameters:
     def __init__(self, model, kernel):
         self.model, self.kernel = model, kernel
         self._base = {}                 # path -> the deck's value, for the paths set so far
+        self._deck = {}                 # path -> the deck's value, once read (they never change)
+        self._movers = {}               # body id -> its markers (a cg marker moves them all)
         self._names = {}                # lower-case path -> canonical path
         for path in self.paths():
             self._names[path.lower()] = path
@@ -139,7 +151,10 @@ class Parameters:
                 options[path.split("/")[1]] = v
                 continue
             if path not in self._base:
-                self._base[path] = self._get(path)
+                base = self._deck.get(path)
+                if base is None:
+                    base = self._deck[path] = self._get(path)
+                self._base[path] = base
             self._set(path, v)
         self._sync_planar(case)
         return options
@@ -265,7 +280,10 @@ class Parameters:
         body = m.bodies[mk.body]
         if body.kind != "ground" and body.cg == mid:
             body.pos[axis] = v
-            movers = [x for x in m.markers.values() if x.body == body.id]
+            movers = self._movers.get(body.id)
+            if movers is None:
+                movers = self._movers[body.id] = [x for x in m.markers.values()
+                                                  if x.body == body.id]
         else:
             movers = [mk]
         for x in movers:

@@ -216,6 +216,6 @@ class CIDA:
     def counters(self):
         """IDA's counters over this object's life, restarts included."""
         lib.ps_ida_stats(self.s, self.counts)
-        c = [int(self.counts[i]) for i in range(7)]
+        c = ffi.unpack(self.counts, 7)
         return {"steps": c[0], "nfev": c[1], "njev": c[2], "netf": c[3], "ncfn": c[4],
                 "growth_limited_at": c[6] or None}

@@ -91,6 +91,7 @@ class FastRun:
         self.reached, self.tret = ffi.new("int *"), ffi.new("double *")
         self.roots = ffi.new("int[1]")
         self.reporter = None
+        self.budget_ok = None           # the output budget every command's rows were within
 
     def run(self, t_start, used, static, labels, log, progress=None, stream=None):
         """Run the model; returns its Result, or None when its outputs would pass the budget
@@ -99,7 +100,10 @@ class FastRun:
         k, d, opts = self.k, self.k.d, self.options
         k.reset_counters()
         n, ny = len(self.times), k.ny
-        if over_budget(n, ny, len(k.channels), "the run"):
+        # the rows are the same run after run: checked once per output budget
+        budget = settings.output_budget()
+        checked = budget == self.budget_ok and not self.acting
+        if not checked and over_budget(n, ny, len(k.channels), "the run"):
             return None
         # rows at events, and print intervals sensors change, may need more room
         room = n + (_SLACK if self.acting else 0)
@@ -149,7 +153,8 @@ class FastRun:
             else:
                 fresh = True
                 for cmd, t_cmd, batches in self.commands:
-                    self._budget(cmd, t_cmd, out.row)
+                    if not checked:
+                        self._budget(cmd, t_cmd, out.row)
                     d.step_limit = d.ntimes - d.nfail + opts.max_num_steps    # as the driver
                     for times in batches:
                         stop = self._command(cmd, times, fresh, out)
@@ -157,6 +162,7 @@ class FastRun:
                         if stop is not None:
                             raise stop
                         bar.update(out.T[out.row - 1])
+                self.budget_ok = budget
         except Stop as stop:
             status, message = stop.status, stop.message
         except NonFinite as err:                     # as the general loop words them
