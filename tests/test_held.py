@@ -153,3 +153,21 @@ def test_holding_a_state_that_moves_ends_the_run():
     msg = kernel.message
     assert msg.startswith("state 3 was held at rest, but its equation gives ")
     assert 0.062 < float(msg.split(" at t = ")[1].split()[0]) < 0.1
+
+
+def test_a_routine_holds_what_it_did_not_declare(tmp_path):
+    """A routine the kernel calls reads what its iflag call declared: the NumPy PFOSUB that
+    asks for DX and DZ lets y be held (the expression version's steps and answers to
+    rounding), the C one that asks for TDISP does not."""
+    from scenes import lines_deck
+    expr_text, _ = lines_deck("expression", tmp_path)
+    ref = pysolver.loads(expr_text, fmt="py").run(integr_tol=1e-8)
+    text, _ = lines_deck("untraceable_syspar", tmp_path)
+    model = pysolver.loads(text, fmt="py")
+    assert model.compile().kernel.layout.held == (1, 4)
+    res = model.run(integr_tol=1e-8)
+    assert res.success and res.stats["steps"] == ref.stats["steps"]
+    assert np.abs(res.request(1)[:, :4] - ref.request(1)[:, :4]).max() <= 1e-12
+    text, _ = lines_deck("c", tmp_path)
+    if text is not None:
+        assert pysolver.loads(text, fmt="py").compile().kernel.layout.held == ()

@@ -1019,14 +1019,11 @@ def test_given_partials_of_curves_far_out_are_taken(syspar_library, x, par, expr
     assert (np.abs(a - b).max(axis=0) <= 1e-6 * np.abs(b).max(axis=0)).all()
 
 
-def test_py_syspar(tmp_path, monkeypatch):
+def test_py_syspar(tmp_path):
     """py_syspar from an untraceable Python routine: the expression version's answers and steps
     to rounding; wrong partials are reported; a traced routine that calls it is still traced
     (tracing differentiates exactly); outside a routine it is an error."""
     from scenes import LINES_NUMPY_SYSPAR, LINES_PFOSUB, lines_deck
-    # the expression version integrated as the routine's is (all six states: a routine that
-    # reads TDISP reads y, which the expression version's particle holds)
-    monkeypatch.setenv("PYSOLVER_HELD", "off")
     expr_text, _ = lines_deck("expression", tmp_path)
     ref = pysolver.loads(expr_text, fmt="py").run(integr_tol=1e-10)
     text, _ = lines_deck("untraceable_syspar", tmp_path)

@@ -43,8 +43,9 @@ def held_axes(model):
     :data:`ALLOWED`, gravity and the body's start velocity have no component along it, and no
     penalty's expression (through its variables and the penalties it reads) reads that
     coordinate of a marker on the body: ``DX``, ``DY``, ``DZ`` and their velocity and
-    acceleration forms in global axes read one axis; any other function of the body's markers,
-    and a user subroutine, reads all three.
+    acceleration forms in global axes read one axis; any other function of the body's markers
+    reads all three; a user subroutine reads the values its iflag call declared (C's TDISP
+    array: all three).
     """
     points = {b.id: b for b in model.bodies.values() if b.kind == "point"}
     if not points:
@@ -66,15 +67,16 @@ def held_axes(model):
 
 def _reads(model, tree, out, seen):
     """Add to out {body id: axes} the coordinates an expression reads (through VARVAL and
-    PFORCE); an unknown body or subroutine marks every point body as read on every axis."""
+    PFORCE); a subroutine reads the values it declared; a tree not compiled yet (None) or a
+    computed marker id marks every body as read on every axis."""
     every = (0, 1, 2)
-    if tree is None:                    # a user subroutine not traced (yet): anything
-        tree = ("user", None, None, [])
+    if tree is None:                    # a user subroutine not compiled yet: anything
+        for bid in model.bodies:
+            out.setdefault(bid, set()).update(every)
+        return
+    # a user subroutine's node has the values its iflag call declared as its inputs (it can
+    # read no other, deck/usersubs.py): they are walked like any other call
     for node in ex.nodes(tree):
-        if node[0] == "user":
-            for bid in model.bodies:
-                out.setdefault(bid, set()).update(every)
-            continue
         if node[0] != "call":
             continue
         name, args = node[1], node[2]
