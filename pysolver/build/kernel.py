@@ -340,8 +340,7 @@ class Kernel:
         self.d.user_error = 0
         self.d.step_limit = 0
         self.d.steps_exceeded = 0
-        if self.arrays["nusercache"]:
-            self._work["user_cache"][:] = 0.0     # user subroutines are evaluated afresh
+        self._work["user_cache"][:] = 0.0     # user subroutines are evaluated afresh
 
     @property
     def message(self):
