@@ -158,6 +158,26 @@ static int at_rest(const psIDA* s, const double* yp0) {
  * values; s->fyp: zero rates), the rest from v. */
 static void put_full(psIDA* s, N_Vector v, double* out, const double* full);
 
+/* Whether a (re)start at (t0, y0, yp0) can hold the states: at rest in them, and their
+ * equations exactly satisfied there (a start whose yp0 is stale, after an actor changed the
+ * scene, is not). The check's residual is not one of the run's: the counters it moves, and a
+ * non-finite value's record, are put back. */
+static int holds(psIDA* s, double t0, const double* y0, const double* yp0) {
+  if (!s->holdable || !at_rest(s, yp0)) return 0;
+  psData* d = s->d;
+  long nres = d->nres, ntimes = d->ntimes, nfail = d->nfail;
+  double last_t = d->last_t;
+  int bad_kind = d->bad_kind;
+  int ok = ps_residual(s->m, d, t0, y0, yp0, s->fr) == PS_OK;
+  for (int i = 0; ok && i < s->nhold; i++) ok = s->fr[s->hold[i]] == 0.0;
+  d->nres = nres;
+  d->ntimes = ntimes;
+  d->nfail = nfail;
+  d->last_t = last_t;
+  d->bad_kind = bad_kind;
+  return ok;
+}
+
 /* Find where a linear solver object keeps its table of operations, and where gettype, setup
  * and solve sit in that table (both changed between SUNDIALS versions): an empty solver holds
  * nothing but the table and its context, and a dense solver's table holds the dense solver's
@@ -383,8 +403,8 @@ static int res_fn(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* ud
       if (r[s->hold[i]] != 0.0) {
         s->d->user_error = 1;
         snprintf(s->d->msg, sizeof(s->d->msg),
-                 "state %d was held at rest, but its equation gives %.6g at t = %.9g "
-                 "(run with PYSOLVER_HELD=off and report this)", s->hold[i], r[s->hold[i]], t);
+                 "state %d was held at rest, but its equation gives %.6g "
+                 "(run with PYSOLVER_HELD=off and report this)", s->hold[i], r[s->hold[i]]);
         return -1;
       }
     gather(s, r, data(rr));
@@ -554,7 +574,7 @@ static int weights(N_Vector y, N_Vector ewt, void* user_data) {
   const double* v = CALL(s, N_VGetArrayPointer)(y);
   double* w = CALL(s, N_VGetArrayPointer)(ewt);
   for (int k = 0; k < s->nl; k++)
-    w[k] = s->m->state_alg[s->live ? s->live[k] : k]
+    w[k] = s->m->state_alg[s->held ? s->live[k] : k]
                ? 0.0 : s->wscale / (s->rtol * fabs(v[k]) + s->atol);
   return 0;
 }
@@ -576,13 +596,15 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   /* held states: a dense matrix, a start at rest in them, and a state left to integrate */
   int dense = !(mu >= 0 && ml >= 0) && mu != PS_IDA_SPARSE && mu != PS_IDA_SUPERLU_MT;
   s->holdable = dense && s->nhold < n;
-  if (s->holdable && at_rest(s, yp0)) {
+  if (s->holdable) {
     s->live = malloc(sizeof(int) * (size_t)(n - s->nhold));
     s->fy = malloc(sizeof(double) * (size_t)n);
     s->fyp = calloc((size_t)n, sizeof(double));
     s->fr = malloc(sizeof(double) * (size_t)n);
     s->fjac = malloc(sizeof(double) * (size_t)n * (size_t)n);
     if (!s->live || !s->fy || !s->fyp || !s->fr || !s->fjac) return fail(s, "malloc", -1);
+  }
+  if (holds(s, t0, y0, yp0)) {
     s->held = 1;
     s->nl = 0;
     for (int i = 0, h = 0; i < n; i++) {
@@ -730,7 +752,7 @@ int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0) {
   int n = s->m->ny;
   if (s->held) {
     /* the held states keep the values of this start; they must be at rest in it */
-    if (!at_rest(s, yp0)) {
+    if (!holds(s, t0, y0, yp0)) {
       snprintf(s->msg, sizeof(s->msg), "a restart moves a state this integration holds");
       return PS_IDA_HELD;
     }
@@ -872,7 +894,7 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
 int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0) {
   if (!s->mem || s->limited_at || s->sparse == 2) return 1;
   /* a start that can hold states this integration does not, or the other way round */
-  if (s->holdable && at_rest(s, yp0) != s->held) return 1;
+  if (s->holdable && holds(s, t0, y0, yp0) != s->held) return 1;
   if (memcmp(s->bounds, s->base, sizeof(s->bounds)) != 0 &&
       ps_ida_bounds(s, s->base[0], s->base[1], s->base[2]) != 0)
     return 1;

@@ -437,19 +437,22 @@ int ps_outputs(const psModel* m, psData* d, double t, const double* y, const dou
                double* out) {
   if (m->gen) {
     m->gen->outputs(m, d, t, y, yp, 0.0, out);
-    return PS_OK;
-  }
-  int last = -1;
-  for (int k = 0; k < m->nout; k++) {
-    int tape = m->out_tape[k];
-    if (tape < 0) {
-      out[k] = NAN;
-      continue;
+  } else {
+    int last = -1;
+    for (int k = 0; k < m->nout; k++) {
+      int tape = m->out_tape[k];
+      if (tape < 0) {
+        out[k] = NAN;
+        continue;
+      }
+      if (tape != last) ps_tape_run(m, d, tape, m->tape_order[tape], 1, t, y, yp);
+      last = tape;
+      out[k] = ps_slot(m, d, m->out_slot[k])[0];
     }
-    if (tape != last) ps_tape_run(m, d, tape, m->tape_order[tape], 1, t, y, yp);
-    last = tape;
-    out[k] = ps_slot(m, d, m->out_slot[k])[0];
   }
+  /* a defined channel that is not finite: the run's log names it (solve/nonfinite.py) */
+  for (int k = 0; k < m->nout; k++)
+    if (m->out_tape[k] >= 0 && !isfinite(out[k])) d->out_nonfinite = 1;
   return PS_OK;
 }
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from . import catalogue, imports
 from .errors import DeckError
-from .options import Options, resolve_kernel
+from .options import SPARSE_THRESHOLD, Options, resolve_kernel
 from .records import (  # noqa: F401 - the records are the model's vocabulary
     READ_ONLY,
     UNIT_DEFAULTS,
@@ -249,9 +249,14 @@ class Model:
         if compiled is None:
             return f"states: {full}"
         layout = compiled.kernel.layout
-        held = ", ".join(f"body {bid}'s " + " and ".join("xyz"[a] for a in axes)
-                         for bid, axes in sorted(layout.held_axes.items()))
-        held = f" (IDA holds {len(layout.held)} at rest: {held})" if layout.held else ""
+        held = [f"body {bid}'s " + " and ".join("xyz"[a] for a in axes)
+                for bid, axes in sorted(layout.held_axes.items())]
+        more = len(held) - 3
+        held = ", ".join(held[:3]) + (f" and {more} more bod{'y' if more == 1 else 'ies'}"
+                                      if more > 0 else "")
+        # held by a run with a dense matrix, the default below SPARSE_THRESHOLD states
+        held = f" (IDA holds {len(layout.held)} at rest: {held})" \
+            if layout.held and full < SPARSE_THRESHOLD else ""
         if compiled.kernel.ny == full:
             return f"states: {full}{held}"
         why = "a planar scene" if layout.planar else "redundant equations left out"

@@ -302,6 +302,8 @@ typedef struct psData {
                              step_limit + 1 (ntimes - nfail) ends the run, with
                              steps_exceeded and user_error set; 0: no limit     */
   int steps_exceeded;     /* 1 after step_limit stopped a run                   */
+  int out_nonfinite;      /* 1 once ps_outputs gave a request channel with an
+                             expression a non-finite value; zero it to forget   */
   char msg[256];          /* message of the last error                          */
 } psData;
 
@@ -938,8 +940,8 @@ int ps_user_give(int key, double partial);
  * model units (the root function of MKEAM's kinetic-energy peaks). */
 double ps_power(const psModel* m, const double* y, const double* yp);
 
-/* Evaluate every output channel into out (length m->nout); a NULL channel gives NaN.
- * Returns PS_OK. */
+/* Evaluate every output channel into out (length m->nout); a NULL channel gives NaN, and a
+ * channel with an expression that is not finite sets d->out_nonfinite. Returns PS_OK. */
 int ps_outputs(const psModel* m, psData* d, double t, const double* y, const double* yp,
                double* out);
 

@@ -1,5 +1,6 @@
 """A compiled scene bound to the C kernel: psModel + psData and fast call wrappers."""
 import functools
+import re
 
 import numpy as np
 
@@ -332,20 +333,17 @@ class Kernel:
 
     def reset_counters(self):
         """Zero the call and step-attempt counters."""
-        self.d.nres = 0
-        self.d.njac = 0
-        self.d.ntimes = 0
-        self.d.nfail = 0
-        self.d.nroots = 0
-        self.d.user_error = 0
-        self.d.step_limit = 0
-        self.d.steps_exceeded = 0
+        d = self.d
+        d.nres = d.njac = d.ntimes = d.nfail = d.nroots = 0
+        d.user_error = d.step_limit = d.steps_exceeded = d.out_nonfinite = 0
         self._work["user_cache"][:] = 0.0     # user subroutines are evaluated afresh
 
     @property
     def message(self):
-        """Message of the last kernel error."""
-        return ffi.string(self.d.msg).decode(errors="replace")
+        """Message of the last kernel error (a held state named, csrc/ida.c)."""
+        msg = ffi.string(self.d.msg).decode(errors="replace")
+        held = re.match(r"state (\d+) was held", msg)
+        return msg if held is None else self.layout.names[int(held[1])] + msg[held.end(1):]
 
     def outputs(self, t, y, yp):
         """Return a copy of every request channel at (t, y, yp); NaN for NULL channels."""

@@ -71,7 +71,8 @@ def check_value(path, value):
         got = _KINDS[path] = (tag, attr, kind, Ctx(None, tag, {}, None, {}))
     tag, attr, kind, ctx = got
     # a finite real for a real attribute, the usual case, without the loader's general path
-    v = float(value) if isinstance(value, _REALS) and not isinstance(value, bool) else None
+    v = float(value) if kind in ("float", "pos", "nonneg") and isinstance(value, _REALS) \
+        and not isinstance(value, bool) else None
     if v is None or not (math.isfinite(v) and (kind == "float" or (
             kind == "pos" and v > 0) or (kind == "nonneg" and v >= 0))):
         try:

@@ -111,6 +111,8 @@ class CIDA:
         self.tret = ffi.new("double *")
         self.counts = ffi.new("long[7]")
         self.started = False
+        self.retired = None              # counters of an integration on the held states
+        self.bounds = None               # the step bounds set_bounds last set
         self.tune = tune
         self.colptr = self.rowind = self.colorder = np.zeros(1, dtype=np.int32)
         self.nnz = 0
@@ -150,6 +152,7 @@ class CIDA:
         y0 = np.ascontiguousarray(y0, float)
         yp0 = np.ascontiguousarray(yp0, float)
         if not self.started:
+            self.retired = None
             rtol, atol, hmax, hmin, h0, mx = self.opts
             rc = lib.ps_ida_init(self.s, self.k.m, self.k.d, t0, fb("double[]", y0),
                                  fb("double[]", yp0), rtol, atol, hmax, hmin, h0, mx,
@@ -163,11 +166,15 @@ class CIDA:
             self.started = True
         elif lib.ps_ida_reinit(self.s, t0, fb("double[]", y0),
                                fb("double[]", yp0)) == lib.PS_IDA_HELD:
-            # the restart moves a held state (an actor set its velocity): from here on IDA
-            # integrates every state
+            # the restart moves a held state (an actor set its velocity or changed the scene):
+            # from here on IDA integrates every state, keeping the run's counters and bounds
+            retired, bounds = self.counters(), self.bounds
             self.started = False
             lib.ps_ida_hold(self.s, ffi.NULL, 0)
             self.init_step(t0, y0, yp0)
+            self.retired = retired
+            if bounds is not None:
+                self.set_bounds(*bounds)
 
     def step(self, tout, tstop, onestep=False):
         """One IDASolve call toward tout, never past tstop."""
@@ -183,6 +190,7 @@ class CIDA:
         have them (ps_ida_bounds)."""
         if lib.ps_ida_bounds(self.s, hmax, hmin, h0) != 0:
             raise self._error()
+        self.bounds = (hmax, hmin, h0)
 
     def interpolate(self, t, tstop):
         """The state at t, which the last step passed: IDA's interpolant (no step, stop time or
@@ -217,5 +225,11 @@ class CIDA:
         """IDA's counters over this object's life, restarts included."""
         lib.ps_ida_stats(self.s, self.counts)
         c = ffi.unpack(self.counts, 7)
-        return {"steps": c[0], "nfev": c[1], "njev": c[2], "netf": c[3], "ncfn": c[4],
-                "growth_limited_at": c[6] or None}
+        out = {"steps": c[0], "nfev": c[1], "njev": c[2], "netf": c[3], "ncfn": c[4],
+               "growth_limited_at": c[6] or None}
+        old = self.retired                  # those before IDA started again on every state
+        if old is not None:
+            limited = old["growth_limited_at"] or (c[6] and c[6] + old["steps"]) or None
+            out = {key: out[key] + old[key] for key in ("steps", "nfev", "njev", "netf", "ncfn")}
+            out["growth_limited_at"] = limited
+        return out
