@@ -288,6 +288,8 @@ class Parameters:
         else:
             movers = [mk]
         for x in movers:
+            if x is mk and body.kind != "ground" and body.cg == mid:
+                continue                      # the cg marker stays at the body's origin
             row = k.marker_index[x.id]
             local = x.pos if body.kind == "ground" else body.rot.T @ (x.pos - body.pos)
             k.arrays["marker_pos"][3 * row:3 * row + 3] = local
