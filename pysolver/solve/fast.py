@@ -108,7 +108,7 @@ class FastRun:
         # rows at events, and print intervals sensors change, may need more room
         room = n + (_SLACK if self.acting else 0)
         out = _Out(self.times, room, ny, self.nout)
-        bar, t_run = Progress(0.0, self.times[-1], progress), None
+        bar, t_run = _QUIET if progress is False else Progress(0.0, self.times[-1], progress), None
         status, message, ida_counters = 0, "The simulation finished.", None
         ida = self.solver
         loop = self.loop
@@ -218,7 +218,7 @@ class FastRun:
                 raise Stop(False, -200, self.sensors.chatter())
             halt = self.sensors.halted_by() if self.S.halt >= 0 else None
             self.sensors.drain()                  # the loop's records start empty
-        state = _State(t0, y0, yp0)
+        state = _State(t0, y0, yp0) if self.controls else None
         for task in self.controls:
             task.start(state)
         return halt
@@ -355,6 +355,10 @@ class FastRun:
 
 #: Rows beyond the print times that a run whose actors act in C starts with (rows at events).
 _SLACK = 64
+
+
+#: The progress bar of runs that asked for none.
+_QUIET = Progress(0.0, 1.0, False)
 
 
 class _Out:
