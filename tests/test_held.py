@@ -107,8 +107,8 @@ def test_a_sweep_case_along_the_held_axis_runs_every_state(monkeypatch):
     assert moved.y[-1, 1] < -100.0                      # y fell
 
 
-class Push(Actor):
-    """At t = 0.5 s sets the falling ball's x velocity to 1 (a held state moves)."""
+class AtHalf(Actor):
+    """Acts once, at t = 0.5 s (:meth:`act`), and restarts IDA."""
 
     def __init__(self):
         self.done = False
@@ -118,10 +118,17 @@ class Push(Actor):
 
     def on_time(self, run):
         self.done = True
+        self.act(run)
+        return Flow(restart=True)
+
+
+class Push(AtHalf):
+    """Sets the falling ball's x velocity to 1 (a held state moves)."""
+
+    def act(self, run):
         run.y = run.y.copy()
         run.y[3] = 1.0
         run.yp = run.kernel.consistent_yp(run.t, run.y)
-        return Flow(restart=True)
 
 
 def test_an_actor_moving_a_held_state_is_followed():
@@ -156,20 +163,12 @@ def test_starting_again_on_every_state_keeps_the_run(monkeypatch, sensor):
     np.testing.assert_allclose(held.y, full.y, rtol=0, atol=1e-9)
 
 
-class GravityAlongY(Actor):
-    """At t = 0.5 s turns gravity along y on and restarts, without new rates (IDA's corrector
-    finds them): the start's equations are not at rest in the held y any more."""
+class GravityAlongY(AtHalf):
+    """Turns gravity along y on, without new rates (IDA's corrector finds them): the start's
+    equations are not at rest in the held y any more."""
 
-    def __init__(self):
-        self.done = False
-
-    def next_time(self, t):
-        return math.inf if self.done else 0.5
-
-    def on_time(self, run):
-        self.done = True
+    def act(self, run):
         run.kernel.m.gravity = run.kernel.arrays["gravity"] = [0.0, -1.0, -G]
-        return Flow(restart=True)
 
 
 def test_a_restart_whose_equations_move_a_held_state_integrates_every_state():
