@@ -77,7 +77,10 @@ def test_a_penalty_past_double_precision_is_a_failed_run(penalty):
 
 @pytest.mark.parametrize("penalty", ["1E10", "1E11"])
 def test_the_suggested_penalty_gives_the_right_answer(penalty):
-    res = _bead(penalty).run()
+    # at this stiffness the step count follows rounding: integr_tol moved by 1e-15 relative
+    # gives 212k-435k steps at 1e10, and 840k-960k were seen at 1e11, near the default budget
+    # of 1e6; the budget is not what this test is about
+    res = _bead(penalty).run(max_num_steps=3_000_000)
     assert res.success, res.message
     assert res.request(1)[-1, 0] == pytest.approx(BEAD_X3, abs=1e-3)
 
