@@ -748,14 +748,11 @@ static void ida_counters(psIDA* s, long* c) {
   CALL(s, IDAGetNumGEvals)(s->mem, c + 5);
 }
 
-int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0) {
+/* ps_ida_reinit once the start is known to suit the held states (holds). */
+static int reinit(psIDA* s, double t0, const double* y0, const double* yp0) {
   int n = s->m->ny;
   if (s->held) {
-    /* the held states keep the values of this start; they must be at rest in it */
-    if (!holds(s, t0, y0, yp0)) {
-      snprintf(s->msg, sizeof(s->msg), "a restart moves a state this integration holds");
-      return PS_IDA_HELD;
-    }
+    /* the held states keep the values of this start */
     memcpy(s->fy, y0, sizeof(double) * (size_t)n);
     gather(s, y0, CALL(s, N_VGetArrayPointer)(s->y));
     gather(s, yp0, CALL(s, N_VGetArrayPointer)(s->yp));
@@ -771,6 +768,15 @@ int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0) {
   s->win_h[0] = s->win_h[1] = 0.0;
   if (s->lu) ps_lu_forget(s->lu);
   return CALL(s, IDAReInit)(s->mem, t0, s->y, s->yp);
+}
+
+int ps_ida_reinit(psIDA* s, double t0, const double* y0, const double* yp0) {
+  /* a held integration's restart must be at rest in the held states */
+  if (s->held && !holds(s, t0, y0, yp0)) {
+    snprintf(s->msg, sizeof(s->msg), "a restart moves a state this integration holds");
+    return PS_IDA_HELD;
+  }
+  return reinit(s, t0, y0, yp0);
 }
 
 int ps_ida_solve(psIDA* s, double tout, double tstop, int onestep, double* tret, double* y,
@@ -898,7 +904,7 @@ int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0) {
   if (memcmp(s->bounds, s->base, sizeof(s->bounds)) != 0 &&
       ps_ida_bounds(s, s->base[0], s->base[1], s->base[2]) != 0)
     return 1;
-  int flag = ps_ida_reinit(s, t0, y0, yp0);
+  int flag = reinit(s, t0, y0, yp0);   /* holds() was checked above */
   memset(s->acc, 0, sizeof(s->acc));
   s->first_limited = 0;
   return flag;

@@ -742,7 +742,8 @@ int ps_ida_tune(psIDA* s, double eta_max, double nlconv, double auto_eta);
 /* Name the states a scene may hold at their start values (ascending indices; none: nhold
  * 0), for the next ps_ida_init: a point body's coordinate that nothing moves, and its
  * velocity (pysolver/build/held.py). An integration with a dense matrix that starts with
- * every one of them at rest (its rate zero in yp0) leaves them out of IDA's vectors, error
+ * every one of them at rest (its rate zero in yp0, its equation exactly satisfied at the
+ * start, and some other state left to integrate) leaves them out of IDA's vectors, error
  * test and matrix; the kernel and every state this object returns are still full, the held
  * entries at their values of the last (re)start. Each residual checks that their equations
  * hold exactly (else the run ends with a message). Returns 0, or -1 when out of memory. */

@@ -77,7 +77,7 @@ class Layout:
                 un = ["vx", "vy", "vz"] + (["wx", "wy", "wz"] if nu == 6 else [])
             self.names += [f"body{b.id}.{n}" for n in qn + un]
             off += nq + nu
-        self.held = held_states(model, self, self.held_axes)
+        self.held = held_states(self, self.held_axes)
         # per Motion_Marker its reaction lam (an algebraic state); a displacement motion also
         # mu, which holds it at the position level, an acceleration motion the driven
         # velocity w, which integrates its expression; then per joint equation lam and mu, then

@@ -113,7 +113,7 @@ def _number(node):
     return int(node[1]) if node[0] == "num" else None
 
 
-def held_states(model, layout, held):
+def held_states(layout, held):
     """The state indices of the held axes {body id: axes} in `layout` (positions and their
     velocities), ascending."""
     out = []

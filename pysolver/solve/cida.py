@@ -134,7 +134,7 @@ class CIDA:
             self.ntrip = 0
             # the states the scene holds at their start values (build/held.py): left out of
             # IDA when a start is at rest in them (ps_ida_hold)
-            held = np.asarray(getattr(kernel.layout, "held", ()), dtype=np.int32)
+            held = np.asarray(kernel.layout.held, dtype=np.int32)
             if len(held) and lib.ps_ida_hold(self.s, ffi.cast("int *", ffi.from_buffer(held)),
                                              len(held)) != 0:
                 raise MemoryError("could not allocate an IDA object")
