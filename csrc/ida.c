@@ -64,6 +64,12 @@ static const struct { int lib; const char* name; } FNS[F_COUNT] = {SUNDIALS_FNS(
 /* SUNLS_LUFACT_FAIL: a singular matrix, a failure IDA recovers from with a smaller step. */
 #define PS_LS_LUFACT_FAIL 808
 
+/* The most states whose dense solves multiply by the inverse of the factored matrix, made at
+ * the second solve with the same factors, and the largest 1-norm condition number it is used
+ * at (dense_solve). */
+#define PS_INV_MAX 16
+#define PS_INV_COND 1e12
+
 /* Steps per window over which watch() counts IDA's error-test failures. */
 #define PS_IDA_WINDOW 50
 
@@ -88,6 +94,11 @@ struct psIDA {
                              (dense_setup / dense_solve)                           */
   double* rpiv;           /* (ny) reciprocals of its pivots                         */
   int* piv;               /* (ny) row exchanged with row k at step k                */
+  int nsolve;             /* solves with the current factors                        */
+  double anorm;           /* the factored matrix's 1-norm                           */
+  double* inv;            /* (2 x nl x nl) the inverse from those factors (column-
+                             major) and room to make it, when nl <= PS_INV_MAX     */
+  int use_inv;            /* 1: the solves multiply by inv                          */
   int slot[4];            /* the word of a linear solver object that points to its
                              operations, and where gettype, setup and solve sit in
                              that table (-1: unknown, no solver of pysolver's own)  */
@@ -244,6 +255,62 @@ static int ls_solve(SUNLinearSolver ls, SUNMatrix a, N_Vector x, N_Vector b, sun
   return 0;
 }
 
+/* Solve in place with the factors of dense_setup (lu, n x n): SUNDIALS' dense solve with a
+ * multiplication by each pivot's reciprocal where it divides (a chain of divisions was most of
+ * its time on a six-state scene), and the columns of zero entries skipped. */
+static void lu_solve(const psIDA* s, const double* lu, int n, double* v) {
+  for (int k = 0; k < n; k++) {
+    int p = s->piv[k];
+    if (p != k) {
+      double t = v[k];
+      v[k] = v[p];
+      v[p] = t;
+    }
+  }
+  for (int k = 0; k < n; k++) {
+    double vk = v[k];
+    if (vk != 0.0)
+      for (int i = k + 1; i < n; i++) v[i] -= lu[(long)k * n + i] * vk;
+  }
+  for (int k = n - 1; k >= 0; k--) {
+    double vk = v[k] * s->rpiv[k];
+    v[k] = vk;
+    if (vk != 0.0)
+      for (int i = 0; i < k; i++) v[i] -= lu[(long)k * n + i] * vk;
+  }
+}
+
+/* The inverse X (row-major) of the matrix whose factors dense_setup left in lu (n x n): the
+ * solves of lu_solve for the n columns of the identity at once, row operations on X. */
+static void invert(const psIDA* s, const double* lu, int n, double* X) {
+  for (int i = 0; i < n * n; i++) X[i] = 0.0;
+  for (int i = 0; i < n; i++) X[i * n + i] = 1.0;
+  for (int k = 0; k < n; k++) {
+    int p = s->piv[k];
+    if (p != k)
+      for (int j = 0; j < n; j++) {
+        double t = X[k * n + j];
+        X[k * n + j] = X[p * n + j];
+        X[p * n + j] = t;
+      }
+  }
+  for (int k = 0; k < n; k++)
+    for (int i = k + 1; i < n; i++) {
+      double l = lu[(long)k * n + i];
+      if (l != 0.0)
+        for (int j = 0; j < n; j++) X[i * n + j] -= l * X[k * n + j];
+    }
+  for (int k = n - 1; k >= 0; k--) {
+    double r = s->rpiv[k];
+    for (int j = 0; j < n; j++) X[k * n + j] *= r;
+    for (int i = 0; i < k; i++) {
+      double u = lu[(long)k * n + i];
+      if (u != 0.0)
+        for (int j = 0; j < n; j++) X[i * n + j] -= u * X[k * n + j];
+    }
+  }
+}
+
 /* Factor a dense matrix (column-major) in place with partial pivoting, as SUNDIALS' dense LU
  * does (the same pivots and operations) but keeping the pivots' reciprocals; a zero or
  * non-finite pivot is a recoverable failure. */
@@ -251,6 +318,15 @@ static int dense_setup(SUNLinearSolver ls, SUNMatrix a) {
   psIDA* s = LS_CONTENT(ls);
   int n = s->nl;
   double* lu = CALL(s, SUNDenseMatrix_Data)(a);
+  if (s->inv) {            /* the matrix's 1-norm (use_inverse) */
+    double norm = 0.0;
+    for (int j = 0; j < n; j++) {
+      double sum = 0.0;
+      for (int i = 0; i < n; i++) sum += fabs(lu[(long)j * n + i]);
+      norm = sum > norm ? sum : norm;
+    }
+    s->anorm = norm;
+  }
   for (int k = 0; k < n; k++) {
     double* ck = lu + (long)k * n;
     int p = k;
@@ -274,38 +350,60 @@ static int dense_setup(SUNLinearSolver ls, SUNMatrix a) {
         for (int i = k + 1; i < n; i++) cj[i] -= ck[i] * u;
     }
   }
+  s->nsolve = 0;
+  s->use_inv = 0;
   return 0;
 }
 
-/* Solve with the factors of dense_setup: SUNDIALS' dense solve with a multiplication by each
- * pivot's reciprocal where it divides (a chain of divisions was most of its time on a
- * six-state scene), and the columns of zero entries skipped. */
+/* v = A r for the n x n column-major A (n <= PS_INV_MAX). */
+static inline __attribute__((always_inline)) void matvec(const double* restrict A,
+                                                         const double* restrict r,
+                                                         double* restrict v, const int n) {
+  double acc[PS_INV_MAX];
+  for (int i = 0; i < n; i++) acc[i] = A[i] * r[0];
+  for (int j = 1; j < n; j++)
+    for (int i = 0; i < n; i++) acc[i] += A[(long)j * n + i] * r[j];
+  for (int i = 0; i < n; i++) v[i] = acc[i];
+}
+
+/* Make s->inv, the inverse of the matrix whose factors dense_setup left in lu, and use it
+ * (s->use_inv) when the matrix's 1-norm condition number is at most PS_INV_COND. */
+static void make_inverse(psIDA* s, const double* lu, int n) {
+  double* X = s->inv + (long)n * n;     /* row-major scratch */
+  invert(s, lu, n, X);
+  double xnorm = 0.0;
+  for (int j = 0; j < n; j++) {
+    double sum = 0.0;
+    for (int i = 0; i < n; i++) sum += fabs(s->inv[(long)j * n + i] = X[(long)i * n + j]);
+    xnorm = sum > xnorm ? sum : xnorm;
+  }
+  s->use_inv = xnorm * s->anorm <= PS_INV_COND;
+}
+
+/* Solve with the factors of dense_setup. A small, well-conditioned system (PS_INV_MAX,
+ * PS_INV_COND) is solved from its second solve on by a product with the inverse, made once
+ * from the factors: a triangular solve is a chain of dependent operations, the product is
+ * not (docs/numerics.md, "The dense solve"). */
 static int dense_solve(SUNLinearSolver ls, SUNMatrix a, N_Vector x, N_Vector b, sunrealtype tol) {
   (void)tol;
   psIDA* s = LS_CONTENT(ls);
   int n = s->nl;
-  const double* lu = CALL(s, SUNDenseMatrix_Data)(a);
   double* v = CALL(s, N_VGetArrayPointer)(x);
-  memcpy(v, CALL(s, N_VGetArrayPointer)(b), sizeof(double) * (size_t)n);
-  for (int k = 0; k < n; k++) {
-    int p = s->piv[k];
-    if (p != k) {
-      double t = v[k];
-      v[k] = v[p];
-      v[p] = t;
+  const double* r = CALL(s, N_VGetArrayPointer)(b);
+  if (s->inv && ++s->nsolve == 2) make_inverse(s, CALL(s, SUNDenseMatrix_Data)(a), n);
+  if (s->use_inv && v != r) {
+    switch (n) {   /* n known: the sums stay in registers */
+#define PS_MATVEC(k) case k: matvec(s->inv, r, v, k); break;
+      PS_MATVEC(1) PS_MATVEC(2) PS_MATVEC(3) PS_MATVEC(4) PS_MATVEC(5) PS_MATVEC(6)
+      PS_MATVEC(7) PS_MATVEC(8) PS_MATVEC(9) PS_MATVEC(10) PS_MATVEC(11) PS_MATVEC(12)
+      PS_MATVEC(13) PS_MATVEC(14) PS_MATVEC(15) PS_MATVEC(16)
+#undef PS_MATVEC
+      default: matvec(s->inv, r, v, n);
     }
+    return 0;
   }
-  for (int k = 0; k < n; k++) {
-    double vk = v[k];
-    if (vk != 0.0)
-      for (int i = k + 1; i < n; i++) v[i] -= lu[(long)k * n + i] * vk;
-  }
-  for (int k = n - 1; k >= 0; k--) {
-    double vk = v[k] * s->rpiv[k];
-    v[k] = vk;
-    if (vk != 0.0)
-      for (int i = 0; i < k; i++) v[i] -= lu[(long)k * n + i] * vk;
-  }
+  memcpy(v, r, sizeof(double) * (size_t)n);
+  lu_solve(s, CALL(s, SUNDenseMatrix_Data)(a), n, v);
   return 0;
 }
 
@@ -512,8 +610,10 @@ static void release(psIDA* s) {
   s->lu = NULL;
   free(s->rpiv);
   free(s->piv);
+  free(s->inv);
   s->rpiv = NULL;
   s->piv = NULL;
+  s->inv = NULL;
   free(s->live);
   free(s->fy);
   free(s->fyp);
@@ -686,7 +786,8 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
     if (s->own_dense) {
       s->rpiv = malloc(sizeof(double) * (size_t)n);
       s->piv = malloc(sizeof(int) * (size_t)n);
-      if (!s->rpiv || !s->piv) return fail(s, "malloc", -1);
+      s->inv = n <= PS_INV_MAX ? malloc(2 * sizeof(double) * (size_t)n * (size_t)n) : NULL;
+      if (!s->rpiv || !s->piv || (n <= PS_INV_MAX && !s->inv)) return fail(s, "malloc", -1);
     }
     if (s->A && s->own_dense) s->LS = own_solver_with(s, (void*)dense_setup, (void*)dense_solve);
     else if (s->A) s->LS = CALL(s, SUNLinSol_Dense)(s->y, s->A, s->ctx);

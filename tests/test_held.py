@@ -196,9 +196,12 @@ def test_a_sweep_sequence_holds_and_lets_go(monkeypatch):
         if "v_ic_y" in str(case) or "grav_y" in str(case):
             np.testing.assert_array_equal(a.y, b.y)      # nothing held: the same arithmetic
             continue
-        # held: the full run's steps in exact arithmetic, its rounding aside
+        # held: the full run's steps in exact arithmetic, its rounding aside, which moves
+        # the answer by a tenth of the run's error against integr_tol 1e-12 (4.9e-5 against
+        # 4.9e-4, 459 steps against 463, with either dense solver; stop 41)
         assert abs(a.stats["steps"] - b.stats["steps"]) <= 0.03 * b.stats["steps"]
-        assert np.abs(a.y - b.y).max() <= 1e-8 * np.abs(b.y).max()
+        err = np.abs(b.y - full_model.run(params=case, integr_tol=1e-12).y).max()
+        assert np.abs(a.y - b.y).max() <= 0.25 * err
         assert np.all(a.y[:, 1] == a.y[0, 1]) and np.all(a.y[:, 4] == 0.0)
 
 
