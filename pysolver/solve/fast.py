@@ -13,6 +13,7 @@ the row count and the IDA object with its linear solver (started again with
 it, and the two give the same rows, counters and messages to the last bit
 (tests/test_fast.py).
 """
+import sys
 import time
 
 import numpy as np
@@ -108,7 +109,9 @@ class FastRun:
         # rows at events, and print intervals sensors change, may need more room
         room = n + (_SLACK if self.acting else 0)
         out = _Out(self.times, room, ny, self.nout)
-        bar, t_run = _QUIET if progress is False else Progress(0.0, self.times[-1], progress), None
+        # a bar off, or left to a standard error that is no terminal: the bar that does nothing
+        quiet = progress is False or (progress is None and not sys.stderr.isatty())
+        bar, t_run = _QUIET if quiet else Progress(0.0, self.times[-1], progress), None
         status, message, ida_counters = 0, "The simulation finished.", None
         ida = self.solver
         loop = self.loop
@@ -357,7 +360,7 @@ class FastRun:
 _SLACK = 64
 
 
-#: The progress bar of runs that asked for none.
+#: The progress bar of runs that show none.
 _QUIET = Progress(0.0, 1.0, False)
 
 
