@@ -206,19 +206,21 @@ class Kernel:
 
     def precision(self, t, y, yp):
         """(ratio, body index or -1) of ps_precision at (t, y, yp)."""
-        if self._precision_work is None:
+        if self._precision_work is None:         # the arrays, and the C pointers into them
             if self.codegen["kernel"] == "generated":
                 rows = cols = np.zeros(1, np.int32)     # the library has its own pattern
             else:
                 self.sparsity()                         # the tapes' pattern, and room for it
                 rows, cols = self._triplets
-            self._precision_work = (rows, cols, np.zeros(4 * self.ny), ffi.new("int *"))
-        rows, cols, work, body = self._precision_work
+            work = np.zeros(4 * self.ny)
+            self._precision_work = ((rows, cols, work), ffi.cast("int *", ffi.from_buffer(rows)),
+                                    ffi.cast("int *", ffi.from_buffer(cols)), len(rows),
+                                    ffi.from_buffer("double[]", work), ffi.new("int *"))
+        _, rows, cols, n, work, body = self._precision_work
         fb = ffi.from_buffer
         ratio = lib.ps_precision(self.m, self.d, t, fb("double[]", np.ascontiguousarray(y, float)),
-                                 fb("double[]", np.ascontiguousarray(yp, float)),
-                                 ffi.cast("int *", fb(rows)), ffi.cast("int *", fb(cols)),
-                                 len(rows), fb("double[]", work), body)
+                                 fb("double[]", np.ascontiguousarray(yp, float)), rows, cols, n,
+                                 work, body)
         return ratio, body[0]
 
     def sparsity(self):
@@ -387,15 +389,15 @@ class Kernel:
             return start(self, t, y) if initial else consistent(self, t, y)
         sparse = self.ny >= SPARSE_THRESHOLD
         if not sparse:                     # in C: a residual, two Jacobians, LU, per step
-            if self._cyp is None:
-                self._cyp = (np.zeros(2 * self.ny * self.ny + self.ny),
-                             np.zeros(self.ny, dtype=np.int32))
-            work, piv = self._cyp
+            if self._cyp is None:            # the arrays, and the C pointers into them
+                work, piv = np.zeros(2 * self.ny * self.ny + self.ny), np.zeros(self.ny, np.int32)
+                self._cyp = ((work, piv), ffi.from_buffer("double[]", work),
+                             ffi.cast("int *", ffi.from_buffer(piv)))
+            _, work, piv = self._cyp
             yp = np.zeros(self.ny)
             fb = ffi.from_buffer
             rc = lib.ps_consistent_yp(self.m, self.d, t, fb("double[]", np.ascontiguousarray(
-                y, float)), fb("double[]", yp), fb("double[]", work),
-                ffi.cast("int *", fb(piv)), iters)
+                y, float)), fb("double[]", yp), work, piv, iters)
             if rc != lib.PS_OK and self.d.user_error:
                 raise UserFailure(self.message)
             return yp if rc == lib.PS_OK else np.full(self.ny, np.nan)
