@@ -614,6 +614,7 @@ static void release(psIDA* s) {
   s->rpiv = NULL;
   s->piv = NULL;
   s->inv = NULL;
+  s->use_inv = s->nsolve = 0;
   free(s->live);
   free(s->fy);
   free(s->fyp);
