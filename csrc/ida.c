@@ -64,11 +64,10 @@ static const struct { int lib; const char* name; } FNS[F_COUNT] = {SUNDIALS_FNS(
 /* SUNLS_LUFACT_FAIL: a singular matrix, a failure IDA recovers from with a smaller step. */
 #define PS_LS_LUFACT_FAIL 808
 
-/* The most states whose dense solves multiply by the inverse of the factored matrix, made at
- * the second solve with the same factors, and the largest 1-norm condition number it is used
- * at (dense_solve). */
+/* The most states whose dense solves multiply by the inverse of the factored matrix, and the
+ * largest 1-norm condition number it is used at (dense_solve; docs/numerics.md). */
 #define PS_INV_MAX 16
-#define PS_INV_COND 1e12
+#define PS_INV_COND 1e8
 
 /* Steps per window over which watch() counts IDA's error-test failures. */
 #define PS_IDA_WINDOW 50
@@ -95,10 +94,10 @@ struct psIDA {
   double* rpiv;           /* (ny) reciprocals of its pivots                         */
   int* piv;               /* (ny) row exchanged with row k at step k                */
   int nsolve;             /* solves with the current factors                        */
-  double anorm;           /* the factored matrix's 1-norm                           */
   double* inv;            /* (2 x nl x nl) the inverse from those factors (column-
                              major) and room to make it, when nl <= PS_INV_MAX     */
   int use_inv;            /* 1: the solves multiply by inv                          */
+  long ninv;              /* solves by the inverse since ps_ida_load (tests)        */
   int slot[4];            /* the word of a linear solver object that points to its
                              operations, and where gettype, setup and solve sit in
                              that table (-1: unknown, no solver of pysolver's own)  */
@@ -318,15 +317,6 @@ static int dense_setup(SUNLinearSolver ls, SUNMatrix a) {
   psIDA* s = LS_CONTENT(ls);
   int n = s->nl;
   double* lu = CALL(s, SUNDenseMatrix_Data)(a);
-  if (s->inv) {            /* the matrix's 1-norm (use_inverse) */
-    double norm = 0.0;
-    for (int j = 0; j < n; j++) {
-      double sum = 0.0;
-      for (int i = 0; i < n; i++) sum += fabs(lu[(long)j * n + i]);
-      norm = sum > norm ? sum : norm;
-    }
-    s->anorm = norm;
-  }
   for (int k = 0; k < n; k++) {
     double* ck = lu + (long)k * n;
     int p = k;
@@ -366,32 +356,51 @@ static inline __attribute__((always_inline)) void matvec(const double* restrict 
   for (int i = 0; i < n; i++) v[i] = acc[i];
 }
 
-/* Make s->inv, the inverse of the matrix whose factors dense_setup left in lu, and use it
- * (s->use_inv) when the matrix's 1-norm condition number is at most PS_INV_COND. */
+/* The larger of m and a column sum x, NaN once a sum is not finite. */
+static double norm_max(double m, double x) { return x > m || !isfinite(x) ? x : m; }
+
+/* Make s->inv, the inverse of the matrix A whose factors P A = L U dense_setup left in lu, and
+ * use it (s->use_inv) when a bound on A's 1-norm condition number, ||L|| ||U|| ||A^-1||
+ * (>= ||A|| ||A^-1||, from the factors: A itself is gone), is finite and at most PS_INV_COND. */
 static void make_inverse(psIDA* s, const double* lu, int n) {
   double* X = s->inv + (long)n * n;     /* row-major scratch */
   invert(s, lu, n, X);
-  double xnorm = 0.0;
+  double xnorm = 0.0, lnorm = 0.0, unorm = 0.0;
   for (int j = 0; j < n; j++) {
-    double sum = 0.0;
-    for (int i = 0; i < n; i++) sum += fabs(s->inv[(long)j * n + i] = X[(long)i * n + j]);
-    xnorm = sum > xnorm ? sum : xnorm;
+    double sx = 0.0, sl = 1.0, su = 0.0;  /* L's unit diagonal */
+    for (int i = 0; i < n; i++) {
+      double e = lu[(long)j * n + i];
+      sx += fabs(s->inv[(long)j * n + i] = X[(long)i * n + j]);
+      if (i > j) sl += fabs(e);
+      else su += fabs(e);
+    }
+    xnorm = norm_max(xnorm, sx);
+    lnorm = norm_max(lnorm, sl);
+    unorm = norm_max(unorm, su);
   }
-  s->use_inv = xnorm * s->anorm <= PS_INV_COND;
+  double cond = lnorm * unorm * xnorm;
+  s->use_inv = isfinite(cond) && cond <= PS_INV_COND;
 }
 
+/* The solve with a factorization at which its inverse is made: the second for up to 4
+ * states, later for more (the inverse costs about n / 1.5 solves), so that factors used for
+ * few solves (a LoadControl update's restart) are not inverted. */
+static int inverse_at(int n) { return n <= 4 ? 2 : n / 2; }
+
 /* Solve with the factors of dense_setup. A small, well-conditioned system (PS_INV_MAX,
- * PS_INV_COND) is solved from its second solve on by a product with the inverse, made once
- * from the factors: a triangular solve is a chain of dependent operations, the product is
- * not (docs/numerics.md, "The dense solve"). */
+ * PS_INV_COND) is solved from its inverse_at solve on by a product with the inverse, made
+ * once from the factors: a triangular solve is a chain of dependent operations, the product
+ * is not (docs/numerics.md, "The dense solve"). */
 static int dense_solve(SUNLinearSolver ls, SUNMatrix a, N_Vector x, N_Vector b, sunrealtype tol) {
   (void)tol;
   psIDA* s = LS_CONTENT(ls);
   int n = s->nl;
   double* v = CALL(s, N_VGetArrayPointer)(x);
   const double* r = CALL(s, N_VGetArrayPointer)(b);
-  if (s->inv && ++s->nsolve == 2) make_inverse(s, CALL(s, SUNDenseMatrix_Data)(a), n);
+  if (s->inv && ++s->nsolve == inverse_at(n))
+    make_inverse(s, CALL(s, SUNDenseMatrix_Data)(a), n);
   if (s->use_inv && v != r) {
+    s->ninv++;
     switch (n) {   /* n known: the sums stay in registers */
 #define PS_MATVEC(k) case k: matvec(s->inv, r, v, k); break;
       PS_MATVEC(1) PS_MATVEC(2) PS_MATVEC(3) PS_MATVEC(4) PS_MATVEC(5) PS_MATVEC(6)
@@ -931,6 +940,8 @@ int ps_ida_hold(psIDA* s, const int* hold, int nhold) {
 }
 
 int ps_ida_held(const psIDA* s) { return s->held ? s->nhold : 0; }
+
+long ps_ida_inverse_solves(const psIDA* s) { return s->ninv; }
 
 void ps_ida_set_stream(psIDA* s, psStream* st) { s->stream = st; }
 

@@ -752,6 +752,10 @@ int ps_ida_hold(psIDA* s, const int* hold, int nhold);
 /* The number of states the current integration holds (0: IDA integrates all of them). */
 int ps_ida_held(const psIDA* s);
 
+/* The number of dense solves s has made by a product with the matrix's inverse (small,
+ * well-conditioned systems; docs/numerics.md, "The dense solve") since it was loaded. */
+long ps_ida_inverse_solves(const psIDA* s);
+
 /* ps_ida_reinit's return when the integration holds states and the restart's yp0 moves one
  * (ps_ida_hold): call ps_ida_init, which then integrates every state. */
 #define PS_IDA_HELD -2006
