@@ -329,9 +329,9 @@ class Kernel:
     @property
     def counters(self):
         """Kernel call counters: residual and Jacobian evaluations."""
-        return {"nres": int(self.d.nres), "njac": int(self.d.njac),
-                "attempts": int(self.d.ntimes), "nfail": int(self.d.nfail),
-                "nroots": int(self.d.nroots)}
+        d = self.d
+        return {"nres": d.nres, "njac": d.njac, "attempts": d.ntimes, "nfail": d.nfail,
+                "nroots": d.nroots}
 
     def reset_counters(self):
         """Zero the call and step-attempt counters."""
@@ -347,11 +347,11 @@ class Kernel:
         held = re.match(r"state (\d+) was held", msg)
         return msg if held is None else self.layout.names[int(held[1])] + msg[held.end(1):]
 
-    def outputs(self, t, y, yp):
-        """Return a copy of every request channel at (t, y, yp); NaN for NULL channels."""
-        lib.ps_outputs(self.m, self.d, t, ffi.from_buffer("double[]", y),
-                       ffi.from_buffer("double[]", yp), ffi.from_buffer("double[]", self._out))
-        return self._out[:len(self.channels)].copy()
+    def outputs(self, t, y, yp, out=None):
+        """Request channels at (t, y, yp), NaN if NULL: a copy, or into the row `out` (None)."""
+        fb, m, d, row = ffi.from_buffer, self.m, self.d, self._out if out is None else out
+        lib.ps_outputs(m, d, t, fb("double[]", y), fb("double[]", yp), fb("double[]", row))
+        return self._out[:len(self.channels)].copy() if out is None else None
 
     def power(self, y, yp):
         """Rate of change of the kinetic energy (model units)."""

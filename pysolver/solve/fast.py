@@ -127,8 +127,7 @@ class FastRun:
             t0, y0, yp0 = start_state(self.model, k, opts.integr_tol)
             halt = self._start(t0, y0, yp0)
             out.Y[0], out.YP[0] = y0, yp0
-            lib.ps_outputs(k.m, d, t0, self.fb("double[]", y0), self.fb("double[]", yp0),
-                           self.fb("double[]", out.REQ[0]))       # as k.outputs, in place
+            k.outputs(t0, y0, yp0, out=out.REQ[0])
             # row 0 is written again when a sensor at the start asks for a row (print, halt,
             # return), as Run.apply does
             again = self.sensors and (self.S.emit or self.S.halt >= 0 or self.S.ret >= 0)
