@@ -75,6 +75,18 @@ def test_a_penalty_past_double_precision_is_a_failed_run(penalty):
     assert len(res.t) == 301                      # the rows are kept
 
 
+def test_the_advice_names_the_penalty_the_run_used():
+    """A penalty given as a run's params is the one the message names and scales from (it
+    named the deck's 1e4 and advised "use penalty <= 1e-01")."""
+    model = _bead("1E4")
+    res = model.run(params={"Force_Penalty/1/penalty": 1e15})
+    assert not res.success and res.status == -710
+    assert "Force_Penalty 1's penalty = 1e+15 is past" in res.message
+    better = float(re.search(r"use penalty <= (\S+) ", res.message).group(1))
+    assert better in (1e10, 1e11)
+    assert model.run().success                   # the deck's own penalty is back
+
+
 @pytest.mark.parametrize("penalty", ["1E10", "1E11"])
 def test_the_suggested_penalty_gives_the_right_answer(penalty):
     # at this stiffness the step count follows rounding: integr_tol moved by 1e-15 relative

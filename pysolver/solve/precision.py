@@ -34,18 +34,26 @@ def check(model, kernel, t, y, yp):
     ratio, b = kernel.precision(t, y, yp)
     if b < 0 or not ratio > LIMIT:
         return None
-    return _message(model, ratio, kernel.layout.bodies[b], t)
+    return _message(model, kernel, ratio, kernel.layout.bodies[b], t)
 
 
-def _message(model, ratio, body, t):
+def _penalty(model, kernel, pid):
+    """Force_Penalty pid's penalty in this run: the kernel's constant slot, which a run's
+    ``params`` may have changed, else the deck's."""
+    slot = kernel.params.get(f"Force_Penalty/{pid}/penalty")
+    return model.penalties[pid].penalty if slot is None else float(kernel.arrays["consts"][slot])
+
+
+def _message(model, kernel, ratio, body, t):
     what = (f"at t = {t:.6g} the rounding of the state moves the forces on body {body.id} by "
             f"{ratio:.2g} of the forces it carries (more than {LIMIT:g}): the result follows "
             "rounding, not the model")
     if model.penalties:
-        pid, pen = max(model.penalties.items(), key=lambda kv: kv[1].penalty)
-        better = pen.penalty * SUGGEST / ratio
+        pid, pen = max(((p, _penalty(model, kernel, p)) for p in model.penalties),
+                       key=lambda kv: kv[1])
+        better = pen * SUGGEST / ratio
         better = 10.0 ** math.floor(math.log10(better)) if better > 0 else 0.0
-        return (f"{what}; Force_Penalty {pid}'s penalty = {pen.penalty:g} is past what double "
+        return (f"{what}; Force_Penalty {pid}'s penalty = {pen:g} is past what double "
                 f"precision can carry here: use penalty <= {better:.0e} (or make the "
                 "constraint exact)")
     return f"{what}; lower the stiffness of the scene's stiffest force element"
