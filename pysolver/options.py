@@ -8,6 +8,7 @@ solvers. Names, defaults, rules and documentation live here and nowhere else; ``
 from __future__ import annotations
 
 import dataclasses
+import numbers
 from typing import Optional
 
 from . import settings
@@ -31,8 +32,7 @@ _RULES = {
     "h_max": (lambda v: v > 0, "> 0"),
     "h_min": (lambda v: v >= 0, ">= 0"),
     "h0_max": (lambda v: v > 0, "> 0"),
-    "max_num_steps": (lambda v: v > 0 and v == int(v) and not isinstance(v, bool),
-                      "a whole number > 0"),
+    "max_num_steps": (lambda v: v > 0 and float(v).is_integer(), "a whole number > 0"),
     "max_step_growth": (lambda v: v > 1, "> 1"),
     "nonlin_conv_coef": (lambda v: 0 < v < 1, "in (0, 1)"),
 }
@@ -118,7 +118,8 @@ class Options:
         TypeError
             An unknown option name.
         ValueError
-            A value that breaks its option's rule.
+            A value that breaks its option's rule, or is not a number where one is expected
+            (a string such as ``"1e-6"`` included).
         """
         unknown = sorted(set(changes) - set(NAMES))
         if unknown:
@@ -156,4 +157,6 @@ def rule_problem(name, value):
     if value is None or name not in _RULES:
         return None
     test, text = _RULES[name]
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return f"{text if text.startswith('a ') else 'a number ' + text}, not {value!r}"
     return None if test(value) else text
