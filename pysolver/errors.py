@@ -1,4 +1,5 @@
 """Exceptions raised for bad input."""
+import errno
 
 
 class DeckError(ValueError):
@@ -43,6 +44,18 @@ class DeckError(ValueError):
         if self.attribute:
             where.append(f"attribute '{self.attribute}'")
         return (", ".join(where) + ": " if where else "") + self.reason
+
+
+class MissingFileError(DeckError, FileNotFoundError):
+    """A deck, or a file a deck names, does not exist: a :class:`DeckError` (bad input, with
+    ``file`` the path) that ``except FileNotFoundError`` also catches."""
+
+    def __init__(self, path, message="no such file", **where):
+        super().__init__(message, file=path, **where)
+        self.errno, self.strerror, self.filename = errno.ENOENT, message, path
+
+    def __str__(self):                  # the located message, not OSError's "[Errno 2] ..."
+        return self._format()
 
 
 class UsageError(Exception):

@@ -172,3 +172,26 @@ def test_a_deck_without_a_moving_body_is_a_deck_error_when_run(text, fmt):
     for call in (model.run, model.check):
         with pytest.raises(pysolver.DeckError, match="no moving body"):
             call()
+
+
+@pytest.mark.parametrize("name", ["nodeck.xml", "nodeck.py", "nodeck.adm", "nodeck.acf",
+                                  "nodeck"])
+def test_a_deck_that_does_not_exist_is_a_deck_error(tmp_path, name):
+    """It was a bare FileNotFoundError, which ``except pysolver.DeckError`` missed; it is
+    both, naming the file."""
+    path = tmp_path / name
+    for catch in (DeckError, FileNotFoundError):
+        with pytest.raises(catch) as info:
+            pysolver.load(path)
+        assert str(info.value) == f"{path}: no such file"
+        assert info.value.file == info.value.filename == str(path)
+
+
+def test_an_acf_naming_a_dataset_that_does_not_exist(tmp_path):
+    (tmp_path / "run.acf").write_text("gone\nrun\nSIMULATE/DYNAMICS, END = 1, DTOUT = 0.1\n"
+                                      "STOP\n")
+    with pytest.raises(FileNotFoundError) as info:
+        pysolver.load(tmp_path / "run.acf")
+    assert isinstance(info.value, DeckError) and info.value.line == 1
+    assert str(info.value) == (f"{tmp_path / 'run.acf'}:1: the dataset {tmp_path / 'gone.adm'} "
+                               "named on the first line does not exist")

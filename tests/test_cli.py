@@ -89,7 +89,7 @@ def test_a_deck_that_does_not_exist(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     for cmd in ("run", "check"):
         assert _error(capsys, [cmd, "nodeck.xml"]) == (2, [
-            "pysolver: error: nodeck.xml: No such file or directory"])
+            "pysolver: error: nodeck.xml: no such file"])
     assert not list(tmp_path.iterdir())
 
 

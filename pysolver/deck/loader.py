@@ -8,7 +8,7 @@ import sys
 import tokenize
 import traceback
 
-from ..errors import DeckError
+from ..errors import DeckError, MissingFileError
 from ..model import Model, Source
 from . import adams, msolve
 from .validate import build_model
@@ -45,8 +45,8 @@ def load(path: str | os.PathLike, user_code: bool = True,
     DeckError
         The deck is malformed or inconsistent; the message names file, line, element, id and
         attribute.
-    FileNotFoundError
-        There is no such file.
+    MissingFileError
+        There is no such file: a DeckError that is also a FileNotFoundError.
     """
     path = os.fspath(path)
     if os.path.isdir(path):
@@ -54,8 +54,7 @@ def load(path: str | os.PathLike, user_code: bool = True,
     ext = os.path.splitext(path)[1].lower()
     if ext == ".acf":
         return _load_acf(path, user_code, simulate)
-    with open(path, "rb") as fh:
-        raw = fh.read()
+    raw = _read(path)
     fmt = {".py": "py", ".adm": "adm", ".xml": "xml"}.get(ext) or _sniff(raw, path)
     if fmt == "xml" and raw.lstrip()[:1] != b"<" and _dataset_like(raw):
         raise DeckError("not XML: the file reads as an Adams dataset (PART/, MARKER/ ... "
@@ -84,17 +83,24 @@ def _sniff(raw, path):
 
 def _load_acf(path, user_code, simulate=None, dataset=None):
     """An Adams command file: its dataset (first line) with its commands."""
-    with open(path, "rb") as fh:
-        acf = _decode(fh.read(), "adm", path)
+    acf = _decode(_read(path), "adm", path)
     if dataset is None:
         data_path = adams.acf_dataset(acf, path)
         if not os.path.isfile(data_path):
-            raise DeckError(f"the dataset {data_path} named on the first line does not exist",
-                            file=path, line=1)
-        with open(data_path, "rb") as fh:
-            dataset = (data_path, _decode(fh.read(), "adm", data_path))
+            raise MissingFileError(path, f"the dataset {data_path} named on the first line "
+                                   "does not exist", line=1)
+        dataset = (data_path, _decode(_read(data_path), "adm", data_path))
     text = adams.with_commands(dataset[1], acf, path)
     return loads(text, fmt="adm", file=dataset[0], user_code=user_code, simulate=simulate)
+
+
+def _read(path):
+    """The bytes of a deck file; MissingFileError when there is none."""
+    try:
+        with open(path, "rb") as fh:
+            return fh.read()
+    except FileNotFoundError:
+        raise MissingFileError(path) from None
 
 
 def _dataset_like(raw):
