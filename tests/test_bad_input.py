@@ -79,6 +79,13 @@ def test_marker_on_missing_body():
           "body_id", id=10, match="body 5 does not exist")
 
 
+def test_a_cg_marker_on_a_missing_body_names_the_missing_body():
+    """It blamed the body's cg_id ("marker 10 belongs to body 7, not to this body")."""
+    check(deck("", base='<Reference_Marker id="10" body_id="7"/>\n'
+                        '<Body_Point id="2" cg_id="10" mass="1"/>\n'), 4, "Reference_Marker",
+          "body_id", id=10, match="body 7 does not exist")
+
+
 def test_body_with_missing_marker():
     check(deck("", base='<Body_Point id="2" cg_id="11" mass="1"/>\n'), 4, "Body_Point", "cg_id",
           id=2, match="marker 11 does not exist")

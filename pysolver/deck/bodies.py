@@ -37,6 +37,14 @@ def add_bodies(model, bodies_raw, markers_raw):
         p, R = frame(mid)
         model.markers[mid] = Marker(mid, a["body_id"], p, R, a["label"])
 
+    # a marker on an undeclared body is its own error, before a body's cg_id names it
+    declared = set(model.bodies) | {a["id"] for _, a in bodies_raw}
+    for mid, (ctx, a) in markers_raw.items():
+        ctx.id = mid
+        if a["body_id"] not in declared:
+            raise ctx.error(f"body {a['body_id']} does not exist (declare it with Body_Rigid, "
+                            "Body_Point or a ground Body_Rigid isground=\"TRUE\")", "body_id")
+
     def marker_of(ctx, a, key):
         mid = a[key]
         if mid is None:
@@ -88,11 +96,6 @@ def add_bodies(model, bodies_raw, markers_raw):
         model.bodies[a["id"]] = Body(a["id"], "rigid", a["mass"], Rb @ Iim @ Rb.T,
                                      cg.pos.copy(), cg.rot.copy(), vel, omega,
                                      a["label"], cg=cg.id, im_rot=Rb, inertia_im=Iim)
-    for mid, (ctx, a) in markers_raw.items():
-        ctx.id = mid
-        if a["body_id"] not in model.bodies:
-            raise ctx.error(f"body {a['body_id']} does not exist (declare it with Body_Rigid, "
-                            "Body_Point or a ground Body_Rigid isground=\"TRUE\")", "body_id")
 
 
 
