@@ -17,6 +17,7 @@ import numpy as np
 
 from ..options import SPARSE_THRESHOLD
 from ..rotations import G
+from .planar import global_inertia
 
 
 class _Jac:
@@ -38,24 +39,32 @@ class _Jac:
         """The matrix's diagonal."""
         return self.J.diagonal() if self.sparse else np.diag(self.J).copy()
 
-    def least_change(self, rows, cols, rhs):
+    def least_change(self, rows, cols, rhs, scale=None):
         """The least-norm x with J[rows, cols] x = rhs: x = C^T (C C^T)^-1 rhs, by a sparse
         factorization of C C^T on the sparse path (C has full row rank once redundant
-        equations are out; where it has not, least squares), dense least squares otherwise."""
+        equations are out; where it has not, least squares), dense least squares otherwise.
+        With `scale` (one positive number per column), the least change in the norm
+        ||x / scale||: C's columns are scaled, and the answer scaled back."""
         if self.sparse:
+            import scipy.sparse as sp
             import scipy.sparse.linalg as spla
             C = self.J[:, cols].tocsr()[rows]
+            if scale is not None:
+                C = C @ sp.diags(scale)
             try:
                 with np.errstate(all="raise"):
                     x = C.T @ spla.splu((C @ C.T).tocsc()).solve(np.asarray(rhs, float))
                 if np.all(np.isfinite(x)):
-                    return x
+                    return x if scale is None else scale * x
             except (RuntimeError, FloatingPointError):
                 pass
             C = C.toarray()
         else:
             C = self.block(rows, cols)
-        return np.linalg.lstsq(C, rhs, rcond=None)[0]
+            if scale is not None:
+                C = C * scale
+        x = np.linalg.lstsq(C, rhs, rcond=None)[0]
+        return x if scale is None else scale * x
 
     def rows_times(self, rows, v):
         """J[rows] @ v."""
@@ -129,10 +138,11 @@ def _consistent(kernel, t, y, iters, initial):
             y[w] += r[k]
             r[k] = 0.0
     held = np.nonzero((rate < 0) | np.array(given, dtype=bool))[0]
+    scale = _velocity_scale(lay, y, u_idx) if initial else None
     # Newton on the held rates (one step when they are linear in u; a relation of velocities
     # may not be)
     for _ in range(iters if len(held) else 0):
-        y[u_idx] += _Jac(kernel, t, y, yp, 0.0).least_change(lam[held], u_idx, -r[held])
+        y[u_idx] += _Jac(kernel, t, y, yp, 0.0).least_change(lam[held], u_idx, -r[held], scale)
         r = kernel.residual_array(t, y, yp)[lam]
         if np.abs(r[held]).max() <= 1e-14 * (1.0 + np.abs(y[u_idx]).max()):
             break
@@ -319,6 +329,30 @@ def _positions(lay):
     """The state indices of every body's positions q."""
     return np.concatenate([np.arange(qa, qa + nq)
                            for (nq, _), qa in zip(lay.sizes, lay.qadr)]).astype(int)
+
+
+#: How much more a velocity the deck gives (nonzero) resists change than one it leaves at zero,
+#: in the initial velocities' least change.
+GIVEN_WEIGHT = 1e6
+
+
+def _velocity_scale(lay, y, u_idx):
+    """Per velocity of y[u_idx], the scale of its change in the initial velocities' least
+    change: 1 / sqrt(its body's mass, or for an angular velocity the body's inertia about
+    that axis), so that the change is the least in kinetic energy (the diagonal of the mass
+    matrix), whatever the units; divided
+    by GIVEN_WEIGHT where the deck gives the velocity (nonzero), so that the joints and
+    motions take what they need from the velocities it leaves at zero (a pendulum given only
+    its spin starts with that spin and the matching velocity of its centre of mass)."""
+    metric = []
+    for b in lay.bodies:
+        if b.id in lay.planar:              # (vx, vy, wz), wz about the global z
+            metric += [b.mass, b.mass, global_inertia(b)[2, 2]]
+        else:                               # (vx, vy, vz), then (wx, wy, wz) in body axes
+            metric += [b.mass] * 3 + (list(np.diag(b.inertia)) if b.kind == "rigid" else [])
+    metric = np.asarray(metric, float)
+    metric = np.where(metric > 0, metric, 1.0)
+    return np.where(y[u_idx] != 0.0, 1.0 / GIVEN_WEIGHT, 1.0) / np.sqrt(metric)
 
 
 def _velocities(lay):
