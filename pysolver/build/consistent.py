@@ -333,7 +333,7 @@ def _positions(lay):
 
 #: How much more a velocity the deck gives (nonzero) resists change than one it leaves at zero,
 #: in the initial velocities' least change.
-GIVEN_WEIGHT = 1e6
+GIVEN_WEIGHT = 1e8
 
 
 def _velocity_scale(lay, y, u_idx):
