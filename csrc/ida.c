@@ -509,6 +509,7 @@ static int res_fn(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* ud
     for (int i = 0; i < s->nhold; i++)
       if (r[s->hold[i]] != 0.0) {
         s->d->user_error = 1;
+        s->d->user_t = NAN;   /* no routine's call */
         snprintf(s->d->msg, sizeof(s->d->msg),
                  "state %d was held at rest, but its equation gives %.6g "
                  "(run with PYSOLVER_HELD=off and report this)", s->hold[i], r[s->hold[i]]);

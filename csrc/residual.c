@@ -212,6 +212,7 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
   if (interrupted && armed) {
     snprintf(d->msg, sizeof(d->msg), "interrupted");
     d->user_error = 1;     /* not recoverable: IDA returns at once */
+    d->user_t = NAN;       /* no routine's call */
     return PS_ERR_NONFINITE;
   }
   d->nres++;
@@ -225,6 +226,7 @@ int ps_residual(const psModel* m, psData* d, double t, const double* y, const do
     if (d->step_limit > 0 && ntimes - nfail > d->step_limit) {
       d->steps_exceeded = 1;
       d->user_error = 1;
+      d->user_t = NAN;
       snprintf(d->msg, sizeof(d->msg), "max_num_steps reached");
       return PS_ERR_NONFINITE;
     }

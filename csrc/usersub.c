@@ -38,6 +38,8 @@ typedef struct {
   int next;             /* the key after the last one read: routines read in order */
   const double* values; /* evaluating: their current values                       */
   int error;            /* an error was reported                                  */
+  double t;             /* the time argument of the call in progress              */
+  double t_error;       /* ... and of the call that reported the error            */
   double* part;         /* partials wanted: c_syspar writes input i's here        */
   unsigned char* got;   /* ... and sets got[i]; NULL: c_syspar's partials unused  */
   int last;             /* the last read: array index, or NARRAYS + function code */
@@ -94,6 +96,7 @@ static int make_key(char* key, const char* fnc, const int* ipar, int nsize) {
 static void fail(UserCtx* ctx, const char* what, const char* detail) {
   if (ctx->error) return;
   ctx->error = 1;
+  ctx->t_error = ctx->t;
   snprintf(ctx->msg, sizeof(ctx->msg), "%s%s", what, detail);
 }
 
@@ -346,6 +349,7 @@ static double eval(const psModel* m, int k, UserCtx* ctx, const double* z, int n
   ctx->values = z;
   ctx->next = 0;
   ctx->last = -1;
+  ctx->t = z[nin];
   return call(m->user_fn[k], m->user_form[k], m->user_id[k], z[nin],
               m->user_par + m->user_par_adr[k], m->user_npar[k], dflag, 0, chan);
 }
@@ -506,6 +510,7 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
   UserCtx ctx;
   ctx.recording = 0;
   ctx.error = 0;
+  ctx.t = ctx.t_error = z[nin];
   ctx.part = NULL;
   ctx.got = NULL;
   ctx.msg[0] = '\0';
@@ -583,6 +588,7 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
   if (ctx.error) {
     cache[0] = 0.0;
     d->user_error = 1;
+    d->user_t = ctx.t_error;
     snprintf(d->msg, sizeof(d->msg), "user subroutine (id %d): %s", m->user_id[k], ctx.msg);
     out[0] = NAN;
     return -1;

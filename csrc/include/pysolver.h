@@ -281,6 +281,9 @@ typedef struct psData {
   long nfail;             /* failed step attempts (a new time below the last)   */
   double last_t;          /* time of the last residual evaluation              */
   int user_error;         /* 1 after a user subroutine reported an error        */
+  double user_t;          /* the time argument of the call that reported it (a
+                             trial step's or a difference's); NaN when user_error
+                             is another stop (held state, interrupt, steps)     */
   int user_coarse;        /* 1: user routines' first partials by second-order
                              central differences (runs at loose tolerances, half
                              the calls), 0: fourth-order (ps_user_point)        */

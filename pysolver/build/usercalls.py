@@ -103,8 +103,9 @@ def _declare(ctx, sub, fn, form, id):
     par = ffi.new("double[]", list(sub.par) or [0.0])
     n = lib.ps_user_declare(fn, form, id, par, len(sub.par), keys, maxkeys, msg, 256)
     if n < 0:
-        raise ctx.error(f"{sub.name} (iflag call): {ffi.string(msg).decode(errors='replace')}",
-                        sub.attribute)
+        # time and every value read are 0 in that call: the error is not about the state
+        raise ctx.error(f"{sub.name} (iflag call, time and every value it reads 0): "
+                        f"{ffi.string(msg).decode(errors='replace')}", sub.attribute)
     if n > maxkeys:
         raise ctx.error(f"{sub.name} reads more than {maxkeys} system values", sub.attribute)
     raw = ffi.buffer(keys)[:]
@@ -150,7 +151,9 @@ def _callback(ctx, sub, form, model):
                 for i, v in enumerate(list(out)[:nvalues]):
                     value[i] = float(v or 0.0)
         except BaseException as err:  # noqa: BLE001 - reported through the kernel, never raised
-            lib.ps_user_fail(f"{name} raised {type(err).__name__}: {err}".encode()[:190])
+            text = f"{name}: {err}" if isinstance(err, tracer.RoutineError) else \
+                f"{name} raised {type(err).__name__}: {err}"
+            lib.ps_user_fail(text.encode()[:190])
             value[0] = math.nan
         finally:
             tracer.leave_live(prev)

@@ -33,6 +33,11 @@ class SysfncError(Exception):
     """py_sysfnc / py_sysary was called with an unknown function or bad ids."""
 
 
+class RoutineError(Exception):
+    """An error a routine reported with py_errmes: like any exception it raises, it fails the
+    trace only when no state-dependent branch leads to it."""
+
+
 #: Most paths through a routine's state-dependent branches that are traced.
 MAX_PATHS = 64
 
@@ -143,9 +148,10 @@ def explore(run):
     """Run ``run()`` along every path of its state-dependent branches, depth first.
 
     Returns a list of ``(decisions, conditions, result)``, one per path. Raises Untraceable when
-    there are more than MAX_PATHS paths, or when a path with branches raises (the exception is
-    chained): a routine that fails on some branch runs from the kernel instead, where it
-    raises only if the state takes that branch.
+    there are more than MAX_PATHS paths, or when a path with branches raises, reports an error
+    (py_errmes) or exits (the exception is chained): a routine that fails on some branch runs
+    from the kernel instead, where it fails only if the state takes that branch. A failure on
+    no branch (every state would meet it) and a misuse of py_sysfnc are raised as they are.
     """
     leaves, prefix = [], []
     while True:
@@ -153,11 +159,12 @@ def explore(run):
         prev, _ACTIVE.paths = getattr(_ACTIVE, "paths", None), paths
         try:
             result = run()
-        except Exception as err:
+        except (Exception, SystemExit) as err:
             if not paths.taken or isinstance(err, (Untraceable, SysfncError, DeckError)):
                 raise
-            raise Untraceable(f"the branch {_describe(paths)} raises "
-                              f"{type(err).__name__}: {err}") from err
+            what = (f"reports an error with py_errmes: {err}" if isinstance(err, RoutineError)
+                    else f"raises {type(err).__name__}: {err}")
+            raise Untraceable(f"the branch {_describe(paths)} {what}") from err
         finally:
             _ACTIVE.paths = prev
         leaves.append((paths.taken, paths.conds, result))
@@ -323,9 +330,15 @@ def py_syspar(fnc, ids, partials):
 
 
 def py_errmes(errflg, message, id, endflag="STOP"):
-    """Report a user subroutine's error (MotionSolve's py_errmes): raises when errflg is set."""
+    """Report a user subroutine's error (MotionSolve's py_errmes).
+
+    When `errflg` is set, raises :class:`RoutineError` ``"message (id id)"``, whatever
+    `endflag` says: the routine stops there and, called from the kernel, so does the run
+    (status -400). While the routine is traced, a call on a state-dependent branch makes it
+    run from the kernel instead, so the error is reported only if the state takes that branch.
+    """
     if errflg:
-        raise SysfncError(f"{message} (id {id})")
+        raise RoutineError(f"{message} (id {id})")
 
 
 #: The thread's mode (``_ACTIVE.mode``) while a routine is traced; inside a kernel call it is

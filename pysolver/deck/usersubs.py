@@ -260,13 +260,17 @@ def _builtins():
 
 
 def _where(err, file):
-    """'Type: message (file line N)' with the deepest line of `file` in the traceback."""
+    """'Type: message (file line N)' with the deepest line of `file` in the traceback (for a
+    branch that raised, the traceback of what it raised)."""
     line = None
-    for frame in traceback.extract_tb(err.__traceback__):
+    cause = err.__cause__ if isinstance(err, tracer.Untraceable) else None
+    for frame in traceback.extract_tb(err.__traceback__) + \
+            (traceback.extract_tb(cause.__traceback__) if cause is not None else []):
         if file is None or os.path.abspath(frame.filename) == os.path.abspath(file):
             line = frame.lineno
     text = f"{type(err).__name__}: {err}" if not isinstance(err, (tracer.Untraceable,
-                                                                   tracer.SysfncError)) \
+                                                                   tracer.SysfncError,
+                                                                   tracer.RoutineError)) \
         else str(err)
     return text + (f" (line {line})" if line else "")
 
@@ -295,7 +299,7 @@ def _trace(ctx, sub, id, model):
     except tracer.Untraceable as err:
         sub.untraced = f"not traced: {_where(err, file)}"
         return None
-    except tracer.SysfncError as err:
+    except (tracer.SysfncError, tracer.RoutineError) as err:
         raise ctx.error(f"{sub.name}: {_where(err, file)}", sub.attribute) from None
     except DeckError:
         raise

@@ -35,6 +35,15 @@ def max_steps_message(limit, t):
             "stiffest element")
 
 
+def user_failure(kernel, message, t):
+    """Status -400's message: a routine's error in a run stopped at t, and the time of the
+    failing call (an IDA trial's, a difference's) when that is another."""
+    tc = kernel.d.user_t
+    if not kernel.d.user_error or tc != tc or f"{tc:.6g}" == f"{t:.6g}":
+        return f"{message} (t = {t:.6g})"
+    return f"{message} (called at t = {tc:.6g}; the run's last converged step: t = {t:.6g})"
+
+
 class Stop(Exception):
     """Ends the run: success flag, status and message."""
 
@@ -73,7 +82,7 @@ def start_state(model, kernel, tol):
     except UserFailure as err:           # a user subroutine failed (or Ctrl-C came)
         if lib.ps_interrupted():
             raise Stop(False, -600, f"interrupted at t = {t0:.6g}") from None
-        raise Stop(False, -400, f"{err} (t = {t0:.6g})") from None
+        raise Stop(False, -400, user_failure(kernel, err, t0)) from None
     if kernel.d.bad_kind or not np.isfinite(yp0).all():
         why = nonfinite.describe(model, kernel) or (
             "the accelerations cannot be solved for: dF/dyp is singular or not "
@@ -90,7 +99,7 @@ def failure(model, kernel, options, status, t):
         return -100, max_steps_message(options.max_num_steps, d.last_t if d.steps_exceeded
                                        else t)
     if d.user_error:
-        return -400, f"{kernel.message} (t = {t:.6g})"
+        return -400, user_failure(kernel, kernel.message, t)
     why = nonfinite.describe(model, kernel)
     if why:
         return -700, f"IDA failed at t = {t:.6g} after a {why}"
@@ -391,7 +400,7 @@ class Run:
             except Interrupted:
                 raise self.interrupted() from None
             except UserFailure as err:      # a user subroutine failed outside IDA's calls
-                raise Stop(False, -400, f"{err} (t = {self.t:.6g})") from None
+                raise Stop(False, -400, user_failure(k, err, self.t)) from None
             except quasistatic.StaticFailure as err:
                 why = nonfinite.describe(self.model, k)
                 raise Stop(False, -300, f"{err}" + (f"; last {why}" if why else "")) from None

@@ -23,7 +23,7 @@ from ..build.bindings import ffi, lib
 from ..build.kernel import UserFailure
 from . import integrator, report
 from .csensors import CSensors
-from .driver import Stop, deck_actors, failure, start_state
+from .driver import Stop, deck_actors, failure, start_state, user_failure
 from .loadcontrol import NonFinite
 from .outputs import Grid, Progress, command_rows, over_budget
 from .sensors import restart_failure
@@ -172,7 +172,7 @@ class FastRun:
         except NonFinite as err:                     # as the general loop words them
             status, message = -700, str(err)
         except UserFailure as err:
-            status, message = -400, f"{err} (t = {loop.t[0]:.6g})"
+            status, message = -400, user_failure(k, err, loop.t[0])
         finally:
             if self.sensors:
                 self.sensors.drain()
@@ -329,7 +329,7 @@ class FastRun:
                 except NonFinite as err:             # as the general loop words them
                     return Stop(False, -700, str(err))
                 except UserFailure as err:
-                    return Stop(False, -400, f"{err} (t = {t[0]:.6g})")
+                    return Stop(False, -400, user_failure(self.k, err, t[0]))
             if flag == lib.PS_IDA_CHATTER:
                 return Stop(False, -200, self.sensors.chatter())
             if flag == lib.PS_IDA_SENSOR_RESTART:
@@ -338,7 +338,7 @@ class FastRun:
             if flag == lib.PS_IDA_BOUNDS:
                 raise RuntimeError(ffi.string(lib.ps_ida_message(self.solver.s)).decode())
             if flag == lib.PS_IDA_USER:
-                return Stop(False, -400, f"{self.k.message} (t = {t[0]:.6g})")
+                return Stop(False, -400, user_failure(self.k, self.k.message, t[0]))
             if flag == lib.PS_IDA_BUDGET:
                 return Stop(False, -500, self._over_budget(cmd_end, out))
             if flag == lib.PS_IDA_HALTED:
