@@ -17,7 +17,7 @@ import numpy as np
 
 from ..options import SPARSE_THRESHOLD
 from ..rotations import G
-from .planar import global_inertia
+from .icvelocity import velocity_scale
 
 
 class _Jac:
@@ -138,7 +138,7 @@ def _consistent(kernel, t, y, iters, initial):
             y[w] += r[k]
             r[k] = 0.0
     held = np.nonzero((rate < 0) | np.array(given, dtype=bool))[0]
-    scale = _velocity_scale(lay, y, u_idx) if initial else None
+    scale = velocity_scale(lay, y, u_idx) if initial else None
     # Newton on the held rates (one step when they are linear in u; a relation of velocities
     # may not be)
     for _ in range(iters if len(held) else 0):
@@ -329,30 +329,6 @@ def _positions(lay):
     """The state indices of every body's positions q."""
     return np.concatenate([np.arange(qa, qa + nq)
                            for (nq, _), qa in zip(lay.sizes, lay.qadr)]).astype(int)
-
-
-#: How much more a velocity the deck gives (nonzero) resists change than one it leaves at zero,
-#: in the initial velocities' least change.
-GIVEN_WEIGHT = 1e8
-
-
-def _velocity_scale(lay, y, u_idx):
-    """Per velocity of y[u_idx], the scale of its change in the initial velocities' least
-    change: 1 / sqrt(its body's mass, or for an angular velocity the body's inertia about
-    that axis), so that the change is the least in kinetic energy (the diagonal of the mass
-    matrix), whatever the units; divided
-    by GIVEN_WEIGHT where the deck gives the velocity (nonzero), so that the joints and
-    motions take what they need from the velocities it leaves at zero (a pendulum given only
-    its spin starts with that spin and the matching velocity of its centre of mass)."""
-    metric = []
-    for b in lay.bodies:
-        if b.id in lay.planar:              # (vx, vy, wz), wz about the global z
-            metric += [b.mass, b.mass, global_inertia(b)[2, 2]]
-        else:                               # (vx, vy, vz), then (wx, wy, wz) in body axes
-            metric += [b.mass] * 3 + (list(np.diag(b.inertia)) if b.kind == "rigid" else [])
-    metric = np.asarray(metric, float)
-    metric = np.where(metric > 0, metric, 1.0)
-    return np.where(y[u_idx] != 0.0, 1.0 / GIVEN_WEIGHT, 1.0) / np.sqrt(metric)
 
 
 def _velocities(lay):

@@ -1,0 +1,34 @@
+"""Which initial velocities the consistent start keeps, and the metric of its least change
+(:func:`pysolver.build.consistent.consistent` at a run's initial state).
+
+The velocities a deck gives (nonzero ``v_ic_*``, ``w_ic_*``) are kept; the joints, motions
+and general constraints take what they need from those it leaves at zero; among velocities of
+one kind the change is the least in kinetic energy, so the start does not depend on the units
+(docs/deck-language.md, "Initial velocities").
+"""
+import numpy as np
+
+from .planar import global_inertia
+
+#: How much more a velocity the deck gives (nonzero) resists change than one it leaves at zero,
+#: in the initial velocities' least change.
+GIVEN_WEIGHT = 1e8
+
+
+def velocity_scale(lay, y, u_idx):
+    """Per velocity of y[u_idx], the scale of its change in the initial velocities' least
+    change: 1 / sqrt(its body's mass, or for an angular velocity the body's inertia about
+    that axis), so that the change is the least in kinetic energy (the diagonal of the mass
+    matrix), whatever the units; divided by GIVEN_WEIGHT where the deck gives the velocity
+    (nonzero), so that the joints and motions take what they need from the velocities it
+    leaves at zero (a pendulum given only its spin starts with that spin and the matching
+    velocity of its centre of mass)."""
+    metric = []
+    for b in lay.bodies:
+        if b.id in lay.planar:              # (vx, vy, wz), wz about the global z
+            metric += [b.mass, b.mass, global_inertia(b)[2, 2]]
+        else:                               # (vx, vy, vz), then (wx, wy, wz) in body axes
+            metric += [b.mass] * 3 + (list(np.diag(b.inertia)) if b.kind == "rigid" else [])
+    metric = np.asarray(metric, float)
+    metric = np.where(metric > 0, metric, 1.0)
+    return np.where(y[u_idx] != 0.0, 1.0 / GIVEN_WEIGHT, 1.0) / np.sqrt(metric)
