@@ -18,6 +18,7 @@ from ..deck import tracer
 from ..deck.usersubs import CONVENTIONS, elements, set_trees
 from ..errors import ExpressionError
 from .bindings import ffi, lib
+from .userlib import open_routine
 
 #: Runs at integr_tol of at least this take the routines' first partials by second-order
 #: central differences, tighter runs by fourth-order ones (ps_user_point, psData.user_coarse):
@@ -87,11 +88,10 @@ def bind(model):
 
 
 def _library(ctx, sub):
-    msg = ffi.new("char[256]")
-    fn = lib.ps_user_open(sub.library.encode(), str(sub.routine).encode(), msg, 256)
+    fn, msg = open_routine(sub.library, sub.routine)
     if fn == ffi.NULL:
-        raise ctx.error(f"cannot load {sub.routine} from {sub.library}: "
-                        f"{ffi.string(msg).decode(errors='replace')}", "usrsub_dll_name")
+        raise ctx.error(f"cannot load {sub.routine} from {sub.library}: {msg}",
+                        "usrsub_dll_name")
     return fn
 
 
