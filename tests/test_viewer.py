@@ -171,6 +171,37 @@ def test_rows_kept():
     np.testing.assert_array_equal(sc.poses.t, res.t[np.r_[0:600:7, 600]])
 
 
+def test_thinned_frames_are_a_note_of_the_page_and_of_animation_notes():
+    """A 4001-row run keeps 2001 frames: the note is Animation.notes' first entry and the
+    page's (its data's notes, which the page lists as they are); every k-th in words."""
+    text = README_DECK.read_text().replace('print_interval="0.005"', 'print_interval="0.00075"')
+    res = pysolver.loads(text).run(progress=False)
+    anim = res.animate()
+    assert (len(res.t), len(anim.scene.poses.t)) == (4001, 2001)
+    assert anim.notes == ["showing 2001 of 4001 output rows (every 2nd)"]
+    data = json.loads(re.search(r'id="scene-data">(.*?)</script>', anim.html(), re.S).group(1))
+    assert data["notes"] == anim.notes
+    few = pysolver.load(README_DECK).run(progress=False)
+    assert few.animate(max_frames=100).notes == \
+        ["showing 87 of 601 output rows (every 7th and the last)"]
+    assert few.animate(max_frames=301).notes == ["showing 301 of 601 output rows (every 2nd)"]
+    assert few.animate(max_frames=201).notes == ["showing 201 of 601 output rows (every 3rd)"]
+    assert few.animate().notes == [] and few.animate(max_frames=None).notes == []
+    assert [scene.ordinal(k) for k in (1, 2, 3, 4, 11, 12, 13, 21, 22, 23, 101, 111, 112, 122)] \
+        == ["1st", "2nd", "3rd", "4th", "11th", "12th", "13th", "21st", "22nd", "23rd",
+            "101st", "111th", "112th", "122nd"]
+    js = (page.HERE / "viewer.js").read_text(encoding="utf-8")
+    assert "'showing " not in js            # the page words no note of its own
+
+
+def test_thinned_frames_come_first_among_the_notes(pendulum):
+    """A deck with notes of elements not drawn: the rows kept first, then those."""
+    model, res = pendulum
+    notes = res.animate(max_frames=50).notes
+    assert notes[0] == "showing 41 of 201 output rows (every 5th)"
+    assert notes[1:] == res.animate().notes and len(notes) == 2
+
+
 def test_the_page_is_one_file_without_network(pendulum, tmp_path):
     """No src= or href= to anything; three.js, the data and the script inlined; the scene's
     data parse back; Jupyter gets it as an iframe's srcdoc."""

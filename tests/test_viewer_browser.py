@@ -1,8 +1,10 @@
 """The animation page in a real browser: headless Chromium (Debian's package ``chromium``, or
 the one PYSOLVER_CHROMIUM names) renders tests/decks/graphics.xml's page at two times, with
 every network request sent to a dead proxy; the pictures are not blank and the pendulum's
-links are where the run had them moving. Skipped where there is no Chromium."""
+links are where the run had them moving; a page's note list is its Animation.notes. Skipped
+where there is no Chromium."""
 import os
+import re
 import shutil
 import subprocess
 
@@ -99,3 +101,22 @@ def test_the_notebook_iframe_draws_the_scene(tmp_path):
     pixels = _shot(cell, "", tmp_path)
     (_, n), (_, m) = _where(pixels, (200, 60, 40)), _where(pixels, (70, 110, 170))
     assert n > 300 and m > 300, (n, m)
+
+
+def test_the_page_lists_the_notes_of_animation_notes(tmp_path):
+    """The page's note list, read from the DOM Chromium built: the same entries as
+    Animation.notes, the rows kept first (worded once, in Python; the page once worded its
+    own, "every 2th", and Animation.notes lacked it)."""
+    res = pysolver.load(ROOT / "decks" / "particle_between_lines.xml").run(progress=False)
+    anim = res.animate(max_frames=100)
+    path = tmp_path / "thinned.html"
+    anim.save(path)
+    run = subprocess.run([CHROMIUM, *FLAGS, f"--user-data-dir={tmp_path / 'profile'}",
+                          "--dump-dom", f"{path.as_uri()}#t=0"],
+                         capture_output=True, text=True, timeout=180)
+    got = re.search(r'<details id="notes"[^>]*><summary>(.*?)</summary><ul>(.*?)</ul>',
+                    run.stdout, re.S)
+    assert got, f"no note list in the page (exit {run.returncode}): {run.stderr[-2000:]}"
+    assert got.group(1) == "1 note"
+    assert re.findall(r"<li>(.*?)</li>", got.group(2)) == anim.notes == \
+        ["showing 87 of 601 output rows (every 7th and the last)"]

@@ -1,5 +1,6 @@
 """Designs of a sweep: a full factorial grid and quasi-random samples (scipy.stats.qmc)."""
 import itertools
+import numbers
 
 import numpy as np
 
@@ -41,8 +42,17 @@ def sample(ranges, n, method="sobol", seed=None):
     Returns
     -------
     list of dict
+
+    Raises
+    ------
+    ValueError
+        `n` is not a whole number of at least 1, `method` is unknown, or a range is not
+        (low, high) with low <= high.
     """
     from scipy.stats import qmc
+    if isinstance(n, (bool, np.bool_)) or not isinstance(n, numbers.Integral) or n < 1:
+        raise ValueError(f"n must be an integer of at least 1 (the number of cases), got {n!r}")
+    n = int(n)
     paths = list(ranges)
     if method == "sobol":
         engine = qmc.Sobol(d=len(paths), scramble=True, seed=seed)

@@ -22,6 +22,9 @@ from .table import Table
 
 __all__ = ["STATUSES", "StorageError", "Sweep", "sweep"]
 
+#: The table's own columns, around the inputs (before) and the outputs (after ``steps``).
+BOOKKEEPING = ("case", "status", "message", "wall", "steps", "resumed")
+
 
 class Sweep:
     """The outcome of :func:`sweep`.
@@ -32,11 +35,16 @@ class Sweep:
         One per case, in case order: ``case`` (its index), its inputs (one key per path),
         ``status`` (ok, failed, error, crashed, timeout), ``message``, ``wall`` (seconds),
         ``steps``, and the outputs asked for; ``resumed`` is True for rows read from an earlier
-        run into the same directory.
+        run into the same directory. Every row has the keys of :attr:`columns`, None where a
+        case has no value (no steps and no outputs for a case that did not run).
+    columns : list of str
+        The table's columns, fixed by the sweep's design whatever the cases did: ``case``, the
+        paths of the cases (in the order they first appear), ``status``, ``message``,
+        ``wall``, ``steps``, the outputs in the order given, ``resumed``.
     """
 
-    def __init__(self, model, cases, rows, store, keys, payload, in_process):
-        self.model, self.cases, self.rows = model, cases, rows
+    def __init__(self, model, cases, rows, columns, store, keys, payload, in_process):
+        self.model, self.cases, self.rows, self.columns = model, cases, rows, columns
         self.directory, self.keys = store.directory, keys
         self._store, self._payload, self._in_process = store, payload, in_process
         self._results, self._runner = {}, None
@@ -45,7 +53,7 @@ class Sweep:
     def table(self):
         """The rows as columns (:class:`pysolver.batch.table.Table`: name -> NumPy array,
         printable), without pandas; :meth:`to_dataframe` for a pandas DataFrame."""
-        return Table(self.rows)
+        return Table(self.rows, self.columns)
 
     def to_dataframe(self):
         """The rows as a pandas DataFrame indexed by case (``pip install pandas``)."""
@@ -141,6 +149,7 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
     cases = _as_cases(cases)
     outputs = dict(outputs or {})
     check_outputs(model, outputs)
+    columns = _columns(cases, outputs)
     keep = _keep(keep)
     fp = fingerprint(model, outputs)
     keys = [case_key(fp, c) for c in cases]
@@ -151,7 +160,7 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
     for i, key in enumerate(keys):
         got = store.stored(key, keep)
         if got is not None:
-            rows[i] = _row(i, cases[i], got, True)
+            rows[i] = _row(columns, i, cases[i], got, True)
     todo = [(i, cases[i]) for i in range(len(cases)) if rows[i] is None]
     bar = _Bar(len(cases), len(cases) - len(todo), progress)
     want = store.directory is not None
@@ -163,7 +172,7 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
         finished = Pool(payload, processes or os.cpu_count() or 1, timeout).run(todo, want)
     try:
         for idx, row, blob in finished:
-            row = _row(idx, cases[idx], row, False)
+            row = _row(columns, idx, cases[idx], row, False)
             store.add(keys[idx], row, blob)
             rows[idx] = row
             bar.step()
@@ -171,14 +180,33 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
         finished.close()                # workers of an unfinished sweep are stopped now
         store.close()
         bar.close()
-    return Sweep(model, cases, rows, store, keys, payload, in_process)
+    return Sweep(model, cases, rows, columns, store, keys, payload, in_process)
 
 
-def _row(idx, case, got, resumed):
+def _columns(cases, outputs):
+    """The table's columns: ``case``, every path of the cases, the bookkeeping, the outputs
+    (an output ``steps`` is the bookkeeping column of that name), ``resumed``. An output
+    named as another column is refused: it would hide that column."""
+    paths = list(dict.fromkeys(str(k) for c in cases for k in c))
+    for name, spec in outputs.items():
+        if name in paths or (name in BOOKKEEPING and (name, spec) != ("steps", "steps")):
+            raise ValueError(f"output {name!r}: the table has a column {name!r} already (case, "
+                             "the paths of the cases, status, message, wall, steps, resumed); "
+                             "choose another name")
+    return list(dict.fromkeys(["case", *paths, "status", "message", "wall", "steps",
+                               *outputs, "resumed"]))
+
+
+def _row(columns, idx, case, got, resumed):
+    """A row with every column: the case's inputs, the bookkeeping and outputs it got (None
+    for those it has not: a case that did not run has no steps and no outputs)."""
+    row = dict.fromkeys(columns)
     inputs = {str(k): v for k, v in case.items()}
-    return {"case": idx, **inputs,
-            **{k: v for k, v in got.items() if k not in inputs and k not in ("case", "resumed")},
-            "resumed": resumed}
+    row.update(inputs)
+    row.update((k, v) for k, v in got.items()
+               if k in row and (k not in inputs or k in BOOKKEEPING))
+    row["case"], row["resumed"] = idx, resumed
+    return row
 
 
 def _keep(keep):

@@ -25,13 +25,22 @@ class Table(dict):
     """Column name -> NumPy array, one entry per case in case order: ``case``, the inputs (one
     column per path), ``status``, ``message``, ``wall``, ``steps``, the outputs, ``resumed``.
 
-    ``table["x_end"].max()``, ``table["status"] == "ok"`` work as with NumPy;
-    :meth:`to_dataframe` gives a pandas DataFrame indexed by case (``pip install pandas``),
-    :meth:`to_csv` writes the rows; printing shows them.
+    ``table["x_end"].max()``, ``table["status"] == "ok"`` work as with NumPy; a value a row
+    does not have (None: the outputs of a case that did not run) is NaN in a column of
+    numbers. :meth:`to_dataframe` gives a pandas DataFrame indexed by case (``pip install
+    pandas``), :meth:`to_csv` writes the rows (an empty cell for None); printing shows them.
+
+    Parameters
+    ----------
+    rows : list of dict
+        One per case.
+    columns : list of str, optional
+        The columns, in order (a sweep's :attr:`pysolver.Sweep.columns`); by default the keys
+        of the rows, in the order they first appear.
     """
 
-    def __init__(self, rows):
-        names = list(dict.fromkeys(k for r in rows for k in r))
+    def __init__(self, rows, columns=None):
+        names = list(dict.fromkeys(k for r in rows for k in r) if columns is None else columns)
         super().__init__((n, _column([r.get(n) for r in rows])) for n in names)
         self.rows = rows
 
@@ -44,6 +53,9 @@ class Table(dict):
                               "pysolver[dataframe]); Sweep.table gives the same columns "
                               "without it") from None
         frame = pd.DataFrame(self.rows, columns=list(self.keys()))
+        for name, column in self.items():
+            if column.dtype.kind == "f" and frame[name].dtype == object:    # None -> NaN
+                frame[name] = column
         return frame.set_index("case") if "case" in frame else frame
 
     def to_csv(self, path):

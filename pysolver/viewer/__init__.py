@@ -29,7 +29,8 @@ class Animation:
     Attributes
     ----------
     scene : Scene
-        What is shown: the poses (``scene.poses``), the items drawn, the notes on what is not.
+        What is shown: the poses (``scene.poses``), the items drawn, the notes (the rows kept,
+        what is not drawn).
     """
 
     def __init__(self, result, model, params=None, max_frames=MAX_FRAMES):
@@ -41,7 +42,8 @@ class Animation:
 
     @property
     def notes(self):
-        """Elements not drawn, and why."""
+        """The page's note list: which output rows are shown when not all are (first), then
+        the elements not drawn, and why."""
         return list(self.scene.notes)
 
     def html(self) -> str:

@@ -32,6 +32,21 @@ def rows_kept(n, max_frames):
     return rows if rows[-1] == n - 1 else np.append(rows, n - 1)
 
 
+def ordinal(k):
+    """2 -> "2nd", 11 -> "11th", 23 -> "23rd"."""
+    suffix = "th" if k % 100 in (11, 12, 13) else {1: "st", 2: "nd", 3: "rd"}.get(k % 10, "th")
+    return f"{k}{suffix}"
+
+
+def thinned(rows, total):
+    """The note that says which output rows an animation keeps, or None when it keeps all."""
+    if len(rows) == total:
+        return None
+    k = int(rows[1] - rows[0])
+    last = " and the last" if (total - 1) % k else ""
+    return f"showing {len(rows)} of {total} output rows (every {ordinal(k)}{last})"
+
+
 def _finite(points):
     """The rows of `points` (k, 3) without NaN or infinity (a failed run's last rows)."""
     return points[np.all(np.isfinite(points), axis=1)]
@@ -64,7 +79,8 @@ class Scene:
     items : list of dict
         What is drawn besides the bodies, markers and ground (:mod:`.shapes`).
     notes : list of str
-        Elements not drawn, and why.
+        Which output rows are shown when not all are (first), then elements not drawn, and
+        why: the page's note list.
     radius : float
         Radius of the sphere around everything drawn, model length units.
     glyph : float
@@ -94,7 +110,9 @@ class Scene:
         self.up = -grav / np.linalg.norm(grav) if np.any(grav) else np.array([0, 0, 1.0])
         self.radius, self.origin = self._extent(scene)
         g = self.glyph = self.radius / 25
-        self.items, self.notes, drawn_on = [], [], set()
+        self.items, drawn_on = [], set()
+        note = thinned(self.rows, self.total)
+        self.notes = [note] if note else []
         for gid, gr in sorted(scene.graphics.items()):
             if shapes._true(gr.attrs.get("hidden", "")):
                 continue

@@ -324,9 +324,7 @@
       box.appendChild(document.createTextNode(name));
     }
   }
-  const notes = S.notes.slice();
-  if (S.total > n) notes.unshift('showing ' + n + ' of ' + S.total + ' output rows (every ' +
-                                 Math.ceil(S.total / n) + 'th)');
+  const notes = S.notes;           // the rows kept when not all are, then what is not drawn
   if (notes.length) {
     $('notes').hidden = false;
     $('notes').querySelector('summary').textContent = notes.length + ' note' + (notes.length > 1 ? 's' : '');
