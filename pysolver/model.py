@@ -185,7 +185,7 @@ class Model:
                 why = over_budget(rows, kernel.ny, len(kernel.channels),
                                   f"the Simulate command ending at {cmd.end_time:g}")
                 if why:
-                    raise DeckError(why, file=self.source.file, line=cmd.line,
+                    raise DeckError(why, file=cmd.file or self.source.file, line=cmd.line,
                                     element="Simulate", attribute="print_interval")
             t = cmd.end_time if cmd.end_time is not None else t
 

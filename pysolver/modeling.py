@@ -21,7 +21,8 @@ Each element registers with the model created last; ids are given in creation or
 kind unless an ``id`` is passed. The model is written as an Adams dataset (``model.adm()``),
 which pysolver.deck.adams reads like any other, so placement (markers in their part's frame,
 ``qp``/``zp``/``xp``/``reuler``/``rm``), checks and messages are the dataset's. A DeckError
-names the line of the Python script that created the element. Each class's ``_keys`` maps an
+names the line of the Python script that created the element (a command's: its simulate()
+call), the checks after the dataset reader's included. Each class's ``_keys`` maps an
 attribute to its Adams keyword, or, for an attribute written as a flag (``type="REVOLUTE"``
 is the flag ``REVOLUTE``), to the table of its values and flags; pysolver/convert.py reads
 the same tables to write a deck as a script of these classes.
@@ -575,29 +576,50 @@ class Model:
 
     def load(self):
         """The pysolver Model of this model and its simulate commands so far."""
-        from .deck.loader import loads
-        return self._mapped(lambda text: loads(text, fmt="adm", file=self._file()))
+        from .deck.validate import build_model
+        from .records import Source
+        text, elements = self._read()
+        return build_model(elements, Source(self._file(), text, "adm"))
 
     def elements(self):
-        """The deck elements of this model (what a deck file is read into)."""
-        from .deck.adams import read_elements
-        return self._mapped(lambda text: read_elements(text, self._file()))
+        """The deck elements of this model (what a deck file is read into), each at the
+        Python line that created it."""
+        return self._read()[1]
 
     def _file(self):
         return self._where[0] or "<msolve model>"
 
-    def _mapped(self, build):
-        """build(dataset text), its DeckError located at the Python line of the element."""
+    def _read(self):
+        """(dataset text, its elements): the reader's DeckError and each element located at
+        the Python file and line of the element or simulate() call that made it, so the
+        checks after the reader name them too."""
+        from .deck.adams import read_elements
         text = self.adm()
         try:
-            return build(text)
+            elements = read_elements(text, self._file())
         except DeckError as err:
-            where = self._lines.get((_COMMANDS, err.line) if err.file == _COMMANDS
-                                    else err.line)
+            where = self._python(err.file, err.line)
             if where is None:
                 raise
             raise DeckError(err.reason, file=where[0], line=where[1], element=err.element,
                             attribute=err.attribute) from None
+        return text, [self._located(el) for el in elements]
+
+    def _python(self, file, line):
+        """(file, line) of the Python code behind line `line` of the dataset (`file` the
+        model's) or of its commands (`file` _COMMANDS); None when no Python line made it."""
+        if file not in (self._file(), _COMMANDS):
+            return None
+        where = self._lines.get((_COMMANDS, line) if file == _COMMANDS else line)
+        return where if where is not None and where[0] is not None else None
+
+    def _located(self, element):
+        """An element read from the dataset, at the Python file and line that made it."""
+        tag, attrs, line, names = element
+        where = self._python(names.get("#file", self._file()), line)
+        if where is None:
+            return element
+        return tag, attrs, where[1], {**names, "#file": where[0]}
 
     def simulate(self, type="DYNAMICS", end=None, dtout=None, steps=None, duration=None,
                  start=None, print_increment=None, returnResults=True, **options):

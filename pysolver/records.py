@@ -356,6 +356,7 @@ class Simulate:
     end_time: float
     print_interval: float
     line: int = None
+    file: str = None            # the file of its line (a command file's), None: the deck's
 
 
 @dataclasses.dataclass

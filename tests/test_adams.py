@@ -11,7 +11,7 @@ import pysolver
 from pysolver import DeckError, DeckWarning
 from pysolver.cli import main
 
-from helpers import TEST_DECKS
+from helpers import DECKS, TEST_DECKS
 
 ADAMS = TEST_DECKS / "adams"
 
@@ -241,3 +241,84 @@ def test_a_command_file_that_names_its_dataset_with_file_model(tmp_path):
                                       "SIMULATE/DYNAMIC, END=0.4, DTOUT=0.1\nstop\n")
     m = _load(tmp_path / "run.acf")
     assert [(c.end_time, c.print_interval) for c in m.commands] == [(0.4, 0.1)]
+
+
+#: A dataset whose lines 2 to 5 hold no statement, with an INTEGRATOR (line 10) and a
+#: velocity motion (line 11).
+_LOCATED = """a dataset whose lines 2 to 5 hold no statement
+! line 2
+! line 3
+! line 4
+! line 5
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 2, IP = 1, 1, 1
+MARKER/2, PART = 2
+INTEGRATOR/ERROR = 1E-6
+MOTION/1, I = 2, J = 1, X, VELOCITY, FUNCTION = 0
+END
+"""
+
+
+@pytest.mark.parametrize("commands, line, element, attribute, reason", [
+    (["SIMULATE/DYNAMICS, END = 3.0, DTOUT = 0"], 3, "SIMULATE (Simulate)", "DTOUT",
+     "got 0; expected a value > 0"),
+    (["SIMULATE/DYNAMICS, END = -3.0, DTOUT = 0.01"], 3, "SIMULATE (Simulate)", "END",
+     "end_time -3 must be after the start time 0"),
+    (["SIMULATE/DYNAMICS, END = 1, DTOUT = 0.1", "! a comment", "SIMULATE/DYNAMICS, END = 0.5"],
+     5, "SIMULATE (Simulate)", "END", "end_time 0.5 must be after the start time 1"),
+    (["SIMULATE/DYNAMICS, END = 1, STEPS = 0"], 3, "SIMULATE (Simulate)", "STEPS",
+     "got 0; expected a positive integer"),
+    (["SIMULATE/DYNAMICS, START = 2, END = 3"], 3, "SIMULATE (Simulate)", "START",
+     "start_time must equal the time the previous command ended (0)"),
+    (["SIMULATE/INITIAL_CONDITIONS, END = 3"], 3, "SIMULATE (Simulate)", "END",
+     "an Assembly analysis takes no end time or output interval"),
+    (["INTEGRATOR/ERROR = -1"], 3, "INTEGRATOR (Param_Transient)", "ERROR",
+     "got -1; expected a value > 0"),
+    (["INTEGRATOR/HMAX = 0.01"], 3, "INTEGRATOR (Param_Transient)", None,
+     "a second Param_Transient (the first is at {adm}:10; in a Python deck INTEGRATOR, "
+     "EQUILIBRIUM or ACCGRAV); give one"),
+    (["EQUILIBRIUM/MAXIT = -1", "SIMULATE/STATICS"], 3, "EQUILIBRIUM (Param_Static)", "MAXIT",
+     "got -1; expected a positive integer"),
+    (["EQUILIBRIUM/METHOD = MKEAM", "SIMULATE/STATICS, END = 1, STEPS = 10"], 4, "Simulate",
+     "analysis_type",
+     "MKEAM does not do quasi-static analyses (seed 004); use FIM_D or FIM_S in Param_Static"),
+    (["SIMULATE/STATICS"], 3, "Simulate", "analysis_type",
+     "static analyses hold each motion's displacement, and Motion_Marker 1 gives a velocity "
+     "(val_type V); write it as a displacement (val_type D), or run the scene as a transient"),
+])
+def test_every_error_a_command_causes_names_the_command_file_and_its_line(
+        tmp_path, commands, line, element, attribute, reason):
+    """The checks of the element a command becomes (a Simulate's times, Param_Transient's
+    and Param_Static's values, a second Param_Transient, the checks across commands) name
+    the .acf and the command's line, never the dataset's line of the same number; loading
+    the .adm (the .acf beside it) says the same."""
+    adm, acf = tmp_path / "d.adm", tmp_path / "d.acf"
+    adm.write_text(_LOCATED)
+    acf.write_text("d\nd\n" + "\n".join(commands) + "\nSTOP\n")
+    reason = reason.format(adm=adm)
+    where = f"{acf}:{line}, {element}" + (f", attribute '{attribute}'" if attribute else "")
+    for path in (acf, adm):
+        with pytest.raises(DeckError) as err:
+            _load(path)
+        assert (err.value.file, err.value.line, err.value.reason) == (str(acf), line, reason)
+        assert str(err.value) == f"{where}: {reason}"
+
+
+def test_pysolver_run_names_the_command_file_line_of_a_bad_dtout(tmp_path, capsys):
+    """The new user's case: `pysolver run a_dt.acf` with DTOUT = 0 on the .acf's line 3 (the
+    .adm's line 3 a comment): one line naming a_dt.acf:3, exit 2; a warning a command draws
+    names it too."""
+    shutil.copy(DECKS / "forms" / "adams" / "catenary_bead.adm", tmp_path / "a_dt.adm")
+    acf = tmp_path / "a_dt.acf"
+    acf.write_text("a_dt\na_dt\nSIMULATE/DYNAMICS, END = 3.0, DTOUT = 0\nSTOP\n")
+    assert main(["run", str(acf), "-q", "--no-plot", "-o", str(tmp_path / "out")]) == 2
+    assert capsys.readouterr().err == (f"pysolver: error: {acf}:3, SIMULATE (Simulate), "
+                                       "attribute 'DTOUT': got 0; expected a value > 0\n")
+    acf.write_text("a_dt\na_dt\nINTEGRATOR/HHT\nSTOP\n")
+    (tmp_path / "a_dt.adm").write_text(
+        (DECKS / "forms" / "adams" / "catenary_bead.adm").read_text().replace(
+            "INTEGRATOR/ERROR = 1e-06\n", ""))
+    with pytest.warns(DeckWarning, match="HHT is not pysolver's integrator") as got:
+        pysolver.load(acf)
+    assert [(w.message.file, w.message.line) for w in got] == [(str(acf), 3)]

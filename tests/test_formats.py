@@ -49,7 +49,7 @@ def _tree(value):
 
 def _differences(a, b, path):
     """Where two parts of a model differ, numbers bit for bit (a zero's sign too); the
-    expressions' texts and the deck lines aside."""
+    expressions' texts and the deck locations aside."""
     if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
         a, b = np.asarray(a), np.asarray(b)
         same = a.shape == b.shape and np.array_equal(a, b, equal_nan=True) and \
@@ -57,7 +57,7 @@ def _differences(a, b, path):
         return [] if same else [f"{path}: {a!r} != {b!r}"]
     if dataclasses.is_dataclass(a) and not isinstance(a, type):
         return [d for f in dataclasses.fields(a) if f.name not in ("text", "texts", "line",
-                                                                   "load_text")
+                                                                   "file", "load_text")
                 for d in _differences(getattr(a, f.name), getattr(b, f.name),
                                       f"{path}.{f.name}")]
     if isinstance(a, dict):

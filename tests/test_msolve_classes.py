@@ -160,3 +160,87 @@ def test_graphics_keep_any_attribute_for_the_3d_view():
     assert (graphics[1].type, graphics[1].attrs) == \
         ("Cylinder", {"center_marker_id": "1", "radius": "1.5", "length": "2.0"})
     assert (graphics[2].type, graphics[2].attrs) == ("SPHERE", {"cm": "1", "radius": "0.25"})
+
+
+#: docs/msolve.md's pendulum without its simulate() (11 lines); each case adds its lines.
+_PENDULUM = """from pysolver.msolve import *
+
+model = Model(output="pendulum")
+Units(length="MILLIMETER")
+Accgrav(jgrav=-9810)
+ground = Part(ground=True)
+pivot = Marker(body=ground)
+arm = Part(mass=1, ip=[1e3, 1e3, 1e3])
+arm.cm = Marker(body=arm, qp=Point(100, 0, 0))
+Joint(type="REVOLUTE", i=Marker(body=arm), j=pivot)
+Request(type="DISPLACEMENT", i=arm.cm)
+"""
+_RUN = 'model.simulate(type="DYNAMICS", end=1, dtout=0.1)'
+
+
+@pytest.mark.parametrize("tail, line, element, attribute, reason", [
+    ('model.simulate(type="DYNAMICS", end=-1, dtout=0.01)', 12, "SIMULATE (Simulate)", "END",
+     "end_time -1 must be after the start time 0"),
+    ('model.simulate(type="DYNAMICS", end=1, dtout=0)', 12, "SIMULATE (Simulate)", "DTOUT",
+     "got 0; expected a value > 0"),
+    ('model.simulate(type="DYNAMICS", end=1, steps=0)', 12, "SIMULATE (Simulate)", "STEPS",
+     "got 0; expected a positive integer"),
+    ('model.simulate(type="DYNAMICS", end=3, start=2)', 12, "SIMULATE (Simulate)", "START",
+     "start_time must equal the time the previous command ended (0)"),
+    (f'{_RUN}\nmodel.simulate(type="DYNAMICS", end=0.5)', 13, "SIMULATE (Simulate)", "END",
+     "end_time 0.5 must be after the start time 1"),
+    ('model.simulate(type="DYNAMIC", end=1)', 12, "simulate", "type",
+     "unknown simulate type 'DYNAMIC'; expected DYNAMICS, TRANSIENT, KINEMATICS, STATICS, "
+     "STATIC, QUASI-STATIC, QUASISTATIC, ASSEMBLY"),
+    (f'Joint(type="REVOLUTE", i=pivot, j=99)\n{_RUN}', 12, "JOINT/2 (Constraint_Joint)", "J",
+     "marker 99 does not exist"),
+    (f"\nPart(mass=-1)\n{_RUN}", 13, "PART/3 (Body_Rigid)", "MASS",
+     "got -1; expected a value > 0"),
+    (f"Integrator(error=-1)\n{_RUN}", 12, "INTEGRATOR (Param_Transient)", "ERROR",
+     "got -1; expected a value > 0"),
+    (f'Sensor(function="DX(9)", value=1, error=-1)\n{_RUN}', 12, "SENSOR/1 (Sensor_Event)",
+     "ERROR", "got -1; expected a value >= 0"),
+    (f'Sforce(type="TRANSLATION", i=pivot, j=arm.cm, function="DX(77)")\n{_RUN}', 12,
+     "SFORCE/1 (Force_Scalar_TwoBody)", "FUNCTION",
+     "the expression refers to marker id 77, which does not exist"),
+])
+@pytest.mark.parametrize("pad", [0, 3])
+@pytest.mark.parametrize("how", ["run", "load"])
+def test_each_error_names_the_script_line_of_its_statement(tmp_path, how, pad, tail, line,
+                                                           element, attribute, reason):
+    """A command's errors name its simulate() call, an element's checks (ids, values,
+    expressions) the line that made it, whether the script runs (simulate() runs the model)
+    or pysolver.load reads it; lines added above move them."""
+    path = tmp_path / "ms_bad.py"
+    text = _PENDULUM.replace("\n\n", "\n" * (2 + pad), 1) + tail + "\n"
+    path.write_text(text)
+    with pytest.raises(DeckError) as err:
+        if how == "load":
+            pysolver.load(path)
+        else:
+            exec(compile(text, str(path), "exec"), {"__name__": "__main__"})
+    assert (err.value.file, err.value.line, err.value.reason) == (str(path), line + pad, reason)
+    assert str(err.value) == f"{path}:{line + pad}, {element}, attribute '{attribute}': {reason}"
+
+
+def test_an_element_made_in_another_module_is_named_at_its_line(tmp_path, monkeypatch):
+    """A Part a helper module makes: its check names the helper's file and line, whether the
+    script runs or pysolver.load reads it."""
+    helper = tmp_path / "ms_helper_parts.py"
+    helper.write_text("from pysolver.msolve import Part\n\n\ndef bad_part():\n"
+                      "    return Part(mass=-1)\n")
+    script = tmp_path / "ms_uses_helper.py"
+    text = _PENDULUM + f"import ms_helper_parts\nms_helper_parts.bad_part()\n{_RUN}\n"
+    script.write_text(text)
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.delitem(sys.modules, "ms_helper_parts", raising=False)
+    for how in ("run", "load"):
+        with pytest.raises(DeckError) as err:
+            if how == "load":
+                pysolver.load(script)
+            else:
+                exec(compile(text, str(script), "exec"), {"__name__": "__main__"})
+        assert str(err.value) == (f"{helper}:5, PART/3 (Body_Rigid), attribute 'MASS': got -1; "
+                                  "expected a value > 0")
+        assert (err.value.file, err.value.line) == (str(helper), 5)
+    sys.modules.pop("ms_helper_parts", None)

@@ -274,6 +274,7 @@ class _Reader:
 
     def __init__(self, file, acf=None):
         self.file, self.acf = file, acf or file
+        self.dataset = file         # the file the deck is loaded as (its elements' default)
         self.parts = {}             # part id -> (origin, axes) of its BCS
         self.markers = {}           # marker id -> (statement, values)
         self.spaces = {}            # pysolver id space -> [(statement name, statement)]
@@ -397,7 +398,7 @@ class _Reader:
                 if self.statement_name(stmt, DATASET) == "END":
                     break
                 self.emit(rec, stmt, DATASET)
-            self.file = self.acf                # errors in commands name the command file
+            self.file = rec.file = self.acf     # errors in commands name the command file
             for stmt in commands:
                 if stmt.name.upper() == "STOP":
                     break
@@ -428,6 +429,8 @@ class _Reader:
         where = f"{name}/{stmt.id}" if stmt.id is not None else name
         for _, _, _, names in rec.elements[start:]:
             names["#element"] = where
+            if self.file != self.dataset:     # a command: its checks name the command file
+                names["#file"] = self.file
 
     def statement_name(self, stmt, table):
         """The statement `stmt` names (a unique prefix of Adams' statements will do;

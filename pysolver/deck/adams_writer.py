@@ -84,10 +84,10 @@ def statements(elements, model, file, out_dir=None):
         try:
             out = _TRANSLATE[el.tag](el, model, els, k)
         except ValueError as err:
-            raise DeckError(str(err), file=file, line=el.line, element=el.tag,
+            raise DeckError(str(err), file=el.file, line=el.line, element=el.tag,
                             id=el.a.get("id")) from None
         for st in out:
-            st.line, st.file = el.line, file
+            st.line, st.file = el.line, el.file
             _subroutine(st, el, file, out_dir)
             (commands if st.name in ("SIMULATE", "STOP") else dataset).append(st)
     return dataset, commands
@@ -498,7 +498,7 @@ def _subroutine(st, el, file, out_dir):
     routine = a.get("usrsub_fnc_name")
     if callable(routine):
         raise DeckError("a routine given as a Python function cannot be written to a file; "
-                        "give its name and script instead", file=file, line=el.line,
+                        "give its name and script instead", file=el.file, line=el.line,
                         element=el.tag, id=a.get("id"), attribute="ROUTINE")
     if a.get("usrsub_dll_name") is not None:
         name = routine or usersubs.CONVENTIONS[el.tag][0]

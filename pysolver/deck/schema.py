@@ -197,11 +197,19 @@ _ID_KIND = {tag: e.kind for e in catalogue.ELEMENTS for tag in e.tags
 
 
 
+def element_file(names, file):
+    """The file an element comes from: the deck's `file`, or the one its reader named in
+    ``names["#file"]`` (an Adams command file's commands, an msolve class made in another
+    module)."""
+    return names.get("#file") or file
+
+
 class Ctx:
     """Location of the element being built, for DeckError."""
 
     def __init__(self, file, tag, attrs, line, names):
-        self.file, self.tag, self.attrs, self.line, self.names = file, tag, attrs, line, names
+        self.file, self.tag, self.attrs, self.line = element_file(names, file), tag, attrs, line
+        self.names = names
         self.id = None
 
     def error(self, msg, attribute=None):

@@ -30,7 +30,7 @@ from .joints import add_coupler, add_gcon, add_joint
 from .motions import add_joint_motion, add_motion
 from .references import check_references, velocity_level
 from .requests import marker_channels
-from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
+from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes, element_file
 from .splinedata import add_spline
 from .springs import add_springdamper
 from .tasks import add_loadcontrol
@@ -58,17 +58,17 @@ def build_model(elements, source):
         canon = CANONICAL.get(tag.lower())
         if canon is None:
             raise DeckError(f"unknown element <{tag}>; known elements: "
-                            f"{', '.join(sorted(SCHEMA))}", file=source.file, line=line,
-                            element=tag)
+                            f"{', '.join(sorted(SCHEMA))}",
+                            file=element_file(names, source.file), line=line, element=tag)
         ctx = Ctx(source.file, canon, attrs, line, names)
         a = attributes(ctx)
         kind = _ID_KIND.get(canon)
         if kind:
             key = (kind, a["id"])
             if key in seen:
-                raise ctx.error(f"duplicate {kind} id {a['id']} (first defined on line "
-                                f"{seen[key]})", "id")
-            seen[key] = line
+                raise ctx.error(f"duplicate {kind} id {a['id']} (first defined "
+                                f"{_at(seen[key], ctx)})", "id")
+            seen[key] = (ctx.file, line)
         if canon == "Units":
             model.units = {k: a[k] for k in ("mass", "length", "time", "force")}
             model.force_scale = un.force_scale(**model.units)
@@ -98,7 +98,7 @@ def build_model(elements, source):
     for cmd in model.commands:
         if cmd.analysis == "QUASI-STATIC" and model.static.method == "MKEAM":
             raise DeckError("MKEAM does not do quasi-static analyses (seed 004); use FIM_D or "
-                            "FIM_S in Param_Static", file=source.file, line=cmd.line,
+                            "FIM_S in Param_Static", file=cmd.file, line=cmd.line,
                             element="Simulate", attribute="analysis_type")
     after = ("Motion_Joint", "Constraint_Coupler")
     for ctx, a in later:
@@ -109,7 +109,7 @@ def build_model(elements, source):
             add_joint_motion(model, ctx, a)
         elif ctx.tag == "Constraint_Coupler":
             add_coupler(model, ctx, a)
-    _check_static_motions(model, source)
+    _check_static_motions(model)
     check_references(model)
     if not model.commands:
         model.commands.append(Simulate("TRANSIENT", 1.0, 0.01))
@@ -124,7 +124,7 @@ def build_model(elements, source):
 MAX_GRAVITY = 1e20
 
 
-def _check_static_motions(model, source):
+def _check_static_motions(model):
     """Statics hold a motion's displacement; a velocity or acceleration motion gives none to
     hold (docs/deck-language.md, "Statics with constraints")."""
     static = [c for c in model.commands if c.analysis in ("STATIC", "QUASI-STATIC")]
@@ -132,7 +132,7 @@ def _check_static_motions(model, source):
     if static and moving:
         raise DeckError(f"{static[0].analysis.lower()} analyses hold positions, and "
                         f"Constraint_General {moving[0].id} is a relation of velocities "
-                        "(non-holonomic); run the scene as a transient", file=source.file,
+                        "(non-holonomic); run the scene as a transient", file=static[0].file,
                         line=static[0].line, element="Simulate", attribute="analysis_type")
     rated = [mo for mo in model.motions.values() if mo.val_type != "D"]
     if static and rated:
@@ -143,16 +143,23 @@ def _check_static_motions(model, source):
                 f"(val_type {mo.val_type}); write it as a displacement (val_type D)")
         raise DeckError(f"{static[0].analysis.lower()} analyses hold each motion's "
                         f"displacement, and {what}, or run the scene as a transient",
-                        file=source.file, line=static[0].line, element="Simulate",
+                        file=static[0].file, line=static[0].line, element="Simulate",
                         attribute="analysis_type")
 
 
 def _once(ctx, once, tag):
     """A settings element given twice would silently let the later one win: refuse it."""
     if tag in once:
-        raise ctx.error(f"a second {tag} (the first is on line {once[tag]}; in a Python deck "
-                        "INTEGRATOR, EQUILIBRIUM or ACCGRAV); give one")
-    once[tag] = ctx.line
+        raise ctx.error(f"a second {tag} (the first is {_at(once[tag], ctx)}; in a Python "
+                        "deck INTEGRATOR, EQUILIBRIUM or ACCGRAV); give one")
+    once[tag] = (ctx.file, ctx.line)
+
+
+def _at(where, ctx):
+    """'on line N' of an earlier element at where = (file, line), its file named when it is
+    not ctx's (a command file's command against its dataset's statement)."""
+    file, line = where
+    return f"on line {line}" if file == ctx.file else f"at {file}:{line}"
 
 
 def value_rule(tag, attr, value):
@@ -234,7 +241,7 @@ def _simulate(ctx, a, model, t_prev):
         if given:
             raise ctx.error("an Assembly analysis takes no end time or output interval",
                             given[0])
-        model.commands.append(Simulate("ASSEMBLY", t_prev, 0.0, ctx.line))
+        model.commands.append(Simulate("ASSEMBLY", t_prev, 0.0, ctx.line, ctx.file))
         return t_prev
     if a["analysis_type"] == "STATIC":
         # an equilibrium at the current time, or at end_time when given
@@ -246,7 +253,7 @@ def _simulate(ctx, a, model, t_prev):
         if end < t_prev:
             raise ctx.error(f"end_time {end:g} is before the current time {t_prev:g}",
                             "end_time")
-        model.commands.append(Simulate("STATIC", end, 0.0, ctx.line))
+        model.commands.append(Simulate("STATIC", end, 0.0, ctx.line, ctx.file))
         return end
     if a["start_time"] is not None and abs(a["start_time"] - t_prev) > 1e-12:
         raise ctx.error(f"start_time must equal the time the previous command ended "
@@ -275,7 +282,7 @@ def _simulate(ctx, a, model, t_prev):
     if not math.isfinite(end - t_prev) or not rows < MAX_ROWS:
         raise ctx.error(f"{end - t_prev:g} s every {dt:g} s would be {rows:.3g} output rows; "
                         f"at most {MAX_ROWS:.0e} per command", given[0] if given else "end_time")
-    model.commands.append(Simulate(a["analysis_type"], end, dt, ctx.line))
+    model.commands.append(Simulate(a["analysis_type"], end, dt, ctx.line, ctx.file))
     return end
 
 

@@ -16,7 +16,7 @@ import os
 from lxml import etree
 
 from ..errors import DeckError
-from .schema import CANONICAL, SCHEMA, Ctx, convert
+from .schema import CANONICAL, SCHEMA, Ctx, convert, element_file
 
 #: Elements that are commands: they follow <Model>.
 COMMANDS = ("Simulate", "Stop")
@@ -72,14 +72,16 @@ def to_xml(elements, file="<deck>", title=None, out_dir=None):
                 continue
             if callable(value):
                 raise DeckError("a routine given as a Python function cannot be written to "
-                                "XML; give its name and script instead", file=file, line=line,
+                                "XML; give its name and script instead",
+                                file=element_file(names, file), line=line,
                                 element=tag, attribute=names.get(key, key))
             if key in _PATHS:
                 value = relocate(str(value), file, out_dir)
             try:
                 text = _text(value)
             except ValueError:
-                raise DeckError(f"{value!r} cannot be written to XML", file=file, line=line,
+                raise DeckError(f"{value!r} cannot be written to XML",
+                                file=element_file(names, file), line=line,
                                 element=tag, attribute=names.get(key, key)) from None
             if key == "#text":
                 el.text = "\n" + text + "\n"
@@ -116,10 +118,13 @@ class Element:
         Its line in the deck.
     raw : dict
         The attributes as read (for elements kept as written: Post_Graphic, ResOutput).
+    file : str or None
+        The file of its line (the deck's, or an Adams command file's for its commands).
     """
 
-    def __init__(self, tag, a, given, line, raw):
+    def __init__(self, tag, a, given, line, raw, file=None):
         self.tag, self.a, self.given, self.line, self.raw = tag, a, given, line, raw
+        self.file = file
 
     def get(self, key):
         """The attribute when the deck gave it, else None."""
@@ -148,7 +153,7 @@ def typed(elements, file):
             else:
                 a[key] = convert(Ctx(file, canon, attrs, line, names), key, kind, attrs[key])
         out.append(Element(canon, a, {k for k in given if a.get(k) is not None}, line,
-                           dict(attrs)))
+                           dict(attrs), element_file(names, file)))
         if canon == "Stop":
             break
     return out
