@@ -124,6 +124,8 @@ REQUEST/1, F1 = STEP(TIME, 0, 0,
 SENSOR/1, FUNCTION = TIME, VALUE = 0.5, GE, HALT
 END
 PART/9, this is after END and is not read
+text after END that is no statement at all (it stopped the load)
+, nor a continuation
 """
     path = tmp_path / "lex.adm"
     path.write_text(text)

@@ -79,6 +79,9 @@ def statements(text, file, first=1, title=True):
             label = found.group(2)
         if not body.strip():
             continue
+        if title and not joined and body.strip().upper() == "END":
+            out.append(([(k, body)], label))        # a dataset's end: nothing after it is read
+            break
         ampersand = body.rstrip().endswith("&")     # the command language's continuation
         if ampersand:
             body = body.rstrip()[:-1]
