@@ -108,9 +108,15 @@ def _with(param, value):
         'name="LoadControl"', 'name="LoadKontrol"'), None, "unknown element <LoadKontrol>"),
 ])
 def test_bad_parameters(text, attribute, match):
+    """Each names the <Parameter>'s own line (they all named the <Schedule>'s), or, for a
+    missing one or the task's name, the <Schedule>'s."""
     with pytest.raises(pysolver.DeckError, match=match) as info:
         pysolver.loads(text)
-    assert info.value.attribute == attribute and info.value.line is not None
+    assert info.value.attribute == attribute
+    lines = text.lower().splitlines()
+    own = [k for k, ln in enumerate(lines, 1) if attribute and f'name="{attribute.lower()}' in ln]
+    schedule = [k for k, ln in enumerate(lines, 1) if "<schedule" in ln]
+    assert info.value.line == (own or schedule)[0]
 
 
 def test_contact_load_is_the_floor_force():

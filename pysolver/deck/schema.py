@@ -214,13 +214,15 @@ class Ctx:
 
     def error(self, msg, attribute=None):
         shown = self.names.get(attribute, attribute) if attribute else None
-        return DeckError(msg, **self.where(), attribute=shown)
+        return DeckError(msg, **self.where(attribute), attribute=shown)
 
-    def where(self):
-        # an .adm statement shows as written (MARKER/9), the element it became after it
+    def where(self, attribute=None):
+        # an .adm statement shows as written (MARKER/9), the element it became after it; an
+        # attribute written on a line of its own (a <Parameter> of a task) is found there
         shown = self.names.get("#element")
         element = f"{shown} ({self.tag})" if shown else self.tag
-        return dict(file=self.file, line=self.line, element=element, id=None if shown
+        line = self.names.get("#lines", {}).get(attribute, self.line)
+        return dict(file=self.file, line=line, element=element, id=None if shown
                     else self.id)
 
     def warn(self, msg, attribute=None):
@@ -229,7 +231,7 @@ class Ctx:
 
         from ..errors import DeckWarning
         shown = self.names.get(attribute, attribute) if attribute else None
-        warnings.warn(DeckWarning(msg, **self.where(), attribute=shown), stacklevel=4)
+        warnings.warn(DeckWarning(msg, **self.where(attribute), attribute=shown), stacklevel=4)
 
 
 def convert(ctx, name, kind, raw):

@@ -72,7 +72,7 @@ def _tasks(block, file):
             raise DeckError("<CustomTasks> holds <Schedule> elements", file=file,
                             line=sched.sourceline, element=etree.QName(sched).localname)
         task = (sched.get("name") or "").strip()
-        attrs, names = {}, {}
+        attrs, names, lines = {}, {}, {}
         for par in sched:
             if not isinstance(par.tag, str):
                 continue
@@ -86,6 +86,8 @@ def _tasks(block, file):
                                 element=task, attribute=key)
             attrs[low] = inline.strip() if inline.strip() else (par.text or "").strip()
             names[low] = key
+            lines[low] = par.sourceline             # errors in a parameter name its line
+        names["#lines"] = lines
         out.append((task or "Schedule", attrs, sched.sourceline, names))
     return out
 
