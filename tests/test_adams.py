@@ -277,9 +277,13 @@ END
      "an Assembly analysis takes no end time or output interval"),
     (["INTEGRATOR/ERROR = -1"], 3, "INTEGRATOR (Param_Transient)", "ERROR",
      "got -1; expected a value > 0"),
-    (["INTEGRATOR/HMAX = 0.01"], 3, "INTEGRATOR (Param_Transient)", None,
-     "a second Param_Transient (the first is at {adm}:10; in a Python deck INTEGRATOR, "
+    (["INTEGRATOR/HMAX = 0.01", "INTEGRATOR/HMIN = 0"], 4, "INTEGRATOR (Param_Transient)",
+     None, "a second Param_Transient (the first is on line 3; in a Python deck INTEGRATOR, "
      "EQUILIBRIUM or ACCGRAV); give one"),
+    (["SIMULATE/DYNAMICS, END = 1, DTOUT = 0.1", "INTEGRATOR/HMAX = 0.01"], 4, "INTEGRATOR",
+     None, "INTEGRATOR after a SIMULATE it applies to would change the settings between "
+     "analyses, and pysolver runs every analysis with one set of settings: give it before "
+     "that SIMULATE"),
     (["EQUILIBRIUM/MAXIT = -1", "SIMULATE/STATICS"], 3, "EQUILIBRIUM (Param_Static)", "MAXIT",
      "got -1; expected a positive integer"),
     (["EQUILIBRIUM/METHOD = MKEAM", "SIMULATE/STATICS, END = 1, STEPS = 10"], 4, "Simulate",
@@ -305,6 +309,27 @@ def test_every_error_a_command_causes_names_the_command_file_and_its_line(
             _load(path)
         assert (err.value.file, err.value.line, err.value.reason) == (str(acf), line, reason)
         assert str(err.value) == f"{where}: {reason}"
+
+
+def test_an_integrator_command_changes_the_datasets_integrator(tmp_path):
+    """Adams lets a command change the dataset's settings (a second Param_Transient was
+    refused): the keywords the command gives replace the dataset's, the others are kept, and
+    an error in a kept one names the dataset's line; an INTEGRATOR after a SIMULATE/STATICS
+    (which it does not apply to) is taken."""
+    adm, acf = tmp_path / "d.adm", tmp_path / "d.acf"
+    adm.write_text(_LOCATED.replace("MOTION/1, I = 2, J = 1, X, VELOCITY, FUNCTION = 0\n", ""))
+    acf.write_text("d\nd\nINTEGRATOR/HMAX = 0.01\nSIMULATE/DYNAMICS, END = 0.1, DTOUT = 0.05\n"
+                   "STOP\n")
+    settings = _load(acf).transient
+    assert (settings.integr_tol, settings.h_max) == (1e-6, 0.01)
+    acf.write_text("d\nd\nSIMULATE/STATICS\nINTEGRATOR/ERROR = 1e-8\n"
+                   "SIMULATE/DYNAMICS, END = 0.1, DTOUT = 0.05\nSTOP\n")
+    assert _load(acf).transient.integr_tol == 1e-8
+    adm.write_text(adm.read_text().replace("INTEGRATOR/ERROR = 1E-6", "INTEGRATOR/ERROR = -1"))
+    acf.write_text("d\nd\nINTEGRATOR/HMAX = 0.01\nSTOP\n")
+    with pytest.raises(DeckError) as err:
+        _load(acf)
+    assert (err.value.file, err.value.line, err.value.attribute) == (str(adm), 10, "ERROR")
 
 
 def test_pysolver_run_names_the_command_file_line_of_a_bad_dtout(tmp_path, capsys):

@@ -36,6 +36,8 @@ SET_ASIDE = ("LIST", "NOLIST", "DEBUG", "MREQUEST", "PINPUT", "POUTPUT", "FEMDAT
 #: Commands that change the model or run what pysolver does not: a DeckError.
 _OTHER_COMMANDS = ("DEACTIVATE", "ACTIVATE", "LINEAR", "SAVE", "RELOAD", "CONTROL", "DEBUG",
                    "BUSHING", "SHOW", "SWITCH")
+#: Commands that change the dataset's settings statement of the same name (settings_command).
+_SETTINGS = ("INTEGRATOR", "EQUILIBRIUM")
 #: Statements read quietly and not used (output settings; graphics are kept).
 QUIET = ("OUTPUT", "RESULTS")
 
@@ -402,10 +404,16 @@ class _Reader:
                     break
                 self.emit(rec, stmt, DATASET)
             self.file = rec.file = self.acf     # errors in commands name the command file
+            ran = set()                         # the analyses of the SIMULATEs so far
             for stmt in commands:
                 if stmt.name.upper() == "STOP":
                     break
+                start = len(rec.elements)
                 self.emit(rec, stmt, COMMANDS)
+                if stmt.name in _SETTINGS:
+                    self.settings_command(rec, stmt, start, ran)
+                ran.update(str(el[1].get("analysis_type", "")).upper()
+                           for el in rec.elements[start:] if el[0] == "Simulate")
         finally:
             msolve._STATE.rec = prev
         return rec.elements
@@ -434,6 +442,30 @@ class _Reader:
             names["#element"] = where
             if self.file != self.dataset:     # a command: its checks name the command file
                 names["#file"] = self.file
+
+    def settings_command(self, rec, stmt, start, ran):
+        """An INTEGRATOR or EQUILIBRIUM command changes the dataset's statement of that name:
+        the keywords it gives replace the dataset's, the others are kept (each located where
+        it was written). pysolver runs every analysis with one set of settings, so such a
+        command must come before the first SIMULATE it would apply to (INTEGRATOR: a
+        transient; EQUILIBRIUM: statics)."""
+        uses = {"INTEGRATOR": {"TRANSIENT"}, "EQUILIBRIUM": {"STATIC", "QUASI-STATIC"}}
+        if ran & uses[stmt.name]:
+            raise self.error(stmt, f"{stmt.name} after a SIMULATE it applies to would change "
+                             "the settings between analyses, and pysolver runs every "
+                             "analysis with one set of settings: give it before that SIMULATE")
+        tag = rec.elements[start][0]
+        first = next((k for k, el in enumerate(rec.elements[:start])
+                      if el[0] == tag and "#file" not in el[3]), None)
+        if first is None:
+            return
+        _, attrs, _, names = rec.elements[start]
+        _, kept, line, kept_names = rec.elements.pop(first)
+        lines, files = names.setdefault("#lines", {}), names.setdefault("#files", {})
+        for key, value in kept.items():
+            if key not in attrs:
+                attrs[key], names[key] = value, kept_names.get(key, key)
+                lines[key], files[key] = line, self.dataset
 
     def statement_name(self, stmt, table):
         """The statement `stmt` names (a unique prefix of Adams' statements will do;

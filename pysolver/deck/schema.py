@@ -222,8 +222,8 @@ class Ctx:
         shown = self.names.get("#element")
         element = f"{shown} ({self.tag})" if shown else self.tag
         line = self.names.get("#lines", {}).get(attribute, self.line)
-        return dict(file=self.file, line=line, element=element, id=None if shown
-                    else self.id)
+        file = self.names.get("#files", {}).get(attribute, self.file)
+        return dict(file=file, line=line, element=element, id=None if shown else self.id)
 
     def warn(self, msg, attribute=None):
         """Issue a DeckWarning located at this element."""
