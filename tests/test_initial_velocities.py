@@ -41,8 +41,10 @@ def test_a_pendulum_given_only_its_spin_keeps_it_in_any_units(unit, s):
     swing of a pendulum started at the bottom with w0, within 1e-5 of its amplitude w0 / omega
     over half a period (a 3.3e-3 rad swing: the small-angle solution's phase is off by about
     theta^2 / 16 = 7e-7 of it; half the spin would be off by 0.5)."""
-    res = pendulum(unit, s).run()
+    model = pendulum(unit, s)
+    res = model.run()
     assert res.success, res.message
+    assert not any("initial conditions" in line for line in res.log + model.run().log)
     q = res.request(1)
     assert q[0, 0] == pytest.approx(W0, rel=1e-12)
     assert q[0, 1] == pytest.approx(W0 * R * s, rel=1e-12)
@@ -104,10 +106,18 @@ def test_given_velocities_that_conflict_change_the_least_in_kinetic_energy(unit,
     m, iz, a = 2.0, 0.2, 0.3
     text = SLEIGH.format(unit=unit, a=a * s, i=0.1 * s * s, iz=iz * s * s, u=1.0 * s,
                          v=0.24 * s)
-    res = pysolver.loads(text).run()
+    model = pysolver.loads(text)
+    res = model.run()
     assert res.success, res.message
     q = res.request(1)[0]
     gap = -0.48
     dv = gap * (1 / m) / (1 / m + a * a / iz)
     dw = gap * (a / iz) / (1 / m + a * a / iz)
     assert q[:3] == pytest.approx([1.0 * s, (0.24 + dv) * s, 0.8 + dw], rel=1e-10)
+    assert res.log[-1] == (
+        "initial conditions: velocities the deck gives conflict with its constraints and were "
+        f"changed, the least in kinetic energy: body2.vy {0.24 * s:.6g} -> {(0.24 + dv) * s:.6g}"
+        f", body2.wz 0.8 -> {0.8 + dw:.6g} (docs/deck-language.md, \"Initial velocities\")")
+    again = model.run()                        # the start remembered, and its note with it
+    assert again.log == res.log and pysolver.loads(text.replace(
+        f'v_ic_y="{0.24 * s}"', f'v_ic_y="{-0.24 * s}"')).run().log == []

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..options import SPARSE_THRESHOLD
 from ..rotations import G
-from .icvelocity import velocity_scale
+from .icvelocity import changed_given, velocity_scale
 
 
 class _Jac:
@@ -91,7 +91,9 @@ def start(kernel, t, y):
     bit for bit, without recomputing them (the revolute pendulum's warm run: 0.15 ms of
     Python of 0.5 ms), and the kernel's residual and Jacobian counts it took, so that a run's
     statistics do not depend on the runs before it. A kernel that calls user routines always
-    recomputes (a routine may keep state between calls), as does a start that failed."""
+    recomputes (a routine may keep state between calls), as does a start that failed. The
+    given velocities it changed are noted in ``kernel.start_notes`` (the run's log)."""
+    kernel.start_notes = []
     if kernel.model_calls_routines:
         return consistent(kernel, t, y, initial=True)
     a = kernel.arrays
@@ -104,12 +106,14 @@ def start(kernel, t, y):
     if got is not None and got[0] == key:
         y[:] = got[1]
         d.nres, d.njac = d.nres + got[3][0], d.njac + got[3][1]
+        kernel.start_notes = list(got[4])
         return got[2].copy()
     before = (d.nres, d.njac)
     yp = consistent(kernel, t, y, initial=True)
     if np.all(np.isfinite(yp)) and not d.bad_kind:
         kernel.__dict__["_start"] = (key, y.copy(), yp.copy(),
-                                     (d.nres - before[0], d.njac - before[1]))
+                                     (d.nres - before[0], d.njac - before[1]),
+                                     list(kernel.start_notes))
     return yp
 
 
@@ -139,6 +143,7 @@ def _consistent(kernel, t, y, iters, initial):
             r[k] = 0.0
     held = np.nonzero((rate < 0) | np.array(given, dtype=bool))[0]
     scale = velocity_scale(lay, y, u_idx) if initial else None
+    deck_u = y[u_idx].copy()
     # Newton on the held rates (one step when they are linear in u; a relation of velocities
     # may not be)
     for _ in range(iters if len(held) else 0):
@@ -146,6 +151,8 @@ def _consistent(kernel, t, y, iters, initial):
         r = kernel.residual_array(t, y, yp)[lam]
         if np.abs(r[held]).max() <= 1e-14 * (1.0 + np.abs(y[u_idx]).max()):
             break
+    if initial:
+        kernel.start_notes = changed_given(lay, u_idx, deck_u, y[u_idx])
     # 3. accelerations and reactions (linear in them unless forces read accelerations)
     rows = np.setdiff1d(np.arange(kernel.ny), lay.algebraic)
     for _ in range(4):

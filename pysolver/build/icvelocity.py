@@ -32,3 +32,17 @@ def velocity_scale(lay, y, u_idx):
     metric = np.asarray(metric, float)
     metric = np.where(metric > 0, metric, 1.0)
     return np.where(y[u_idx] != 0.0, 1.0 / GIVEN_WEIGHT, 1.0) / np.sqrt(metric)
+
+
+def changed_given(lay, u_idx, deck, now):
+    """The run log's line naming the velocities the deck gives (nonzero in `deck`) that the
+    constraints made change (by more than 1e-9 relative), with their values before and after;
+    none when they all stayed."""
+    moved = (deck != 0.0) & (np.abs(now - deck) > 1e-9 * np.abs(deck))
+    if not moved.any():
+        return []
+    names = [lay.names[i] for i in u_idx]
+    changes = ", ".join(f"{names[i]} {deck[i]:.6g} -> {now[i]:.6g}" for i in np.flatnonzero(moved))
+    return ["initial conditions: velocities the deck gives conflict with its constraints and "
+            f"were changed, the least in kinetic energy: {changes} (docs/deck-language.md, "
+            "\"Initial velocities\")"]

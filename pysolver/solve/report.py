@@ -85,8 +85,8 @@ class Reporter:
                 # each Simulate command's analysis and end time (plots mark the boundaries)
                 "commands": [{"analysis": a, "end_time": e} for a, e in self.commands]}
         # the kernel noted whether any row's defined channel was not finite (ps_outputs)
-        log = list(log) + (nonfinite.channels(model, kernel, t, outputs)
-                           if kernel.d.out_nonfinite else [])
+        log = list(log) + getattr(kernel, "start_notes", []) + (
+            nonfinite.channels(model, kernel, t, outputs) if kernel.d.out_nonfinite else [])
         return Result(t=t, y=y, yp=yp, outputs=outputs, channels=kernel.channels,
                       state_names=self.names, success=success, status=status,
                       message=message, stats=stats, timing=timing, meta=meta,
