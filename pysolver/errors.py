@@ -33,6 +33,10 @@ class DeckError(ValueError):
         self.attribute = attribute
         super().__init__(self._format())
 
+    def __reduce__(self):               # a worker's DeckError keeps its fields in the parent
+        return type(self), (self.reason, self.file, self.line, self.element, self.id,
+                            self.attribute)
+
     def _format(self):
         where = []
         if self.file:
@@ -47,12 +51,27 @@ class DeckError(ValueError):
 
 
 class MissingFileError(DeckError, FileNotFoundError):
-    """A deck, or a file a deck names, does not exist: a :class:`DeckError` (bad input, with
-    ``file`` the path) that ``except FileNotFoundError`` also catches."""
+    """A deck file, or the dataset a command file names, does not exist: a :class:`DeckError`
+    (bad input, located at `file` and `line`) that ``except FileNotFoundError`` also catches,
+    with ``filename`` the file that is missing.
 
-    def __init__(self, path, message="no such file", **where):
-        super().__init__(message, file=path, **where)
-        self.errno, self.strerror, self.filename = errno.ENOENT, message, path
+    Parameters
+    ----------
+    missing : str
+        The path that does not exist.
+    message : str, default "no such file"
+        What is wrong.
+    file, line : optional
+        Where the problem is stated (default: the missing file itself).
+    """
+
+    def __init__(self, missing, message="no such file", file=None, line=None):
+        super().__init__(message, file=missing if file is None else file, line=line)
+        self.errno, self.strerror, self.filename = errno.ENOENT, message, missing
+        self._given = (missing, message, file, line)
+
+    def __reduce__(self):               # rebuilt from what it was given, not from its text
+        return type(self), self._given
 
     def __str__(self):                  # the located message, not OSError's "[Errno 2] ..."
         return self._format()

@@ -32,7 +32,9 @@ _RULES = {
     "h_max": (lambda v: v > 0, "> 0"),
     "h_min": (lambda v: v >= 0, ">= 0"),
     "h0_max": (lambda v: v > 0, "> 0"),
-    "max_num_steps": (lambda v: v > 0 and float(v).is_integer(), "a whole number > 0"),
+    # IDA counts steps in a C long; past 1e15 a budget means nothing
+    "max_num_steps": (lambda v: 0 < v <= 1e15 and float(v).is_integer(),
+                      "a whole number in [1, 1e15]"),
     "max_step_growth": (lambda v: v > 1, "> 1"),
     "nonlin_conv_coef": (lambda v: 0 < v < 1, "in (0, 1)"),
 }
@@ -104,6 +106,8 @@ class Options:
             problem = rule_problem(name, getattr(self, name))
             if problem:
                 raise ValueError(f"{name} must be {problem}")
+        # a whole number given as 5000.0 or a NumPy integer is the C long it goes to
+        object.__setattr__(self, "max_num_steps", int(self.max_num_steps))
         for name, allowed in _CHOICES.items():
             value = getattr(self, name)
             if value is not None and value not in allowed:
@@ -157,6 +161,12 @@ def rule_problem(name, value):
     if value is None or name not in _RULES:
         return None
     test, text = _RULES[name]
+    shown = repr(value) if len(repr(value)) <= 40 else repr(value)[:37] + "..."
+    kind = text if text.startswith("a ") else "a number " + text
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        return f"{text if text.startswith('a ') else 'a number ' + text}, not {value!r}"
+        return f"{kind}, not {shown}"
+    try:
+        float(value)
+    except OverflowError:               # an int past any float
+        return f"{kind}, not {shown}"
     return None if test(value) else text

@@ -200,5 +200,23 @@ def test_an_acf_naming_a_dataset_that_does_not_exist(tmp_path):
     with pytest.raises(FileNotFoundError) as info:
         pysolver.load(tmp_path / "run.acf")
     assert isinstance(info.value, DeckError) and info.value.line == 1
+    assert info.value.filename == str(tmp_path / "gone.adm")      # what is missing
     assert str(info.value) == (f"{tmp_path / 'run.acf'}:1: the dataset {tmp_path / 'gone.adm'} "
                                "named on the first line does not exist")
+
+
+def test_deck_errors_keep_their_fields_through_pickling(tmp_path):
+    """A sweep's worker sends its errors to the parent pickled: every field survives (a
+    MissingFileError's text doubled, and its filename became the message)."""
+    import pickle
+    err = DeckError("got -1; expected a value > 0", file="d.xml", line=7,
+                    element="Force_Penalty", id=3, attribute="penalty")
+    back = pickle.loads(pickle.dumps(err))
+    assert (type(back), str(back), back.reason, back.file, back.line, back.element, back.id,
+            back.attribute) == (DeckError, str(err), err.reason, "d.xml", 7, "Force_Penalty",
+                                3, "penalty")
+    with pytest.raises(FileNotFoundError) as info:
+        pysolver.load(tmp_path / "none.xml")
+    back = pickle.loads(pickle.dumps(info.value))
+    assert (type(back), str(back), back.filename, back.errno) == (
+        type(info.value), f"{tmp_path / 'none.xml'}: no such file", str(tmp_path / "none.xml"), 2)

@@ -220,16 +220,19 @@ def test_max_num_steps_counts_per_command():
 
 
 def test_max_num_steps_must_be_a_whole_number():
-    with pytest.raises(ValueError, match="max_num_steps must be a whole number > 0"):
+    with pytest.raises(ValueError, match=r"max_num_steps must be a whole number in \[1, 1e15\]"):
         pysolver.loads(PENALTY_DECK).run(max_num_steps=2.5)
 
 
 @pytest.mark.parametrize("option, value, message", [
     ("integr_tol", "1e-6", "integr_tol must be a number in [1e-14, 1], not '1e-6'"),
     ("h_max", "1e-6", "h_max must be a number > 0, not '1e-6'"),
-    ("max_num_steps", "100", "max_num_steps must be a whole number > 0, not '100'"),
-    ("max_num_steps", True, "max_num_steps must be a whole number > 0, not True"),
-    ("max_num_steps", math.inf, "max_num_steps must be a whole number > 0"),
+    ("max_num_steps", "100", "max_num_steps must be a whole number in [1, 1e15], not '100'"),
+    ("max_num_steps", True, "max_num_steps must be a whole number in [1, 1e15], not True"),
+    ("max_num_steps", math.inf, "max_num_steps must be a whole number in [1, 1e15]"),
+    ("max_num_steps", 1e30, "max_num_steps must be a whole number in [1, 1e15]"),
+    ("max_num_steps", 2 ** 63, "max_num_steps must be a whole number in [1, 1e15]"),
+    ("h_max", 10 ** 400, "h_max must be a number > 0, not " + repr(10 ** 400)[:37] + "..."),
     ("nonlin_conv_coef", [0.1], "nonlin_conv_coef must be a number in (0, 1), not [0.1]"),
 ])
 def test_a_run_option_that_is_not_a_number_is_named(option, value, message):
@@ -242,6 +245,8 @@ def test_a_run_option_that_is_not_a_number_is_named(option, value, message):
     fine = {"integr_tol": np.float64(1e-6), "h_max": np.float64(1e-3),
             "max_num_steps": np.int64(100_000), "nonlin_conv_coef": np.float64(0.1)}
     assert getattr(Options().replace(**{option: fine[option]}), option) == fine[option]
+    # a whole number as a float is the integer IDA's budget takes (it was a TypeError)
+    assert model.run(max_num_steps=5.0).message.startswith("max_num_steps = 5 reached")
 
 
 def test_two_param_transient_elements_are_a_deck_error():

@@ -29,3 +29,20 @@ def test_a_rebuilt_library_runs_its_new_code(tmp_path):
     assert second[1] == pytest.approx(first[1] + 5.0, abs=1e-3)
     usersub_library(tmp_path, LINES_C)
     np.testing.assert_array_equal(_final_x(text), first)
+
+
+def test_a_symlink_moved_to_a_rebuilt_library(tmp_path):
+    """The library is opened by its real path: `subs.so -> subs.so.1` relinked to a rebuilt
+    `subs2.so` is the new code (dlopen of the link's name handed back the old)."""
+    text, _ = lines_deck("c", tmp_path)
+    if text is None:
+        pytest.skip("no C compiler")
+    link = tmp_path / "subs.so"
+    link.rename(tmp_path / "subs.so.1")
+    link.symlink_to(tmp_path / "subs.so.1")
+    first = _final_x(text)
+    usersub_library(tmp_path, LINES_C.replace("*value = 1.0 + par[1] * p[0] - p[2];",
+                                              "*value = 6.0 + par[1] * p[0] - p[2];"), "subs2")
+    link.unlink()
+    link.symlink_to(tmp_path / "subs2.so")
+    assert _final_x(text)[1] == pytest.approx(first[1] + 5.0, abs=1e-3)

@@ -970,7 +970,7 @@ class Compiler:
             # 1 a reaction, 2 a tracked angle (algebraic too, but a position to keep)
             state_alg=i32(np.isin(np.arange(lay.ny), lay.algebraic)
                           + np.isin(np.arange(lay.ny), list(lay.turns.values()))),
-            compliance=f64(np.zeros(lay.ny)),     # set by the Kernel (consistent.compliance)
+            compliance=f64(np.zeros(lay.ny)),     # set by the Kernel (compliance.py)
             out_tape=i32([o[0] for o in self.out]), out_slot=i32([o[1] for o in self.out]),
             nsensor=len(self.sensor), sensor_tape=i32([x[0] for x in self.sensor]),
             sensor_slot=i32([x[1] for x in self.sensor]),

@@ -10,34 +10,39 @@ import numpy as np
 
 from .planar import global_inertia
 
-#: How much more a velocity the deck gives (nonzero) resists change than one it leaves at zero,
-#: in the initial velocities' least change.
-GIVEN_WEIGHT = 1e8
+#: A velocity component counts as given when it is more than this part of its body's velocity
+#: (or angular velocity) vector: the rounding left by a change of axes (w_ic along wm_id's axes)
+#: does not.
+GIVEN = 1e-12
 
 
 def velocity_scale(lay, y, u_idx):
-    """Per velocity of y[u_idx], the scale of its change in the initial velocities' least
-    change: 1 / sqrt(its body's mass, or for an angular velocity the body's inertia about
-    that axis), so that the change is the least in kinetic energy (the diagonal of the mass
-    matrix), whatever the units; divided by GIVEN_WEIGHT where the deck gives the velocity
-    (nonzero), so that the joints and motions take what they need from the velocities it
-    leaves at zero (a pendulum given only its spin starts with that spin and the matching
-    velocity of its centre of mass)."""
-    metric = []
+    """(scale, free) of the velocities y[u_idx] at a run's initial state: the scale of each
+    one's change, 1 / sqrt(its body's mass, or for an angular velocity the body's inertia
+    about that axis), so that a change is the least in kinetic energy (the diagonal of the
+    mass matrix) whatever the units; and which ones the deck leaves at zero (free), which
+    the constraints change first (a pendulum given only its spin starts with that spin and
+    the matching velocity of its centre of mass)."""
+    metric, blocks = [], []
     for b in lay.bodies:
         if b.id in lay.planar:              # (vx, vy, wz), wz about the global z
             metric += [b.mass, b.mass, global_inertia(b)[2, 2]]
+            blocks += [2, 1]
         else:                               # (vx, vy, vz), then (wx, wy, wz) in body axes
             metric += [b.mass] * 3 + (list(np.diag(b.inertia)) if b.kind == "rigid" else [])
+            blocks += [3, 3] if b.kind == "rigid" else [3]
     metric = np.asarray(metric, float)
     metric = np.where(metric > 0, metric, 1.0)
-    return np.where(y[u_idx] != 0.0, 1.0 / GIVEN_WEIGHT, 1.0) / np.sqrt(metric)
+    u = np.abs(y[u_idx])
+    size = np.concatenate([np.full(n, np.linalg.norm(part))
+                           for n, part in zip(blocks, np.split(u, np.cumsum(blocks)[:-1]))])
+    return 1.0 / np.sqrt(metric), ~(u > GIVEN * size)
 
 
 def changed_given(lay, u_idx, deck, now):
-    """The run log's line naming the velocities the deck gives (nonzero in `deck`) that the
-    constraints made change (by more than 1e-9 relative), with their values before and after;
-    none when they all stayed."""
+    """The run log's line naming the velocities the deck gives that the constraints made
+    change (by more than 1e-9 relative), with their values before and after; none when they
+    all stayed."""
     moved = (deck != 0.0) & (np.abs(now - deck) > 1e-9 * np.abs(deck))
     if not moved.any():
         return []

@@ -6,10 +6,10 @@ import numpy as np
 
 from ..deck import usersubs
 from ..options import SPARSE_THRESHOLD
-from . import usercalls
+from . import compliance, usercalls
 from .bindings import ffi, lib
 from .compiler import Compiler
-from .consistent import consistent, init_compliance, start
+from .consistent import consistent, start
 
 ROUNDING = 1e-10     # trial times this close (times |t|) to a non-finite residual: rounding
 
@@ -121,7 +121,7 @@ class Kernel:
             self._generate()
         self._bind()
         if len(self.layout.lam):
-            init_compliance(self, (UserFailure,))
+            compliance.init_compliance(self, (UserFailure,))
 
     def _generate(self):
         """Attach the generated C of this scene (pysolver.build.codegen), if it can be made."""

@@ -87,8 +87,8 @@ def _load_acf(path, user_code, simulate=None, dataset=None):
     if dataset is None:
         data_path = adams.acf_dataset(acf, path)
         if not os.path.isfile(data_path):
-            raise MissingFileError(path, f"the dataset {data_path} named on the first line "
-                                   "does not exist", line=1)
+            raise MissingFileError(data_path, f"the dataset {data_path} named on the first "
+                                   "line does not exist", file=path, line=1)
         dataset = (data_path, _decode(_read(data_path), "adm", data_path))
     text = adams.with_commands(dataset[1], acf, path)
     return loads(text, fmt="adm", file=dataset[0], user_code=user_code, simulate=simulate)

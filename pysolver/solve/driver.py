@@ -15,9 +15,9 @@ import time
 
 import numpy as np
 
-from ..build import usercalls
+from ..build import compliance, usercalls
 from ..build.bindings import ffi, lib
-from ..build.consistent import AssemblyError, set_tolerance
+from ..build.consistent import AssemblyError
 from ..build.kernel import UserFailure
 from . import integrator, nonfinite, quasistatic
 from .actors import Actor, Flow
@@ -67,7 +67,7 @@ def deck_actors(model, kernel, log, bar):
 def start_state(model, kernel, tol):
     """(t0, y0, yp0) of a run at integr_tol `tol`: the bodies' initial state and rates
     consistent with it (Stop when they cannot be had)."""
-    set_tolerance(kernel, tol, (UserFailure,))
+    compliance.set_tolerance(kernel, tol, (UserFailure,))
     kernel.d.user_coarse = int(tol >= usercalls.COARSE_TOL)
     t0, y0 = 0.0, kernel.layout.initial_state()
     kernel.d.last_t = t0
