@@ -4,8 +4,6 @@ the time of the failing call); on no branch a traced routine is refused when the
 compiled; and the -400 message tells the failing call's time from the run's last converged step.
 """
 import re
-import shutil
-import subprocess
 
 import numpy as np
 import pytest
@@ -14,6 +12,7 @@ import pysolver
 from pysolver.solve import fast
 
 from helpers import DECKS
+from scenes import usersub_library
 
 HEAD = ("import math\nimport sys\n\n\ndef PFOSUB(id, time, par, npar, dflag, iflag):\n"
         "    [x, e] = py_sysfnc('DX', [int(par[0])])\n"
@@ -227,14 +226,10 @@ void LATE(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
 
 @pytest.fixture(scope="module")
 def c_library(tmp_path_factory):
-    cc = shutil.which("cc") or shutil.which("gcc")
-    if cc is None:
+    lib = usersub_library(tmp_path_factory.mktemp("cerrmes"), C_ROUTINES)
+    if lib is None:
         pytest.skip("no C compiler on this machine to build the test's subroutine library")
-    d = tmp_path_factory.mktemp("cerrmes")
-    (d / "subs.c").write_text(C_ROUTINES)
-    subprocess.run([cc, "-shared", "-fPIC", f"-I{pysolver.get_include()}", str(d / "subs.c"),
-                    "-o", str(d / "subs.so"), "-lm"], check=True)
-    return d / "subs.so"
+    return lib
 
 
 @pytest.mark.parametrize("name, text, bounds", [
