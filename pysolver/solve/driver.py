@@ -282,6 +282,7 @@ class Run:
         # the schedule first: the first converged step's snapshot holds the command's interval
         printer.begin_command(self.t, cmd.end_time, cmd.print_interval)
         if self.need_start:
+            quasistatic.leave_equilibrium(self)
             self.start(self.first_step)
             self.first_step = None
         elif self.onestep:
@@ -361,16 +362,6 @@ class Run:
                 raise Stop(False, -720, f"assembly at t = {self.t:.6g}: {err}") from None
             self.y = y
             self.need_start = True
-        self.printer.emit(self.t, self.y, self.yp)
-
-    # statics -------------------------------------------------------------------------
-    def after_static(self, t, y):
-        """Continue from an equilibrium: velocities zero and, since the forces balance there,
-        yp = 0 is consistent; IDA is restarted when a transient follows."""
-        self.t, self.y = t, y
-        self.yp = np.zeros_like(y)
-        self.kernel.d.last_t = t
-        self.need_start = True
         self.printer.emit(self.t, self.y, self.yp)
 
     # the whole run -------------------------------------------------------------------

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+from ..build.consistent import AssemblyError
 from .outputs import print_times
 from .pyida import PyIDA
 from .statics import StaticFailure, StaticProblem, fim_s, finished, solve_static  # noqa: F401
@@ -111,7 +112,7 @@ def run_static(run, cmd):
     run.statics.append(res)
     if not res.success:
         raise StaticFailure(f"static analysis at t = {cmd.end_time:g}: {res.message}")
-    run.after_static(cmd.end_time, y)
+    after_static(run, cmd.end_time, y)
 
 
 def run_quasi_static(run, cmd):
@@ -124,7 +125,7 @@ def run_quasi_static(run, cmd):
                                     run.options.integr_tol, run.options.resolved_kernel())
         run.statics.extend(results)
         for tp, y in out:
-            run.after_static(tp, y)
+            after_static(run, tp, y)
         if not results[-1].success or len(out) < len(times) + 1:
             raise StaticFailure(f"quasi-static analysis: {results[-1].message}")
         return
@@ -135,4 +136,36 @@ def run_quasi_static(run, cmd):
         run.statics.append(finished(prob, tp, y, params, res))
         if not res.success:
             raise StaticFailure(f"quasi-static analysis at t = {tp:g}: {res.message}")
-        run.after_static(tp, y)
+        after_static(run, tp, y)
+
+
+def after_static(run, t, y):
+    """Continue `run` from an equilibrium at (t, y), its output row with the velocities zero;
+    IDA is restarted when a transient follows (:func:`leave_equilibrium`)."""
+    run.t, run.y = t, y
+    run.yp = np.zeros_like(y)
+    run.kernel.d.last_t = t
+    run.need_start = True
+    run.equilibrium = True
+    run.printer.emit(run.t, run.y, run.yp)
+
+
+def leave_equilibrium(run):
+    """Before a transient that follows a static analysis: velocities zero and yp = 0 are
+    consistent at an equilibrium only where nothing moves by itself; a motion whose rate or
+    acceleration is not zero there (30 deg sin(2 pi t) at t = 0) needs the velocities, the
+    accelerations and the reactions made consistent (the transient failed at its first step),
+    as after an assembly. A failure is a StaticFailure (the run's -300)."""
+    if not getattr(run, "equilibrium", False):
+        return
+    run.equilibrium = False
+    if not len(run.kernel.layout.lam):
+        return                          # no constraints: at rest is the consistent state
+    y = run.y.copy()
+    try:
+        run.yp = run.kernel.consistent_yp(run.t, y)
+    except (AssemblyError, np.linalg.LinAlgError) as err:
+        raise StaticFailure(f"the transient after the static analysis at t = {run.t:g} cannot "
+                            f"start: its velocities and accelerations are not consistent "
+                            f"({err})") from None
+    run.y = y
