@@ -79,3 +79,38 @@ def test_progress_bar_when_asked(decks, monkeypatch):
     monkeypatch.setattr("sys.stderr", err2)
     pysolver.load(decks / "catenary_bead.xml").run()   # not a terminal: silent
     assert err2.getvalue() == ""
+
+
+PARAM_UNIT = """<MotionSolve><Model>
+<Param_Unit force_unit="NEWTON" mass_unit="KILOGRAM" length_unit="MILLIMETER" time_unit="SECOND"/>
+<Body_Rigid id="1" isground="TRUE"/>
+<Reference_Marker id="10" body_id="2" pos_z="100"/>
+<Body_Point id="2" cg_id="10" mass="1"/>
+<Force_Gravity grav_z="-9810"/>
+<Force_Vector_OneBody id="1" marker_id="10" type="FORCEONLY" fz_expression="9.81"/>
+<Post_Request id="1" expr1="DZ(10)"/>
+</Model><Simulate analysis_type="Transient" end_time="0.1" print_interval="0.05"/></MotionSolve>"""
+
+
+def test_motionsolve_param_unit_is_the_units_element():
+    """<Param_Unit mass_unit= length_unit= time_unit= force_unit=> (MotionSolve's units
+    element, which MotionView writes) was an unknown element. In kg/mm/s/N a force of 9.81 N
+    holds the 1 kg body against 9810 mm/s^2 (1 N = 1000 kg mm/s^2); without the force unit's
+    scale it would fall 49 mm in 0.1 s."""
+    model = pysolver.loads(PARAM_UNIT)
+    assert model.units == {"mass": "KILOGRAM", "length": "MILLIMETER", "time": "SECOND",
+                           "force": "NEWTON"}
+    res = model.run()
+    assert res.success and res.request(1)[-1, 0] == pytest.approx(100.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("old, new, attribute, words", [
+    ('length_unit="MILLIMETER"', 'length_unit="FURLONG"', "length_unit",
+     "unknown length unit 'FURLONG'"),
+    ('time_unit="SECOND"', 'time_unit="SECOND" mass_mult_factor="0.001"', "mass_mult_factor",
+     "mass_mult_factor is not supported: give the units by name"),
+])
+def test_param_unit_errors_name_its_own_attributes(old, new, attribute, words):
+    with pytest.raises(pysolver.DeckError, match=words) as info:
+        pysolver.loads(PARAM_UNIT.replace(old, new), file="pu.xml")
+    assert (info.value.line, info.value.attribute) == (2, attribute)

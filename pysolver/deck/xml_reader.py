@@ -108,4 +108,28 @@ def _element(el, file):
         names[low] = etree.QName(key).localname
     if tag.lower() == "reference_spline" and el.text and el.text.strip():
         attrs["#text"], names["#text"] = el.text, "(the element's text)"
+    if tag.lower() == "param_unit":
+        return _param_unit(attrs, names, el.sourceline, file)
     return tag, attrs, el.sourceline, names
+
+
+#: MotionSolve's <Param_Unit> attributes and the <Units> attributes they are.
+_PARAM_UNIT = {"mass_unit": "mass", "length_unit": "length", "time_unit": "time",
+               "force_unit": "force"}
+
+
+def _param_unit(attrs, names, line, file):
+    """<Param_Unit mass_unit= length_unit= time_unit= force_unit=> (MotionSolve's units
+    element, as MotionView writes it) as the <Units> element it is; errors name its own
+    attributes. mass_mult_factor, the other form, is refused unless it is 1."""
+    factor = attrs.pop("mass_mult_factor", None)
+    if factor is not None and str(factor).strip() not in ("1", "1.0", "1."):
+        raise DeckError("mass_mult_factor is not supported: give the units by name "
+                        "(mass_unit, length_unit, time_unit, force_unit)", file=file,
+                        line=line, element="Param_Unit",
+                        attribute=names.get("mass_mult_factor", "mass_mult_factor"))
+    out, shown = {}, {"#element": "Param_Unit"}
+    for key, value in attrs.items():
+        new = _PARAM_UNIT.get(key, key)
+        out[new], shown[new] = value, names.get(key, key)
+    return "Units", out, line, shown
