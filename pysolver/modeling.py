@@ -1,6 +1,6 @@
 """The msolve class API: build a model from Python objects, as Altair's msolve does.
 
-Longer than 420 lines because it is an API: one small class per model element (thirty-five
+Longer than 420 lines because it is an API: one small class per model element (forty
 of them), each a table from its attributes to the Adams statement it stands for.
 
 ::
@@ -41,7 +41,8 @@ __all__ = ["Model", "Units", "Accgrav", "Part", "PointMass", "Marker", "Point", 
            "Joint", "Jprim", "Gcon", "Coupler", "Motion", "Sforce", "SpringDamper",
            "Bushing", "Vforce", "Vtorque", "Gforce", "Variable", "Spline", "Sensor",
            "SensorEvaluate", "Request", "Output", "Integrator", "DaeIntegrator", "Equilibrium",
-           "Graphics", "Pforce", "LoadControl", "ResOutput", "H3DOutput"]
+           "Graphics", "Sphere", "Box", "Cylinder", "Frustum", "Ellipsoid", "Pforce",
+           "LoadControl", "ResOutput", "H3DOutput"]
 
 _STATE = threading.local()
 _COMMANDS = "<simulate commands>"        # the file the commands' errors name, then mapped
@@ -449,6 +450,49 @@ class Graphics(_Element):
         if kind in SHAPES:          # Adams' shape flag; MotionSolve's types as TYPE=
             out = [(kind, None) if k == "TYPE" else (k, v) for k, v in out]
         return out
+
+
+class _Shape(Graphics):
+    """A Graphics of one shape (msolve's shape classes): its attributes are the Adams
+    GRAPHICS keywords of that shape, kept as written like any Graphics'."""
+    _shape = ""
+
+    def __init__(self, id=None, label="", **kw):
+        if "type" in kw:
+            file, line = _caller()
+            raise DeckError(f"{type(self).__name__} is a {self._shape} (type is not taken; "
+                            "Graphics(type=...) draws another shape)", file=file, line=line,
+                            element=type(self).__name__, attribute="type")
+        super().__init__(id, label, type=self._shape, **kw)
+
+
+class Sphere(_Shape):
+    """A sphere drawn in the 3-D view: cm (the Marker at its centre), radius."""
+    _shape = "SPHERE"
+
+
+class Box(_Shape):
+    """A box drawn in the 3-D view: corner (the Marker at a corner), x, y, z (its sides
+    along the marker's axes)."""
+    _shape = "BOX"
+
+
+class Cylinder(_Shape):
+    """A cylinder drawn in the 3-D view: cm (the Marker at the centre of one end), radius,
+    length (along the marker's z)."""
+    _shape = "CYLINDER"
+
+
+class Frustum(_Shape):
+    """A cone frustum drawn in the 3-D view: cm (the Marker at the centre of its bottom),
+    bottom and top (radii), length (along the marker's z)."""
+    _shape = "FRUSTUM"
+
+
+class Ellipsoid(_Shape):
+    """An ellipsoid drawn in the 3-D view: cm (the Marker at its centre), xscale, yscale,
+    zscale (its diameters along the marker's axes)."""
+    _shape = "ELLIPSOID"
 
 
 class ResOutput(_Settings):

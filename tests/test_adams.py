@@ -349,3 +349,25 @@ def test_pysolver_run_names_the_command_file_line_of_a_bad_dtout(tmp_path, capsy
     with pytest.warns(DeckWarning, match="HHT is not pysolver's integrator") as got:
         pysolver.load(acf)
     assert [(w.message.file, w.message.line) for w in got] == [(str(acf), 3)]
+
+
+@pytest.mark.parametrize("where", ["adm", "acf"])
+def test_lsolver_is_set_aside_with_a_warning(tmp_path, where):
+    """LSOLVER/CALAHAN only chooses Adams' linear solver: a DeckWarning naming its line, in
+    the dataset or the command file, and the model loads as without it."""
+    adm = (DECKS / "forms" / "adams" / "catenary_bead.adm").read_text()
+    acf = "bead\nbead\nSIMULATE/DYNAMICS, END = 0.1, DTOUT = 0.01\nSTOP\n"
+    if where == "adm":
+        adm = adm.replace("END\n", "LSOLVER/CALAHAN\nEND\n")
+    else:
+        acf = acf.replace("SIMULATE", "LSOLVER/CALAHAN\nSIMULATE")
+    (tmp_path / "bead.adm").write_text(adm)
+    (tmp_path / "bead.acf").write_text(acf)
+    line = (adm if where == "adm" else acf).splitlines().index("LSOLVER/CALAHAN") + 1
+    with pytest.warns(DeckWarning) as got:
+        model = pysolver.load(tmp_path / "bead.acf")
+    lsolver = [w.message for w in got if "LSOLVER" in str(w.message)]
+    assert [(m.file, m.line) for m in lsolver] == [(str(tmp_path / f"bead.{where}"), line)]
+    assert str(lsolver[0]).endswith("LSOLVER only chooses Adams' linear solver (pysolver "
+                                    "chooses its own, dense or sparse LU); set aside")
+    assert model.commands[0].end_time == 0.1

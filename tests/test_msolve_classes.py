@@ -162,6 +162,67 @@ def test_graphics_keep_any_attribute_for_the_3d_view():
     assert (graphics[2].type, graphics[2].attrs) == ("SPHERE", {"cm": "1", "radius": "0.25"})
 
 
+def test_msolve_shape_classes_are_graphics_the_3d_view_draws():
+    """Sphere, Box, Cylinder, Frustum, Ellipsoid (Altair's MV-9000/9001 tutorials use
+    Sphere(cm=, radius=)) are GRAPHICS of their shape: kept like Graphics, each drawn as its
+    shape on its marker; type= is a DeckError at its line."""
+    from pysolver.msolve import Box, Cylinder, Ellipsoid, Frustum, Sphere
+    from pysolver.viewer import shapes
+    model = Model()
+    ground = Part(ground=True)
+    pin = Marker(body=ground)
+    Sphere(cm=pin, radius=50)
+    Box(corner=pin, x=2, y=4, z=6)
+    Cylinder(cm=pin, radius=1.5, length=3)
+    Frustum(cm=pin, bottom=2, top=1, length=4)
+    Ellipsoid(cm=pin, xscale=4, yscale=2, zscale=1)
+    loaded = model.load()
+    graphics = loaded.graphics
+    assert [(g.type, g.attrs) for g in graphics.values()] == [
+        ("SPHERE", {"cm": "1", "radius": "50"}),
+        ("BOX", {"corner": "1", "x": "2", "y": "4", "z": "6"}),
+        ("CYLINDER", {"cm": "1", "radius": "1.5", "length": "3"}),
+        ("FRUSTUM", {"cm": "1", "bottom": "2", "top": "1", "length": "4"}),
+        ("ELLIPSOID", {"cm": "1", "xscale": "4", "yscale": "2", "zscale": "1"})]
+    drawn = [shapes.graphic(g, loaded.markers, None, 1.0)[0] for g in graphics.values()]
+    assert [(d["kind"], d["marker"]) for d in drawn] == [
+        ("sphere", 1), ("box", 1), ("cylinder", 1), ("cylinder", 1), ("sphere", 1)]
+    assert (drawn[0]["r"], drawn[1]["s"], drawn[2]["z1"], drawn[3]["r0"], drawn[4]["scale"]) \
+        == (50.0, [2.0, 4.0, 6.0], 3.0, 2.0, [1.0, 0.5, 0.25])
+    line = sys._getframe().f_lineno + 2
+    with pytest.raises(DeckError) as err:
+        Sphere(cm=pin, radius=1, type="BOX")
+    assert (err.value.line, err.value.element, err.value.attribute) == (line, "Sphere", "type")
+    assert str(err.value).endswith("Sphere is a SPHERE (type is not taken; Graphics(type=...) "
+                                   "draws another shape)")
+
+
+def test_the_tutorial_pendulum_with_a_sphere_runs(tmp_path):
+    """MV-9001's style: `from msolve import *`, Sphere(cm=bob.cm, radius=50) on the bob; the
+    script loads (it was a NameError), the sphere is drawn on the bob's cm marker, and the
+    pendulum swings (it starts level and passes below the pivot)."""
+    path = tmp_path / "pendulum.py"
+    path.write_text("""from msolve import *
+model = Model(output="pendulum")
+units = Units(length="MILLIMETER")
+gravity = Accgrav(kgrav=-9810)
+ground = Part(ground=True)
+pivot = Marker(part=ground, qp=[0, 0, 0], zp=[0, 1, 0])
+bob = Part(mass=2, ip=[1e3, 1e3, 1e3], label="Bob")
+bob.cm = Marker(part=bob, qp=[500, 0, 0], label="Bob CM")
+sph = Sphere(cm=bob.cm, radius=50)
+jm = Marker(part=bob, qp=[0, 0, 0], zp=[0, 1, 0])
+jnt = Joint(type="REVOLUTE", i=jm, j=pivot)
+req = Request(type="DISPLACEMENT", i=bob.cm, comment="bob displacement")
+run = model.simulate(type="DYNAMICS", end=0.5, steps=50, returnResults=True)
+""")
+    res = pysolver.load(path).run(progress=False)
+    assert res.success, res.message
+    (sphere,) = [it for it in res.animate().scene.items if it["label"].startswith("Post_")]
+    assert (sphere["kind"], sphere["r"], sphere["label"]) == ("sphere", 50.0, "Post_Graphic 1")
+    assert res.request(1)[:, 3].min() < -400.0        # z of the bob: it swung down
+
+
 #: docs/msolve.md's pendulum without its simulate() (11 lines); each case adds its lines.
 _PENDULUM = """from pysolver.msolve import *
 

@@ -169,6 +169,33 @@ def test_a_bad_marker_request_is_a_deck_error(attrs, attribute, words):
                                                                       attribute)
 
 
+@pytest.mark.parametrize("attrs, attribute, message", [
+    ('type="ELEMENTAL_FORCE" elem_type="JOINT" elem_id="301001" ref_marker_id="3"', "type",
+     "type ELEMENTAL_FORCE is not supported yet; an EXPRESSION request with expr1..expr8 = "
+     "JOINT(301001, 0, 1..8, 3) reports the joint's force and torque on I"),
+    ('type="ELEMENTAL_FORCE" elem_type="Bushing" elem_id="7"', "type",
+     "type ELEMENTAL_FORCE is not supported yet; an EXPRESSION request with expr1..expr8 = "
+     "BUSH(7, 0, 1..8, 0) reports the bushing's force and torque on I"),
+    ('type="ELEMENTAL_FORCE" elem_type="CONTACT" elem_id="7"', "type",
+     "type ELEMENTAL_FORCE is not supported yet; an EXPRESSION request reads an element's "
+     "force and torque with BUSH, JOINT, MOTION, SFORCE, SPDP(id, jflag, comp, rm)"),
+    ('expr1="TIME" elem_id="7"', "elem_id",
+     "elem_id belongs to an ELEMENTAL_FORCE request, not EXPRESSION"),
+])
+def test_an_elemental_force_request_names_the_expression_request_instead(attrs, attribute,
+                                                                          message):
+    """MotionView writes ELEMENTAL_FORCE for joint and bushing outputs: one DeckError on the
+    type (it was 'elem_type: unknown attribute') that says what reports the same."""
+    text = _scene(MARKERS, f'<Post_Request id="4" {attrs}/>')
+    with pytest.raises(DeckError) as err:
+        pysolver.loads(text)
+    assert (err.value.element, err.value.id, err.value.attribute) == ("Post_Request", 4,
+                                                                      attribute)
+    assert str(err.value).endswith(f"attribute '{attribute}': {message}")
+    assert err.value.line == text.splitlines().index(
+        next(ln for ln in text.splitlines() if "Post_Request" in ln)) + 1
+
+
 def test_two_orientation_forms_on_one_marker_are_a_deck_error():
     with pytest.raises(DeckError, match="give one orientation form only") as err:
         pysolver.loads(_scene('<Reference_Marker id="20" body_id="2" psi="1" yaw="2"/>', ""))

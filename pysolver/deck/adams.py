@@ -32,7 +32,10 @@ UNSUPPORTED = ("CONTACT", "FLEX_BODY", "BEAM", "FIELD", "DIFF", "LSE", "GSE", "T
 #: Statements that only shape output or diagnostics: read and set aside with a DeckWarning.
 SET_ASIDE = ("LIST", "NOLIST", "DEBUG", "MREQUEST", "PINPUT", "POUTPUT", "FEMDATA_OUTPUT",
              "PREFERENCES", "FILE", "SHOW", "INFO", "HELP", "MENU", "RETURN", "TIME",
-             "MATERIAL")
+             "MATERIAL", "LSOLVER")
+#: Why a statement of SET_ASIDE is set aside, where it does not only shape output.
+_ASIDE_WHY = {"LSOLVER": "only chooses Adams' linear solver (pysolver chooses its own, "
+                         "dense or sparse LU)"}
 #: Commands that change the model or run what pysolver does not: a DeckError.
 _OTHER_COMMANDS = ("DEACTIVATE", "ACTIVATE", "LINEAR", "SAVE", "RELOAD", "CONTROL", "DEBUG",
                    "BUSHING", "SHOW", "SWITCH")
@@ -424,7 +427,8 @@ class _Reader:
         if name in UNSUPPORTED:
             raise self.error(stmt, f"{name} is not supported by pysolver (docs/adams.md)")
         if name in SET_ASIDE:
-            self.warn(stmt, f"{name} only shapes Adams' output or diagnostics; set aside")
+            why = _ASIDE_WHY.get(name, "only shapes Adams' output or diagnostics")
+            self.warn(stmt, f"{name} {why}; set aside")
             return
         if name in QUIET or name == "END":
             return

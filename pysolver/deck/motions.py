@@ -1,7 +1,8 @@
 """Motion_Marker and Motion_Joint: checks at load.
 
 A motion drives marker I relative to marker J along or about one axis of J; its expression
-is a function of time only (the kernel differentiates it in time). At load: both markers
+is a function of time only (the kernel differentiates it in time; splines and variables of
+time included, checked with the references: references.time_only). At load: both markers
 exist, they are not on one body (ground included), a rotation does not involve a point body,
 and no two motions drive the same axis between the same two bodies. A Motion_Joint is the
 motion of its joint's markers along z of J (T: DZ(I, J, J)) or about it (R: AZ(I, J)),
@@ -9,7 +10,6 @@ allowed on the joint types that leave that coordinate free.
 """
 from ..model import Motion
 from . import usersubs
-from .references import time_only
 
 _MEASURE = {"X": "DX", "Y": "DY", "Z": "DZ", "B1": "AX", "B2": "AY", "B3": "AZ"}
 
@@ -74,10 +74,6 @@ def add_motion(model, ctx, a, joint=0):
         if a.get(key) is not None and a["val_type"] not in kinds:
             raise ctx.error(f"{key} is an initial condition of a {' or '.join(kinds)} motion; "
                             f"this one is val_type {a['val_type']}", key)
-    reads = time_only(tree) if tree is not None else ()
-    if reads:
-        raise ctx.error(f"a motion's expression must depend on time only; it reads "
-                        f"{', '.join(sorted(reads))}", "expr")
     other = clashes(model, bi, bj, a["direction"], ground)
     if other is not None:
         tag = "Motion_Joint" if other > 0 and model.motions[other].joint else "Motion_Marker"

@@ -58,11 +58,10 @@ def check_references(model):
         if key[0] == "penalty" and dyn:
             raise ctx.error("a penalty constraint g(q, t) may use displacement measures only "
                             f"(found {dyn}); velocities enter through penalty1", attr)
-        if key[0] == "motion":
-            reads = time_only(tree)
+        if key[0] in ("motion", "loadcontrol"):
+            reads = time_only(tree, model)
             if reads:
-                raise ctx.error(f"{model.motions[key[1]].usersub.name} must give a function "
-                                f"of time only; it reads {', '.join(sorted(reads))}", attr)
+                raise ctx.error(_not_timed(model, key, reads), attr)
         if key[0] == "gcon":
             late = sorted({n[1] for n in ex.nodes(tree) if n[0] == "call" and n[1] in
                            catalogue.FUNCTIONS and catalogue.FUNCTIONS[n[1]].reads
@@ -80,17 +79,18 @@ def check_references(model):
 def _expressions(model):
     """(key, attribute, tree) of every expression in the model; a user subroutine's traced
     expression is named by its routine attribute, and one not traced yet is left out."""
-    # motions: those of a MOTSUB (an expression's is checked when it is added; a
-    # LoadControl's own motions are not the deck's)
-    routed = {i: mo for i, mo in model.motions.items() if mo.usersub is not None}
+    # a LoadControl's own motion is not the deck's: its Load_Function is
+    motions = {i: mo for i, mo in model.motions.items() if i > 0}
     for kind, table in (("penalty", model.penalties), ("gcon", model.gcons),
-                        ("motion", routed), ("sforce", model.sforces),
+                        ("motion", motions), ("sforce", model.sforces),
                         ("variable", model.variables), ("sensor", model.sensors),
                         ("evaluate", model.evaluates)):
         for el in table.values():
             if el.expr is not None:
                 sub = getattr(el, "usersub", None)
                 yield (kind, el.id), sub.attribute if sub else "expr", el.expr
+    for lc in model.controls.values():
+        yield ("loadcontrol", lc.id), "load_function", lc.load_expr
     for vf in model.vforces.values():
         for c, e in zip(("fx", "fy", "fz", "tx", "ty", "tz"), vf.exprs):
             yield ("vforce", vf.id), f"{c}_expression", e
@@ -120,10 +120,42 @@ def velocity_level(gc):
         and "velocities" in catalogue.FUNCTIONS[n[1]].reads for n in ex.nodes(gc.expr))
 
 
-def time_only(tree):
-    """Names of the state-dependent functions an expression tree calls (empty: it depends on
-    time only)."""
-    return {n[1] for n in ex.nodes(tree) if n[0] == "call" and n[1] in ex.ID_ARGS}
+def time_only(tree, model, stack=()):
+    """What makes an expression tree depend on more than time: the names of the functions
+    of the state it calls (empty: it depends on time only).
+
+    A spline (AKISPL, CUBSPL, ...) reads only its Reference_Spline's data and its x and z
+    arguments (nodes of the tree too); VARVAL(id) is what its variable's expression is
+    (named ``VARVAL(id), which reads ...`` when that reads the state). A variable that does
+    not exist or closes a cycle counts as nothing here (check_references names either); one
+    of a user subroutine not traced yet counts once it is (check_references runs again).
+    """
+    found = set()
+    for n in ex.nodes(tree):
+        if n[0] != "call" or n[1] not in ex.ID_ARGS or n[1] in ex.SPLINES:
+            continue
+        if n[1] == "VARVAL":
+            vid = int(n[2][0][1])
+            var = model.variables.get(vid)
+            if var is None or var.expr is None or vid in stack:
+                continue
+            inner = time_only(var.expr, model, stack + (vid,))
+            if inner:
+                found.add(f"VARVAL({vid}), which reads {', '.join(sorted(inner))}")
+            continue
+        found.add(n[1])
+    return found
+
+
+def _not_timed(model, key, reads):
+    """The message refusing a motion or Load_Function that depends on more than time."""
+    reads = ", ".join(sorted(reads))
+    if key[0] == "loadcontrol":
+        return f"Load_Function must depend on time only; it reads {reads}"
+    sub = model.motions[key[1]].usersub
+    if sub is not None:
+        return f"{sub.name} must give a function of time only; it reads {reads}"
+    return f"a motion's expression must depend on time only; it reads {reads}"
 
 
 class _Cycle(Exception):

@@ -34,6 +34,31 @@ CHANNELS = {
 }
 
 
+#: The force function of each elem_type of an ELEMENTAL_FORCE request (the type MotionView
+#: writes for joint and bushing outputs), which an EXPRESSION request reads instead.
+ELEMENT_FUNCTIONS = {"JOINT": "JOINT", "BUSHING": "BUSH", "SPRINGDAMPER": "SPDP",
+                     "SFORCE": "SFORCE", "MOTION": "MOTION"}
+
+
+def refuse_elemental(ctx, a):
+    """The DeckError of an ELEMENTAL_FORCE request (not computed yet): it names the
+    EXPRESSION request that reports the element's force and torque (elem_type and elem_id
+    on another type: a DeckError that they belong to ELEMENTAL_FORCE)."""
+    if a["type"] != "ELEMENTAL_FORCE":
+        key = "elem_type" if a.get("elem_type") is not None else "elem_id"
+        raise ctx.error(f"{key} belongs to an ELEMENTAL_FORCE request, not {a['type']}", key)
+    kind = str(a.get("elem_type") or "").upper()
+    fn = ELEMENT_FUNCTIONS.get(kind)
+    if fn is None or a.get("elem_id") is None:
+        how = ("an EXPRESSION request reads an element's force and torque with "
+               f"{', '.join(sorted(set(ELEMENT_FUNCTIONS.values())))}(id, jflag, comp, rm)")
+    else:
+        how = (f"an EXPRESSION request with expr1..expr8 = {fn}({a['elem_id']}, 0, 1..8, "
+               f"{a.get('ref_marker_id') or 0}) reports the {kind.lower()}'s force and "
+               "torque on I")
+    raise ctx.error(f"type ELEMENTAL_FORCE is not supported yet; {how}", "type")
+
+
 def _call(name, ids):
     return ("call", name, [("num", float(i)) for i in ids], 0)
 

@@ -13,7 +13,6 @@ from ..errors import ExpressionError
 from ..model import LoadControl, Motion
 from . import expr as ex
 from .motions import clashes
-from .references import time_only
 
 _T = re.compile(r"(?<![A-Za-z0-9_])t(?![A-Za-z0-9_])")
 
@@ -35,10 +34,6 @@ def add_loadcontrol(model, ctx, a):
         tree = ex.parse(_T.sub("TIME", text))
     except ExpressionError as err:
         raise ctx.error(f"bad Load_Function {text!r}: {err}", "load_function") from None
-    reads = time_only(tree)
-    if reads:
-        raise ctx.error(f"Load_Function must depend on time only; it reads "
-                        f"{', '.join(sorted(reads))}", "load_function")
     axis = int(a["direction"]) - 1
     direction = "XYZ"[axis]
     marker = _cg_marker(model, body)

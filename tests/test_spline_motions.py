@@ -1,0 +1,174 @@
+"""Motions (and LoadControl's Load_Function) driven by a spline of time or by a variable of
+time: they load, and a motion follows the spline (its value, first and second derivative as
+SciPy's on the same knots) on both kernels and in the XML, Adams and msolve forms; what reads
+the state through a spline's x or a variable is refused, naming it."""
+import numpy as np
+import pytest
+from scipy.interpolate import Akima1DInterpolator, CubicSpline
+
+import pysolver
+from pysolver import DeckError
+
+from helpers import DECKS
+
+# knots around t = 0 and through the run (1.9 s): the start is inside the data
+X = np.array([-0.5, 0.4, 1.0, 1.3, 1.7, 2.8])
+Y = 0.2 * np.sin(X) + 0.03 * X ** 2
+POINTS = "\n".join(f"{a!r} {b!r}" for a, b in zip(X.tolist(), Y.tolist()))
+SCIPY = {"CUBSPL": CubicSpline(X, Y), "AKISPL": Akima1DInterpolator(X, Y)}
+INNER = X[1:-1]
+
+
+def marker_deck(expr, extra=""):
+    """A 2 kg point driven along x by `expr` against a 1000 N/m spring (no gravity)."""
+    return f"""<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+      <Reference_Marker id="1" body_id="1"/><Reference_Marker id="20" body_id="2"/>
+      <Body_Point id="2" cg_id="20" mass="2"/>
+      <Reference_Spline id="7">{POINTS}</Reference_Spline>{extra}
+      <Force_Penalty id="1" expr="DX(20)" penalty="1000"/>
+      <Motion_Marker id="1" i_marker_id="20" j_marker_id="1" direction="X" expr="{expr}"/>
+      <Post_Request id="1" expr1="DX(20)" expr2="VX(20)" expr3="ACCX(20)"/>
+      </Model><Param_Transient integr_tol="1e-10"/>
+      <Simulate analysis_type="Transient" end_time="1.9" print_interval="0.01"/></MotionSolve>"""
+
+
+def check_follows(res, spline, x, v, a):
+    """x, v = the spline's value and slope at every row (1e-9); a its second derivative,
+    except on a knot, where an AKISPL's jumps: there the left limit (the step that ends on
+    the knot). The acceleration is the corrector's derivative of the integrated velocity, not
+    held by the error test: 98 % of the rows within 1e-8, every row within 3e-4 of its
+    largest value (one CUBSPL row at integr_tol 1e-10, t = 1.09 s, is 3.5e-5 off of 0.14;
+    at 1e-11 every row is within 3e-10)."""
+    assert res.success, res.message
+    t = res.t
+    np.testing.assert_allclose(x, spline(t), rtol=0, atol=1e-9)
+    np.testing.assert_allclose(v, spline(t, 1), rtol=0, atol=1e-9)
+    on = np.isclose(t[:, None], INNER[None, :], rtol=0, atol=1e-12).any(axis=1)
+    want = np.where(on, spline(t - 1e-12, 2), spline(t, 2))
+    err = np.abs(a - want)
+    assert np.mean(err <= 1e-8) >= 0.98
+    assert err.max() <= 3e-4 * np.abs(want).max()
+    return on
+
+
+@pytest.mark.parametrize("kernel", ["tapes", "generated"])
+@pytest.mark.parametrize("fn", ["CUBSPL", "AKISPL"])
+def test_a_motion_marker_follows_its_spline_of_time(fn, kernel):
+    """x, v, a of the driven point are the spline's value and derivatives, and the reaction
+    is m a + k x (1e-6 of its size), on both kernels; AKISPL's second derivative jumps at the
+    four knots inside the run (by 0.017 .. 0.41 here), and the rows there hold its left
+    limit."""
+    res = pysolver.loads(marker_deck(f"{fn}(TIME, 0, 7)")).run(kernel=kernel)
+    r = res.request(1)
+    on = check_follows(res, SCIPY[fn], r[:, 0], r[:, 1], r[:, 2])
+    assert on.sum() == 4
+    want = 2.0 * r[:, 2] + 1000.0 * r[:, 0]
+    np.testing.assert_allclose(res.motion(1), want, rtol=0, atol=1e-6 * np.abs(want).max())
+    jumps = SCIPY["AKISPL"](INNER, 2) - SCIPY["AKISPL"](INNER - 1e-12, 2)
+    assert np.abs(jumps).min() > 1e-2      # the left limits differ from the right ones
+
+
+def test_a_motion_follows_a_variable_of_a_spline_of_time():
+    """VARVAL(2) -> VARVAL(1) -> CUBSPL(TIME): the same motion as the spline itself."""
+    variables = ('<Reference_Variable id="1" expr="CUBSPL(TIME, 0, 7)"/>'
+                 '<Reference_Variable id="2" expr="VARVAL(1)"/>')
+    res = pysolver.loads(marker_deck("VARVAL(2)", variables)).run()
+    r = res.request(1)
+    check_follows(res, SCIPY["CUBSPL"], r[:, 0], r[:, 1], r[:, 2])
+
+
+JOINT_XML = f"""<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+  <Reference_Marker id="1" body_id="1"/><Reference_Marker id="20" body_id="2" pos_x="0.3"/>
+  <Reference_Marker id="21" body_id="2"/>
+  <Body_Rigid id="2" cg_id="20" mass="2" inertia_xx="0.1" inertia_yy="0.1" inertia_zz="0.1"/>
+  <Reference_Spline id="7">{POINTS}</Reference_Spline>
+  <Constraint_Joint id="1" type="REVOLUTE" i_marker_id="21" j_marker_id="1"/>
+  <Motion_Joint id="1" joint_id="1" expr="AKISPL(TIME, 0, 7)"/>
+  <Post_Request id="1" expr1="AZ(21, 1)" expr2="WZ(21, 1, 1)" expr3="WDTZ(21, 1, 1)"/>
+  </Model><Param_Transient integr_tol="1e-10"/>
+  <Simulate analysis_type="Transient" end_time="1.9" print_interval="0.01"/></MotionSolve>"""
+
+JOINT_ADM = f"""pysolver spline motion
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 2, CM = 20, IP = 0.1, 0.1, 0.1
+MARKER/20, PART = 2, QP = 0.3, 0, 0
+MARKER/21, PART = 2
+JOINT/1, REVOLUTE, I = 21, J = 1
+MOTION/1, JOINT = 1, ROTATION, FUNCTION = AKISPL(TIME, 0, 7)
+SPLINE/7
+, X = {", ".join(map(repr, X.tolist()))}
+, Y = {", ".join(map(repr, Y.tolist()))}
+REQUEST/1, F1 = AZ(21, 1)\\F2 = WZ(21, 1, 1)\\F3 = WDTZ(21, 1, 1)\\
+INTEGRATOR/ERROR = 1e-10
+END
+"""
+
+JOINT_PY = f"""from pysolver.msolve import *
+model = Model()
+ground = Part(ground=True)
+pivot = Marker(body=ground)
+arm = Part(mass=2, ip=[0.1, 0.1, 0.1])
+arm.cm = Marker(body=arm, qp=Point(0.3, 0, 0))
+pin = Marker(body=arm)
+hinge = Joint(type="REVOLUTE", i=pin, j=pivot)
+table = Spline(id=7, x={X.tolist()}, y={Y.tolist()})
+Motion(joint=hinge, jtype="ROTATION", function="AKISPL(TIME, 0, 7)")
+Request(f1="AZ(2, 1)", f2="WZ(2, 1, 1)", f3="WDTZ(2, 1, 1)")
+Integrator(error=1e-10)
+model.simulate(type="DYNAMICS", end=1.9, dtout=0.01)
+"""
+
+
+@pytest.mark.parametrize("kernel", ["tapes", "generated"])
+@pytest.mark.parametrize("form", ["xml", "adm", "py"])
+def test_a_motion_joint_turns_as_its_spline_of_time(tmp_path, form, kernel):
+    """A revolute driven by AKISPL(TIME, 0, 7) as MotionSolve XML, an Adams MOTION/JOINT=
+    with a SPLINE statement, and msolve classes (Spline, Motion(joint=)): AZ, WZ, WDTZ are
+    the spline's value and derivatives on both kernels."""
+    path = tmp_path / f"turn.{form}"
+    path.write_text({"xml": JOINT_XML, "adm": JOINT_ADM, "py": JOINT_PY}[form])
+    simulate = {"analysis_type": "TRANSIENT", "end_time": 1.9, "print_interval": 0.01}
+    model = pysolver.load(path, simulate=simulate if form == "adm" else None)
+    res = model.run(kernel=kernel)
+    r = res.request(1)
+    check_follows(res, SCIPY["AKISPL"], r[:, 0], r[:, 1], r[:, 2])
+
+
+@pytest.mark.parametrize("expr, words", [
+    ("CUBSPL(DX(20), 0, 7)", "it reads DX"),
+    ("CUBSPL(TIME, 0, 7) + VARVAL(1)", "it reads VARVAL(1), which reads VX"),
+    ("VARVAL(2)", "it reads VARVAL(2), which reads VARVAL(1), which reads VX"),
+    ("VARVAL(9)", "the expression refers to variable id 9, which does not exist"),
+    ("CUBSPL(TIME, 0, 8)", "the expression refers to spline id 8, which does not exist"),
+])
+def test_what_reads_the_state_through_a_spline_or_variable_is_named(expr, words):
+    """The motion comes before the variables in the deck: they are read at the end, with the
+    references."""
+    variables = ('<Reference_Variable id="1" expr="2*VX(20)"/>'
+                 '<Reference_Variable id="2" expr="VARVAL(1)"/>')
+    text = marker_deck(expr).replace("</Model>", variables + "</Model>")
+    with pytest.raises(DeckError) as err:
+        pysolver.loads(text)
+    assert err.value.attribute == "expr" and err.value.element == "Motion_Marker"
+    assert str(err.value).endswith(words if "refers" in words else
+                                   "a motion's expression must depend on time only; " + words)
+
+
+def test_a_load_function_may_be_a_spline_of_time():
+    """LoadControl's target from LINSPL(t, 0, 5) (a ramp to 20 N by 1 s, then held): the
+    controller's target at every update is the broken line's value (1e-12); one of DZ is
+    refused."""
+    text = (DECKS / "loadcontrol_indenter.xml").read_text().replace(
+        "Load_Function IF(t-1: 20*t, 20, IF(t-2: 20, 40, 40))", "Load_Function LINSPL(t, 0, 5)"
+    ).replace("<Post_Request", '<Reference_Spline id="5">0 0 1 20 3 20</Reference_Spline>\n'
+              "    <Post_Request").replace('end_time="3.0"', 'end_time="1.5"')
+    res = pysolver.loads(text).run()
+    assert res.success, res.message
+    c = res.controller(1)
+    np.testing.assert_allclose(c["target"], np.interp(c["time"], [0, 1, 3], [0, 20, 20]),
+                               rtol=0, atol=1e-12)
+    with pytest.raises(DeckError, match="Load_Function must depend on time only; it reads "
+                       "DZ$") as err:
+        pysolver.loads(text.replace("LINSPL(t, 0, 5)", "LINSPL(DZ(10), 0, 5)"))
+    assert err.value.attribute == "Load_Function"
