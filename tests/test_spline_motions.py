@@ -172,3 +172,19 @@ def test_a_load_function_may_be_a_spline_of_time():
                        "DZ$") as err:
         pysolver.loads(text.replace("LINSPL(t, 0, 5)", "LINSPL(DZ(10), 0, 5)"))
     assert err.value.attribute == "Load_Function"
+
+
+def test_a_spline_whose_data_starts_at_the_run_start():
+    """Road profiles start their data at t = 0: the first row's acceleration (and reaction)
+    is the spline's from the right. A central difference in time straddled the data's start,
+    where Adams' extrapolation meets the curve, and gave -5262 for about 0.05."""
+    knots = X - X[0]                                   # 0 .. 3.3
+    text = marker_deck("CUBSPL(TIME, 0, 7)").replace(
+        POINTS, "\n".join(f"{a!r} {b!r}" for a, b in zip(knots.tolist(), Y.tolist())))
+    res = pysolver.loads(text).run()
+    assert res.success, res.message
+    spline = CubicSpline(knots, Y)
+    r = res.request(1)
+    assert r[0, 2] == pytest.approx(spline(0.0, 2), rel=1e-6)
+    want = 2.0 * r[0, 2] + 1000.0 * r[0, 0]
+    assert res.motion(1)[0] == pytest.approx(want, rel=1e-6)

@@ -172,8 +172,12 @@ def _consistent(kernel, t, y, iters, initial):
         D = _Jac(kernel, t, y, yp, 1.0).J - J0.J
         res = kernel.residual_array(t, y, yp)
         h = 1e-6 * max(1.0, abs(t))
-        r_t = (kernel.residual_array(t + h, y, yp)[lam]
-               - kernel.residual_array(t - h, y, yp)[lam]) / (2 * h)
+        if initial:   # the run goes on from t: the rate from after it (a spline may start at t)
+            r_t = (4 * kernel.residual_array(t + h, y, yp)[lam] - 3 * res[lam]
+                   - kernel.residual_array(t + 2 * h, y, yp)[lam]) / (2 * h)
+        else:
+            r_t = (kernel.residual_array(t + h, y, yp)[lam]
+                   - kernel.residual_array(t - h, y, yp)[lam]) / (2 * h)
         rhs = -np.concatenate([res[rows], J0.rows_times(lam, yp) + r_t])
         dz = _solve_saddle(D, J0.J, rows, lam, rhs, J0.sparse)
         yp[rows] += dz[:len(rows)]
