@@ -218,7 +218,8 @@ class Accgrav(_Settings):
 class Part(_Element):
     """A rigid body (or ground=True): mass, ip=[ixx, iyy, izz(, ixy, ixz, iyz)], cm (its
     centre-of-mass Marker), im, qg and reuler (its frame in ground; or zg and xg), vx, vy,
-    vz, wx, wy, wz, vm, wm; lprf (pysolver: MotionSolve's lprf_id, kept)."""
+    vz (along the global axes, or vm's), wx, wy, wz (along the cm marker's axes, or wm's),
+    vm, wm; lprf (pysolver: MotionSolve's lprf_id, kept)."""
     _statement = "PART"
     _keys = {"ground": "GROUND", "mass": "MASS", "cm": "CM", "im": "IM", "lprf": "LPRF",
              "ip": "IP", "qg": "QG", "reuler": "REULER", "zg": "ZG", "xg": "XG", "vx": "VX",

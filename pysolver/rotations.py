@@ -70,3 +70,17 @@ def e_from_rot(A):
     e = np.array(e)
     return e if e[0] >= 0 else -e
 
+
+
+def along(R, v):
+    """The vector whose components along the columns of R are v (R @ v, in the frame R is
+    given in); components below 16 machine epsilons of |v|, the rounding a turn leaves (a
+    cos(pi/2) of 6e-17), are exactly 0, and v is kept as it is when R is exactly the
+    identity."""
+    v = np.asarray(v, dtype=float)
+    R = np.asarray(R, dtype=float)
+    if np.array_equal(R, np.eye(3)):
+        return v.copy()
+    out = R @ v
+    out[np.abs(out) <= 16 * np.finfo(float).eps * np.linalg.norm(v)] = 0.0
+    return out

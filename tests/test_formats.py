@@ -253,3 +253,73 @@ def test_what_a_file_cannot_hold_is_a_deck_error(tmp_path):
             as err:
         convert(deck, tmp_path / "quotes.adm")
     assert (err.value.file, err.value.line, err.value.element) == (str(deck), 1, "PART")
+
+
+SPIN = TEST_DECKS / "spin"
+#: turned_cm's spin in ground at t = 0: the XML's w_ic about the global axes; Adams' and
+#: msolve's WX, WZ along the CM marker's (its y is global z, its z global -y).
+GLOBAL, ALONG_CM = [0.3, 0.0, 1.0], [0.3, -1.0, 0.0]
+SPIN_FORMS = {"turned_cm.xml": GLOBAL, "turned_cm.adm": ALONG_CM,
+              "turned_cm_statements.py": ALONG_CM, "turned_cm_classes.py": ALONG_CM}
+
+
+@pytest.mark.parametrize("name", list(SPIN_FORMS))
+def test_each_form_reads_a_spin_in_the_axes_its_documentation_gives(name):
+    """A CM marker turned 90 degrees about x, a spin of 0.3 and 1 about x and z: MotionSolve's
+    w_ic_* are about the global axes, Adams' PART WX.. and msolve's about the CM marker's
+    (WX(20), WY(20), WZ(20) at t = 0; the body-axis channels are the same vector)."""
+    res = _load(SPIN / name).run(progress=False)
+    assert res.success, res.message
+    w = np.array(SPIN_FORMS[name])
+    np.testing.assert_allclose(res.request(1)[0, :3], w, atol=1e-15)
+    np.testing.assert_allclose(res.request(1)[0, 3:6], [w[0], w[2], -w[1]], atol=1e-15)
+
+
+def test_wm_id_on_the_cm_marker_reads_xml_w_ic_as_adams_reads_wx():
+    """wm_id = the centre-of-mass marker: the XML deck builds the Adams deck's model."""
+    text = (SPIN / "turned_cm.xml").read_text().replace('w_ic_z="1"', 'w_ic_z="1" wm_id="20"')
+    assert model_differences(_load(SPIN / "turned_cm.adm"), pysolver.loads(text)) == []
+
+
+@pytest.mark.parametrize("name", list(SPIN_FORMS))
+def test_converting_a_spin_keeps_it_in_every_format(name, tmp_path):
+    """Each form converted to XML, .adm and msolve classes, and each of those converted
+    again, builds its model number for number and runs alike (1e-12): an XML spin about the
+    global axes goes to the .adm as the body's own components, Adams' WX.. go to the XML with
+    wm_id = the CM marker."""
+    ref = _load(SPIN / name)
+    res = ref.run(progress=False)
+    texts = {}
+    for ext in (".xml", ".adm", ".py"):
+        first = tmp_path / f"first{ext}"
+        convert(SPIN / name, first)
+        texts[ext] = first.read_text()
+        for again_ext in (".xml", ".adm", ".py"):
+            again = tmp_path / f"again_{ext[1:]}{again_ext}"
+            convert(first, again)
+            assert model_differences(ref, _load(again)) == [], again.name
+        assert model_differences(ref, _load(first)) == [], ext
+        _same_results(_load(first).run(progress=False), res)
+    part = [ln for ln in texts[".adm"].splitlines() if ln.startswith(("PART/2", ", W"))]
+    if name.endswith(".xml"):
+        assert "WX = 0.3, WY = 1.0, WZ = 0.0" in " ".join(part)
+        assert "wm_id" not in texts[".xml"]
+    else:
+        body = [ln for ln in texts[".xml"].splitlines() if '<Body_Rigid id="2"' in ln][0]
+        assert 'w_ic_x="0.3" w_ic_z="1"' in body and 'wm_id="20"' in body
+        assert "WM" not in " ".join(part)
+
+
+def test_a_sweep_sets_w_ic_about_the_global_axes():
+    """Body_Rigid/2/w_ic_* of a sweep are about the global axes, whatever the form: a case
+    giving the deck's spin in ground runs the deck exactly, a case's spin is the one in
+    ground, and the next run without it is the deck's again, exactly."""
+    for name, w in SPIN_FORMS.items():
+        model = _load(SPIN / name)
+        plain = model.run(progress=False).request(1)
+        same = model.run(progress=False, params={f"Body_Rigid/2/w_ic_{c}": v
+                                                 for c, v in zip("xyz", w)})
+        assert np.array_equal(same.request(1), plain), name
+        case = model.run(progress=False, params={"Body_Rigid/2/w_ic_y": 2.0})
+        np.testing.assert_allclose(case.request(1)[0, :3], [w[0], 2.0, w[2]], atol=1e-15)
+        assert np.array_equal(model.run(progress=False).request(1), plain), name

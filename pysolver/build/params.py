@@ -24,6 +24,7 @@ from ..deck.schema import SCHEMA, Ctx, convert
 from ..deck.validate import value_rule
 from ..errors import DeckError
 from ..options import DECK_NAMES
+from ..rotations import along
 from .energy import energy_paths
 from .planar import global_inertia, plane_rows, why_not
 
@@ -100,6 +101,7 @@ class Parameters:
         self._base = {}                 # path -> the deck's value, for the paths set so far
         self._deck = {}                 # path -> the deck's value, once read (they never change)
         self._movers = {}               # body id -> its markers (a cg marker moves them all)
+        self._spins = {}                # body id -> its w_ic (see _spin)
         self._names = {}                # lower-case path -> canonical path
         for path in self.paths():
             self._names[path.lower()] = path
@@ -205,8 +207,9 @@ class Parameters:
             if attr.startswith("inertia_"):
                 i, j = _INERTIA[attr[8:]]
                 return float(b.inertia_im[i, j])
-            vec = b.vel if attr.startswith("v_ic") else b.omega
-            return float(vec["xyz".index(attr[-1])])
+            if attr.startswith("w_ic"):
+                return float(self._spin(b)[2]["xyz".index(attr[-1])])
+            return float(b.vel["xyz".index(attr[-1])])
         if kind == "Reference_Marker":
             return float(m.markers[int(key[0])].pos["xyz".index(key[1][-1])])
         if kind == "Force_Gravity":
@@ -258,9 +261,22 @@ class Parameters:
             _assign(b, inertia_im=raw, inertia=b.im_rot @ raw @ b.im_rot.T)
             k.arrays["body_inertia"][9 * row:9 * row + 9] = b.inertia.reshape(-1)
             self._sync_energy(b)
+        elif attr.startswith("w_ic"):
+            deck, deck_global, now = self._spin(b)
+            now["xyz".index(attr[-1])] = v
+            b.omega[:] = deck if np.array_equal(now, deck_global) else along(b.rot.T, now)
         else:
-            vec = b.vel if attr.startswith("v_ic") else b.omega
-            vec["xyz".index(attr[-1])] = v
+            b.vel["xyz".index(attr[-1])] = v
+
+    def _spin(self, b):
+        """(the deck's angular velocity in body b's axes, the same about the global axes, the
+        case's about the global axes): w_ic_* paths are about the global axes, as
+        MotionSolve's Body_Rigid gives them; the deck's own numbers come back exactly."""
+        got = self._spins.get(b.id)
+        if got is None:
+            w = along(b.rot, b.omega)
+            got = self._spins[b.id] = (b.omega.copy(), w, w.copy())
+        return got
 
     def _sync_energy(self, b):
         """KE's constants of body b (pysolver.build.energy) after a change of its mass or

@@ -139,14 +139,31 @@ def _part(el, model, els, k):
         args.append(("IP", ip))
     elif el.given & {"inertia_xx", "inertia_yy", "inertia_zz"}:
         args.append(("IP", ip[:3]))
-    args += _velocities(el)
+    args += _velocities(el, _spin(el, model))
     return [Statement("PART", el.a["id"], args, _label(el))]
 
 
-def _velocities(el):
-    args = _args(el, [(f"{v}_ic_{c}", f"{v.upper()}{c.upper()}") for v in "vw" for c in "xyz"
-                      if f"{v}_ic_{c}" in el.a])
-    return args + _marker_ref(el, "vm_id", "VM") + _marker_ref(el, "wm_id", "WM")
+def _velocities(el, spin=None):
+    """VX.. (WX.. of a part: `spin`), then VM (and WM)."""
+    args = _args(el, [(f"v_ic_{c}", f"V{c.upper()}") for c in "xyz"])
+    if spin is None:
+        return args + _marker_ref(el, "vm_id", "VM")
+    args += spin[0] + _marker_ref(el, "vm_id", "VM")
+    return args + ([("WM", Ref("marker", spin[1]))] if spin[1] is not None else [])
+
+
+def _spin(el, model):
+    """([(WX.., value)], WM or None) of a part. Adams reads WX.. along the CM marker's axes
+    without WM (the CM is its default WM), MotionSolve's w_ic_* about the global axes without
+    wm_id: a spin about the global axes of a part whose CM marker is turned is written as
+    the body's own components, the numbers the loaded model holds."""
+    pairs = [(f"w_ic_{c}", f"W{c.upper()}") for c in "xyz"]
+    wm = el.a["wm_id"] if "wm_id" in el.given else None
+    if wm is None and el.given & {"w_ic_x", "w_ic_y", "w_ic_z"} and \
+            not np.array_equal(model.markers[el.a["cg_id"]].rot, np.eye(3)):
+        omega = model.bodies[el.a["id"]].omega
+        return [(key, float(w)) for (_, key), w in zip(pairs, omega)], None
+    return _args(el, pairs), (None if wm == el.a["cg_id"] else wm)
 
 
 def _point(el, model, els, k):

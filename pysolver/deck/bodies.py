@@ -2,7 +2,7 @@
 import numpy as np
 
 from ..model import Body, Marker
-from ..rotations import rot_313, rot_321, rot_from_e
+from ..rotations import along, rot_313, rot_321, rot_from_e
 
 
 def add_bodies(model, bodies_raw, markers_raw):
@@ -68,7 +68,7 @@ def add_bodies(model, bodies_raw, markers_raw):
         vel = np.array([a["v_ic_x"], a["v_ic_y"], a["v_ic_z"]])
         vm = _direction_marker(model, ctx, a, "vm_id")
         if vm is not None:                   # v_ic along vm's axes
-            vel = vm.rot @ vel
+            vel = along(vm.rot, vel)
         if ctx.tag == "Body_Point":
             model.bodies[a["id"]] = Body(a["id"], "point", a["mass"], None, cg.pos.copy(),
                                          np.eye(3), vel, np.zeros(3), a["label"], cg=cg.id)
@@ -89,14 +89,24 @@ def add_bodies(model, bodies_raw, markers_raw):
             raise ctx.error("inertia tensor must be positive definite and satisfy the "
                             "triangle inequality", "inertia_xx")
         Rb = cg.rot.T @ im.rot      # im axes in the body (cg) frame
-        omega = np.array([a["w_ic_x"], a["w_ic_y"], a["w_ic_z"]])
-        wm = _direction_marker(model, ctx, a, "wm_id")
-        if wm is not None:                   # w_ic along wm's axes, kept in the cg's
-            omega = cg.rot.T @ wm.rot @ omega
+        omega = _spin(model, ctx, a, cg)
         model.bodies[a["id"]] = Body(a["id"], "rigid", a["mass"], Rb @ Iim @ Rb.T,
                                      cg.pos.copy(), cg.rot.copy(), vel, omega,
                                      a["label"], cg=cg.id, im_rot=Rb, inertia_im=Iim)
 
+
+
+def _spin(model, ctx, a, cg):
+    """A rigid body's initial angular velocity in its own (cg marker's) axes: w_ic about the
+    global axes, as MotionSolve's Body_Rigid defines it, or along wm_id's axes when given (the
+    Adams and msolve readers give WX, WY, WZ with WM = the CM marker when no WM is given:
+    Adams reads them along the CM marker's axes); docs/deck-language.md, "Initial angular
+    velocity"."""
+    omega = np.array([a["w_ic_x"], a["w_ic_y"], a["w_ic_z"]])
+    wm = _direction_marker(model, ctx, a, "wm_id")
+    if wm is not None and wm.id == cg.id:
+        return omega
+    return along(cg.rot.T if wm is None else cg.rot.T @ wm.rot, omega)
 
 
 def _direction_marker(model, ctx, a, key):

@@ -124,8 +124,11 @@ def ACCGRAV(**kw):
 
 def PART(id, **kw):
     """Rigid body (or ground with GROUND=True): MASS, CM, IM, LPRF, IP=[ixx, iyy, izz
-    (, ixy, iyz, ixz)], VX VY VZ (global), WX WY WZ (in the CM marker's axes), VM and WM
-    (markers whose axes VX.. and WX.. are along instead), LABEL."""
+    (, ixy, iyz, ixz)], VX VY VZ (global), WX WY WZ (in the CM marker's axes, as Adams'
+    PART reads them), VM and WM (markers whose axes VX.. and WX.. are along instead), LABEL.
+
+    WX.. without WM are recorded with wm_id = CM: the element's w_ic_* without wm_id are
+    about the global axes (MotionSolve's Body_Rigid)."""
     def ip(val):
         vals = [float(v) for v in val]
         if len(vals) not in (3, 6):
@@ -133,6 +136,11 @@ def PART(id, **kw):
         keys = ["inertia_xx", "inertia_yy", "inertia_zz", "inertia_xy", "inertia_yz",
                 "inertia_xz"]
         return dict(zip(keys, vals))
+    given = {k.upper(): v for k, v in kw.items()}
+    if any(given.get(k) is not None for k in ("WX", "WY", "WZ")) and \
+            given.get("WM") is None and given.get("CM") is not None:
+        kw = {k: v for k, v in kw.items() if k.upper() != "WM"}
+        kw["WM"] = given["CM"]
     _emit("PART", "Body_Rigid", {"GROUND": "isground", "MASS": "mass", "CM": "cg_id",
                                  "IM": "im_id", "LPRF": "lprf_id", "IP": ip, "VX": "v_ic_x",
                                  "VY": "v_ic_y", "VZ": "v_ic_z", "WX": "w_ic_x",
