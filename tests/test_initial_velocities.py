@@ -121,3 +121,17 @@ def test_given_velocities_that_conflict_change_the_least_in_kinetic_energy(unit,
     again = model.run()                        # the start remembered, and its note with it
     assert again.log == res.log and pysolver.loads(text.replace(
         f'v_ic_y="{0.24 * s}"', f'v_ic_y="{-0.24 * s}"')).run().log == []
+
+
+def test_motionview_ic_flags_say_which_components_are_used():
+    """v_ic_*_flag / w_ic_*_flag (MotionView's *SetBodyICFlag: FALSE, do not use that
+    component) were unknown attributes. FALSE leaves the component out: the pendulum given
+    w_ic_z = 0.01 with its flag FALSE starts at rest; a v_ic_x = 0.05 flagged FALSE beside a
+    used spin leaves the centre of mass the velocity the spin needs (w0 r)."""
+    flagged = pendulum(extra='w_ic_z_flag="FALSE"').run()
+    assert flagged.success and np.abs(flagged.request(1)[0, :2]).max() == 0.0
+    both = pendulum(extra='v_ic_x="0.05" v_ic_x_flag="FALSE" w_ic_z_flag="TRUE"').run()
+    assert both.request(1)[0, :2] == pytest.approx([W0, W0 * R], rel=1e-12)
+    with pytest.raises(pysolver.DeckError, match="expected TRUE or FALSE") as info:
+        pendulum(extra='w_ic_z_flag="maybe"')
+    assert info.value.attribute == "w_ic_z_flag"

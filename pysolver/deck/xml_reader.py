@@ -110,7 +110,28 @@ def _element(el, file):
         attrs["#text"], names["#text"] = el.text, "(the element's text)"
     if tag.lower() == "param_unit":
         return _param_unit(attrs, names, el.sourceline, file)
+    if tag.lower() in ("body_rigid", "body_point"):
+        _ic_flags(attrs, names, el.sourceline, file, tag)
     return tag, attrs, el.sourceline, names
+
+
+_TRUE, _FALSE = ("TRUE", "YES", "1", "ON"), ("FALSE", "NO", "0", "OFF")
+
+
+def _ic_flags(attrs, names, line, file, tag):
+    """Body_Rigid's and Body_Point's v_ic_*_flag / w_ic_*_flag (MotionView's
+    *SetBodyICFlag: TRUE, the default, uses that initial velocity component, FALSE does not):
+    a FALSE flag leaves its component out, as if the deck did not give it (it is then one
+    the constraints may set, docs/deck-language.md, "Initial velocities")."""
+    for key in [k for k in attrs if re.fullmatch(r"[vw]_ic_[xyz]_flag", k)]:
+        value = str(attrs.pop(key)).strip().upper()
+        shown = names.pop(key, key)
+        if value not in _TRUE + _FALSE:
+            raise DeckError(f"got {value!r}; expected TRUE or FALSE", file=file, line=line,
+                            element=tag, attribute=shown)
+        if value in _FALSE:
+            attrs.pop(key[:-5], None)
+            names.pop(key[:-5], None)
 
 
 #: MotionSolve's <Param_Unit> attributes and the <Units> attributes they are.
