@@ -336,10 +336,14 @@ static int accelerations(const psModel* m, psData* d, const psRestart* r, double
     int rc = jacobian(m, d, r, t, y, yp, 0.0, r->J0);
     if (rc == PS_OK) rc = jacobian(m, d, r, t, y, yp, 1.0, r->J1);
     if (rc == PS_OK) rc = ps_residual(m, d, t, y, yp, r->res);
+    /* the rate rows' time derivative from after t (the run goes on from t: a motion's rate
+     * may kink there, a spline's data start), second order: (4 R(t+h) - 3 R(t) - R(t+2h)) /
+     * 2h, in the order consistent() takes it, so that both give the same bits */
     double h = 1e-6 * fmax(1.0, fabs(t));
     if (rc == PS_OK) rc = rate_residual(m, d, r, t + h, y, yp, r->res2);
-    for (int k = 0; k < nl && rc == PS_OK; k++) r->g[k] = r->res2[r->lam[k]];
-    if (rc == PS_OK) rc = rate_residual(m, d, r, t - h, y, yp, r->res2);
+    for (int k = 0; k < nl && rc == PS_OK; k++)
+      r->g[k] = 4 * r->res2[r->lam[k]] - 3 * r->res[r->lam[k]];
+    if (rc == PS_OK) rc = rate_residual(m, d, r, t + 2 * h, y, yp, r->res2);
     if (rc != PS_OK) return rc;
     if (r->sparse) {
       if (saddle_sparse(r, h, yp, z) != PS_OK) return PS_ERR_SINGULAR;

@@ -194,3 +194,23 @@ def test_a_transient_after_a_static_starts_with_the_motions_rates(drive):
     theta = math.radians(30) * (np.sin(2 * np.pi * t) if "SIN" in drive
                                 else 1 - np.cos(2 * np.pi * t))
     np.testing.assert_allclose(want[:, 0], theta, rtol=0, atol=1e-9)
+
+
+def test_a_transient_that_cannot_leave_the_equilibrium_is_a_failed_run(monkeypatch):
+    """Where the motions' start cannot be made consistent after the static (here forced), the
+    run ends with status -300 naming it, its static row kept."""
+    from pysolver.build.consistent import AssemblyError
+    from pysolver.build.kernel import Kernel
+
+    def refuse(self, t, y, iters=4, initial=False):
+        if not initial:
+            raise AssemblyError("forced")
+        return original(self, t, y, iters, initial)
+    original = Kernel.consistent_yp
+    monkeypatch.setattr(Kernel, "consistent_yp", refuse)
+    res = pysolver.loads(ROCKER.format(drive="30*DTOR*SIN(2*PI*TIME)",
+                                       commands='<Simulate analysis_type="STATIC"/>')).run()
+    assert (res.success, res.status) == (False, -300)
+    assert res.message == ("the transient after the static analysis at t = 0 cannot start: its "
+                           "velocities and accelerations cannot be made consistent (forced)")
+    assert len(res.t) == 1 and res.request(1)[0, 1] == 0.0

@@ -171,13 +171,11 @@ def _consistent(kernel, t, y, iters, initial):
         J0 = _Jac(kernel, t, y, yp, 0.0)
         D = _Jac(kernel, t, y, yp, 1.0).J - J0.J
         res = kernel.residual_array(t, y, yp)
+        # the rate rows' time derivative from after t, where the run goes on (a motion's rate
+        # may kink at t: a spline's data start, a STEP's end), as csrc/control.c takes it
         h = 1e-6 * max(1.0, abs(t))
-        if initial:   # the run goes on from t: the rate from after it (a spline may start at t)
-            r_t = (4 * kernel.residual_array(t + h, y, yp)[lam] - 3 * res[lam]
-                   - kernel.residual_array(t + 2 * h, y, yp)[lam]) / (2 * h)
-        else:
-            r_t = (kernel.residual_array(t + h, y, yp)[lam]
-                   - kernel.residual_array(t - h, y, yp)[lam]) / (2 * h)
+        r_t = (4 * kernel.residual_array(t + h, y, yp)[lam] - 3 * res[lam]
+               - kernel.residual_array(t + 2 * h, y, yp)[lam]) / (2 * h)
         rhs = -np.concatenate([res[rows], J0.rows_times(lam, yp) + r_t])
         dz = _solve_saddle(D, J0.J, rows, lam, rhs, J0.sparse)
         yp[rows] += dz[:len(rows)]

@@ -144,7 +144,11 @@ def _param_unit(attrs, names, line, file):
     element, as MotionView writes it) as the <Units> element it is; errors name its own
     attributes. mass_mult_factor, the other form, is refused unless it is 1."""
     factor = attrs.pop("mass_mult_factor", None)
-    if factor is not None and str(factor).strip() not in ("1", "1.0", "1."):
+    try:
+        one = factor is None or float(factor) == 1.0
+    except ValueError:
+        one = False
+    if not one:
         raise DeckError("mass_mult_factor is not supported: give the units by name "
                         "(mass_unit, length_unit, time_unit, force_unit)", file=file,
                         line=line, element="Param_Unit",

@@ -161,11 +161,14 @@ def leave_equilibrium(run):
     run.equilibrium = False
     if not len(run.kernel.layout.lam):
         return                          # no constraints: at rest is the consistent state
-    y = run.y.copy()
+    y, why = run.y.copy(), None
     try:
-        run.yp = run.kernel.consistent_yp(run.t, y)
+        yp = run.kernel.consistent_yp(run.t, y)
+        if run.kernel.d.bad_kind or not np.all(np.isfinite(yp)):
+            why = "its accelerations are not finite"
     except (AssemblyError, np.linalg.LinAlgError) as err:
+        why = f"its velocities and accelerations cannot be made consistent ({err})"
+    if why:
         raise StaticFailure(f"the transient after the static analysis at t = {run.t:g} cannot "
-                            f"start: its velocities and accelerations are not consistent "
-                            f"({err})") from None
-    run.y = y
+                            f"start: {why}")
+    run.y, run.yp = y, yp
