@@ -135,3 +135,12 @@ def test_motionview_ic_flags_say_which_components_are_used():
     with pytest.raises(pysolver.DeckError, match="expected TRUE or FALSE") as info:
         pendulum(extra='w_ic_z_flag="maybe"')
     assert info.value.attribute == "w_ic_z_flag"
+    point = ('<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>'
+             '<Reference_Marker id="10" body_id="2"/>'
+             '<Body_Point id="2" cg_id="10" mass="1" v_ic_x="1" {flag}/></Model>'
+             '<Simulate analysis_type="Transient" end_time="1" print_interval="0.5"/>'
+             '</MotionSolve>')
+    assert pysolver.loads(point.format(flag='v_ic_x_flag="FALSE"')).bodies[2].vel[0] == 0.0
+    with pytest.raises(pysolver.DeckError, match="unknown attribute") as info:
+        pysolver.loads(point.format(flag='w_ic_x_flag="TRUE"'))   # a point body has no spin
+    assert info.value.attribute == "w_ic_x_flag"

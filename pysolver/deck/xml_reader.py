@@ -123,7 +123,8 @@ def _ic_flags(attrs, names, line, file, tag):
     *SetBodyICFlag: TRUE, the default, uses that initial velocity component, FALSE does not):
     a FALSE flag leaves its component out, as if the deck did not give it (it is then one
     the constraints may set, docs/deck-language.md, "Initial velocities")."""
-    for key in [k for k in attrs if re.fullmatch(r"[vw]_ic_[xyz]_flag", k)]:
+    spins = "vw" if tag.lower() == "body_rigid" else "v"    # a point body has no w_ic
+    for key in [k for k in attrs if re.fullmatch(rf"[{spins}]_ic_[xyz]_flag", k)]:
         value = str(attrs.pop(key)).strip().upper()
         shown = names.pop(key, key)
         if value not in _TRUE + _FALSE:
