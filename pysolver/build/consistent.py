@@ -146,25 +146,24 @@ def _consistent(kernel, t, y, iters, initial):
     # them (the given ones too) only for what those cannot do, each the least in kinetic
     # energy (icvelocity); elsewhere every velocity alike
     scale, free = velocity_scale(lay, y, u_idx) if initial else (None, None)
-    deck_u = y[u_idx].copy()
+    deck_u = y[u_idx].copy() if initial else None
     stages = ([(u_idx, scale)] if free is None or free.all() or not free.any()
               else [(u_idx[free], scale[free]), (u_idx, scale)])
-
-    def met():
-        return np.abs(r[held]).max() <= 1e-14 * (1.0 + np.abs(y[u_idx]).max())
     # Newton on the held rates (one step when they are linear in u; a relation of velocities
     # may not be)
+    met = False
     for _ in range(iters if len(held) else 0):
         J = _Jac(kernel, t, y, yp, 0.0)
         for cols, s in stages:
             y[cols] += J.least_change(lam[held], cols, -r[held], s)
             r = kernel.residual_array(t, y, yp)[lam]
-            if met():
+            met = np.abs(r[held]).max() <= 1e-14 * (1.0 + np.abs(y[u_idx]).max())
+            if met:
                 break
-        if met():
+        if met:
             break
     if initial:
-        kernel.start_notes = changed_given(lay, u_idx, deck_u, y[u_idx])
+        kernel.start_notes = changed_given(lay, u_idx, deck_u, y[u_idx], ~free)
     # 3. accelerations and reactions (linear in them unless forces read accelerations)
     rows = np.setdiff1d(np.arange(kernel.ny), lay.algebraic)
     for _ in range(4):

@@ -39,11 +39,11 @@ def velocity_scale(lay, y, u_idx):
     return 1.0 / np.sqrt(metric), ~(u > GIVEN * size)
 
 
-def changed_given(lay, u_idx, deck, now):
-    """The run log's line naming the velocities the deck gives that the constraints made
-    change (by more than 1e-9 relative), with their values before and after; none when they
-    all stayed."""
-    moved = (deck != 0.0) & (np.abs(now - deck) > 1e-9 * np.abs(deck))
+def changed_given(lay, u_idx, deck, now, given):
+    """The run log's line naming the velocities the deck gives (`given`, as
+    :func:`velocity_scale` found them) that the constraints made change (by more than 1e-9
+    relative), with their values before and after; none when they all stayed."""
+    moved = given & (np.abs(now - deck) > 1e-9 * np.abs(deck))
     if not moved.any():
         return []
     names = [lay.names[i] for i in u_idx]
