@@ -200,3 +200,69 @@ def test_a_spline_whose_data_starts_at_the_run_start():
     after = pysolver.loads(text).run()
     assert after.success and np.array_equal(after.t, res.t), after.message
     np.testing.assert_allclose(after.request(1)[1:, :2], r[1:, :2], rtol=0, atol=1e-9)
+
+
+# a slider driven along x by a spline of time, carrying a pendulum hinged about y: a velocity
+# jump of the slider is an impulse on the pendulum
+SLIDER_PENDULUM = """<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>
+  <Reference_Marker id="1" body_id="1" psi="1.5707963267948966" theta="1.5707963267948966"/>
+  <Reference_Marker id="10" body_id="2"/>
+  <Body_Rigid id="2" cg_id="10" mass="1" inertia_xx="1" inertia_yy="1" inertia_zz="1"/>
+  <Reference_Marker id="11" body_id="2" psi="1.5707963267948966" theta="1.5707963267948966"/>
+  <Reference_Marker id="12" body_id="2" theta="-1.5707963267948966"/>
+  <Constraint_Joint id="1" type="TRANSLATIONAL" i_marker_id="11" j_marker_id="1"/>
+  <Reference_Marker id="20" body_id="3" pos_z="-1"/>
+  <Body_Rigid id="3" cg_id="20" mass="1" inertia_xx="0.1" inertia_yy="0.1" inertia_zz="0.1"/>
+  <Reference_Marker id="21" body_id="3" theta="-1.5707963267948966"/>
+  <Constraint_Joint id="2" type="REVOLUTE" i_marker_id="21" j_marker_id="12"/>
+  <Reference_Spline id="5"{extrap}>0 0
+0.5 1
+1 1.5
+1.5 1.7</Reference_Spline>
+  <Motion_Joint id="1" joint_id="1" motion_type="T" val_type="{val}" expr="{fn}(TIME,0,5)"/>
+  <Force_Gravity grav_z="-9.81"/>
+  <Post_Request id="1" expr1="DX(20)"/></Model>
+  <Simulate analysis_type="Transient" end_time="{end}" print_interval="0.01"/></MotionSolve>"""
+
+
+@pytest.mark.parametrize("fn, end, knot, words", [
+    ("LINSPL", 1.0, 0.5, "t = 0.5 is a knot of Reference_Spline 5, where LINSPL is continuous "
+     "in value only: Motion_Joint 1's velocity jumps there, which IDA could not step across "
+     "(a spline smooth there, CUBSPL or QUISPL, does not;"),
+    ("CUBSPL", 2.0, 1.5, "t = 1.5 is the last knot of Reference_Spline 5, where CUBSPL's "
+     "extrapolation meets the curve with a slope of its own: Motion_Joint 1's velocity jumps "
+     "there, which IDA could not step across (give the spline's data past the run's ends;")])
+def test_a_failure_at_a_knot_where_a_motion_s_velocity_jumps_names_it(fn, end, knot, words):
+    """A displacement motion through a LINSPL knot, or past a spline's last knot, asks for a
+    velocity jump; at integr_tol 1e-10 IDA stops there, and the message says why."""
+    deck = SLIDER_PENDULUM.format(fn=fn, end=end, val="D", extrap="")
+    res = pysolver.loads(deck).run(integr_tol=1e-10)
+    assert not res.success
+    assert abs(res.t[-1] - knot) < 1e-6
+    assert res.message.startswith(f"IDA failed at t = {knot:g}: ")
+    assert words in res.message
+
+
+def _jumps(fn, val, extrap=False, order=""):
+    from pysolver.solve import kinks
+    deck = SLIDER_PENDULUM.format(fn=fn, end=2.0, val=val,
+                                  extrap=' linear_extrap="TRUE"' if extrap else "")
+    model = pysolver.loads(deck.replace(",5)", f",5{order})")).compile().model
+    return [(x, rate) for x, _, _, _, _, rate, _ in kinks._jumps(model, model.motions[1])]
+
+
+def test_the_knots_where_a_motion_s_rates_jump():
+    """Which knots make which rate of a motion jump: a displacement through LINSPL's inner
+    knots its velocity, through AKISPL's its acceleration, CUBSPL's none; every spline's last
+    knot (its extrapolation's kink) its velocity, except LINSPL's line with linear_extrap;
+    a velocity motion one rate higher; a derivative order one lower; the first knot, at the
+    run's start, never."""
+    inner, last = [0.5, 1.0], [1.5]
+    assert _jumps("LINSPL", "D") == [(x, "velocity") for x in inner + last]
+    assert _jumps("LINSPL", "D", extrap=True) == [(x, "velocity") for x in inner]
+    assert _jumps("AKISPL", "D") == [(x, "acceleration") for x in inner] + [(1.5, "velocity")]
+    assert _jumps("CUBSPL", "D") == [(1.5, "velocity")]
+    assert _jumps("LINSPL", "V") == [(x, "acceleration") for x in inner + last]
+    assert _jumps("CUBSPL", "A") == []
+    assert _jumps("AKISPL", "D", order=",1") == [(x, "velocity") for x in inner] + \
+        [(1.5, "displacement")]

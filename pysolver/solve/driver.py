@@ -19,7 +19,7 @@ from ..build import compliance, usercalls
 from ..build.bindings import ffi, lib
 from ..build.consistent import AssemblyError
 from ..build.kernel import UserFailure
-from . import integrator, nonfinite, quasistatic
+from . import integrator, kinks, nonfinite, quasistatic
 from .actors import Actor, Flow
 from .loadcontrol import Interrupted, LoadControlTask, NonFinite
 from .outputs import Printer, Progress, command_rows, over_budget
@@ -103,7 +103,9 @@ def failure(model, kernel, options, status, t):
     why = nonfinite.describe(model, kernel)
     if why:
         return -700, f"IDA failed at t = {t:.6g} after a {why}"
-    return status, f"IDA failed at t = {t:.6g}: {Step(t, None, None, status).message}"
+    note = kinks.knot_note(model, t, model.commands[-1].end_time)
+    return status, (f"IDA failed at t = {t:.6g}: {Step(t, None, None, status).message}"
+                    + (f" {note}" if note else ""))
 
 
 class Run:
