@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import pysolver
+from pysolver.convert import convert
 from pysolver import DeckError, DeckWarning
 from pysolver.rotations import rot_313, rot_321
 
@@ -169,24 +170,93 @@ def test_a_bad_marker_request_is_a_deck_error(attrs, attribute, words):
                                                                       attribute)
 
 
+#: A body on a spherical joint (5) to a turned ground marker, held by a bushing (6), a
+#: spring-damper (7) and a scalar force (8), with a second body on a revolute (9) driven by a
+#: motion (10): every element type an ELEMENTAL_FORCE request names.
+ELEMENTS = MARKERS + """
+  <Reference_Marker id="22" body_id="2" pos_x="0.3" pos_y="1.1"/>
+  <Reference_Marker id="30" body_id="3" pos_x="2"/><Reference_Marker id="31" body_id="3"
+    pos_x="2" pos_y="0.5"/><Reference_Marker id="4" body_id="1" pos_x="2" pos_y="0.5"/>
+  <Body_Rigid id="3" cg_id="30" mass="2" inertia_xx="0.1" inertia_yy="0.1" inertia_zz="0.1"/>
+  <Constraint_Joint id="5" type="SPHERICAL" i_marker_id="20" j_marker_id="3"/>
+  <Force_Bushing id="6" i_marker_id="21" j_marker_id="1" kx="40" ky="50" kz="60" ktx="3"
+    kty="4" ktz="5" cx="1" cy="1" cz="1" ctx="0.1" cty="0.1" ctz="0.1"/>
+  <Force_SpringDamper id="7" type="TRANSLATIONAL" i_marker_id="22" j_marker_id="1"
+    stiffness="30" damping="0.5" length="0.8"/>
+  <Force_Scalar_TwoBody id="8" type="Force" i_marker_id="22" j_marker_id="3"
+    val_expression="2*SIN(TIME)"/>
+  <Constraint_Joint id="9" type="REVOLUTE" i_marker_id="31" j_marker_id="4"/>
+  <Motion_Joint id="10" joint_id="9" motion_type="R" val_type="D" expr="0.4*SIN(3*TIME)"/>"""
+
+ELEMENT_KINDS = [("JOINT", "JOINT", 5), ("Constraint_Jprim", "JOINT", 5),
+                 ("Bushing", "BUSH", 6), ("SPRINGDAMPER", "SPDP", 7),
+                 ("Force_Scalar_TwoBody", "SFORCE", 8), ("MOTION", "MOTION", 10)]
+
+
+@pytest.mark.parametrize("jflag", ["0", "1"])
+def test_an_elemental_force_request_is_its_element_s_force_function(jflag):
+    """ELEMENTAL_FORCE (what MotionView writes for joint and bushing outputs; its element id
+    attribute, elem_id, is a decision): the element's force and torque on I (jflag 0) or J (1),
+    in ref_marker_id's axes: at every row exactly the EXPRESSION request FN(elem_id, jflag,
+    1..8, rm), with MARKER_FORCE's channel names; and the spherical joint's reaction on the
+    body (jflag 0, global axes) closes Newton's second law of its centre of mass with gravity
+    and the other three forces (1e-7 of the weight)."""
+    reqs = []
+    for k, (kind, fn, eid) in enumerate(ELEMENT_KINDS):
+        reqs.append(f'<Post_Request id="{k + 1}" type="ELEMENTAL_FORCE" elem_type="{kind}" '
+                    f'elem_id="{eid}" jflag="{jflag}" ref_marker_id="3"/>')
+        reqs.append(f'<Post_Request id="{k + 11}" ' + " ".join(
+            f'expr{c}="{fn}({eid},{jflag},{c},3)"' for c in range(1, 9)) + "/>")
+    reqs.append('<Post_Request id="30" type="ELEMENTAL_FORCE" elem_type="JOINT" elem_id="5"/>'
+                '<Post_Request id="31" type="MARKER_ACCELERATION" i_marker_id="20"/>'
+                + "".join(f'<Post_Request id="{32 + n}" type="ELEMENTAL_FORCE" '
+                          f'elem_type="{kind}" elem_id="{eid}"/>'
+                          for n, (kind, eid) in enumerate((("BUSHING", 6), ("SPRINGDAMPER", 7),
+                                                           ("SFORCE", 8)))))
+    model = pysolver.loads(_scene(ELEMENTS, "".join(reqs), end="0.5"))
+    res = model.run(integr_tol=1e-10)
+    assert res.success, res.message
+    for k in range(len(ELEMENT_KINDS)):
+        assert model.requests[k + 1].names == ["fm", "fx", "fy", "fz", "tm", "tx", "ty", "tz"]
+        np.testing.assert_array_equal(res.request(k + 1), res.request(k + 11))
+    if jflag == "0":
+        # m a = m g + joint + bushing + spring + sforce, each force's action on body 2
+        total = sum(res.request(i)[:, 1:4] for i in (30, 32, 33, 34))
+        ma = 1.5 * (res.request(31)[:, 1:4] - [0.0, -9.81, 0.0])
+        np.testing.assert_allclose(total, ma, rtol=0, atol=1e-7 * 1.5 * 9.81)
+        assert np.abs(res.request(30)[:, 2]).max() > 1.0       # the joint carries load
+
+
 @pytest.mark.parametrize("attrs, attribute, message", [
-    ('type="ELEMENTAL_FORCE" elem_type="JOINT" elem_id="301001" ref_marker_id="3"', "type",
-     "type ELEMENTAL_FORCE is not supported yet; an EXPRESSION request with expr1..expr8 = "
-     "JOINT(301001, 0, 1..8, 3) reports the joint's force and torque on I"),
-    ('type="ELEMENTAL_FORCE" elem_type="Bushing" elem_id="7"', "type",
-     "type ELEMENTAL_FORCE is not supported yet; an EXPRESSION request with expr1..expr8 = "
-     "BUSH(7, 0, 1..8, 0) reports the bushing's force and torque on I"),
-    ('type="ELEMENTAL_FORCE" elem_type="CONTACT" elem_id="7"', "type",
-     "type ELEMENTAL_FORCE is not supported yet; an EXPRESSION request reads an element's "
-     "force and torque with BUSH, JOINT, MOTION, SFORCE, SPDP(id, jflag, comp, rm)"),
+    ('type="ELEMENTAL_FORCE" elem_type="CONTACT" elem_id="7"', "elem_type",
+     "got 'CONTACT'; expected an element with a force function: JOINT (JPRIM), BUSHING, "
+     "SPRINGDAMPER, SFORCE or MOTION"),
+    ('type="ELEMENTAL_FORCE" elem_id="5"', "elem_type",
+     "an ELEMENTAL_FORCE request needs elem_type"),
+    ('type="ELEMENTAL_FORCE" elem_type="JOINT"', "elem_id",
+     "an ELEMENTAL_FORCE request needs elem_id"),
+    ('type="ELEMENTAL_FORCE" elem_type="JOINT" elem_id="99"', "elem_id",
+     "joint 99 does not exist"),
+    ('type="ELEMENTAL_FORCE" elem_type="BUSHING" elem_id="5"', "elem_id",
+     "bushing 5 does not exist"),
+    ('type="ELEMENTAL_FORCE" elem_type="JOINT" elem_id="5" ref_marker_id="98"',
+     "ref_marker_id", "marker 98 does not exist"),
+    ('type="ELEMENTAL_FORCE" elem_type="JOINT" elem_id="5" jflag="2"', "jflag",
+     "got '2'; expected one of 0, 1"),
+    ('type="ELEMENTAL_FORCE" elem_type="JOINT" elem_id="5" i_marker_id="20"', "i_marker_id",
+     "an ELEMENTAL_FORCE request computes its channels from elem_type, elem_id, jflag and "
+     "ref_marker_id"),
+    ('type="ELEMENTAL_FORCE" elem_type="JOINT" elem_id="5" expr2="TIME"', "expr2",
+     "an ELEMENTAL_FORCE request computes its channels from elem_type, elem_id, jflag and "
+     "ref_marker_id"),
     ('expr1="TIME" elem_id="7"', "elem_id",
      "elem_id belongs to an ELEMENTAL_FORCE request, not EXPRESSION"),
+    ('type="MARKER_FORCE" i_marker_id="20" jflag="1"', "jflag",
+     "jflag belongs to an ELEMENTAL_FORCE request, not MARKER_FORCE"),
 ])
-def test_an_elemental_force_request_names_the_expression_request_instead(attrs, attribute,
-                                                                          message):
-    """MotionView writes ELEMENTAL_FORCE for joint and bushing outputs: one DeckError on the
-    type (it was 'elem_type: unknown attribute') that says what reports the same."""
-    text = _scene(MARKERS, f'<Post_Request id="4" {attrs}/>')
+def test_a_bad_elemental_force_request_is_a_deck_error(attrs, attribute, message):
+    """One DeckError on the element, line and attribute, saying what was expected."""
+    text = _scene(ELEMENTS, f'<Post_Request id="4" {attrs}/>')
     with pytest.raises(DeckError) as err:
         pysolver.loads(text)
     assert (err.value.element, err.value.id, err.value.attribute) == ("Post_Request", 4,
@@ -194,6 +264,25 @@ def test_an_elemental_force_request_names_the_expression_request_instead(attrs, 
     assert str(err.value).endswith(f"attribute '{attribute}': {message}")
     assert err.value.line == text.splitlines().index(
         next(ln for ln in text.splitlines() if "Post_Request" in ln)) + 1
+
+
+@pytest.mark.parametrize("suffix", [".adm", ".py"])
+def test_an_elemental_force_request_converts_to_its_functions(tmp_path, suffix):
+    """Adams and msolve have no ELEMENTAL_FORCE: a conversion writes the element's force
+    function in F1..F8 with the channel names, and runs the same (1e-9)."""
+    req = ('<Post_Request id="1" type="ELEMENTAL_FORCE" elem_type="Bushing" elem_id="6" '
+           'jflag="1" ref_marker_id="3" name2="bx"/>')
+    src = tmp_path / "deck.xml"
+    src.write_text(_scene(ELEMENTS, req, end="0.3"))
+    out = tmp_path / f"deck{suffix}"
+    convert(src, out)
+    text = out.read_text()
+    assert "BUSH(6,1,2,3)" in text.replace(" ", "")
+    a, b = pysolver.load(src).run(), pysolver.load(out).run()
+    assert a.success and b.success
+    np.testing.assert_allclose(b.request(1), a.request(1), rtol=0, atol=1e-9)
+    assert pysolver.load(out).requests[1].names == ["fm", "bx", "fy", "fz", "tm", "tx", "ty",
+                                                    "tz"]
 
 
 def test_two_orientation_forms_on_one_marker_are_a_deck_error():

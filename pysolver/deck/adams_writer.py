@@ -23,6 +23,7 @@ from . import usersubs
 from .adams import axes_from_points
 from .adams_statements import JPRIM_TYPES
 from .expr import _TOKEN
+from .requests import FORCE_NAMES, elemental_texts
 from .writer import relocate, typed
 
 #: Lines are kept to Adams' 80 columns where a break is allowed.
@@ -414,6 +415,12 @@ _REQUESTS = {"MARKER_DISPLACEMENT": "DISPLACEMENT", "MARKER_VELOCITY": "VELOCITY
 def _request(el, model, els, k):
     a = el.a
     args = []
+    if a["type"] == "ELEMENTAL_FORCE":
+        # no Adams form of its own: the element's force function in F1..F8, named
+        args += [(f"F{n}", Function(t)) for n, t in enumerate(elemental_texts(a), 1)]
+        args.append(("CNAMES", [a.get(f"name{n}") or FORCE_NAMES[n - 1] for n in range(1, 9)]))
+        return [Statement("REQUEST", a["id"], args + _args(el, (("comment", "COMMENT"),)),
+                          _label(el))]
     if a["type"] in _REQUESTS:
         args.append((_REQUESTS[a["type"]], None))
         args += _marker_ref(el, "i_marker_id", "I") + _marker_ref(el, "j_marker_id", "J") + \

@@ -25,6 +25,9 @@ def check_references(model):
         ctx.id = key[1]
         for kind, ids in ex.references(tree).items():
             for i in sorted(ids):
+                if i not in tables[kind] and ("elemental", key[1]) in where and \
+                        key[0] == "request":
+                    raise ctx.error(f"{kind} {i} does not exist", "elem_id")
                 if i not in tables[kind]:
                     raise ctx.error(f"the expression refers to {kind} id {i}, which does not "
                                     "exist", attr)

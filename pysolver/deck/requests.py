@@ -35,28 +35,52 @@ CHANNELS = {
 
 
 #: The force function of each elem_type of an ELEMENTAL_FORCE request (the type MotionView
-#: writes for joint and bushing outputs), which an EXPRESSION request reads instead.
-ELEMENT_FUNCTIONS = {"JOINT": "JOINT", "BUSHING": "BUSH", "SPRINGDAMPER": "SPDP",
-                     "SFORCE": "SFORCE", "MOTION": "MOTION"}
+#: writes for joint and bushing outputs), by the Adams statement's name or the XML element's.
+ELEMENT_FUNCTIONS = {"JOINT": "JOINT", "JPRIM": "JOINT", "CONSTRAINT_JOINT": "JOINT",
+                     "CONSTRAINT_JPRIM": "JOINT", "BUSHING": "BUSH", "FORCE_BUSHING": "BUSH",
+                     "SPRINGDAMPER": "SPDP", "FORCE_SPRINGDAMPER": "SPDP", "SFORCE": "SFORCE",
+                     "FORCE_SCALAR_TWOBODY": "SFORCE", "MOTION": "MOTION",
+                     "MOTION_JOINT": "MOTION", "MOTION_MARKER": "MOTION"}
+#: The channels of an ELEMENTAL_FORCE request: comp 1..8 of the element's force function.
+FORCE_NAMES = ("fm", "fx", "fy", "fz", "tm", "tx", "ty", "tz")
 
 
-def refuse_elemental(ctx, a):
-    """The DeckError of an ELEMENTAL_FORCE request (not computed yet): it names the
-    EXPRESSION request that reports the element's force and torque (elem_type and elem_id
-    on another type: a DeckError that they belong to ELEMENTAL_FORCE)."""
+def elemental_texts(a):
+    """The eight expressions of an ELEMENTAL_FORCE request's attributes `a` (checked by
+    :func:`elemental_channels`): ``FN(elem_id, jflag, 1..8, ref_marker_id)``."""
+    fn = ELEMENT_FUNCTIONS[str(a["elem_type"]).upper()]
+    ids = (a["elem_id"], int(a.get("jflag") or 0), a.get("ref_marker_id") or 0)
+    return [f"{fn}({ids[0]},{ids[1]},{k},{ids[2]})" for k in range(1, 9)]
+
+
+def elemental_channels(ctx, a, markers):
+    """(trees, texts, names) of an ELEMENTAL_FORCE request: the force and torque of element
+    elem_id of elem_type on I's body at I (jflag 0) or on J's at J (1), in ref_marker_id's
+    axes (default: global); DeckError for what does not belong to one, or is missing. That
+    the element exists is checked with the deck's other references."""
     if a["type"] != "ELEMENTAL_FORCE":
-        key = "elem_type" if a.get("elem_type") is not None else "elem_id"
+        key = "elem_type" if a.get("elem_type") is not None else \
+            "elem_id" if a.get("elem_id") is not None else "jflag"
         raise ctx.error(f"{key} belongs to an ELEMENTAL_FORCE request, not {a['type']}", key)
-    kind = str(a.get("elem_type") or "").upper()
-    fn = ELEMENT_FUNCTIONS.get(kind)
-    if fn is None or a.get("elem_id") is None:
-        how = ("an EXPRESSION request reads an element's force and torque with "
-               f"{', '.join(sorted(set(ELEMENT_FUNCTIONS.values())))}(id, jflag, comp, rm)")
-    else:
-        how = (f"an EXPRESSION request with expr1..expr8 = {fn}({a['elem_id']}, 0, 1..8, "
-               f"{a.get('ref_marker_id') or 0}) reports the {kind.lower()}'s force and "
-               "torque on I")
-    raise ctx.error(f"type ELEMENTAL_FORCE is not supported yet; {how}", "type")
+    wrong = [k for k in ("i_marker_id", "j_marker_id", *(f"expr{n}" for n in range(1, 9)))
+             if a.get(k) is not None]
+    if wrong:
+        raise ctx.error("an ELEMENTAL_FORCE request computes its channels from elem_type, "
+                        "elem_id, jflag and ref_marker_id", wrong[0])
+    if a.get("elem_type") is None:
+        raise ctx.error("an ELEMENTAL_FORCE request needs elem_type", "elem_type")
+    if str(a["elem_type"]).upper() not in ELEMENT_FUNCTIONS:
+        raise ctx.error(f"got {a['elem_type']!r}; expected an element with a force function: "
+                        "JOINT (JPRIM), BUSHING, SPRINGDAMPER, SFORCE or MOTION", "elem_type")
+    if a.get("elem_id") is None:
+        raise ctx.error("an ELEMENTAL_FORCE request needs elem_id", "elem_id")
+    if a.get("ref_marker_id") and a["ref_marker_id"] not in markers:
+        raise ctx.error(f"marker {a['ref_marker_id']} does not exist", "ref_marker_id")
+    texts = elemental_texts(a)
+    trees = [_call(t[:t.index("(")], [int(v) for v in t[t.index("(") + 1:-1].split(",")])
+             for t in texts]
+    names = [a.get(f"name{k + 1}") or FORCE_NAMES[k] for k in range(8)]
+    return trees, texts, names
 
 
 def _call(name, ids):

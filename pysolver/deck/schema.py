@@ -148,6 +148,7 @@ SCHEMA = {
                                "MARKER_ACCELERATION", "MARKER_FORCE", "ELEMENTAL_FORCE"), OPT,
                               "EXPRESSION"),
                      "elem_type": ("str", OPT, None), "elem_id": ("id", OPT, None),
+                     "jflag": (("0", "1"), OPT, None),
                      "i_marker_id": ("id", OPT, None), "j_marker_id": ("id", OPT, None),
                      "ref_marker_id": ("id", OPT, None),
                      "comment": ("str", OPT, ""), **_USERSUB,

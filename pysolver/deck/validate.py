@@ -29,7 +29,7 @@ from .bodies import add_bodies
 from .joints import add_coupler, add_gcon, add_joint
 from .motions import add_joint_motion, add_motion
 from .references import check_references, velocity_level
-from .requests import marker_channels, refuse_elemental
+from .requests import elemental_channels, marker_channels
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes, element_file
 from .splinedata import add_spline
 from .springs import add_springdamper
@@ -385,8 +385,11 @@ def _force_like(model, ctx, a):
         model.evaluates[a["id"]] = Evaluate(a["id"], tree, text, a["label"], sub)
         model._where[("evaluate", a["id"])] = ctx
     elif tag == "Post_Request" and (a["type"] == "ELEMENTAL_FORCE" or a["elem_type"] is not None
-                                    or a["elem_id"] is not None):
-        refuse_elemental(ctx, a)
+                                    or a["elem_id"] is not None or a["jflag"] is not None):
+        trees, texts, names = elemental_channels(ctx, a, model.markers)
+        model.requests[a["id"]] = Request(a["id"], trees, texts, names, a["label"], None)
+        model._where[("request", a["id"])] = ctx
+        model._where[("elemental", a["id"])] = ctx
     elif tag == "Post_Request" and a["type"].startswith("MARKER_"):
         for key in ("usrsub_param_string", "script_name", "usrsub_dll_name"):
             if a.get(key) is not None:
