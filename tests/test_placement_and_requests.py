@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import pysolver
-from pysolver.convert import convert
 from pysolver import DeckError, DeckWarning
+from pysolver.convert import convert
 from pysolver.rotations import rot_313, rot_321
 
 RNG = np.random.default_rng(7)
