@@ -105,6 +105,8 @@ class Layout:
         # joint_rows the joints' (jid, k), then the general constraints'; redundant equations
         # (`removed`, found by pysolver.build.consistent.redundant) are left out
         self.joint_rows, self.constraint_rows = [], []
+        # the joint equations holding an angle between axes (their rates are angular rates)
+        self.angular_rows = set()
         equations = [("joint", jid, len(catalogue.JOINT_EQUATIONS[model.joints[jid].type]))
                      for jid in sorted(model.joints)]
         equations += [("gcon", gid, 1) for gid in sorted(model.gcons)]
@@ -119,6 +121,9 @@ class Layout:
                 self.constraint_rows.append((kind, jid, k))
                 if kind == "joint":
                     self.joint_rows.append((jid, k))
+                    eq = catalogue.JOINT_EQUATIONS[model.joints[jid].type][k][0]
+                    if eq in ("dot", "dot2"):
+                        self.angular_rows.add((kind, jid, k))
                 held = (kind, jid) not in rate_only
                 self.lam.append(off)
                 self.mu.append(off + 1 if held else -1)
