@@ -254,9 +254,49 @@ int ps_penalty_loads(const psModel* m, psData* d, double t, const double* y, con
 /* Unit roundoff of a double (2^-53). */
 #define PS_UNIT_ROUNDOFF 1.1102230246251565e-16
 
+/* The share of the most a body carried over the run that its final forces are measured
+ * against at least (pysolver/solve/precision.py). */
+#define PS_PRECISION_CARRIED 1e-3
+
+/* The net of every force but reactions on each row at (t, y): the residual at yp = 0 with the
+ * reactions zero (free_y: y with them zeroed, zero: ny zeros). */
+static void net_forces(const psModel* m, psData* d, double t, const double* y, double* free_y,
+                       double* zero, double* net) {
+  int n = m->ny;
+  for (int i = 0; i < n; i++) {
+    zero[i] = 0.0;
+    free_y[i] = m->state_alg[i] == 1 ? 0.0 : y[i];   /* tracked angles (2) are kept */
+  }
+  if (m->gen)
+    m->gen->residual(m, d, t, free_y, zero, 0.0, net);
+  else {
+    Assembly as = {net, NULL, NULL, NULL, NULL, 0, 0, 0.0, n};
+    assemble(m, d, t, free_y, zero, &as);
+  }
+}
+
+/* The translational force rows of body b: 2 for a planar body (its third is its moment). */
+static int force_rows(const psModel* m, int b) {
+  return m->body_type[b] == PS_BODY_PLANAR ? 2 : 3;
+}
+
+void ps_carried(const psModel* m, psData* d, double t, const double* y, double* work,
+                double* carried) {
+  long nres = d->nres;
+  double *net = work, *free_y = work + m->ny, *zero = work + 2 * m->ny;
+  net_forces(m, d, t, y, free_y, zero, net);
+  d->nres = nres;
+  for (int b = 0; b < m->nbody; b++) {
+    int u = m->body_uadr[b];
+    double f = 0.0;
+    for (int c = 0; c < force_rows(m, b); c++) f += net[u + c] * net[u + c];
+    carried[b] = sqrt(f);
+  }
+}
+
 double ps_precision(const psModel* m, psData* d, double t, const double* y,
                     const double* yp, const int* trow, const int* tcol, int ntrip,
-                    double* work, int* body) {
+                    const double* carried, double* work, int* body) {
   int n = m->ny;
   double *noise = work, *net = work + n, *free_y = work + 2 * n, *zero = work + 3 * n;
   /* the counters and the step bookkeeping are the run's: this is not a step */
@@ -272,22 +312,13 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
     Assembly as = {d->res, NULL, d->trip, NULL, NULL, 0, 1, 0.0, n};
     assemble(m, d, t, y, yp, &as);
   }
-  /* the state's rounding: reactions are not rounded positions */
-  for (int i = 0; i < n; i++) {
-    noise[i] = 0.0;
-    zero[i] = 0.0;
-    free_y[i] = m->state_alg[i] == 1 ? 0.0 : y[i];   /* tracked angles (2) are kept */
-  }
-  for (int k = 0; k < ntrip; k++)
-    noise[trow[k]] += fabs(d->trip[k]) * fabs(free_y[tcol[k]]) * PS_UNIT_ROUNDOFF;
   /* the forces each row carries, in the residual's units: the net of every force but
    * reactions (the residual at yp = 0 without them) */
-  if (m->gen)
-    m->gen->residual(m, d, t, free_y, zero, 0.0, net);
-  else {
-    Assembly as = {net, NULL, NULL, NULL, NULL, 0, 0, 0.0, n};
-    assemble(m, d, t, free_y, zero, &as);
-  }
+  net_forces(m, d, t, y, free_y, zero, net);
+  /* the state's rounding: reactions are not rounded positions */
+  for (int i = 0; i < n; i++) noise[i] = 0.0;
+  for (int k = 0; k < ntrip; k++)
+    noise[trow[k]] += fabs(d->trip[k]) * fabs(free_y[tcol[k]]) * PS_UNIT_ROUNDOFF;
   d->nres = nres;
   d->njac = njac;
   double g = sqrt(m->gravity[0] * m->gravity[0] + m->gravity[1] * m->gravity[1] +
@@ -297,13 +328,17 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
     int u = m->body_uadr[b];
     double a = 0.0, f = 0.0, most = 0.0;
     /* a planar body's third velocity row is its moment row (Izz wz'), not a force row */
-    for (int c = 0; c < (m->body_type[b] == PS_BODY_PLANAR ? 2 : 3); c++) {
+    for (int c = 0; c < force_rows(m, b); c++) {
       a += yp[u + c] * yp[u + c];
       f += net[u + c] * net[u + c];
       if (noise[u + c] > most) most = noise[u + c];
     }
     a = sqrt(a);
     double ref = m->body_mass[b] * (a > g ? a : g) + sqrt(f);
+    if (carried) {
+      if (PS_PRECISION_CARRIED * carried[b] > ref) ref = PS_PRECISION_CARRIED * carried[b];
+      if (g == 0.0 && ref < most) continue;
+    }
     if (ref > 0.0 && most / ref > worst) {
       worst = most / ref;
       *body = b;

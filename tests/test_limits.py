@@ -105,6 +105,56 @@ def test_the_example_decks_are_within_double_precision(deck):
     assert res.status != -710, res.message
 
 
+# a part on a translational joint along x and a spring-damper of free length `length`, no
+# gravity (trial 43: each of these right answers was reported as -710)
+SLIDE = """slide
+UNITS/SYSTEM=MKS
+PART/1, GROUND
+MARKER/1, PART=1
+MARKER/12, PART=1, REULER=90D,90D,0
+PART/2, MASS=1, CM=20, IP=1,1,1, QG={x0},0,0
+MARKER/20, PART=2
+MARKER/21, PART=2, REULER=90D,90D,0
+JOINT/1, TRANSLATIONAL, I=21, J=12
+SPRINGDAMPER/1, TRANSLATIONAL, I=20, J=1, K={k}, C={c}, LENGTH={length}
+REQUEST/1, F1=DX(20)\\
+END
+"""
+
+
+@pytest.mark.parametrize("x0, k, c, length, commands, settled", [
+    (0.5, 100, 1, 0.5, "SIMULATE/DYNAMICS, END=1, STEPS=10", 0.5),
+    (0.5, 100, 1, 0.4, "SIMULATE/DYNAMICS, END=30, STEPS=100", 0.4),
+    (0.5, 100, 0, 0.4, "SIMULATE/STATICS\nSIMULATE/DYNAMICS, END=1, STEPS=10", 0.4)])
+def test_a_body_at_rest_carrying_nothing_is_within_double_precision(tmp_path, x0, k, c,
+                                                                     length, commands,
+                                                                     settled):
+    """Without gravity, a part left at its spring's free length, a damped oscillator run
+    until it has settled (e^-15 of its start), or a spring at its static equilibrium carry
+    no force at the end, and their rounding was measured against rounding (-710: "2.2e+18 of
+    the forces it carries"). Each body is measured against a share of the largest force it
+    carried over the run, and one that never carried more than its rounding is left out."""
+    res = _slide(tmp_path, commands, x0=x0, k=k, c=c, length=length).run()
+    assert res.success, res.message
+    assert res.request(1)[-1, 0] == pytest.approx(settled, abs=1e-6)
+
+
+def _slide(folder, commands, **numbers):
+    (folder / "slide.adm").write_text(SLIDE.format(**numbers))
+    (folder / "slide.acf").write_text(f"slide.adm\nslide\n{commands}\nSTOP\n")
+    return pysolver.load(folder / "slide.acf")
+
+
+def test_a_stiff_spring_without_gravity_past_double_precision_is_still_caught(tmp_path):
+    """What the run carried does not hide a real case: a 1e17 N/m spring 1e-12 m from its
+    free length of 0.5 m swings with forces of 1e5 N, which the rounding of its position
+    (u k |x| = 5.6 N) moves by 5 % of the 100 N share it is measured against: -710."""
+    res = _slide(tmp_path, "SIMULATE/DYNAMICS, END=1, STEPS=10", x0=0.5 + 1e-12, k=1e17, c=0,
+                 length=0.5).run()
+    assert not res.success and res.status == -710
+    assert "lower the stiffness of the scene's stiffest force element" in res.message
+
+
 # item 6: numbers IDA cannot use --------------------------------------------------------------
 @pytest.mark.parametrize("old, new, attribute, match", [
     ('grav_y="-9.81"', 'grav_y="-1e308"', "grav_y", r"got -1e\+308; expected \|grav_y\| <= 1e\+20"),

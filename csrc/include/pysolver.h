@@ -613,14 +613,24 @@ int ps_interrupted(void);
  * the moving bodies, of the change the rounding of the state can make in a body's
  * translational force rows (sum over j of |dF_r/dy_j| u |y_j|, reactions left out) to the
  * forces the body carries (its mass times the larger of |gravity| and its acceleration, and
- * the net applied force without reactions). trow and tcol (ntrip entries) are the kernel's
+ * the net applied force without reactions), or 1e-3 carried[b] where that is larger
+ * (carried: the largest net force each body carried over the run, ps_carried, or NULL; so
+ * that a body that comes to rest unloaded is not measured against nothing; without gravity,
+ * a body that carries less than its rounding change even so has no load to resolve and is
+ * left out). trow and tcol (ntrip entries) are the kernel's
  * Jacobian triplet pattern (ps_jacobian_pattern; ignored with a generated library, which has
  * its own); work holds 4 ny doubles. *body is the worst body's
  * index, or -1 when no body carries a force (the ratio is then 0; NaN when a value is not
  * finite). The run's call counters are left as they were. */
 double ps_precision(const psModel* m, psData* d, double t, const double* y,
                     const double* yp, const int* trow, const int* tcol, int ntrip,
-                    double* work, int* body);
+                    const double* carried, double* work, int* body);
+
+/* The net force on each body at (t, y) without reactions (the magnitude of its translational
+ * force rows at yp = 0, as ps_precision takes it) into carried (nbody); work holds 3 ny
+ * doubles. The run's call counters are left as they were. */
+void ps_carried(const psModel* m, psData* d, double t, const double* y, double* work,
+                double* carried);
 
 /* Write into q (length m->ny) the generalized forces of all Force_Penalty elements at
  * (t, y, yp), in model force units, on the velocity rows (zero elsewhere): the contact load a

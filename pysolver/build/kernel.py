@@ -204,8 +204,17 @@ class Kernel:
                              fb("double[]", q))
         return q
 
-    def precision(self, t, y, yp):
-        """(ratio, body index or -1) of ps_precision at (t, y, yp)."""
+    def carried(self, t, y):
+        """The net force on each body at (t, y) without reactions (ps_carried)."""
+        out, work = np.zeros(max(len(self.layout.bodies), 1)), np.zeros(3 * self.ny)
+        fb = ffi.from_buffer
+        lib.ps_carried(self.m, self.d, t, fb("double[]", np.ascontiguousarray(y, float)),
+                       fb("double[]", work), fb("double[]", out))
+        return out
+
+    def precision(self, t, y, yp, carried=None):
+        """(ratio, body index or -1) of ps_precision at (t, y, yp); `carried`: what each
+        body carried over the run (None: not known)."""
         if self._precision_work is None:         # the arrays, and the C pointers into them
             if self.codegen["kernel"] == "generated":
                 rows = cols = np.zeros(1, np.int32)     # the library has its own pattern
@@ -220,7 +229,9 @@ class Kernel:
         fb = ffi.from_buffer
         ratio = lib.ps_precision(self.m, self.d, t, fb("double[]", np.ascontiguousarray(y, float)),
                                  fb("double[]", np.ascontiguousarray(yp, float)), rows, cols, n,
-                                 work, body)
+                                 ffi.NULL if carried is None else
+                                 fb("double[]", np.ascontiguousarray(carried, float)), work,
+                                 body)
         return ratio, body[0]
 
     def sparsity(self):
