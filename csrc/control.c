@@ -325,44 +325,95 @@ static int rate_residual(const psModel* m, psData* d, const psRestart* r, double
   return PS_OK;
 }
 
-/* Step 3: accelerations and reactions from the residual rows and the time derivative of the
- * rate rows, a saddle-point system. */
-static int accelerations(const psModel* m, psData* d, const psRestart* r, double t, double* y,
-                         double* yp) {
+/* One Newton step of step 3 (accelerations and reactions from the residual rows and the time
+ * derivative of the rate rows, a saddle-point system) at (t, y, yp), in place; *done: the
+ * step was below PS_RESTART_ACC_TOL of the values' size. r->res keeps the residual it started
+ * from. */
+static int acc_step(const psModel* m, psData* d, const psRestart* r, double t, double* y,
+                    double* yp, int timed, int* done) {
   int ny = m->ny, nr = r->nrow, nl = r->nlam, n = nr + nl;
   double* S = r->saddle;
   double* z = r->rhs;
-  for (int it = 0; it < PS_RESTART_ACC_ITERS; it++) {
-    int rc = jacobian(m, d, r, t, y, yp, 0.0, r->J0);
-    if (rc == PS_OK) rc = jacobian(m, d, r, t, y, yp, 1.0, r->J1);
-    if (rc == PS_OK) rc = ps_residual(m, d, t, y, yp, r->res);
-    /* the rate rows' time derivative from after t (the run goes on from t: a motion's rate
-     * may kink there, a spline's data start), second order: (4 R(t+h) - 3 R(t) - R(t+2h)) /
-     * 2h, in the order consistent() takes it, so that both give the same bits */
-    double h = 1e-6 * fmax(1.0, fabs(t));
-    if (rc == PS_OK) rc = rate_residual(m, d, r, t + h, y, yp, r->res2);
-    for (int k = 0; k < nl && rc == PS_OK; k++)
-      r->g[k] = 4 * r->res2[r->lam[k]] - 3 * r->res[r->lam[k]];
-    if (rc == PS_OK) rc = rate_residual(m, d, r, t + 2 * h, y, yp, r->res2);
+  int rc = jacobian(m, d, r, t, y, yp, 0.0, r->J0);
+  if (rc == PS_OK) rc = jacobian(m, d, r, t, y, yp, 1.0, r->J1);
+  if (rc == PS_OK) rc = ps_residual(m, d, t, y, yp, r->res);
+  /* the rate rows' time derivative from after t (the run goes on from t: a motion's rate
+   * may kink there, a spline's data start), second order: (4 R(t+h) - 3 R(t) - R(t+2h)) /
+   * 2h, in the order consistent() takes it, so that both give the same bits */
+  double h = 1e-6 * fmax(1.0, fabs(t));
+  if (rc == PS_OK && timed) rc = rate_residual(m, d, r, t + h, y, yp, r->res2);
+  for (int k = 0; k < nl && rc == PS_OK; k++)
+    r->g[k] = timed ? 4 * r->res2[r->lam[k]] - 3 * r->res[r->lam[k]] : 0.0;
+  if (rc == PS_OK && timed) rc = rate_residual(m, d, r, t + 2 * h, y, yp, r->res2);
+  if (rc != PS_OK) return rc;
+  /* rate rows that do not read time: their time derivative is zero */
+  for (int k = 0; k < nl && !timed; k++) r->res2[r->lam[k]] = 0.0;
+  if (r->sparse) {
+    if (saddle_sparse(r, h, yp, z) != PS_OK) return PS_ERR_SINGULAR;
+  } else {
+    saddle_dense(r, ny, h, yp, S, z);
+    if (psu_dense_solve(n, S, z, NULL) != PS_OK) return PS_ERR_SINGULAR;
+  }
+  for (int i = 0; i < nr; i++) yp[r->row[i]] += z[i];
+  for (int i = 0; i < nl; i++) y[r->lam[i]] += z[nr + i];
+  double step = maxabs(z, NULL, n);
+  if (!isfinite(step)) return PS_ERR_SINGULAR;
+  double size = fmax(maxabs(yp, NULL, ny), maxabs(y, r->lam, nl));
+  *done = step <= PS_RESTART_ACC_TOL * (1.0 + size);
+  return PS_OK;
+}
+
+/* Step 3: accelerations and reactions, Newton steps until one is below the tolerance. */
+static int accelerations(const psModel* m, psData* d, const psRestart* r, double t, double* y,
+                         double* yp) {
+  int done = 0;
+  for (int it = 0; it < PS_RESTART_ACC_ITERS && !done; it++) {
+    int rc = acc_step(m, d, r, t, y, yp, 1, &done);
     if (rc != PS_OK) return rc;
-    if (r->sparse) {
-      if (saddle_sparse(r, h, yp, z) != PS_OK) return PS_ERR_SINGULAR;
-    } else {
-      saddle_dense(r, ny, h, yp, S, z);
-      if (psu_dense_solve(n, S, z, NULL) != PS_OK) return PS_ERR_SINGULAR;
-    }
-    double step = 0.0, size = 0.0;
-    for (int i = 0; i < nr; i++) yp[r->row[i]] += z[i];
-    for (int i = 0; i < nl; i++) y[r->lam[i]] += z[nr + i];
-    step = maxabs(z, NULL, n);
-    if (!isfinite(step)) return PS_ERR_SINGULAR;
-    size = fmax(maxabs(yp, NULL, ny), maxabs(y, r->lam, nl));
-    if (step <= PS_RESTART_ACC_TOL * (1.0 + size)) break;
   }
   return PS_OK;
 }
 
+/* The largest |residual| over the force rows (r->row) of res. */
+static double force_rows_max(const psRestart* r, const double* res) {
+  double e = 0.0;
+  for (int i = 0; i < r->nrow; i++) e = fmax(e, fabs(res[r->row[i]]));
+  return e;
+}
 
+int ps_row_exact(const psModel* m, psData* d, const psRestart* r, double t, double* y,
+                 double* yp) {
+  int ny = m->ny;
+  /* its residuals at t + h are not step attempts, nor bound by max_num_steps */
+  long ntimes = d->ntimes, nfail = d->nfail, limit = d->step_limit;
+  double last = d->last_t;
+  d->step_limit = 0;
+  memcpy(r->ybak, y, sizeof(double) * (size_t)ny);
+  memcpy(r->ypbak, yp, sizeof(double) * (size_t)ny);
+  /* the position multipliers are zero on the exact solution (on BDF's they move the
+   * positions' rates, and the accelerations with them) */
+  for (int k = 0; k < r->nlam; k++)
+    if (r->mu[k] >= 0) y[r->mu[k]] = 0.0;
+  int rc = PS_OK, done = 0;
+  for (int it = 0; it < PS_RESTART_ACC_ITERS && !done && rc == PS_OK; it++) {
+    rc = acc_step(m, d, r, t, y, yp, r->row_timed, &done);
+    if (rc != PS_OK || done || r->row_linear) break;
+    /* rows linear in yp and the reactions (no force reads an acceleration) are solved by
+     * the one step: the force rows' residual falls to rounding of where it started */
+    double before = force_rows_max(r, r->res);
+    rc = ps_residual(m, d, t, y, yp, r->res2);
+    done = rc == PS_OK && force_rows_max(r, r->res2) <= 1e-12 * before;
+  }
+  if (rc != PS_OK) {
+    memcpy(y, r->ybak, sizeof(double) * (size_t)ny);
+    memcpy(yp, r->ypbak, sizeof(double) * (size_t)ny);
+  }
+  d->ntimes = ntimes;
+  d->nfail = nfail;
+  d->last_t = last;
+  d->step_limit = limit;
+  return rc;
+}
 
 /* The restart proper (ps_restart_consistent). */
 static int restart_state(const psModel* m, psData* d, const psRestart* r, double t, double* y,

@@ -957,14 +957,19 @@ static void stream_rows(psIDA* s, int k0, int k1, const double* tout, const doub
     s->stream = NULL;
 }
 
-/* Request channels of rows k0..k1-1, without streaming them. */
+/* Rows k0..k1-1: their accelerations and reactions made exact (a scene with reactions), then
+ * their request channels, without streaming them. */
 static void row_channels(psIDA* s, int k0, int k1, const double* tout, double* y_out,
                          double* yp_out, double* req_out) {
   int n = s->m->ny;
-  if (s->m->nout > 0)
-    for (int k = k0; k < k1; k++)
+  for (int k = k0; k < k1; k++) {
+    /* the row's accelerations and reactions exact at its state (ps_row_exact) */
+    if (s->d->rows)
+      ps_row_exact(s->m, s->d, s->d->rows, tout[k], y_out + (long)k * n, yp_out + (long)k * n);
+    if (s->m->nout > 0)
       ps_outputs(s->m, s->d, tout[k], y_out + (long)k * n, yp_out + (long)k * n,
                  req_out + (long)k * s->m->nout);
+  }
 }
 
 /* Write the request channels of output rows k0..k1-1 and stream the rows. */

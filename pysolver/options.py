@@ -40,7 +40,7 @@ _RULES = {
 }
 _CHOICES = {"linsolver": ("auto", "dense", "band", "sparse", "superlu_mt", "sundials_dense"),
             "jacobian": ("exact", "dq"), "backend": ("auto", "c", "sksundae"),
-            "kernel": ("auto", "generated", "tapes")}
+            "kernel": ("auto", "generated", "tapes"), "reactions": ("exact", "integrator")}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -48,7 +48,7 @@ class Options:
     """How a model is integrated.
 
     The first seven fields are ``Param_Transient``'s attributes (same names, units of the
-    deck); the last four are run-time choices. Change them per run with
+    deck); the last five are run-time choices. Change them per run with
     ``model.run(name=value, ...)``.
 
     Attributes
@@ -88,6 +88,11 @@ class Options:
         "generated" fall back to the tapes, with a log line, when no C compiler works), or the
         tape interpreter. None: the
         ``PYSOLVER_KERNEL`` environment variable, else "auto".
+    reactions : {"exact", "integrator"}
+        "exact": each output row's accelerations and reactions (JOINT, MOTION, res.joint, ACC*)
+        solved at its positions and velocities (a saddle-point system per row, costing
+        1.0-1.4x the run on the joint example decks); "integrator": IDA's corrector values,
+        which its error test does not hold (percents of noise at integr_tol 1e-3).
     """
     integr_tol: float = 1e-3
     h_max: Optional[float] = None
@@ -100,6 +105,7 @@ class Options:
     jacobian: str = "exact"
     backend: Optional[str] = None
     kernel: Optional[str] = None
+    reactions: str = "exact"
 
     def __post_init__(self):
         for name in _RULES:

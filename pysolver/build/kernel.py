@@ -115,7 +115,6 @@ class Kernel:
         self._out = np.zeros(max(arrays["nout"], 1))
         self._sparse = None
         self._cyp = None                 # consistent_yp's work arrays, made on first use
-        self._precision_work = None      # ps_precision's work arrays, made on first use
         self.codegen = {"kernel": "tapes", "why": "kernel='tapes' asked for"}
         if kind != "tapes":
             self._generate()
@@ -203,36 +202,6 @@ class Kernel:
                              fb("double[]", np.ascontiguousarray(yp, float)),
                              fb("double[]", q))
         return q
-
-    def carried(self, t, y):
-        """The net force on each body at (t, y) without reactions (ps_carried)."""
-        out, work = np.zeros(max(len(self.layout.bodies), 1)), np.zeros(3 * self.ny)
-        fb = ffi.from_buffer
-        lib.ps_carried(self.m, self.d, t, fb("double[]", np.ascontiguousarray(y, float)),
-                       fb("double[]", work), fb("double[]", out))
-        return out
-
-    def precision(self, t, y, yp, carried=None):
-        """(ratio, body index or -1) of ps_precision at (t, y, yp); `carried`: what each
-        body carried over the run (None: not known)."""
-        if self._precision_work is None:         # the arrays, and the C pointers into them
-            if self.codegen["kernel"] == "generated":
-                rows = cols = np.zeros(1, np.int32)     # the library has its own pattern
-            else:
-                self.sparsity()                         # the tapes' pattern, and room for it
-                rows, cols = self._triplets
-            work = np.zeros(4 * self.ny)
-            self._precision_work = ((rows, cols, work), ffi.cast("int *", ffi.from_buffer(rows)),
-                                    ffi.cast("int *", ffi.from_buffer(cols)), len(rows),
-                                    ffi.from_buffer("double[]", work), ffi.new("int *"))
-        _, rows, cols, n, work, body = self._precision_work
-        fb = ffi.from_buffer
-        ratio = lib.ps_precision(self.m, self.d, t, fb("double[]", np.ascontiguousarray(y, float)),
-                                 fb("double[]", np.ascontiguousarray(yp, float)), rows, cols, n,
-                                 ffi.NULL if carried is None else
-                                 fb("double[]", np.ascontiguousarray(carried, float)), work,
-                                 body)
-        return ratio, body[0]
 
     def sparsity(self):
         """Return the iteration matrix's structure as a scipy CSC matrix (built once).
@@ -359,9 +328,14 @@ class Kernel:
         return msg if held is None else self.layout.names[int(held[1])] + msg[held.end(1):]
 
     def outputs(self, t, y, yp, out=None):
-        """Request channels at (t, y, yp), NaN if NULL: a copy, or into the row `out` (None)."""
+        """Request channels at (t, y, yp), NaN if NULL: a copy, or into the row `out` (None).
+        In a scene with reactions (pysolver.build.restart.exact_rows) the row's accelerations
+        and reactions are first made exact at its state, in y and yp themselves."""
         fb, m, d, row = ffi.from_buffer, self.m, self.d, self._out if out is None else out
-        lib.ps_outputs(m, d, t, fb("double[]", y), fb("double[]", yp), fb("double[]", row))
+        y, yp = fb("double[]", y), fb("double[]", yp)
+        if d.rows != ffi.NULL:
+            lib.ps_row_exact(m, d, d.rows, t, y, yp)
+        lib.ps_outputs(m, d, t, y, yp, fb("double[]", row))
         return self._out[:len(self.channels)].copy() if out is None else None
 
     def power(self, y, yp):

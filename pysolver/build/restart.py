@@ -12,6 +12,8 @@ in it or in the motions' least squares (nlam x the force rows) restart in Python
 """
 import numpy as np
 
+from .. import catalogue
+from ..deck import expr as ex
 from ..options import SPARSE_THRESHOLD
 from .consistent import _velocities
 from .ordering import colamd
@@ -38,7 +40,8 @@ class Restart:
             jn = pattern.nnz
         sizes = {"J0": jn, "J1": jn, "res": ny, "res2": ny, "dx": ny, "g": nl, "z": nl,
                  "z2": nl, "lamv": nl, "cc": nl * nl,
-                 "saddle": 1 if self.sparse else (nr + nl) ** 2, "rhs": nr + nl}
+                 "saddle": 1 if self.sparse else (nr + nl) ** 2, "rhs": nr + nl,
+                 "ybak": ny, "ypbak": ny}
         self.r = r = ffi.new("psRestart *")
         self.keep = []
         for name, values in ints.items():
@@ -138,3 +141,28 @@ class Restart:
                 return None
             kernel._restart = cls(kernel)
         return kernel._restart
+
+
+def exact_rows(model, kernel, on=True):
+    """Have the kernel's output rows take exact accelerations and reactions (``ps_row_exact``,
+    through its :class:`Restart`) in a scene with reactions (`on`), or IDA's (not `on`); the
+    flags once per kernel. A sparse scene past SPARSE_LIMIT keeps IDA's. The rows' rate
+    equations read time with motions or general constraints; their force rows are linear in
+    the accelerations and reactions unless an element's expression reads either (or a
+    routine the kernel calls may)."""
+    from ..deck.references import _expressions
+    from .bindings import ffi
+    restart = Restart.of(kernel) if kernel.layout.lam and on else None
+    if restart is None:
+        kernel.d.rows = ffi.NULL
+        return
+    if kernel.d.rows == restart.r:
+        return
+    late = {"accelerations", "forces"}
+    reads = {n[1] for key, _, tree in _expressions(model)
+             if key[0] not in ("request", "sensor", "evaluate") for n in ex.nodes(tree)
+             if n[0] == "call" and n[1] in catalogue.FUNCTIONS}
+    restart.r.row_timed = int(bool(model.motions or model.gcons))
+    restart.r.row_linear = int(not kernel.model_calls_routines and not any(
+        catalogue.FUNCTIONS[f].reads & late for f in reads))
+    kernel.d.rows = restart.r

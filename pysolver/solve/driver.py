@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from ..build import compliance, usercalls
+from ..build import compliance, restart, usercalls
 from ..build.bindings import ffi, lib
 from ..build.consistent import AssemblyError
 from ..build.kernel import UserFailure
@@ -64,10 +64,12 @@ def deck_actors(model, kernel, log, bar):
     return sensors, controls, printer
 
 
-def start_state(model, kernel, tol):
+def start_state(model, kernel, tol, exact_rows=True):
     """(t0, y0, yp0) of a run at integr_tol `tol`: the bodies' initial state and rates
-    consistent with it (Stop when they cannot be had)."""
+    consistent with it (Stop when they cannot be had); `exact_rows`: output rows take exact
+    accelerations and reactions (options.reactions)."""
     compliance.set_tolerance(kernel, tol, (UserFailure,))
+    restart.exact_rows(model, kernel, exact_rows)
     kernel.d.user_coarse = int(tol >= usercalls.COARSE_TOL)
     t0, y0 = 0.0, kernel.layout.initial_state()
     kernel.d.last_t = t0
@@ -377,7 +379,8 @@ class Run:
                     "QUASI-STATIC": lambda c: quasistatic.run_quasi_static(self, c)}
         try:
             try:
-                self.t, self.y, self.yp = start_state(self.model, k, self.options.integr_tol)
+                self.t, self.y, self.yp = start_state(self.model, k, self.options.integr_tol,
+                                                      self.options.reactions == "exact")
                 flow = Flow()
                 for actor in self.actors:
                     flow.update(actor.start(self))

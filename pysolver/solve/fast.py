@@ -124,10 +124,12 @@ class FastRun:
             for task in self.controls:
                 task.reset()
             # the initial state (sweep cases change it) and a consistent yp, as the driver
-            t0, y0, yp0 = start_state(self.model, k, opts.integr_tol)
+            t0, y0, yp0 = start_state(self.model, k, opts.integr_tol,
+                                      opts.reactions == "exact")
             halt = self._start(t0, y0, yp0)
+            # the row's own copy: outputs makes its accelerations and reactions exact
             out.Y[0], out.YP[0] = y0, yp0
-            k.outputs(t0, y0, yp0, out=out.REQ[0])
+            k.outputs(t0, out.Y[0], out.YP[0], out=out.REQ[0])
             # row 0 is written again when a sensor at the start asks for a row (print, halt,
             # return), as Run.apply does
             again = self.sensors and (self.S.emit or self.S.halt >= 0 or self.S.ret >= 0)

@@ -26,6 +26,8 @@ import math
 
 import numpy as np
 
+from ..build.bindings import ffi, lib
+
 #: Largest ratio of a row's rounding-driven force to the force it carries. On seed example 1
 #: the final position's error from rounding is about 10-25 times this ratio (penalty 1e13:
 #: ratio 8e-5; 1e14: 8e-4, 1.8 % off; 1e15: 7e-3, 20 % off), so 1e-5 keeps it near 1e-4.
@@ -42,11 +44,11 @@ def check(model, kernel, t, y, yp):
     the run's output rows (the last is the final state)."""
     if not kernel.layout.bodies or not (model.penalties or model.sforces or model.vforces):
         return None
-    ratio, b = kernel.precision(t[-1], y[-1], yp[-1])
+    ratio, b = _ratio(kernel, t[-1], y[-1], yp[-1])
     if b >= 0 and ratio > LIMIT and not np.any(kernel.arrays["gravity"]):
         states = [(0.0, kernel.layout.initial_state()), *zip(t, y)]
-        carried = np.max([kernel.carried(tk, yk) for tk, yk in states], axis=0)
-        ratio, b = kernel.precision(t[-1], y[-1], yp[-1], carried)
+        carried = np.max([_carried(kernel, tk, yk) for tk, yk in states], axis=0)
+        ratio, b = _ratio(kernel, t[-1], y[-1], yp[-1], carried)
     if b < 0 or not ratio > LIMIT:
         return None
     return _message(model, kernel, ratio, kernel.layout.bodies[b], t[-1])
@@ -72,3 +74,36 @@ def _message(model, kernel, ratio, body, t):
                 f"precision can carry here: use penalty <= {better:.0e} (or make the "
                 "constraint exact)")
     return f"{what}; lower the stiffness of the scene's stiffest force element"
+
+
+def _carried(kernel, t, y):
+    """The net force on each body at (t, y) without reactions (ps_carried)."""
+    out, work = np.zeros(max(len(kernel.layout.bodies), 1)), np.zeros(3 * kernel.ny)
+    fb = ffi.from_buffer
+    lib.ps_carried(kernel.m, kernel.d, t, fb("double[]", np.ascontiguousarray(y, float)),
+                   fb("double[]", work), fb("double[]", out))
+    return out
+
+
+def _ratio(kernel, t, y, yp, carried=None):
+    """(ratio, body index or -1) of ps_precision at (t, y, yp); `carried`: the largest net
+    force each body carried over the run (None: not used)."""
+    got = kernel.__dict__.get("_precision_work")
+    if got is None:                       # the arrays, and the C pointers into them
+        if kernel.codegen["kernel"] == "generated":
+            rows = cols = np.zeros(1, np.int32)     # the library has its own pattern
+        else:
+            kernel.sparsity()                       # the tapes' pattern, and room for it
+            rows, cols = kernel._triplets
+        work = np.zeros(4 * kernel.ny)
+        got = kernel.__dict__["_precision_work"] = (
+            (rows, cols, work), ffi.cast("int *", ffi.from_buffer(rows)),
+            ffi.cast("int *", ffi.from_buffer(cols)), len(rows),
+            ffi.from_buffer("double[]", work), ffi.new("int *"))
+    _, rows, cols, n, work, body = got
+    fb = ffi.from_buffer
+    ratio = lib.ps_precision(kernel.m, kernel.d, t, fb("double[]", np.ascontiguousarray(y, float)),
+                             fb("double[]", np.ascontiguousarray(yp, float)), rows, cols, n,
+                             ffi.NULL if carried is None else
+                             fb("double[]", np.ascontiguousarray(carried, float)), work, body)
+    return ratio, body[0]
