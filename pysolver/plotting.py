@@ -6,7 +6,9 @@ One panel per kind and unit (lengths, velocities, forces, angles, ...) labelled 
 nutation. Sensor events are solid vertical lines with their labels, the ends of Simulate
 commands dashed ones; LoadControl tasks get their load and velocity panel; a request with two
 length channels of one point (``x`` and ``z``) gets its path; static equilibria are a table of
-values with the imbalance; a failed run is titled ``FAILED: message`` in red. The figure is a
+values with the imbalance; a run with nothing to draw (no request channels, no LoadControl)
+is one panel that says so and where its reactions and states are; a failed run is titled
+``FAILED: message`` in red. Channels are named as the CSV's columns. The figure is a
 :class:`matplotlib.figure.Figure` made without pyplot, so Jupyter shows the returned figure
 once and pyplot keeps no reference to it.
 """

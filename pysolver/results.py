@@ -330,8 +330,9 @@ class Result:
         """Plot the run: one panel per kind of quantity with its unit (``length [mm]``) against
         ``time [s]``, sensor events and the ends of Simulate commands marked, LoadControl
         tasks, the path of a point whose x and z (or y) are requested, static equilibria as a
-        table with their imbalance; a failed run's title is ``FAILED: message`` in red
-        (docs/usage.md, "Plots").
+        table with their imbalance; a run with no request channels is a panel that says so
+        and names its reactions and states; a failed run's title is ``FAILED: message`` in
+        red (docs/usage.md, "Plots").
 
         Parameters
         ----------
