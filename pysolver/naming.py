@@ -80,15 +80,19 @@ def element_id(kind, key, known, labels):
     TypeError
         `key` is none of these (a float, None, a Part).
     """
+    if type(key) is int and key in known:        # the common case, first
+        return key
     what, plural, classes = ELEMENTS[kind]
-    there = ", ".join(f"{i} {labels[i]!r}" if labels.get(i) else str(i)
-                      for i in known[:LISTED]) or "none"
-    if len(known) > LISTED:
-        there += f", ... ({len(known)} in all)"
+
+    def there():
+        text = ", ".join(f"{i} {labels[i]!r}" if labels.get(i) else str(i)
+                         for i in known[:LISTED]) or "none"
+        return text + (f", ... ({len(known)} in all)" if len(known) > LISTED else "")
+
     if isinstance(key, str):
         ids = [i for i in known if labels.get(i) == key]
         if not ids:
-            raise KeyError(f"no {what} labelled {key!r} ({plural}: {there})")
+            raise KeyError(f"no {what} labelled {key!r} ({plural}: {there()})")
         if len(ids) > 1:
             raise KeyError(f"the label {key!r} names {what} "
                            f"{', '.join(map(str, ids[:-1]))} and {ids[-1]}: pass the id")
@@ -107,5 +111,5 @@ def element_id(kind, key, known, labels):
             else f"a {type(obj).__name__} whose id is {key!r}"
         raise TypeError(f"{usage}; got {got}")
     if int(key) not in known:
-        raise KeyError(f"no {what} {int(key)} ({plural}: {there})")
+        raise KeyError(f"no {what} {int(key)} ({plural}: {there()})")
     return int(key)
