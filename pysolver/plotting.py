@@ -6,7 +6,9 @@ One panel per kind and unit (lengths, velocities, forces, angles, ...) labelled 
 nutation. Sensor events are solid vertical lines with their labels, the ends of Simulate
 commands dashed ones; LoadControl tasks get their load and velocity panel; a request with two
 length channels of one point (``x`` and ``z``) gets its path; static equilibria are a table of
-values with the imbalance; a failed run is titled ``FAILED: message`` in red. The figure is a
+values with the imbalance; a run with nothing to draw (no request channels, no LoadControl)
+is one panel that says so and where its reactions and states are; a failed run is titled
+``FAILED: message`` in red. Channels are named as the CSV's columns. The figure is a
 :class:`matplotlib.figure.Figure` made without pyplot, so Jupyter shows the returned figure
 once and pyplot keeps no reference to it.
 """
@@ -41,11 +43,13 @@ def figure(res):
     ctrl = [] if static_only else res.controller_ids
     paths = [] if static_only else _paths(res, channels)
     tables = 1 if res.statics or static_only else 0
-    n = max(len(groups) + len(ctrl) + len(paths) + tables, 1)
+    # a run with nothing to draw (no request channels, no LoadControl task) says so
+    empty = 0 if groups or ctrl or paths or tables else 1
+    n = len(groups) + len(ctrl) + len(paths) + tables + empty
     heights = [PANEL_HEIGHT] * (len(groups) + len(ctrl)) + [3.2] * len(paths) + \
-        [0.5 + 0.3 * len(channels)] * tables
-    fig = Figure(figsize=(WIDTH, sum(heights) + 0.8 if heights else 3.0), layout="constrained")
-    grid = fig.add_gridspec(n, 1, height_ratios=heights or [1])
+        [0.5 + 0.3 * len(channels) + (1.0 if not channels else 0.0)] * tables + [1.6] * empty
+    fig = Figure(figsize=(WIDTH, sum(heights) + 0.8), layout="constrained")
+    grid = fig.add_gridspec(n, 1, height_ratios=heights)
     time_axes = []
     for i, group in enumerate(groups):
         ax = fig.add_subplot(grid[i], sharex=time_axes[0] if time_axes else None)
@@ -64,6 +68,11 @@ def figure(res):
         _draw_path(fig.add_subplot(grid[i]), res, rid, hor, ver)
     if tables:
         _draw_statics(fig.add_subplot(grid[n - 1]), res, channels)
+    if empty:
+        ax = fig.add_subplot(grid[0])
+        ax.axis("off")
+        ax.text(0.5, 0.5, "\n".join(nothing_to_plot(res)), ha="center", va="center",
+                fontsize=10, transform=ax.transAxes)
     _title(fig, res)
     return fig
 
@@ -75,6 +84,21 @@ def save(res, path):
     return fig
 
 
+def nothing_to_plot(res):
+    """The lines a figure of `res` shows in place of request channels when it has none: that
+    there are none, how to get some, and where the run's reactions and states are."""
+    def ids(values):
+        return ", ".join(map(str, values[:6])) + (", ..." if len(values) > 6 else "")
+
+    lines = ["nothing to plot: this run has no request channels",
+             "add a Post_Request (msolve: Request) for what to plot"]
+    if res.joint_ids:
+        lines.append(f"joint reactions: res.joint(id), joints {ids(res.joint_ids)}")
+    if res.motion_ids:
+        lines.append(f"motion reactions: res.motion(id), motions {ids(res.motion_ids)}")
+    return lines + ["states: res.y, columns named by res.state_names"]
+
+
 def _label(kind, unit):
     """An axis label: ``length [mm]``; ``[N/mm]`` for a unit with no common name."""
     if unit is None:
@@ -83,15 +107,10 @@ def _label(kind, unit):
 
 
 def _channels(res):
-    """(name shown, bare name, values, unit, kind) of each channel res.columns() has; the
-    request id is added to a name that two requests share."""
-    named = res._named_channels()
-    count = {}
-    for _, _, name in named:
-        count[name] = count.get(name, 0) + 1
-    return [(name if count[name] == 1 else f"{name} (request {rid})", name,
-             res._channel(rid, k), *res._quantity((rid, k)))
-            for rid, k, name in named]
+    """(name shown, bare name, values, unit, kind) of each channel res.columns() has, shown
+    by its column name (``x``; ``x (request 2)`` for a name several channels have)."""
+    return [(name, bare, res._channel(rid, k), *res._quantity((rid, k)))
+            for rid, k, bare, name in res._named_channels()]
 
 
 def _peak(values):
@@ -206,7 +225,7 @@ def _paths(res, channels):
     channels named as coordinates of one point: the two that move most."""
     out = []
     by_request = {}
-    for (rid, _, _), ch in zip(res._named_channels(), channels):
+    for (rid, *_), ch in zip(res._named_channels(), channels):
         axis = _axis_of(ch[1])
         if ch[4] == "length" and axis is not None:
             by_request.setdefault((rid, axis[1], ch[3]), {})[axis[0]] = ch
@@ -249,6 +268,9 @@ def _draw_statics(ax, res, channels):
         ax.set_title(f"the one output row, t = {res.t[row]:g}", fontsize=9)
     else:
         ax.set_title("no output rows", fontsize=9)
+    if not channels:
+        ax.text(0.5, 0.4, "\n".join(nothing_to_plot(res)), ha="center", va="center",
+                fontsize=10, transform=ax.transAxes)
     if row < 0 or not channels:
         return
     cells = [[shown, f"{values[row]:.6g}", unit or ""] for shown, _, values, unit, _ in channels]

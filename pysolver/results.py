@@ -1,4 +1,9 @@
-"""Results of a run: time-major arrays, request channels, statistics and writers."""
+"""Results of a run: time-major arrays, request channels, statistics and writers.
+
+Longer than 420 lines because it is the one object a run is read from: a short, documented
+accessor per kind of output (rows, requests, reactions, records, units, files, plots); what
+they share lives elsewhere (naming.py: column names and ids; plotting.py, viewer/).
+"""
 from __future__ import annotations
 
 import csv
@@ -9,6 +14,7 @@ import numpy as np
 
 from .deck.dimensions import CONTROLLER, Quantity
 from .deck.dimensions import header as _header
+from .naming import column_names, element_id
 
 #: The fields of a LoadControl record (pysolver/solve/loadcontrol.py), in order.
 _CONTROLLER_FIELDS = tuple(CONTROLLER)
@@ -48,8 +54,8 @@ class Result:
         expression it became), and ``commands``: each Simulate command's ``analysis`` and
         ``end_time``, in order.
     units, quantities : dict
-        Unit and kind of quantity of time and each request channel by bare name (properties;
-        docs/usage.md, "Units").
+        Unit and kind of quantity of time and each request channel by its column name, as
+        :meth:`columns` names them (properties; docs/usage.md, "Units").
     events : list of pysolver.solve.sensors.Event
         One record per sensor firing: ``time``, ``sensor`` (id), ``label``, ``value`` (the
         sensor's expression then) and ``actions`` taken.
@@ -61,9 +67,11 @@ class Result:
         iterations, imbalance, error, success, message, compliance.
     """
 
+    _element_labels = {}     # a Result pickled before element labels were kept has none
+
     def __init__(self, *, t, y, yp, outputs, channels, state_names, success, status, message,
                  stats, timing, meta, column_map, labels=None, events=(), log=(), statics=(),
-                 controllers=None, units=None):
+                 controllers=None, units=None, element_labels=None):
         self.t = np.asarray(t)
         self.y = np.asarray(y)
         self.yp = np.asarray(yp)
@@ -87,6 +95,8 @@ class Result:
         self._requests = {}
         # units by channel (rid, k), "time" and "controller" (deck/dimensions.channel_units)
         self._units = units or {}
+        # {"request"/"joint"/"motion"/"controller": {id: label}} (the accessors take labels)
+        self._element_labels = element_labels or {}
 
     @property
     def compliance(self):
@@ -124,16 +134,28 @@ class Result:
         """Ids of the Constraint_Joint elements whose reactions :meth:`joint` gives, sorted."""
         return sorted(-rid for rid, k in self._column if rid < 0 and k == 0)
 
-    def request(self, id: int) -> np.ndarray:
+    def _id(self, kind, key, known):
+        """:func:`pysolver.naming.element_id` with this run's labels."""
+        return element_id(kind, key, known, self._element_labels.get(kind, {}))
+
+    def request(self, id) -> np.ndarray:
         """Return Post_Request `id` as an (n, 8) array: channels expr1..expr8, NaN for NULL.
+
+        Parameters
+        ----------
+        id : int, Request or str
+            The id, the element (msolve's ``Request``: anything with an integer ``.id``) or
+            its label.
 
         Raises
         ------
         KeyError
-            There is no request with that id.
+            No request has that id or label (the message lists those there are), or the
+            label names several.
+        TypeError
+            `id` is none of these (a float, None, an element of another kind).
         """
-        if id not in self._request_ids:
-            raise KeyError(f"no Post_Request with id {id}; requests: {self.request_ids}")
+        id = self._id("request", id, self._request_ids)
         if id not in self._requests:
             arr = np.full((len(self.t), 8), np.nan)
             for k in range(8):
@@ -152,35 +174,35 @@ class Result:
         """Ids of the LoadControl tasks whose records :meth:`controller` gives."""
         return sorted(self._controllers)
 
-    def controller(self, id: int) -> dict:
-        """Per-update record of LoadControl `id`: arrays ``time``, ``target``, ``measured``
-        and ``filtered`` load, ``displacement`` (from the start, along the axis), ``A`` (the
-        load/displacement ratio; NaN before any load), ``e``, ``Ie``, ``De``, ``velocity`` (for
-        the next interval) and ``clamped`` (MaxVelocity reached)."""
-        if id not in self._controllers:
-            raise KeyError(f"no LoadControl {id} (tasks: "
-                           f"{', '.join(map(str, self._controllers)) or 'none'})")
-        return self._controllers[id]
+    def controller(self, id) -> dict:
+        """Per-update record of LoadControl `id` (id, element or label, as :meth:`request`):
+        arrays ``time``, ``target``, ``measured`` and ``filtered`` load, ``displacement``
+        (from the start, along the axis), ``A`` (the load/displacement ratio; NaN before any
+        load), ``e``, ``Ie``, ``De``, ``velocity`` (for the next interval) and ``clamped``
+        (MaxVelocity reached)."""
+        return self._controllers[self._id("controller", id, self.controller_ids)]
 
-    def motion(self, id: int) -> np.ndarray:
+    @property
+    def motion_ids(self):
+        """Ids of the motions :meth:`motion` gives, sorted (a LoadControl's is -<its id>)."""
+        return sorted(int(n[6:-9]) for n in self.state_names
+                      if n.startswith("motion") and n.endswith(".reaction"))
+
+    def motion(self, id) -> np.ndarray:
         """Reaction of Motion_Marker or Motion_Joint `id` at the output times, shape (n,): the
         force (X, Y, Z; a joint's T) or torque (B1, B2, B3; a joint's R) the motion applies to
-        I's body along or about its axis of J (J's body gets the opposite), in model units."""
-        name = f"motion{id}.reaction"
-        if name not in self.state_names:
-            known = [n.split(".")[0][6:] for n in self.state_names if n.endswith(".reaction")]
-            raise KeyError(f"no motion {id} (motions: {', '.join(known) or 'none'})")
-        return self.y[:, self.state_names.index(name)]
+        I's body along or about its axis of J (J's body gets the opposite), in model units.
+        `id`: the id, the element (``Motion``) or its label, as :meth:`request`."""
+        id = self._id("motion", id, self.motion_ids)
+        return self.y[:, self.state_names.index(f"motion{id}.reaction")]
 
-    def joint(self, id: int, jflag: int = 0) -> np.ndarray:
+    def joint(self, id, jflag: int = 0) -> np.ndarray:
         """Reaction of Constraint_Joint `id` at the output times, shape (n, 8), as
         JOINT(id, jflag, comp, 0) for comp 1..8: |F|, Fx, Fy, Fz, |T|, Tx, Ty, Tz in global
         axes, on I's body at I's origin (jflag 0) or on J's body at J's (jflag 1: the
-        opposite force, and the opposite torque less d x F, d = oI - oJ), in model units."""
-        if (-id, 0) not in self._column:
-            known = sorted(-rid for rid, k in self._column if rid < 0 and k == 0)
-            raise KeyError(f"no Constraint_Joint {id} (joints: "
-                           f"{', '.join(map(str, known)) or 'none'})")
+        opposite force, and the opposite torque less d x F, d = oI - oJ), in model units.
+        `id`: the id, the element (``Joint``, ``Jprim``) or its label, as :meth:`request`."""
+        id = self._id("joint", id, self.joint_ids)
         cols = [self._outputs[:, self._column[(-id, k)]] for k in range(9)]
         force, torque, d = (np.column_stack(cols[i:i + 3]) for i in (0, 3, 6))
         if jflag:
@@ -193,16 +215,19 @@ class Result:
         return q if q is not None else Quantity(None, None)
 
     def _named_channels(self):
-        """(request id, channel index, name) of every channel columns() writes."""
-        out = []
-        for rid in self.request_ids:
-            for k in range(8):
-                if not np.all(np.isnan(self._channel(rid, k))) or self._labels.get((rid, k)):
-                    out.append((rid, k, self._labels.get((rid, k)) or f"REQ{rid}.{k + 1}"))
-        return out
+        """(request id, channel index, bare name, column name) of each channel columns()
+        writes (bare: its label or REQ<id>.<k>; column: unique, naming.column_names)."""
+        keys = [(rid, k) for rid in self.request_ids for k in range(8)
+                if self._labels.get((rid, k)) or not np.all(np.isnan(self._channel(rid, k)))]
+        return [(rid, k, self._labels.get((rid, k)) or f"REQ{rid}.{k + 1}", name)
+                for (rid, k), name in zip(keys, column_names(keys, self._labels))]
 
     def columns(self, units: bool = False) -> tuple[list, np.ndarray]:
         """Return (names, 2-D array) of time and every non-NULL request channel.
+
+        Every name is unique (:func:`pysolver.naming.column_names`): a channel's label
+        (``z``), else ``REQ<id>.<k>``; a name several channels have gets its request,
+        ``z (request 2)``. The CSV header, DataFrame, :attr:`units` use these names.
 
         Parameters
         ----------
@@ -212,30 +237,30 @@ class Result:
         """
         names = [_header("time", self._quantity("time").unit if units else None)]
         cols = [self.t]
-        for rid, k, name in self._named_channels():
+        for rid, k, _, name in self._named_channels():
             names.append(_header(name, self._quantity((rid, k)).unit if units else None))
             cols.append(self._channel(rid, k))
         return names, np.column_stack(cols)
 
     @property
     def units(self) -> dict:
-        """Unit of time and of each request channel by its bare name (as ``columns()`` names
-        them): a string in the deck's units (``"mm"``, ``"N"``, ``"rad/s"``; ``"-"``
-        dimensionless), None where the channel's expression has no unit (docs/usage.md,
-        "Units"). A name two requests share maps to the first's unit."""
+        """Unit of time and of each request channel by column name (``columns()``'s: ``"z"``,
+        ``"z (request 2)"``): a string in the deck's units (``"mm"``, ``"N"``, ``"rad/s"``;
+        ``"-"`` dimensionless), None where the channel's expression has no unit (docs/usage.md,
+        "Units")."""
         out = {"time": self._quantity("time").unit}
-        for rid, k, name in self._named_channels():
-            out.setdefault(name, self._quantity((rid, k)).unit)
+        for rid, k, _, name in self._named_channels():
+            out[name] = self._quantity((rid, k)).unit
         return out
 
     @property
     def quantities(self) -> dict:
-        """Kind of quantity of time and each request channel by bare name: ``"length"``,
+        """Kind of quantity of time and each request channel by column name: ``"length"``,
         ``"velocity"``, ``"angle"``, ``"force"``, ``"torque"``, ``"energy"``, ... or None (a
         channel with no unit, or a unit with no common name such as N/mm)."""
         out = {"time": "time"}
-        for rid, k, name in self._named_channels():
-            out.setdefault(name, self._quantity((rid, k)).kind)
+        for rid, k, _, name in self._named_channels():
+            out[name] = self._quantity((rid, k)).kind
         return out
 
     def controller_units(self) -> dict:
@@ -247,9 +272,9 @@ class Result:
     def to_dataframe(self):
         """Return a pandas DataFrame indexed by time with one column per request channel.
 
-        Column names carry their unit as the CSV header does (``"z [mm]"``, the index
-        ``"time [s]"``); ``df.attrs["units"]`` is :attr:`units` and ``df.attrs["quantities"]``
-        :attr:`quantities` (bare names).
+        Column names are :meth:`columns`' with units, as the CSV header (``"z [mm]"``, the
+        index ``"time [s]"``); ``df.attrs["units"]`` is :attr:`units` and
+        ``df.attrs["quantities"]`` :attr:`quantities` (names without units).
 
         Raises
         ------
@@ -282,8 +307,7 @@ class Result:
         path = os.fspath(path)
         if path.lower().endswith(".npz"):
             extra = {f"request_{rid}": self.request(rid) for rid in self.request_ids}
-            extra.update({f"joint_{-rid}": self.joint(-rid) for rid, k in self._column
-                          if rid < 0 and k == 0})
+            extra.update({f"joint_{jid}": self.joint(jid) for jid in self.joint_ids})
             extra.update({f"controller{lid}_{name}": col
                           for lid, rec in self._controllers.items() for name, col in rec.items()})
             names, table = self.columns(units=True)
@@ -306,8 +330,9 @@ class Result:
         """Plot the run: one panel per kind of quantity with its unit (``length [mm]``) against
         ``time [s]``, sensor events and the ends of Simulate commands marked, LoadControl
         tasks, the path of a point whose x and z (or y) are requested, static equilibria as a
-        table with their imbalance; a failed run's title is ``FAILED: message`` in red
-        (docs/usage.md, "Plots").
+        table with their imbalance; a run with no request channels is a panel that says so
+        and names its reactions and states; a failed run's title is ``FAILED: message`` in
+        red (docs/usage.md, "Plots").
 
         Parameters
         ----------

@@ -27,7 +27,7 @@ def test_result_shapes_and_null_channels(bead):
     assert R.shape == (n, 8)
     assert np.all(np.isnan(R[:, 6:])) and not np.any(np.isnan(R[:, :6]))
     assert res.y.shape == (n, 6) and res.state_names[0] == "body2.x"
-    with pytest.raises(KeyError, match="no Post_Request with id 5"):
+    with pytest.raises(KeyError, match=r"no Post_Request 5 \(requests: 1\)"):
         res.request(5)
 
 

@@ -14,7 +14,7 @@ PKG = pathlib.Path(pysolver.__file__).resolve().parent
 #: earlier ones. Records and shared vocabulary (options, errors, results, rotations, catalogue)
 #: come first; ``Model.run`` reaches the solvers through an import inside the call (the facade).
 #: The viewer and plotting rank with results (Result.animate and Result.plot call them).
-RANK = {"_version": 0, "headers": 0, "errors": 0, "options": 0, "rotations": 0, "results": 4,
+RANK = {"_version": 0, "headers": 0, "errors": 0, "options": 0, "rotations": 0, "naming": 0, "results": 4,
         "catalogue": 0, "settings": 0, "imports": 0, "records": 1, "model": 1,
         "deck": 2, "build": 3, "_kernel": 3, "solve": 4, "viewer": 4, "plotting": 4, "batch": 5,
         "cli": 5,

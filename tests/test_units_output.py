@@ -121,7 +121,8 @@ def test_typed_requests_have_per_channel_units():
     res = pysolver.loads(text).run()
     names, _ = res.columns(units=True)
     for expected in ("mag [m]", "y [m]", "psi [rad]", "theta [rad]", "phi [rad]",
-                     "vm [m/s]", "vz [m/s]", "wm [rad/s]", "wy [rad/s]", "accm [m/s^2]",
+                     "vm [m/s]", "vz [m/s]", "wm [rad/s]", "wy (request 3) [rad/s]",
+                     "accm [m/s^2]",
                      "accx [m/s^2]", "wdtm [rad/s^2]", "wdtz [rad/s^2]"):
         assert expected in names
 

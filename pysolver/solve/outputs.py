@@ -18,6 +18,7 @@ import numpy as np
 from .. import settings
 from ..build.bindings import ffi, lib
 from ..deck.dimensions import Quantity, header
+from ..naming import column_names
 from .actors import Actor
 
 
@@ -59,12 +60,13 @@ class Stream:
             return (units or {}).get(key, Quantity(None, None)).unit
 
         defined = set(kernel.defined_channels.tolist())
-        names, cols = [header("time", unit("time"))], []
+        keys, cols = [], []
         for col, (rid, k) in sorted(enumerate(kernel.channels), key=lambda c: tuple(c[1])):
             if rid > 0 and (col in defined or labels.get((rid, k))):    # not joints' (< 0)
-                names.append(header(labels.get((rid, k)) or f"REQ{rid}.{k + 1}",
-                                    unit((rid, k))))
+                keys.append((rid, k))
                 cols.append(col)
+        names = [header("time", unit("time"))] + [
+            header(name, unit(key)) for key, name in zip(keys, column_names(keys, labels))]
         self.path, self.cols = os.fsencode(path), np.array(cols, dtype=np.int32)
         line = io.StringIO()
         csv.writer(line).writerow(names)

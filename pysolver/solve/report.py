@@ -32,6 +32,11 @@ class Reporter:
         self.units = channel_units(model)
         self.column_map = column_map(kernel.channels)
         self.names = list(kernel.layout.names)
+        # the labels res.request / joint / motion / controller take for ids
+        self.element_labels = {
+            kind: {el.id: el.label for el in getattr(model, table).values() if el.label}
+            for kind, table in (("request", "requests"), ("joint", "joints"),
+                                ("motion", "motions"), ("controller", "controls"))}
 
     def result(self, rows, outcome, clock, ida, log, *, steps, nevents=0, nrearms=0,
                nrestarts=0, onestep=False, events=(), statics=(), controllers=None):
@@ -92,7 +97,7 @@ class Reporter:
                       message=message, stats=stats, timing=timing, meta=meta,
                       labels=self.labels, events=events, log=log, statics=statics,
                       controllers=controllers, units=self.units,
-                      column_map=self.column_map)
+                      column_map=self.column_map, element_labels=self.element_labels)
 
 
 def column_map(channels):
