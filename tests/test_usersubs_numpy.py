@@ -161,20 +161,21 @@ def test_a_numpy_motsub_and_varsub_trace(script):
 
 def test_numpy_ufuncs_trace_as_their_expression_functions():
     """Every ufunc the tracer maps, NumPy scalars, an object array's ufunc, np.where and
-    np.linalg.norm, against the same expressions, channel by channel."""
+    np.linalg.norm, against the same expressions, channel by channel (the REQSUB returns its
+    channels as a NumPy array)."""
     routine = """import numpy as np
 def sub(id, time, par, npar, iflag):
     z = py_sysfnc("DZ", [10])[0] + 2
     v = py_sysfnc("VZ", [10])[0]
     p = py_sysary("TDISP", [10])[0]
-    return [np.sin(z) + np.cos(z) + np.tan(z / 20) + np.arcsin(z / 20) + np.arccos(z / 20),
+    return np.array([np.sin(z) + np.cos(z) + np.tan(z / 20) + np.arcsin(z / 20) + np.arccos(z / 20),
             np.arctan(v) + np.arctan2(v, z) + np.sinh(z / 10) + np.cosh(z / 10) + np.tanh(v),
             np.exp(-z) + np.log(z) + np.log10(z) + np.sqrt(z) + np.abs(v) + np.fabs(v),
             np.power(z, 1.5) + np.square(z) + np.reciprocal(z) + np.hypot(z, v) - np.negative(v),
             np.fmod(z, 0.7) + np.copysign(2.0, v) + np.sign(v) + np.trunc(3 * z),
             np.maximum(z, 2.5) + np.minimum(v, -1.0) + np.fmax(v, 0.0) + np.fmin(z, 3.0),
             np.deg2rad(z) + np.rad2deg(v) + np.float64(2.0) * z + np.int64(3) * v,
-            np.linalg.norm(p) + np.sin(np.array([z, v]))[1] + np.where(v < 0, -v, v)]
+            np.linalg.norm(p) + np.sin(np.array([z, v]))[1] + np.where(v < 0, -v, v)])
 REQUEST(1, FUNCTION="USER()", ROUTINE=sub)
 """
     z, v = "(DZ(10)+2)", "VZ(10)"

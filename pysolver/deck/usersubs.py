@@ -16,6 +16,8 @@ import sys
 import traceback
 import types
 
+import numpy as np
+
 from .. import catalogue, settings
 from ..errors import DeckError, ExpressionError
 from ..model import UserSub
@@ -360,7 +362,9 @@ def _value_trees(ctx, sub, values, nvalues):
     """The trees of one return value: one per channel (None: a REQSUB channel left out)."""
     if nvalues == 1:
         values = [values]
-    elif not isinstance(values, (list, tuple)) or len(values) > nvalues:
+    elif isinstance(values, np.ndarray) and values.ndim == 1:
+        values = list(values)           # a NumPy REQSUB's array, as the kernel's call takes it
+    if not isinstance(values, (list, tuple)) or len(values) > nvalues:
         raise ctx.error(f"{sub.label} must return a list of up to {nvalues} values, got "
                         f"{values!r}", sub.attribute)
     trees = []
