@@ -14,6 +14,7 @@
 #include <dlfcn.h>
 #include <float.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -38,6 +39,8 @@ typedef struct {
   int next;             /* the key after the last one read: routines read in order */
   const double* values; /* evaluating: their current values                       */
   int error;            /* an error was reported                                  */
+  int named;            /* ... by ps_user_fail, whose message names the routine   */
+  int python;           /* a Python routine: its messages name py_sysfnc, ...     */
   double t;             /* the time argument of the call in progress              */
   double t_error;       /* ... and of the call that reported the error            */
   double* part;         /* partials wanted: c_syspar writes input i's here        */
@@ -93,11 +96,18 @@ static int make_key(char* key, const char* fnc, const int* ipar, int nsize) {
   return known ? 0 : -1;
 }
 
-static void fail(UserCtx* ctx, const char* what, const char* detail) {
+/* A data access function's name as the routine calls it: py_sysfnc from Python, c_sysfnc
+ * from C (a Python routine's py_sysfnc and py_syspar reach c_sysfnc and c_syspar). */
+#define API(ctx, name) ((ctx)->python ? "py_" name : "c_" name)
+
+static void fail(UserCtx* ctx, const char* format, ...) {
   if (ctx->error) return;
   ctx->error = 1;
   ctx->t_error = ctx->t;
-  snprintf(ctx->msg, sizeof(ctx->msg), "%s%s", what, detail);
+  va_list args;
+  va_start(args, format);
+  vsnprintf(ctx->msg, sizeof(ctx->msg), format, args);
+  va_end(args);
 }
 
 /* The declared key (function code, ids) being read, or -1; the one after the last match is
@@ -118,11 +128,11 @@ static int find_key(UserCtx* ctx, int code, const int* ipar, int nsize) {
 static void unknown_read(UserCtx* ctx, const char* fnc, const int* ipar, int nsize, int* errflg) {
   char key[PS_USER_KEY];
   if (make_key(key, fnc, ipar, nsize) != 0) {
-    fail(ctx, "c_sysfnc: unknown function ", key);
+    fail(ctx, "%s: unknown function %s", API(ctx, "sysfnc"), key);
     return;
   }
   if (!ctx->recording) {
-    fail(ctx, "read a value its iflag call did not ask for: ", key);
+    fail(ctx, "read a value its iflag call did not ask for: %s", key);
     return;
   }
   *errflg = 0;
@@ -197,7 +207,7 @@ PS_EXPORT void c_sysary(const char* fnc, const int* ipar, int nsize, double* sta
   if (a < 0) {
     char name[16];
     clean_name(name, fnc);
-    if (ctx) fail(ctx, "c_sysary: unknown array ", name);
+    if (ctx) fail(ctx, "%s: unknown array %s", API(ctx, "sysary"), name);
     return;
   }
   *errflg = 0;
@@ -236,17 +246,16 @@ PS_EXPORT void c_syspar(const char* fnc, const int* ipar, int nsize, const doubl
       return;
     }
   }
-  char name[16], detail[80];
+  char name[16];
   clean_name(name, fnc);
   *errflg = 1;
   if (a < 0 && code < 0) {
-    fail(ctx, "c_syspar: unknown function or array ", name);
+    fail(ctx, "%s: unknown function or array %s", API(ctx, "syspar"), name);
     return;
   }
   if (nstates != n) {
-    snprintf(detail, sizeof(detail), "%s has %d value%s, c_syspar was given %d partials", name,
-             n, n > 1 ? "s" : "", nstates);
-    fail(ctx, "c_syspar: ", detail);
+    fail(ctx, "%s: %s has %d value%s, %s was given %d partials", API(ctx, "syspar"), name, n,
+         n > 1 ? "s" : "", API(ctx, "syspar"), nstates);
     return;
   }
   int keys[6];
@@ -257,7 +266,8 @@ PS_EXPORT void c_syspar(const char* fnc, const int* ipar, int nsize, const doubl
     if (keys[i] < 0) {
       char key[PS_USER_KEY];
       make_key(key, FUNCTIONS[c], ipar, nids);
-      fail(ctx, "c_syspar: partials in a value its iflag call did not ask for: ", key);
+      fail(ctx, "%s: partials in a value its iflag call did not ask for: %s",
+           API(ctx, "syspar"), key);
       return;
     }
   }
@@ -275,11 +285,13 @@ PS_EXPORT void c_adams_needs_partials(int* eval_jac) {
 PS_EXPORT void c_errmes(int errflg, const char* message, int id, const char* endflag) {
   (void)id;
   (void)endflag;
-  if (errflg && current) fail(current, "", message);
+  if (errflg && current) fail(current, "%s", message);
 }
 
 void ps_user_fail(const char* message) {
-  if (current) fail(current, "", message);
+  if (!current || current->error) return;
+  current->named = 1;
+  fail(current, "%s", message);
 }
 
 const double* ps_user_values(void) {
@@ -325,11 +337,12 @@ static double call(void* fn, int form, int id, double t, const double* par, int 
   return val[chan];
 }
 
-int ps_user_declare(void* fn, int form, int id, const double* par, int npar, char* keys,
-                    int maxkeys, char* msg, int msglen) {
+int ps_user_declare(void* fn, int form, int python, int id, const double* par, int npar,
+                    char* keys, int maxkeys, char* msg, int msglen) {
   UserCtx ctx;
   memset(&ctx, 0, sizeof(ctx));
   ctx.recording = 1;
+  ctx.python = python;
   ctx.keys = keys;
   ctx.maxkeys = maxkeys;
   UserCtx* prev = current;
@@ -429,11 +442,10 @@ static int check_given(const psModel* m, int k, UserCtx* ctx, double* z, int nin
   }
   for (int q = 0; q < 3; q++)
     if (fabs(given - best[q]) <= 1e-6 * (fabs(given) + fabs(best[q])) + err[q]) return 0;
-  char key[PS_USER_KEY], detail[160];
+  char key[PS_USER_KEY];
   make_key(key, FUNCTIONS[ctx->kfn[i]], ctx->kid + 4 * i, ctx->kn[i]);
-  snprintf(detail, sizeof(detail), "%s as %.9g, but differences of its value give %.9g",
-           key, given, best[0]);
-  fail(ctx, "c_syspar gave the partial in ", detail);
+  fail(ctx, "%s gave the partial in %s as %.9g, but differences of its value give %.9g",
+       API(ctx, "syspar"), key, given, best[0]);
   return -1;
 }
 
@@ -510,6 +522,8 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
   UserCtx ctx;
   ctx.recording = 0;
   ctx.error = 0;
+  ctx.named = 0;
+  ctx.python = m->user_python[k];
   ctx.t = ctx.t_error = z[nin];
   ctx.part = NULL;
   ctx.got = NULL;
@@ -589,7 +603,9 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
     cache[0] = 0.0;
     d->user_error = 1;
     d->user_t = ctx.t_error;
-    snprintf(d->msg, sizeof(d->msg), "user subroutine (id %d): %s", m->user_id[k], ctx.msg);
+    /* the routine as the deck names it, unless its own message (a Python routine's) does */
+    snprintf(d->msg, sizeof(d->msg), "user subroutine (id %d): %s%s%s", m->user_id[k],
+             ctx.named ? "" : m->user_name[k], ctx.named ? "" : ": ", ctx.msg);
     out[0] = NAN;
     return -1;
   }

@@ -71,12 +71,16 @@ class UserSub:
     attribute: str = "usrsub_fnc_name"   # the deck attribute to name in errors
     untraced: str = None   # why a Python routine could not be traced (it is called instead)
 
+    @property
+    def label(self):
+        """The routine as the deck names it (``SFO_RAISE``, a function's name), for messages."""
+        return self.routine if isinstance(self.routine, str) else \
+            getattr(self.routine, "__name__", "routine")
+
     def describe(self):
         """A short text for summaries and logs."""
         where = self.script or self.library or "a Python callable"
-        name = self.routine if isinstance(self.routine, str) else \
-            getattr(self.routine, "__name__", "routine")
-        return f"USER({', '.join(f'{p:g}' for p in self.par)}) -> {name} ({where})"
+        return f"USER({', '.join(f'{p:g}' for p in self.par)}) -> {self.label} ({where})"
 
 
 @record

@@ -172,8 +172,8 @@ def test_a_gcosub_giving_its_partials(tmp_path):
                                        atol=1e-7)
         else:
             assert not res.success
-            assert res.message == ("user subroutine (id 3): c_syspar gave the partial in DX(9) "
-                                   "as 3, but differences of its value give 2 (t = 0)")
+            assert res.message == ("user subroutine (id 3): GCOSUB: c_syspar gave the partial in "
+                                   "DX(9) as 3, but differences of its value give 2 (t = 0)")
 
 
 def test_the_statements_take_the_routines(tmp_path):

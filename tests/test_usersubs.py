@@ -940,11 +940,11 @@ def test_given_partials_are_checked(syspar_library):
     """Wrong partials end the run naming the value and both numbers; at a kink (the particle
     starts at x = 100, where |x - 100| bends) a one-sided partial is accepted; a partial in a
     value the iflag call did not ask for, or the wrong count, ends the run with c_syspar's
-    message."""
+    message, each naming the routine."""
     wrong = _lines(syspar_library, "WRONG").run()
     assert not wrong.success and wrong.status == -400
-    assert ("user subroutine (id 2): c_syspar gave the partial in DX(10) as 1, but differences "
-            "of its value give -1") in wrong.message
+    assert wrong.message == ("user subroutine (id 2): WRONG: c_syspar gave the partial in DX(10) "
+                             "as 1, but differences of its value give -1 (t = 0)")
     kinked = _lines(syspar_library, None, "1+DX(10)-DZ(10)+0.1*ABS(DX(10)-100)",
                     "1-DX(10)-DZ(10)+0.1*ABS(DX(10)-100)")
     ref, fine = kinked.run(integr_tol=1e-10), kinked.run(integr_tol=1e-12)
@@ -954,8 +954,9 @@ def test_given_partials_are_checked(syspar_library):
             ("UNASKED", "c_syspar: partials in a value its iflag call did not ask for: DY(10)"),
             ("SHORT", "c_syspar: TDISP has 3 values, c_syspar was given 2 partials")):
         res = _lines(syspar_library, routine).run()
-        assert not res.success and message in res.message
-        assert res.message.startswith(("user subroutine (id 1): ", "user subroutine (id 2): "))
+        assert not res.success
+        assert res.message in (f"user subroutine (id {i}): {routine}: {message} (t = 0)"
+                               for i in (1, 2))
 
 
 def test_given_partials_a_little_off_or_given_late_are_caught(syspar_library):
@@ -967,16 +968,16 @@ def test_given_partials_a_little_off_or_given_late_are_caught(syspar_library):
     it, not only those of the first evaluation (LATE gives DZ's, 10 % off, once x < 50: the
     run succeeded with forces 16 N off). LATE's is caught in a call at an IDA trial time,
     past the run's last converged step: the message names both."""
-    said = re.compile(r"user subroutine \(id 2\): c_syspar gave the partial in (\w+)\(10\) as "
-                      r"(\S+), but differences of its value give (\S+) \((?:called at t = "
-                      r"(\S+); the run's last converged step: )?t = (\S+)\)")
+    said = (r"user subroutine \(id 2\): {}: c_syspar gave the partial in (\w+)\(10\) as (\S+), "
+            r"but differences of its value give (\S+) \((?:called at t = (\S+); the run's "
+            r"last converged step: )?t = (\S+)\)")
     for routine, value, given, differences, t in (("NEAR", "DX", -1.02, -1.0, 0.0),
                                                   ("TINY", "DX", -2e-12, -1e-12, 0.0),
                                                   ("OFFSET", "DX", -2e-2, -1e-2, 0.0),
                                                   ("LATE", "DZ", -1.1, -1.0, 0.145)):
         res = _lines(syspar_library, routine).run()
         assert not res.success and res.status == -400
-        got = said.fullmatch(res.message)
+        got = re.fullmatch(said.format(routine), res.message)
         assert got is not None, res.message
         assert got[1] == value and float(got[2]) == given
         assert float(got[3]) == pytest.approx(differences, rel=1e-6)
@@ -1042,8 +1043,8 @@ def test_py_syspar(tmp_path):
     bad = text.replace("py_syspar('DZ', ipar, [-1.0])", "py_syspar('DZ', ipar, [1.0])")
     res = pysolver.loads(bad, fmt="py").run()
     assert not res.success
-    assert "c_syspar gave the partial in DZ(10) as 1, but differences of its value give -1" \
-        in res.message
+    assert res.message == ("user subroutine (id 2): lines: py_syspar gave the partial in DZ(10) "
+                           "as 1, but differences of its value give -1 (t = 0)")
     traced = text.replace(LINES_NUMPY_SYSPAR.replace("def PFOSUB", "def lines"),
                           LINES_PFOSUB.replace("def PFOSUB", "def lines").replace(
                               "    return 1", "    py_syspar('DX', ipar, [par[1]])\n"
@@ -1059,7 +1060,7 @@ def test_py_syspar(tmp_path):
 def test_py_syspar_of_an_array_and_a_wrong_count(tmp_path, monkeypatch):
     """py_syspar of a TDISP array read with py_sysary goes through c_syspar: the expression
     version's steps and answers to rounding; one partial too many for DX is the run's error,
-    in c_syspar's words."""
+    in c_syspar's words with py_syspar's name."""
     from scenes import LINES_NUMPY_SYSPAR, lines_deck
     # the expression version integrated as the routine's is (all six states: a routine that
     # reads TDISP reads y, which the expression version's particle holds)
@@ -1081,4 +1082,5 @@ def test_py_syspar_of_an_array_and_a_wrong_count(tmp_path, monkeypatch):
     two = body.replace("py_syspar('DX', ipar, [par[1]])", "py_syspar('DX', ipar, [par[1], 1.0])")
     res = pysolver.loads(text.replace(body, two), fmt="py").run(integr_tol=1e-10)
     assert not res.success
-    assert "c_syspar: DX has 1 value, c_syspar was given 2 partials" in res.message
+    assert res.message == ("user subroutine (id 2): lines: py_syspar: DX has 1 value, py_syspar "
+                           "was given 2 partials (t = 0)")

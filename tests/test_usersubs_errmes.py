@@ -156,6 +156,54 @@ def test_an_error_in_the_iflag_call_says_its_values_were_0(tmp_path):
                                  "PFOSUB: x went negative (id 1)")
 
 
+# -- the routine the deck names, and the function it called (trial 43, item 9) ---------------
+
+def named_model(tmp_path, action, condition, name="BEAD_RAISE"):
+    """The bead with the routine `name` (another, PFOSUB, fine, in the same script) doing
+    `action` on `condition`."""
+    source = routine(None, "pass") + "\n\n" + routine(condition, action).replace(
+        "import math\nimport sys\n\n\ndef PFOSUB", f"def {name}")
+    script = tmp_path / "two_subs.py"
+    script.write_text(source)
+    return pysolver.loads(bead_xml(f'script_name="{script}" usrsub_fnc_name="{name}" '
+                                   'usrsub_param_string="USER(9)"'))
+
+
+@pytest.mark.parametrize("action, text", [
+    (RAISE, "BEAD_RAISE raised ValueError: x went negative"),
+    (ERRMES.format(endflag="STOP"), "BEAD_RAISE: x went negative (id 1)"),
+])
+def test_a_failing_run_names_the_routine_the_deck_names(tmp_path, action, text):
+    """usrsub_fnc_name="BEAD_RAISE" failing on `x < 0`: the -400 message named the element's
+    conventional routine (PFOSUB), which the script also defines."""
+    called, last = failed_past(named_model(tmp_path, action, "x < 0").run(), text)
+    assert 0.5 < last < called < 0.55
+
+
+@pytest.mark.parametrize("action, condition, reason", [
+    (RAISE, None, "BEAD_RAISE raised ValueError: x went negative (line 15)"),
+    (ERRMES.format(endflag="STOP"), None, "BEAD_RAISE: x went negative (id 1) (line 15)"),
+    (ERRMES.format(endflag="STOP"), "x <= 0",
+     "BEAD_RAISE (iflag call, time and every value it reads 0): BEAD_RAISE: x went negative "
+     "(id 1)"),
+])
+def test_a_refused_routine_is_named_as_the_deck_names_it(tmp_path, action, condition, reason):
+    """The DeckErrors of a routine that fails at every state, or in its iflag call."""
+    with pytest.raises(pysolver.DeckError) as info:
+        named_model(tmp_path, action, condition).run()
+    assert info.value.reason == reason
+
+
+def test_a_wrong_py_syspar_partial_names_the_routine_and_py_syspar(tmp_path):
+    """A Python routine's wrong partial was reported as `c_syspar gave the partial ...`."""
+    action = "py_syspar('DY', [int(par[0])], [5.0])"
+    model = named_model(tmp_path, action, "float(x) > -1", name="BEAD_SYSPAR")
+    res = model.run()
+    assert (res.success, res.status, res.message) == (
+        False, -400, "user subroutine (id 1): BEAD_SYSPAR: py_syspar gave the partial in DY(9) "
+        "as 5, but differences of its value give 1 (t = 0)")
+
+
 # -- the time in the message ------------------------------------------------------------------
 
 BOOM = routine("time > 1.0", "raise RuntimeError(f'boom at time {time!r}')")
@@ -239,10 +287,10 @@ def c_library(tmp_path_factory):
 def test_c_errmes_on_a_branch_fails_the_run_where_the_state_takes_it(c_library, tmp_path,
                                                                       name, text, bounds):
     """A C routine is called, not traced: c_errmes on `x < 0` or `time > 0.5` loads, runs
-    and fails there, as the Python routine does."""
+    and fails there, as the Python routine does; the message names the routine."""
     res = pysolver.loads(bead_xml(f'usrsub_dll_name="{c_library}" usrsub_fnc_name="{name}" '
                                   'usrsub_param_string="USER(9)"')).run()
-    called, last = failed_past(res, text)
+    called, last = failed_past(res, f"{name}: {text}")
     assert bounds[0] < last < called and res.t[-1] <= bounds[1]
     if name == "LATE":
         assert last <= 0.5 < called

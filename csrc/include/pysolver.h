@@ -251,6 +251,8 @@ typedef struct psModel {
   int* user_key_adr;      /* (nuser x 1) first declared input in user_key_*     */
   int* user_nkey;         /* (nuser x 1) number of declared inputs              */
   int* user_timeless;     /* (nuser x 1) 1: never reads its time argument       */
+  int* user_python;       /* (nuser x 1) 1: a Python routine (py_syspar, ...)   */
+  char** user_name;       /* (nuser x 1) the routine as the deck names it       */
   int* user_key_fn;       /* (nkey total x 1) function code (ps_user_fn_code)   */
   int* user_key_n;        /* (nkey total x 1) number of ids                     */
   int* user_key_ids;      /* (nkey total x 4) the ids                           */
@@ -949,20 +951,22 @@ void* ps_user_open(const char* path, const char* name, char* msg, int msglen);
 int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
                   const double* z, int nin, int order, double* out);
 
-/* Call user routine fn (argument list form, PS_USER_*) once with iflag = 1, as Adams does to
- * learn its dependencies: each c_sysfnc / c_sysary call it makes is recorded as a canonical key
- * ("DX(9,1)"; arrays as their entries) into keys (maxkeys x PS_USER_KEY) and returns 0.
- * Returns the number of keys (maxkeys + 1 if there were more), or -1 with a message in msg
- * when the routine reported an error (c_errmes) or called an unknown function. */
-int ps_user_declare(void* fn, int form, int id, const double* par, int npar, char* keys,
-                    int maxkeys, char* msg, int msglen);
+/* Call user routine fn (argument list form, PS_USER_*; python 1 for a Python routine, whose
+ * messages name py_sysfnc) once with iflag = 1, as Adams does to learn its dependencies: each
+ * c_sysfnc / c_sysary call it makes is recorded as a canonical key ("DX(9,1)"; arrays as their
+ * entries) into keys (maxkeys x PS_USER_KEY) and returns 0. Returns the number of keys
+ * (maxkeys + 1 if there were more), or -1 with a message in msg when the routine reported an
+ * error (c_errmes) or called an unknown function. */
+int ps_user_declare(void* fn, int form, int python, int id, const double* par, int npar,
+                    char* keys, int maxkeys, char* msg, int msglen);
 
 /* Return the code c_sysfnc uses for an expression-language function name (case and spaces
  * ignored), or -1 when it is not one c_sysfnc answers. */
 int ps_user_fn_code(const char* name);
 
 /* Report an error from inside a user subroutine call (a Python routine's exception): the
- * current evaluation yields NaN and d->msg says why. Outside a call it does nothing. */
+ * current evaluation yields NaN and d->msg says why, in this message, which names the routine
+ * (other errors are prefixed with user_name). Outside a call it does nothing. */
 void ps_user_fail(const char* message);
 
 /* Return the values of the system values the routine being called declared, in declaration

@@ -1001,6 +1001,8 @@ class Compiler:
             user_par=f64(par), user_key_adr=i32(key_adr),
             user_nkey=i32([len(r.keys) for r in routines]),
             user_timeless=i32([r.timeless for r in routines]),
+            user_python=i32([r.python for r in routines]),
+            user_name=[r.name for r in routines],
             user_key_fn=i32([lib.ps_user_fn_code(k.split("(")[0].encode()) for k in keys]),
             user_key_n=i32([len(_key_ids(k)) for k in keys]),
             user_key_ids=i32([(_key_ids(k) + [0] * 4)[:4] for k in keys]).reshape(-1),

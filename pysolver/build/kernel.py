@@ -80,11 +80,11 @@ class Kernel:
                 setattr(m, key, int(val))
             elif isinstance(val, float) or key == "gravity":
                 setattr(m, key, list(val) if key == "gravity" else float(val))
-            elif key == "user_fn":
-                fns = ffi.new("void *[]", val or [ffi.NULL])
-                self._keep.append(fns)
-                m.user_fn = fns
-
+            elif key in ("user_fn", "user_name"):     # the routines, their names
+                items = val if key == "user_fn" else [ffi.new("char[]", s.encode()) for s in val]
+                table = ffi.new("void *[]" if key == "user_fn" else "char *[]", items or [ffi.NULL])
+                self._keep += [items, table]
+                setattr(m, key, table)
             else:
                 ctype = "int *" if val.dtype == np.int32 else "double *"
                 if val.size == 0:

@@ -46,6 +46,8 @@ class Routine:
     keys: list            # canonical inputs, e.g. ["DX(9)", "DY(9)"]
     keep: object = None   # what must stay alive while the kernel may call fn
     timeless: bool = False    # never reads its time argument: not differenced in time
+    name: str = ""        # the routine as the deck names it, for messages
+    python: bool = False  # a Python routine: messages name py_sysfnc, py_syspar
 
 
 def bind(model):
@@ -65,15 +67,15 @@ def bind(model):
             how = f"Python callback ({sub.untraced})"
         if len(sub.par) > 64:
             raise ctx.error("at most 64 USER(...) parameters", sub.attribute)
-        keys = _declare(ctx, sub, fn, form, el.id)
+        keys = _declare(ctx, sub, fn, form, el.id, python=not sub.library)
         if kind == "motion" and keys:
-            raise ctx.error(f"{sub.name} declares {', '.join(keys)}: a motion is a function "
+            raise ctx.error(f"{sub.label} declares {', '.join(keys)}: a motion is a function "
                             "of time only", sub.attribute)
         if keep is not None:
             keep[1].keys = keys         # the Python routine reads them by name
         k = len(model.user_routines)
         model.user_routines.append(Routine(fn, form, el.id, tuple(sub.par), keys, keep,
-                                           timeless))
+                                           timeless, sub.label, not sub.library))
         inputs = [_key_tree(ctx, sub, key) for key in keys]
         nvalues = CONVENTIONS[ctx.tag][2]
         trees = [("user", k, chan, inputs) for chan in range(nvalues)]
@@ -95,19 +97,20 @@ def _library(ctx, sub):
     return fn
 
 
-def _declare(ctx, sub, fn, form, id):
+def _declare(ctx, sub, fn, form, id, python):
     """The system values the routine reads, from its iflag call."""
     maxkeys = lib.PS_USER_MAXIN
     keys = ffi.new("char[]", maxkeys * lib.PS_USER_KEY)
     msg = ffi.new("char[256]")
     par = ffi.new("double[]", list(sub.par) or [0.0])
-    n = lib.ps_user_declare(fn, form, id, par, len(sub.par), keys, maxkeys, msg, 256)
+    n = lib.ps_user_declare(fn, form, int(python), id, par, len(sub.par), keys, maxkeys, msg,
+                            256)
     if n < 0:
         # time and every value read are 0 in that call: the error is not about the state
-        raise ctx.error(f"{sub.name} (iflag call, time and every value it reads 0): "
+        raise ctx.error(f"{sub.label} (iflag call, time and every value it reads 0): "
                         f"{ffi.string(msg).decode(errors='replace')}", sub.attribute)
     if n > maxkeys:
-        raise ctx.error(f"{sub.name} reads more than {maxkeys} system values", sub.attribute)
+        raise ctx.error(f"{sub.label} reads more than {maxkeys} system values", sub.attribute)
     raw = ffi.buffer(keys)[:]
     return [raw[i * lib.PS_USER_KEY:(i + 1) * lib.PS_USER_KEY].split(b"\0")[0].decode()
             for i in range(n)]
@@ -121,7 +124,7 @@ def _key_tree(ctx, sub, key):
     try:
         ex._check(node)
     except ExpressionError as err:
-        raise ctx.error(f"{sub.name} reads {key}: {err.reason}", sub.attribute) from None
+        raise ctx.error(f"{sub.label} reads {key}: {err.reason}", sub.attribute) from None
     return node
 
 
@@ -134,7 +137,7 @@ def _callback(ctx, sub, form, model):
     from ..deck.usersubs import python_routine
     fn = python_routine(ctx, sub, model)
     nvalues = CONVENTIONS[ctx.tag][2]
-    name = sub.name
+    name = sub.label
     par = list(sub.par)
     reader = _Reader()
     plain = form == lib.PS_USER_PLAIN
@@ -151,7 +154,8 @@ def _callback(ctx, sub, form, model):
                 for i, v in enumerate(list(out)[:nvalues]):
                     value[i] = float(v or 0.0)
         except BaseException as err:  # noqa: BLE001 - reported through the kernel, never raised
-            text = f"{name}: {err}" if isinstance(err, tracer.RoutineError) else \
+            text = f"{name}: {err}" if isinstance(err, (tracer.RoutineError,
+                                                        tracer.SysfncError)) else \
                 f"{name} raised {type(err).__name__}: {err}"
             lib.ps_user_fail(text.encode()[:190])
             value[0] = math.nan

@@ -157,7 +157,7 @@ def _not_timed(model, key, reads):
         return f"Load_Function must depend on time only; it reads {reads}"
     sub = model.motions[key[1]].usersub
     if sub is not None:
-        return f"{sub.name} must give a function of time only; it reads {reads}"
+        return f"{sub.label} must give a function of time only; it reads {reads}"
     return f"a motion's expression must depend on time only; it reads {reads}"
 
 

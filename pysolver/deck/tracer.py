@@ -11,12 +11,16 @@ comparison of traced values is a :class:`Cond`, and each time the routine asks f
 value the tracer answers from a list of decisions. :func:`explore` runs the routine once per
 path (depth first, at most ``MAX_PATHS``) and :func:`join` folds the paths' results into the
 expression language's ``IF(a - b: neg, zero, pos)``, so every branch runs in C with the
-derivatives of the branch taken. A routine that converts a traced value to a number
-(``float``, NumPy), calls functions the expression language does not have, or has too many
-paths cannot be traced: :class:`Untraceable` says where and why.
+derivatives of the branch taken. The ``math`` module's functions and NumPy's ufuncs build the
+same trees (:mod:`.tracelib`). A routine that converts a traced value to a number
+(``float()``, a float array), calls functions the expression language does not have, or has
+too many paths cannot be traced: :class:`Untraceable` says where and why.
 """
 import math
+import numbers
 import threading
+
+import numpy as np
 
 from .. import catalogue
 from ..errors import DeckError, ExpressionError
@@ -43,12 +47,19 @@ MAX_PATHS = 64
 
 
 def _node(v):
+    if isinstance(v, np.ndarray) and v.ndim == 0:
+        v = v.item()                    # NumPy's 0-d result (np.where of one value)
     if isinstance(v, Sym):
         return v.node
-    if isinstance(v, bool) or not isinstance(v, (int, float)):
+    return ("num", _number(v))
+
+
+def _number(v):
+    """A number (a NumPy scalar too) as a float; anything else is Untraceable."""
+    if isinstance(v, (bool, np.bool_)) or not isinstance(v, numbers.Real):
         raise Untraceable(f"a {type(v).__name__} entered the computation; only numbers and "
                           "values from py_sysfnc can be traced")
-    return ("num", float(v))
+    return float(v)
 
 
 def _refuse(what):
@@ -104,6 +115,12 @@ class Sym:
     __floordiv__ = __rfloordiv__ = __mod__ = __rmod__ = _refuse("// or % (use math.fmod)")
     __round__ = _refuse("round()")
 
+    def __repr__(self):
+        return ex.unparse(self.node)
+
+    # NumPy's ufuncs: tracelib, which imports this module, gives the class __array_ufunc__
+    # and the methods an object array's ufunc calls
+
 
 #: Which sign of d = a - b makes each comparison true: (d < 0, d == 0, d > 0).
 _TRUE_WHEN = {"<": (1, 0, 0), "<=": (1, 1, 0), ">": (0, 0, 1), ">=": (0, 1, 1),
@@ -128,6 +145,23 @@ class Cond(Sym):
         if paths is None:
             raise Untraceable("truth value of a state-dependent value outside a traced call")
         return paths.decide(self)
+
+
+# the name Python's and NumPy's own messages give these types ("unhashable type: ...")
+for _t in (Sym, Cond):
+    _t.__name__ = _t.__qualname__ = "traced value"
+
+
+def untraceable_in(err):
+    """The Untraceable that `err` is, or was raised from or while handling (NumPy turns one
+    raised in an element's method into a TypeError), or None."""
+    seen = set()
+    while err is not None and id(err) not in seen:
+        if isinstance(err, Untraceable):
+            return err
+        seen.add(id(err))
+        err = err.__cause__ or (None if err.__suppress_context__ else err.__context__)
+    return None
 
 
 class _Paths:
@@ -160,7 +194,12 @@ def explore(run):
         try:
             result = run()
         except (Exception, SystemExit) as err:
-            if not paths.taken or isinstance(err, (Untraceable, SysfncError, DeckError)):
+            if isinstance(err, (Untraceable, SysfncError, DeckError)):
+                raise
+            inner = untraceable_in(err)
+            if inner is not None:
+                raise Untraceable(str(inner)) from err
+            if not paths.taken:
                 raise
             what = (f"reports an error with py_errmes: {err}" if isinstance(err, RoutineError)
                     else f"raises {type(err).__name__}: {err}")
@@ -194,67 +233,6 @@ def join(leaves, depth=0):
     yes = join([leaf for leaf in leaves if leaf[0][depth]], depth + 1)
     no = join([leaf for leaf in leaves if not leaf[0][depth]], depth + 1)
     return cond.select(yes, no)
-
-
-def _math_function(real, name, arity=1):
-    """A math-module function that builds NAME(...) on traced values and is math's otherwise."""
-    def fn(*args):
-        if any(isinstance(a, Sym) for a in args):
-            if len(args) != arity:
-                raise Untraceable(f"math.{real.__name__} with {len(args)} arguments")
-            return Sym(("call", name, [_node(a) for a in args], 0))
-        return real(*args)
-    fn.__name__ = real.__name__
-    return fn
-
-
-def _log(x, base=None):
-    if base is None:
-        return _math_function(math.log, "LOG")(x)
-    return _math_function(math.log, "LOG")(x) / _math_function(math.log, "LOG")(base)
-
-
-def _hypot(*args):
-    if any(isinstance(a, Sym) for a in args):
-        total = 0.0
-        for a in args:
-            total = total + a * a
-        return Sym(("call", "SQRT", [_node(total)], 0))
-    return math.hypot(*args)
-
-
-class _MathShim:
-    """Stands in for the math module while a routine is traced."""
-
-    def __getattr__(self, attr):
-        return getattr(math, attr)      # constants and functions with no traced form
-
-
-SHIM = _MathShim()
-# the catalogue's math-module stand-ins; then math.log with its optional base, math.hypot of any
-# number of arguments and math.pow as **
-_NAMES = [f.math for f in catalogue.TABLE if f.math] + ["hypot", "pow"]
-for _f in catalogue.TABLE:
-    if _f.math:
-        setattr(SHIM, _f.math, _math_function(getattr(math, _f.math), _f.name, _f.arity[1]))
-SHIM.log = _log
-SHIM.hypot = _hypot
-SHIM.pow = lambda x, y: x ** y
-_REPLACED = {getattr(math, n): getattr(SHIM, n) for n in _NAMES}
-
-
-def shim_globals(namespace):
-    """A copy of a namespace with the math module and its functions replaced by SHIM's."""
-    out = dict(namespace)
-    for key, val in namespace.items():
-        if val is math:
-            out[key] = SHIM
-        elif callable(val):
-            try:
-                out[key] = _REPLACED.get(val, val)
-            except TypeError:           # an unhashable callable: not a math function
-                pass
-    return out
 
 
 # ---------------------------------------------------------------------------------------------

@@ -16,10 +16,12 @@ import sys
 import traceback
 import types
 
+import numpy as np
+
 from .. import catalogue, settings
 from ..errors import DeckError, ExpressionError
 from ..model import UserSub
-from . import elfsyms, tracer
+from . import elfsyms, tracelib, tracer
 from . import expr as ex
 
 #: Element -> (conventional routine name, its Python arguments, values it returns).
@@ -178,7 +180,7 @@ def set_trees(model, kind, el, trees):
     """Put an element's expression trees from its user subroutine in the compiled scene
     `model` (a Model's working copy: the loaded Model itself never changes)."""
     if kind == "request":
-        texts = [f"{el.usersub.name} channel {k + 1}" for k in range(8)]
+        texts = [f"{el.usersub.label} channel {k + 1}" for k in range(8)]
         new = dataclasses.replace(el, exprs=list(trees), texts=texts)
     else:
         new = dataclasses.replace(el, expr=trees[0])
@@ -221,7 +223,7 @@ def python_routine(ctx, sub, model, traced=False):
     if callable(sub.routine):
         fn = sub.routine
         if traced and isinstance(fn, types.FunctionType):
-            fn = types.FunctionType(fn.__code__, tracer.shim_globals(fn.__globals__),
+            fn = types.FunctionType(fn.__code__, tracelib.shim_globals(fn.__globals__),
                                     fn.__name__, fn.__defaults__, fn.__closure__)
         return fn
     scripts = model._scripts
@@ -253,21 +255,39 @@ def _builtins():
 
     def imp(name, globals=None, locals=None, fromlist=(), level=0):
         if name == "math" and level == 0:
-            return tracer.SHIM
+            return tracelib.SHIM
         return real_import(name, globals, locals, fromlist, level)
     table["__import__"] = imp
     return table
 
 
+def _on_numbers(call):
+    """What `call` of the routine raises on numbers (time and every value py_sysfnc and
+    py_sysary read 0, as in the kernel's iflag call), or None: tells a routine's own error from
+    one a library raised on a traced value (a routine that raises at every state raises on
+    numbers too, at the same line)."""
+    prev = tracer.enter_live(lambda fnc, ids: [0.0, 0], lambda fnc, ids, partials: 0)
+    try:
+        call()
+    except (Exception, SystemExit) as err:
+        return err
+    finally:
+        tracer.leave_live(prev)
+    return None
+
+
+def _line(err, file):
+    """The deepest line of `file` in err's traceback, or None."""
+    lines = [f.lineno for f in traceback.extract_tb(err.__traceback__)
+             if file is None or os.path.abspath(f.filename) == os.path.abspath(file)]
+    return lines[-1] if lines else None
+
+
 def _where(err, file):
     """'Type: message (file line N)' with the deepest line of `file` in the traceback (for a
     branch that raised, the traceback of what it raised)."""
-    line = None
     cause = err.__cause__ if isinstance(err, tracer.Untraceable) else None
-    for frame in traceback.extract_tb(err.__traceback__) + \
-            (traceback.extract_tb(cause.__traceback__) if cause is not None else []):
-        if file is None or os.path.abspath(frame.filename) == os.path.abspath(file):
-            line = frame.lineno
+    line = (_line(cause, file) if cause is not None else None) or _line(err, file)
     text = f"{type(err).__name__}: {err}" if not isinstance(err, (tracer.Untraceable,
                                                                    tracer.SysfncError,
                                                                    tracer.RoutineError)) \
@@ -282,29 +302,39 @@ def _trace(ctx, sub, id, model):
     fn = python_routine(ctx, sub, model, traced=True)
     _, args, nvalues = CONVENTIONS[ctx.tag]
     file = sub.script or getattr(getattr(fn, "__code__", None), "co_filename", None)
-    time = tracer.Sym(("name", "TIME", 0))
     par = list(sub.par)
 
+    def call(time, iflag):
+        values = {"id": id, "time": time, "par": list(par), "npar": len(par), "dflag": 0,
+                  "iord": 0, "iflag": iflag}
+        return fn(*[values[k] for k in args])
+
     def run(iflag):
-        call = {"id": id, "time": time, "par": list(par), "npar": len(par), "dflag": 0,
-                "iord": 0, "iflag": iflag}
         with tracer.active():
-            out = fn(*[call[k] for k in args])
+            out = call(tracer.Sym(("name", "TIME", 0)), iflag)
         return _value_trees(ctx, sub, out, nvalues) if iflag == 0 else None
 
+    iflag = 1
     try:
         tracer.explore(lambda: run(1))
+        iflag = 0
         leaves = tracer.explore(lambda: run(0))
         trees = [_join_channel(leaves, k) for k in range(nvalues)]
     except tracer.Untraceable as err:
         sub.untraced = f"not traced: {_where(err, file)}"
         return None
     except (tracer.SysfncError, tracer.RoutineError) as err:
-        raise ctx.error(f"{sub.name}: {_where(err, file)}", sub.attribute) from None
+        raise ctx.error(f"{sub.label}: {_where(err, file)}", sub.attribute) from None
     except DeckError:
         raise
-    except (Exception, SystemExit) as err:  # the routine's own error (sys.exit too)
-        raise ctx.error(f"{sub.name} raised {_where(err, file)}", sub.attribute) from None
+    except (Exception, SystemExit) as err:  # on no branch: the routine's error, or the tracer's
+        own = _on_numbers(lambda: call(0.0, iflag))
+        if own is None or type(own) is not type(err) or _line(own, file) != _line(err, file):
+            sub.untraced = (f"not traced: {_where(err, file)}, raised on traced values and not "
+                            "on numbers (time and every value it reads 0): a function the "
+                            "tracer cannot follow")
+            return None
+        raise ctx.error(f"{sub.label} raised {_where(own, file)}", sub.attribute) from None
     deepest = max((ex.depth(t) for t in trees if t is not None), default=0)
     if deepest > ex.MAX_DEPTH:
         sub.untraced = (f"not traced: its expression nests {deepest} levels deep, more than "
@@ -315,7 +345,7 @@ def _trace(ctx, sub, id, model):
             if t is not None:
                 ex._check(t)
     except ExpressionError as err:   # pragma: no cover - the tracer builds checked nodes
-        raise ctx.error(f"{sub.name}: {err}", sub.attribute) from None
+        raise ctx.error(f"{sub.label}: {err}", sub.attribute) from None
     return trees
 
 
@@ -332,8 +362,10 @@ def _value_trees(ctx, sub, values, nvalues):
     """The trees of one return value: one per channel (None: a REQSUB channel left out)."""
     if nvalues == 1:
         values = [values]
-    elif not isinstance(values, (list, tuple)) or len(values) > nvalues:
-        raise ctx.error(f"{sub.name} must return a list of up to {nvalues} values, got "
+    elif isinstance(values, np.ndarray) and values.ndim == 1:
+        values = list(values)           # a NumPy REQSUB's array, as the kernel's call takes it
+    if not isinstance(values, (list, tuple)) or len(values) > nvalues:
+        raise ctx.error(f"{sub.label} must return a list of up to {nvalues} values, got "
                         f"{values!r}", sub.attribute)
     trees = []
     for v in list(values) + [None] * (nvalues - len(values)):
@@ -343,5 +375,5 @@ def _value_trees(ctx, sub, values, nvalues):
         try:
             trees.append(tracer.tree_of(v))
         except tracer.Untraceable as err:
-            raise ctx.error(f"{sub.name} returned {v!r}: {err}", sub.attribute) from None
+            raise ctx.error(f"{sub.label} returned {v!r}: {err}", sub.attribute) from None
     return trees

@@ -67,7 +67,7 @@ def describe(model, kernel):
         name, e = _element(model, kernel, kind, index)
         what = f"{name} {e.id}: " + "; ".join(_texts(e))
         if getattr(e, "usersub", None) is not None:
-            what += f" (user subroutine {e.usersub.name})"
+            what += f" (user subroutine {e.usersub.label})"
     number = "nan" if math.isnan(value) else f"{value:g}"
     noun = "derivative" if d.bad_partial else "value"
     return (f"non-finite {noun} ({number}) in {what}, at t = {t:.9g}; "
@@ -114,7 +114,7 @@ def channels(model, kernel, t, outputs):
             continue
         req = model.requests[rid]
         rows = np.flatnonzero(bad[:, col])
-        text = req.texts[k] if req.texts[k] else f"{req.usersub.name} channel {k + 1}"
+        text = req.texts[k] if req.texts[k] else f"{req.usersub.label} channel {k + 1}"
         lines.append(f"request {rid} channel {k + 1} ({text}) is not finite at {len(rows)} of "
                      f"{len(t)} output times, first at t = {t[rows[0]]:.9g} "
                      f"({outputs[rows[0], col]:g})")

@@ -66,7 +66,7 @@ _NODES_PER_ITEM = 30
 #: Arrays the generated code reads at run time (``m->...``), so their values are not in the key:
 #: one library serves every case of a sweep over masses, inertias, gravity and marker positions.
 _READ_AT_RUN_TIME = {"body_mass", "body_inertia", "body_plane", "gravity", "marker_pos",
-                     "user_fn", "compliance"}
+                     "user_fn", "user_name", "user_python", "compliance"}
 
 
 #: A temporary of generated C.
