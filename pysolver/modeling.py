@@ -747,7 +747,7 @@ def _token(value):
     lists item by item."""
     if isinstance(value, (bool, np.bool_, str)) or value is None:
         return value
-    if isinstance(value, (int, float, np.number)):
+    if isinstance(value, (int, float, np.integer, np.floating)):
         return repr(float(value))
     if isinstance(value, np.ndarray):
         return tuple(_token(v) for v in value.tolist())
