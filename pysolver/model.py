@@ -62,6 +62,7 @@ class Model:
         self.output_settings = {}       # ResOutput, H3DOutput: kept as written, not used
         self.static = Static()
         self.commands = []
+        self.default_command = False    # no Simulate: the default transient (validate)
         self.has_units = False
         self._compiled = {}       # CompiledModel by kind of kernel (compile)
         self.usersub_paths = {}   # element -> how its user subroutine runs (filled when compiled)

@@ -26,6 +26,12 @@ call), the checks after the dataset reader's included. Each class's ``_keys`` ma
 attribute to its Adams keyword, or, for an attribute written as a flag (``type="REVOLUTE"``
 is the flag ``REVOLUTE``), to the table of its values and flags; pysolver/convert.py reads
 the same tables to write a deck as a script of these classes.
+
+simulate() runs every command from t = 0 with the model as it is, so the model must not change
+between analyses: an element created or changed after a simulate() is a DeckError at the line
+that did it (the next simulate(), load() or adm()), and a simulate() that raises records no
+command. Checks that need msolve's attribute names (a Marker's owner, a Motion's attributes)
+are the classes' own, made when the model is written.
 """
 import itertools
 import os
@@ -63,10 +69,18 @@ def _current():
 
 
 class Point(np.ndarray):
-    """A point (x, y, z); points and vectors add and subtract as arrays."""
+    """A point (x, y, z); points and vectors add and subtract as arrays, and ``.x``, ``.y``,
+    ``.z`` read and set their coordinates (msolve's Location)."""
 
     def __new__(cls, x=0.0, y=0.0, z=0.0):
         return np.asarray([x, y, z], float).view(cls)
+
+    x = property(lambda self: float(self[0]), lambda self, v: self.__setitem__(0, v),
+                 doc="The x coordinate.")
+    y = property(lambda self: float(self[1]), lambda self, v: self.__setitem__(1, v),
+                 doc="The y coordinate.")
+    z = property(lambda self: float(self[2]), lambda self, v: self.__setitem__(2, v),
+                 doc="The z coordinate.")
 
 
 class Vector(Point):
@@ -98,27 +112,46 @@ _FUNCTION_KEYS = {"FUNCTION", "FX", "FY", "FZ", "TX", "TY", "TZ", "EVALUATE", "L
                   *(f"F{k}" for k in range(1, 9))}
 
 
+#: Attributes every element takes besides its table: its id and label, msolve's name (kept;
+#: the label when no label is given) and active (False leaves it out of the model).
+_BASE = ("id", "label", "model", "active", "name")
+
+
+def _bad(attribute, reason):
+    """A DeckError about an element's attribute (Model.adm locates it at the element)."""
+    return DeckError(reason, attribute=attribute)
+
+
 class _Element:
     """An element of the model: its Adams statement, its id and its attributes."""
     _statement = ""                # the Adams statement it becomes
     _keys = {}                     # attribute -> Adams keyword, or {value: flag}
     _also = {}                     # keywords read back into an attribute (convert.py)
+    _shown = {}                    # element attribute -> the name its errors give it
     _numbered = True               # has an id
     _any = False                   # takes any keyword (kept as written)
+    _refused = {}                  # msolve attributes pysolver does not take -> why
 
-    def __init__(self, id=None, label="", **kw):
+    def __init__(self, id=None, label="", active=True, name=None, **kw):
         unknown = sorted(set(kw) - set(self._keys)) if not self._any else []
         file, line = _caller()
+        if unknown and unknown[0] in self._refused:
+            raise DeckError(f"{unknown[0]} is not supported: {self._refused[unknown[0]]}",
+                            file=file, line=line, element=type(self).__name__,
+                            attribute=unknown[0])
         if unknown:
             raise DeckError(f"unknown attribute {unknown[0]!r}; {type(self).__name__} takes "
                             f"{', '.join(sorted(self._keys))}", file=file, line=line,
                             element=type(self).__name__, attribute=unknown[0])
+        if not isinstance(active, (bool, np.bool_)):
+            raise DeckError(f"active={active!r}; expected True or False", file=file,
+                            line=line, element=type(self).__name__, attribute="active")
         object.__setattr__(self, "_where", (file, line))
         object.__setattr__(self, "_extra", {})
         self.__dict__.update({k: None for k in self._keys})
         for key, value in kw.items():
             setattr(self, key, value)
-        self.label = label
+        self.label, self.active, self.name = label, bool(active), name
         self.model = _current()
         self.id = None if not self._numbered else \
             id if id is not None else self.model._next_id(self._kind())
@@ -129,12 +162,15 @@ class _Element:
         return cls._statement
 
     def __setattr__(self, name, value):
-        if self._any and name not in self._keys and name not in ("id", "label", "model"):
-            self._extra[name] = value
-            return
-        if name not in self._keys and name not in ("id", "label", "model"):
+        if name not in self._keys and name not in _BASE and not self._any:
             raise AttributeError(f"{type(self).__name__} has no attribute {name!r}; it takes "
                                  f"{', '.join(sorted(self._keys))}")
+        model = self.__dict__.get("model")
+        if model is not None:
+            model._assigned(self, name)
+        if name not in self._keys and name not in _BASE:
+            self._extra[name] = value
+            return
         object.__setattr__(self, name, value)
 
     def __getattr__(self, name):
@@ -143,6 +179,11 @@ class _Element:
             return extra[name]
         raise AttributeError(name)
 
+    def _flag(self, attr):
+        """The flag a flag attribute's value stands for (None when not given)."""
+        val = getattr(self, attr)
+        return None if val is None else self._keys[attr].get(str(val).upper())
+
     def _arguments(self):
         """[(Adams keyword, value)] of the statement (value None: a flag)."""
         out = []
@@ -150,19 +191,22 @@ class _Element:
             val = getattr(self, attr)
             if val is None or val is False:
                 continue
+            _active_refs(attr, val)
             if isinstance(key, dict):
                 flag = key.get(str(val).upper(), "")
                 if flag == "":
-                    raise ValueError(f"{attr}={val!r}; expected one of "
-                                     f"{', '.join(v for v in key if key[v] is not None)}")
+                    raise _bad(attr, f"{attr}={val!r}; expected one of "
+                               f"{', '.join(v for v in key if key[v] is not None)}")
                 if flag is not None:
                     out.append((flag, None))
             elif val is True:
                 out.append((key, None))
             else:
                 out.append((key, _plain(key, val)))
-        out += [(k.upper(), _plain(k.upper(), v)) for k, v in self._extra.items()
-                if v is not None]
+        for k, v in self._extra.items():
+            if v is not None:
+                _active_refs(k, v)
+                out.append((k.upper(), _plain(k.upper(), v)))
         if self._any:               # kept as written: the text of each value
             out = [(k, v if v is None or isinstance(v, (list, Function)) else Raw(v))
                    for k, v in out]
@@ -170,8 +214,18 @@ class _Element:
 
     def _adm(self):
         """The element's Adams statement lines."""
-        st = Statement(self._statement, self.id, self._arguments(), str(self.label or ""))
+        label = self.label or self.name or ""
+        st = Statement(self._statement, self.id, self._arguments(), str(label))
         return ([view_name(st)] if st.label else []) + statement_lines(st)
+
+
+def _active_refs(attr, val):
+    """A DeckError when attribute `attr` refers to an element made inactive."""
+    for ref in val if isinstance(val, (list, tuple)) else [val]:
+        if isinstance(ref, _Element) and not ref.active:
+            raise _bad(attr, f"{type(ref).__name__} {ref.id} is inactive (active=False); "
+                       "an inactive element is left out of the model, so what refers to it "
+                       "must be inactive too")
 
 
 def _plain(key, val):
@@ -215,11 +269,22 @@ class Accgrav(_Settings):
     _keys = {"igrav": "IGRAV", "jgrav": "JGRAV", "kgrav": "KGRAV"}
 
 
-class Part(_Element):
+class _Body(_Element):
+    """A Part or PointMass: a Marker made without an owner becomes its own when it is made
+    its cm (msolve's ``Part(cm=Marker())`` and ``part.cm = Marker(qp=...)``)."""
+
+    def __setattr__(self, name, value):
+        if name == "cm" and isinstance(value, Marker) and value._owner() is None:
+            value.body = self
+        super().__setattr__(name, value)
+
+
+class Part(_Body):
     """A rigid body (or ground=True): mass, ip=[ixx, iyy, izz(, ixy, ixz, iyz)], cm (its
-    centre-of-mass Marker), im, qg and reuler (its frame in ground; or zg and xg), vx, vy,
-    vz (along the global axes, or vm's), wx, wy, wz (along the cm marker's axes, or wm's),
-    vm, wm; lprf (pysolver: MotionSolve's lprf_id, kept)."""
+    centre-of-mass Marker; one made without body= becomes the part's), im, qg and reuler
+    (its frame in ground; or zg and xg), vx, vy, vz (along the global axes, or vm's), wx,
+    wy, wz (along the cm marker's axes, or wm's), vm, wm; lprf (pysolver: MotionSolve's
+    lprf_id, kept)."""
     _statement = "PART"
     _keys = {"ground": "GROUND", "mass": "MASS", "cm": "CM", "im": "IM", "lprf": "LPRF",
              "ip": "IP", "qg": "QG", "reuler": "REULER", "zg": "ZG", "xg": "XG", "vx": "VX",
@@ -227,9 +292,9 @@ class Part(_Element):
              "wm": "WM"}
 
 
-class PointMass(_Element):
-    """A point mass: mass, cm, qg, vx, vy, vz, vm (pysolver: the marker whose axes vx, vy,
-    vz are along)."""
+class PointMass(_Body):
+    """A point mass: mass, cm (one made without body= becomes the point mass's), qg, vx,
+    vy, vz, vm (pysolver: the marker whose axes vx, vy, vz are along)."""
     _statement = "POINT_MASS"
     _keys = {"mass": "MASS", "cm": "CM", "qg": "QG", "vx": "VX", "vy": "VY", "vz": "VZ",
              "vm": "VM"}
@@ -239,21 +304,75 @@ class PointMass(_Element):
         return "PART"               # parts and point masses share pysolver's body ids
 
 
+#: A Marker's owner: body and part are msolve's two names for its Part; point_mass its
+#: PointMass.
+_OWNERS = ("body", "part", "point_mass")
+#: A Marker's orientation forms (zv, xv: msolve's vectors along z and in the x-z plane).
+_ORIENTATIONS = ("reuler", "zp", "zv", "ypr", "ep", "axes")
+
+
 class Marker(_Element):
-    """A marker on `body` (or `part`): qp, and reuler or zp and xp (usexp), in its part's
-    frame or in rm's; floating=True for a floating marker; pysolver's ypr (3-2-1 angles),
-    ep (Euler parameters) and axes (the nine numbers of the columns x, y, z)."""
+    """A marker on `body` (or `part`, or `point_mass`; a marker made without one becomes
+    its Part's when it is made a cm): qp, and reuler, or zp and xp (points; usexp), or zv
+    and xv (msolve's vectors along z and in the x-z plane; usexv), in its part's frame or in
+    rm's; floating=True for a floating marker; pysolver's ypr (3-2-1 angles), ep (Euler
+    parameters) and axes (the nine numbers of the columns x, y, z)."""
     _statement = "MARKER"
-    _keys = {"body": "PART", "part": "PART", "qp": "QP", "reuler": "REULER", "zp": "ZP",
-             "xp": "XP", "usexp": "USEXP", "ypr": "YPR", "ep": "EP", "axes": "AXES",
+    _keys = {"body": "PART", "part": "PART", "point_mass": "POINT_MASS", "qp": "QP",
+             "reuler": "REULER", "zp": "ZP", "xp": "XP", "usexp": "USEXP", "zv": "ZV",
+             "xv": "XV", "usexv": "USEXV", "ypr": "YPR", "ep": "EP", "axes": "AXES",
              "rm": "RM", "floating": "FLOATING"}
     _also = {"POINT_MASS": "body"}
+    _refused = {"flex_body": "pysolver has rigid bodies only"}
+
+    def __setattr__(self, name, value):
+        if name in _OWNERS and value is not None:
+            other = next((o for o in _OWNERS if o != name and
+                          self.__dict__.get(o) is not None), None)
+            if other is not None:
+                file, line = _caller()
+                raise DeckError(f"{other}= and {name}= both give the marker's owner (body and "
+                                "part are msolve's two names for its Part); give one",
+                                file=file, line=line, element="Marker", attribute=name)
+        super().__setattr__(name, value)
+
+    def _owner(self):
+        return next((o for o in (self.body, self.part, self.point_mass) if o is not None),
+                    None)
 
     def _arguments(self):
-        out = super()._arguments()
-        if isinstance(self.body or self.part, PointMass):
+        owner = self._owner()
+        if owner is None:
+            raise _bad("body", "a Marker needs its owner: body= (or part=, point_mass=), or "
+                       "to be made a Part's cm (Part(cm=Marker(...)), part.cm = Marker(...))")
+        if self.point_mass is not None and not isinstance(owner, PointMass):
+            raise _bad("point_mass", f"point_mass= takes a PointMass, got "
+                       f"{type(owner).__name__} (a Part is given with body= or part=)")
+        out = [(k, v) for k, v in super()._arguments() if k not in ("ZV", "XV", "USEXV")]
+        if isinstance(owner, PointMass):
             out = [("POINT_MASS", v) if k == "PART" else (k, v) for k, v in out]
+        if self.zv is not None or self.xv is not None:
+            out += self._vectors()
         return out
+
+    def _vectors(self):
+        """zv and xv as the points ZP and XP (qp plus each vector; USEXP for usexv)."""
+        if self.zv is None:
+            raise _bad("xv", "xv (a vector in the x-z plane) needs zv (the z axis)")
+        given = [a for a in _ORIENTATIONS + ("xp",) if a != "zv" and
+                 getattr(self, a) is not None]
+        if given:
+            raise _bad("zv", f"give one orientation: zv (with xv), not {given[0]} too")
+        try:
+            origin = np.zeros(3) if self.qp is None else np.asarray(_plain("", self.qp), float)
+            out = [("ZP", (origin + np.asarray(_plain("", self.zv), float)).tolist())]
+            if self.xv is not None:
+                out.append(("XP", (origin + np.asarray(_plain("", self.xv), float)).tolist()))
+        except (TypeError, ValueError):
+            raise _bad("zv", "qp, zv and xv take three numbers each") from None
+        if any(len(v) != 3 for _, v in out):
+            raise _bad("zv", "qp, zv and xv take three numbers each")
+        return out + ([("USEXP", None)] if self.usexv else [])
 
 
 _JPRIMS = ("ATPOINT", "INLINE", "INPLANE", "ORIENTATION", "PARALLEL_AXES", "PERPENDICULAR")
@@ -311,6 +430,11 @@ _TR = _choices("TRANSLATION", "ROTATION", TRANSLATIONAL="TRANSLATION", ROTATIONA
                T="TRANSLATION", R="ROTATION")
 
 
+#: The coordinates a joint Motion drives on each joint type (jtype's flags).
+_DRIVEN = {"REVOLUTE": ("ROTATION",), "TRANSLATIONAL": ("TRANSLATION",),
+           "CYLINDRICAL": ("ROTATION", "TRANSLATION")}
+
+
 class Motion(_Element):
     """A motion: on a joint (joint, jtype TRANSLATION or ROTATION) or of marker i relative
     to j (direction X, Y, Z, B1, B2, B3); dtype DISPLACEMENT, VELOCITY, ACCELERATION;
@@ -321,6 +445,57 @@ class Motion(_Element):
              "dtype": _choices("DISPLACEMENT", "VELOCITY", "ACCELERATION", D="DISPLACEMENT",
                                V="VELOCITY", A="ACCELERATION"),
              "function": "FUNCTION", "icdisp": "ICDISP", "icvel": "ICVEL", **_SUB}
+    _shown = {"motion_type": "JTYPE", "val_type": "DTYPE", "ic_disp": "ICDISP",
+              "ic_vel": "ICVEL", "expr": "FUNCTION"}
+
+    def _arguments(self):
+        out = super()._arguments()          # the flags' values checked first
+        if self.joint is not None:
+            self._joint_motion()
+        else:
+            if self.jtype is not None:
+                raise _bad("jtype", "jtype= is a joint motion's (joint=); a marker motion "
+                           "takes direction=")
+            missing = next((a for a in ("i", "j", "direction") if getattr(self, a) is None),
+                           None)
+            if missing is not None:
+                raise _bad(missing, "a Motion drives joint= (jtype= its coordinate), or "
+                           "marker i= relative to j= along or about direction= (X, Y, Z, B1, "
+                           "B2, B3)")
+        if self.function is None and self.routine is None:
+            raise _bad("function", "give function= (an expression of time), or routine= (a "
+                       'MOTSUB, with function="USER(...)")')
+        dtype = self._flag("dtype") or "DISPLACEMENT"
+        for attr, kinds in (("icdisp", ("VELOCITY", "ACCELERATION")),
+                            ("icvel", ("ACCELERATION",))):
+            if getattr(self, attr) is not None and dtype not in kinds:
+                raise _bad(attr, f"{attr} is an initial condition of {' or '.join(kinds)} "
+                           f"motions; this one is dtype={dtype}"
+                           + (" (the default)" if self.dtype is None else ""))
+        return out
+
+    def _joint_motion(self):
+        """A joint motion's checks in msolve's names: no marker attributes, and jtype a
+        coordinate its Joint leaves free (a joint given by id: the dataset's checks)."""
+        given = next((a for a in ("i", "j", "direction") if getattr(self, a) is not None),
+                     None)
+        if given is not None:
+            raise _bad(given, f"{given}= is a marker motion's; this one drives joint= (its "
+                       "coordinate: jtype=)")
+        if not isinstance(self.joint, Joint) or self.joint._flag("type") is None:
+            return
+        kind, jtype = self.joint._flag("type"), self._flag("jtype")
+        free = _DRIVEN.get(kind)
+        if free is None:
+            raise _bad("joint", f"Joint {self.joint.id} is {kind}; a Motion drives a REVOLUTE "
+                       "(jtype ROTATION), TRANSLATIONAL (TRANSLATION) or CYLINDRICAL (either) "
+                       "joint")
+        if jtype is None and len(free) > 1:
+            raise _bad("jtype", f"Joint {self.joint.id} is {kind}: give jtype=\"ROTATION\" or "
+                       "\"TRANSLATION\"")
+        if jtype is not None and jtype not in free:
+            raise _bad("jtype", f"jtype={jtype} is not a coordinate of {kind} Joint "
+                       f"{self.joint.id} (it has {free[0]})")
 
 
 class Sforce(_Element):
@@ -560,6 +735,29 @@ class LoadControl(_Element):
              "median_window": "MEDIAN_WINDOW", "load": "LOAD"}
 
 
+def _signature(el):
+    """{attribute: its value as a comparable token} of an element (a change after a
+    simulate() is told by them)."""
+    names = [*el._keys, *el._extra, "id", "label", "active", "name"]
+    return {n: _token(el._extra[n] if n in el._extra else el.__dict__.get(n)) for n in names}
+
+
+def _token(value):
+    """A value as a comparable token: elements by identity, numbers by value, arrays and
+    lists item by item."""
+    if isinstance(value, (bool, np.bool_, str)) or value is None:
+        return value
+    if isinstance(value, (int, float, np.integer, np.floating)):
+        return repr(float(value))
+    if isinstance(value, np.ndarray):
+        return tuple(_token(v) for v in value.tolist())
+    if isinstance(value, (list, tuple)):
+        return tuple(_token(v) for v in value)
+    if isinstance(value, Function):
+        return str(value)
+    return ("object", id(value))     # an element, a routine: by identity
+
+
 _ANALYSES = {"DYNAMICS": "DYNAMICS", "TRANSIENT": "DYNAMICS", "KINEMATICS": "KINEMATICS",
              "STATICS": "STATICS", "STATIC": "STATICS", "QUASI-STATIC": "STATICS",
              "QUASISTATIC": "STATICS", "ASSEMBLY": "INITIAL_CONDITIONS"}
@@ -580,6 +778,9 @@ class Model:
         self.commands = []
         self._ids = {}
         self._where = _caller()
+        # after a simulate(): every element's attributes then and that call's (file, line);
+        # then the changes since, in order: (element, attribute or None when created, where)
+        self._ran, self._changes = None, []
         _STATE.model = self
         rec = _loading()
         if rec is not None:
@@ -595,21 +796,75 @@ class Model:
 
     def _add(self, element):
         self.entities.append(element)
+        if self._ran is not None:
+            self._changes.append((element, None, element._where))
+
+    def _assigned(self, element, name):
+        """Note an attribute set after a simulate() (checked by _check_unchanged)."""
+        if self._ran is not None and name != "model":
+            self._changes.append((element, name, _caller()))
+
+    def _snapshot(self, where):
+        """After a simulate() at `where`: the model as it ran."""
+        self._ran = ({el: _signature(el) for el in self.entities}, where)
+        self._changes = []
+
+    def _check_unchanged(self):
+        """A DeckError when an element was created or changed after the last simulate():
+        every command runs from t = 0 with the model as it is, so the change would rewrite
+        the analyses before it too (msolve's changes between analyses are not supported)."""
+        if self._ran is None:
+            return
+        before, (file, line) = self._ran
+        changes = list(self._changes) + [(el, None, el._where) for el in self.entities
+                                         if el not in before]
+        for el in self.entities:            # changed in place (a list or Point's item)
+            if el in before:
+                now = _signature(el)
+                changes += [(el, k, (None, None)) for k in now if now[k] != before[el].get(k)]
+        for el, attr, (cfile, cline) in changes:
+            if el not in self.entities:
+                continue
+            if attr is None:
+                what = "created"
+            elif el not in before or _signature(el)[attr] == before[el].get(attr):
+                continue
+            else:
+                what = "changed" if cline is not None else "changed in place"
+            at = f"line {line}" if file == (cfile or el._where[0]) else f"{file}:{line}"
+            raise DeckError(
+                f"{what} after the simulate() at {at}; pysolver runs every command from "
+                "t = 0 with the model as it is, so this would rewrite the analyses before it "
+                "too: build a new Model for the new values, or vary a number with "
+                "model.load().run(params=...) or pysolver.sweep (docs/msolve.md)",
+                file=cfile or el._where[0], line=cline or el._where[1],
+                element=type(el).__name__, id=el.id, attribute=attr)
 
     def adm(self):
         """The model as an Adams dataset (text), its commands after END as a command file
-        would give them (pysolver.deck.adams)."""
+        would give them (pysolver.deck.adams); an inactive element is left out.
+
+        Raises
+        ------
+        DeckError
+            An element is wrong (at the line that made it), or was created or changed
+            after a simulate() (at the line that did).
+        """
         from .deck.adams import COMMANDS_MARK
-        lines, self._lines = ["pysolver msolve model"], {}
+        self._check_unchanged()
+        lines, self._lines, self._made = ["pysolver msolve model"], {}, {}
         for el in self.entities:
+            if not el.active:
+                continue
             try:
                 text = el._adm()
             except (ValueError, DeckError) as err:
                 raise DeckError(getattr(err, "reason", str(err)), file=el._where[0],
-                                line=el._where[1], element=type(el).__name__,
-                                id=el.id) from None
+                                line=el._where[1], element=type(el).__name__, id=el.id,
+                                attribute=getattr(err, "attribute", None)) from None
             for _ in text:
                 self._lines[len(lines) + 1] = el._where
+                self._made[len(lines) + 1] = el
                 lines.append(_)
         lines.append("END")
         if self.commands:
@@ -620,7 +875,13 @@ class Model:
         return "\n".join(lines) + "\n"
 
     def load(self):
-        """The pysolver Model of this model and its simulate commands so far."""
+        """The pysolver Model of this model and its simulate commands so far.
+
+        Raises
+        ------
+        DeckError
+            As :meth:`adm`, and for what the dataset's checks find (at the Python line).
+        """
         from .deck.validate import build_model
         from .records import Source
         text, elements = self._read()
@@ -664,11 +925,17 @@ class Model:
         where = self._python(names.get("#file", self._file()), line)
         if where is None:
             return element
-        return tag, attrs, where[1], {**names, "#file": where[0]}
+        made = self._made.get(line) if "#file" not in names else None
+        shown = made._shown if made is not None else {}
+        return tag, attrs, where[1], {**names, **shown, "#file": where[0]}
 
     def simulate(self, type="DYNAMICS", end=None, dtout=None, steps=None, duration=None,
                  start=None, print_increment=None, returnResults=True, **options):
         """Add a simulation command and run every command so far from the start.
+
+        The model must not have changed since the previous simulate(): every command runs
+        from t = 0 with the model as it is (a DeckError names the change). A call that
+        raises leaves ``model.commands`` as it was.
 
         Parameters
         ----------
@@ -691,7 +958,14 @@ class Model:
         pysolver.Result or None
             The whole run, every command so far. When pysolver.load reads a script, the
             command is recorded and nothing runs (None).
+
+        Raises
+        ------
+        DeckError
+            A bad command or element, or an element created or changed since the previous
+            simulate() (at the line that did it).
         """
+        self._check_unchanged()
         kind = _ANALYSES.get(str(type).upper())
         file, line = _caller()
         if kind is None:
@@ -710,6 +984,12 @@ class Model:
             raise DeckError(err.reason, file=file, line=line, element="simulate") from None
         self.commands.append((" ".join(text), (file, line)))
         if _loading() is not None:
+            self._snapshot((file, line))
             return None
-        res = self.load().run(**options)
+        try:
+            res = self.load().run(**options)
+        except BaseException:
+            self.commands.pop()             # a corrected call can follow
+            raise
+        self._snapshot((file, line))
         return res if returnResults else None

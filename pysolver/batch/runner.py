@@ -105,7 +105,9 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
 
     Parameters
     ----------
-    deck_or_model : str, path or pysolver.Model
+    deck_or_model : str, path, pysolver.Model, or pysolver.msolve.Model
+        The deck, its loaded model, or a model of msolve classes (its ``load()``, with its
+        simulate commands so far).
     cases : list of dict, pandas.DataFrame, or a design (:func:`pysolver.grid`,
         :func:`pysolver.sample`)
         Each case maps paths (``"Force_Penalty/1/penalty"``; see
@@ -143,9 +145,7 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
     KeyboardInterrupt
         Ctrl-C: the sweep stops; the cases running then are not stored.
     """
-    from ..deck.loader import load
-    from ..model import Model
-    model = deck_or_model if isinstance(deck_or_model, Model) else load(deck_or_model)
+    model = _model(deck_or_model)
     cases = _as_cases(cases)
     outputs = dict(outputs or {})
     check_outputs(model, outputs)
@@ -181,6 +181,21 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
         store.close()
         bar.close()
     return Sweep(model, cases, rows, columns, store, keys, payload, in_process)
+
+
+def _model(deck_or_model):
+    """The pysolver.Model a sweep runs: loaded from a deck path, or an msolve Model's."""
+    from ..deck.loader import load
+    from ..model import Model
+    from ..modeling import Model as ClassModel
+    if isinstance(deck_or_model, Model):
+        return deck_or_model
+    if isinstance(deck_or_model, ClassModel):
+        return deck_or_model.load()
+    if not isinstance(deck_or_model, (str, bytes, os.PathLike)):
+        raise TypeError(f"sweep takes a deck path, a pysolver.Model or an msolve Model, not "
+                        f"{type(deck_or_model).__name__}")
+    return load(deck_or_model)
 
 
 def _columns(cases, outputs):

@@ -48,6 +48,7 @@ def load(path: str | os.PathLike, user_code: bool = True,
     MissingFileError
         There is no such file: a DeckError that is also a FileNotFoundError.
     """
+    _not_class_model(path, "load", "a deck file")
     path = os.fspath(path)
     if os.path.isdir(path):
         raise DeckError("is a folder, not a deck file", file=path)
@@ -65,6 +66,15 @@ def load(path: str | os.PathLike, user_code: bool = True,
         if os.path.isfile(acf):         # the command file beside the dataset
             return _load_acf(acf, user_code, simulate, dataset=(path, text))
     return loads(text, fmt=fmt, file=path, user_code=user_code, simulate=simulate)
+
+
+def _not_class_model(given, call, takes):
+    """A TypeError when `given` is a model of msolve classes (pysolver.msolve.Model), which
+    its own load() turns into a pysolver.Model."""
+    kind = getattr(msolve.PUBLIC, "Model", None)
+    if kind is not None and isinstance(given, kind):
+        raise TypeError(f"pysolver.{call} reads {takes}; this is an msolve Model, whose "
+                        "pysolver.Model is model.load()")
 
 
 def _sniff(raw, path):
@@ -155,6 +165,7 @@ def loads(text: str, fmt: str = "xml", file: str = "<string>",
           user_code: bool = True, simulate: dict | None = None) -> Model:
     """Load a deck from text; ``fmt`` is ``"xml"``, ``"py"`` or ``"adm"`` (an Adams
     dataset). See :func:`load`."""
+    _not_class_model(text, "loads", "a deck's text")
     elements = _elements(text, fmt, file, user_code)
     if simulate:
         elements = [e for e in elements if e[0].lower() not in ("simulate", "stop")]

@@ -31,6 +31,9 @@ def run_model(compiled, progress=None, overrides=None, actors=(), stream=None):
     log = [f"kernel: the tapes run ({gen['why']})"] if gen["kernel"] == "tapes" and \
         kind != "tapes" else []
     log += compiled.notes
+    if getattr(compiled.model, "default_command", False):
+        log.append("no Simulate command: the default run, a transient of 1 s with 100 "
+                   "outputs (docs/deck-language.md)")
     sink = Stream(stream, kernel, labels, channel_units(compiled.model)) \
         if stream is not None else None
     # Ctrl-C ends a run at its next residual (the C kernel's handler; main thread only)
