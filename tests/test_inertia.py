@@ -241,7 +241,8 @@ def test_a_sweep_keeps_the_inertia_about_the_centre_of_mass():
     """Sweep paths read and set the deck's numbers (products as positive integrals, about
     the IM origin): a product set to its own number changes nothing, the mass moves the
     parallel-axis term (a 5 kg part with the same IP: 1 - 4 = -3 about the CM is refused,
-    the deck's values put back) and so does the IM marker's place."""
+    the deck's values put back, as they are after any case refused) and so does the IM
+    marker's place."""
     model = pysolver.loads(IM_XML.replace('inertia_zz="19"', 'inertia_zz="19" '
                                           'inertia_xy="0.25"'))
     compiled = model.compile()
@@ -255,6 +256,10 @@ def test_a_sweep_keeps_the_inertia_about_the_centre_of_mass():
                                [1.0 - 0.8, 2.0, 3.0 - 0.8], atol=1e-13)
     with pytest.raises(DeckError, match="body 2's inertia about its centre of mass"):
         params.apply({"Body_Rigid/2/mass": 5.0})
+    np.testing.assert_array_equal(compiled.model.bodies[2].inertia, deck)
+    with pytest.raises(DeckError, match="inertia tensor must be positive definite"):
+        params.apply({"Body_Rigid/2/mass": 4.2, "Body_Rigid/2/inertia_xx": -1.0})
+    assert compiled.model.bodies[2].mass == 4.0
     np.testing.assert_array_equal(compiled.model.bodies[2].inertia, deck)
     params.apply({"Reference_Marker/21/pos_y": 1.0})
     np.testing.assert_allclose(np.diag(compiled.model.bodies[2].inertia),

@@ -153,8 +153,19 @@ class Parameters:
 
     def apply(self, case):
         """Put the deck's values back, then set those of `case` ({path: number}); return the
-        run options the case sets (Param_Transient)."""
+        run options the case sets (Param_Transient). A case that breaks a rule is a DeckError
+        that leaves the deck's values in place."""
         self.reset()
+        try:
+            options = self._set_case(case)
+        except DeckError:
+            self.reset()
+            raise
+        self._sync_inertias(case)
+        self._sync_planar(case)
+        return options
+
+    def _set_case(self, case):
         options = {}
         for raw, value in case.items():
             path = self.canonical(raw)
@@ -172,8 +183,6 @@ class Parameters:
                     base = self._deck[path] = self._get(path)
                 self._base[path] = base
             self._set(path, v)
-        self._sync_inertias(case)
-        self._sync_planar(case)
         return options
 
     def reset(self):
