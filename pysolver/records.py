@@ -53,7 +53,8 @@ class Body:
     label: str = ""
     cg: int = None               # its centre-of-mass marker (the body frame)
     im_rot: np.ndarray = None    # axes of the inertia marker in the body frame
-    inertia_im: np.ndarray = None    # inertia as the deck gives it, about the im axes
+    inertia_im: np.ndarray = None    # inertia tensor the deck gives, about the im origin and axes
+    im: int = None               # its inertia marker (the cg marker when the deck names none)
 
 
 @dataclasses.dataclass

@@ -15,6 +15,16 @@ from pysolver.deck.units import force_scale
     (("SLUG", "FOOT", "SECOND", "POUND_FORCE"), 1.0),
     (("MEGAGRAM", "MILLIMETER", "SECOND", "NEWTON"), 1.0),
     (("KILOGRAM", "MILLIMETER", "MILLISECOND", "KILONEWTON"), 1.0),
+    (("SLINCH", "INCH", "SECOND", "POUND_FORCE"), 1.0),
+    (("POUND_MASS", "FOOT", "SECOND", "POUNDAL"), 1.0),
+    (("MILLIGRAM", "MILLIMETER", "SECOND", "MICRONEWTON"), 1000.0),
+    (("MICROGRAM", "MICROMETER", "MICROSECOND", "NEWTON"), 1000.0),
+    (("NANOGRAM", "NANOMETER", "NANOSECOND", "NANONEWTON"), 1e-6),
+    (("GRAM", "CENTIMETER", "SECOND", "CENTINEWTON"), 1000.0),
+    (("US_TON", "YARD", "SECOND", "MEGANEWTON"), 1e6 / (907.18474 * 0.9144)),
+    (("KILOGRAM", "ANGSTROM", "DAY", "NEWTON"), 86400.0 ** 2 / 1e-10),
+    (("KILOGRAM", "MILS", "SECOND", "NEWTON"), 1 / 2.54e-5),
+    (("KILOGRAM", "MICROINCH", "SECOND", "NEWTON"), 1 / 2.54e-8),
 ])
 def test_force_scale(units, scale):
     assert force_scale(*units) == pytest.approx(scale, rel=1e-12)
@@ -114,3 +124,74 @@ def test_param_unit_errors_name_its_own_attributes(old, new, attribute, words):
     with pytest.raises(pysolver.DeckError, match=words) as info:
         pysolver.loads(PARAM_UNIT.replace(old, new), file="pu.xml")
     assert (info.value.line, info.value.attribute) == (2, attribute)
+
+
+#: A 2 kg slider on a spring of 50 (x = cos(w t), w = 5 * sqrt(UCF), UCF = one force unit in
+#: mass * length / time^2), its request's channels.
+SPRING_MASS = """a spring-mass
+UNITS/{units}
+PART/1, GROUND
+MARKER/1, PART = 1
+MARKER/2, PART = 1, REULER = 90D, 90D, 0
+PART/2, MASS = 2, CM = 20, IP = 1, 1, 1, QG = 1, 0, 0
+MARKER/20, PART = 2
+MARKER/21, PART = 2, REULER = 90D, 90D, 0
+JOINT/1, TRANSLATIONAL, I = 21, J = 2
+SPRINGDAMPER/1, TRANSLATIONAL, I = 20, J = 1, K = 50, C = 0, LENGTH = 0
+REQUEST/1, F1 = DX(20)\\F2 = VX(20)\\
+END
+"""
+
+
+@pytest.mark.parametrize("units, ucf, length, speed", [
+    ("FORCE = POUND_FORCE, MASS = SLINCH, LENGTH = INCH, TIME = SECOND", 1.0, "in", "in/s"),
+    ("FORCE = POUNDAL, MASS = POUND_MASS, LENGTH = FOOT, TIME = SECOND", 1.0, "ft", "ft/s"),
+    ("FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = MILLISECONDS", 1e-6, "m",
+     "m/ms"),
+    ("FORCE = MICRONEWTON, MASS = MILLIGRAM, LENGTH = MICROMETER, TIME = SECOND", 1e6,
+     "um", "um/s"),
+    ("FORCE = CENTINEWTON, MASS = US_TON, LENGTH = YARD, TIME = MINUTE",
+     0.01 / (907.18474 * 0.9144 / 60 ** 2), "yd", "yd/min"),
+    ("FORCE = NANONEWTON, MASS = NANOGRAM, LENGTH = MILS, TIME = MICROSECOND",
+     1e-9 / (1e-12 * 2.54e-5 / 1e-6 ** 2), "mil", "mil/us"),
+    ("SYSTEM = NONE", 1.0, "m", "m/s"),
+])
+def test_adams_unit_names_give_the_spring_mass_its_frequency(tmp_path, units, ucf, length,
+                                                             speed):
+    """Adams Solver's UNITS names pysolver read as unknown (SLINCH, POUNDAL, MILLISECONDS,
+    MICRONEWTON, MILLIGRAM, MICROMETER, CENTINEWTON, US_TON, YARD, NANONEWTON, NANOGRAM,
+    MILS, MICROSECOND; SYSTEM = NONE, nondimensional, read as a dataset without UNITS):
+    over one period x = cos(w t) to 1e-6 with w = 5 sqrt(UCF), the UCF from the units' SI
+    values written here; the channels are labelled in the deck's units."""
+    path = tmp_path / "sm.adm"
+    path.write_text(SPRING_MASS.format(units=units))
+    omega = 5.0 * np.sqrt(ucf)
+    model = pysolver.load(path, simulate={"analysis_type": "TRANSIENT",
+                                          "end_time": 2 * np.pi / omega, "num_step": 40})
+    assert model.force_scale == pytest.approx(ucf, rel=1e-14)
+    res = model.run(integr_tol=1e-9)
+    assert res.success and len(res.t) == 41
+    np.testing.assert_allclose(res.request(1)[:, 0], np.cos(omega * res.t), rtol=0, atol=1e-6)
+    assert (res.units["REQ1.1"], res.units["REQ1.2"]) == (length, speed)
+
+
+def test_system_none_takes_no_other_units(tmp_path):
+    path = tmp_path / "none.adm"
+    path.write_text(SPRING_MASS.format(units="SYSTEM = NONE, LENGTH = MM"))
+    with pytest.raises(pysolver.DeckError) as info:
+        pysolver.load(path)
+    assert (info.value.line, info.value.attribute, info.value.reason) == (
+        2, "LENGTH", "LENGTH is not supported: SYSTEM=NONE is a nondimensional dataset")
+
+
+@pytest.mark.parametrize("spelling, name", [("KNewton", "KILONEWTON"), ("Tonne", "MEGAGRAM"),
+                                            ("Mills", "MILS"), ("MilliInch", "MILS"),
+                                            ("US Ton", "US_TON"),
+                                            ("Milliseconds", "MILLISECOND")])
+def test_motionsolve_spellings_of_units(spelling, name):
+    """The names of MotionSolve's Units and Param_Unit pages that differ from pysolver's."""
+    kind = {"KILONEWTON": "force", "MEGAGRAM": "mass", "US_TON": "mass",
+            "MILLISECOND": "time"}.get(name, "length")
+    deck = f'''<MotionSolve><Model><Units {kind}="{spelling}"/>
+      <Body_Rigid id="1" isground="TRUE"/></Model></MotionSolve>'''
+    assert pysolver.loads(deck).units[kind] == name

@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 
+from ..deck.bodies import centroidal, inertia_tensor, realizable
 from ..deck.schema import SCHEMA, Ctx, convert
 from ..deck.validate import value_rule
 from ..errors import DeckError
@@ -30,7 +31,14 @@ from .planar import global_inertia, plane_rows, why_not
 
 _STATIC = ("max_ke_tol", "max_dq_tol", "max_num_iter", "max_imbalance", "max_error",
            "stability", "compliance_delta", "tlimit", "alimit")
-_INERTIA = {"xx": (0, 0), "yy": (1, 1), "zz": (2, 2), "xy": (0, 1), "yz": (1, 2), "xz": (0, 2)}
+_INERTIA = ("xx", "yy", "zz", "xy", "yz", "xz")
+
+
+def _inertia_numbers(tensor):
+    """A tensor's six deck numbers (xx, yy, zz, xy, yz, xz: products as positive integrals,
+    the inverse of pysolver.deck.bodies.inertia_tensor)."""
+    return [float(tensor[0, 0]), float(tensor[1, 1]), float(tensor[2, 2]),
+            float(-tensor[0, 1]), float(-tensor[1, 2]), float(-tensor[0, 2])]
 
 
 def _error(path, msg):
@@ -103,6 +111,11 @@ class Parameters:
         self._movers = {}               # body id -> its markers (a cg marker moves them all)
         self._spins = {}                # body id -> its w_ic (see _spin)
         self._names = {}                # lower-case path -> canonical path
+        self._dirty = set()             # bodies whose inertia about the cg must be remade
+        # marker -> the body whose inertia about its cg follows it (an IM away from the cg)
+        self._offset_markers = {mid: b.id for b in model.bodies.values()
+                                if b.kind == "rigid" and b.im not in (None, b.cg)
+                                for mid in (b.cg, b.im)}
         for path in self.paths():
             self._names[path.lower()] = path
 
@@ -140,8 +153,19 @@ class Parameters:
 
     def apply(self, case):
         """Put the deck's values back, then set those of `case` ({path: number}); return the
-        run options the case sets (Param_Transient)."""
+        run options the case sets (Param_Transient). A case that breaks a rule is a DeckError
+        that leaves the deck's values in place."""
         self.reset()
+        try:
+            options = self._set_case(case)
+        except DeckError:
+            self.reset()
+            raise
+        self._sync_inertias(case)
+        self._sync_planar(case)
+        return options
+
+    def _set_case(self, case):
         options = {}
         for raw, value in case.items():
             path = self.canonical(raw)
@@ -159,7 +183,6 @@ class Parameters:
                     base = self._deck[path] = self._get(path)
                 self._base[path] = base
             self._set(path, v)
-        self._sync_planar(case)
         return options
 
     def reset(self):
@@ -169,7 +192,33 @@ class Parameters:
         for path, v in self._base.items():
             self._set(path, v)
         self._base.clear()
+        self._sync_inertias(None)
         self._sync_planar(None)
+
+    def _sync_inertias(self, case):
+        """The inertia about the centre of mass of each body whose mass, inertia or IM offset
+        a case changed (a body's IM away from its cg: the parallel-axis term follows its mass
+        and the two markers' places); one that is then not a body's inertia puts the deck's
+        values back and is a DeckError."""
+        k, m = self.kernel, self.model
+        dirty, self._dirty = self._dirty, set()
+        for bid in sorted(dirty):
+            b = m.bodies[bid]
+            offset = b.rot.T @ (m.markers[b.im].pos - b.pos) if b.im not in (None, b.cg) \
+                else np.zeros(3)
+            inertia = centroidal(b.inertia_im, b.im_rot, b.mass, offset)
+            if case is not None and not realizable(inertia):
+                self.reset()
+                paths = ", ".join(f"{p}={v:g}" for p, v in case.items())
+                raise DeckError(f"parameters {{{paths}}}: body {bid}'s inertia about its centre "
+                                f"of mass (the inertia about IM marker {b.im} less the "
+                                "parallel-axis term of its mass at the centre of mass) is not "
+                                "positive definite (or breaks the triangle inequality)",
+                                element="Body_Rigid", id=bid)
+            _assign(b, inertia=inertia)
+            row = k.layout.index[b.id]
+            k.arrays["body_inertia"][9 * row:9 * row + 9] = b.inertia.reshape(-1)
+            self._sync_energy(b)
 
     def _sync_planar(self, case):
         """A planar kernel's body_plane and global inertias from the bodies' numbers; a case
@@ -205,8 +254,7 @@ class Parameters:
             if attr == "mass":
                 return b.mass
             if attr.startswith("inertia_"):
-                i, j = _INERTIA[attr[8:]]
-                return float(b.inertia_im[i, j])
+                return _inertia_numbers(b.inertia_im)[_INERTIA.index(attr[8:])]
             if attr.startswith("w_ic"):
                 return float(self._spin(b)[2]["xyz".index(attr[-1])])
             return float(b.vel["xyz".index(attr[-1])])
@@ -250,17 +298,17 @@ class Parameters:
             _assign(b, mass=v)
             k.arrays["body_mass"][row] = v
             self._sync_energy(b)
+            if b.kind == "rigid" and b.im not in (None, b.cg):
+                self._dirty.add(b.id)
         elif attr.startswith("inertia_"):
-            i, j = _INERTIA[attr[8:]]
-            raw = b.inertia_im.copy()
-            raw[i, j] = raw[j, i] = v
-            ev = np.linalg.eigvalsh(raw)
-            if ev.min() <= 0 or ev[2] > ev[0] + ev[1] + 1e-12 * ev[2]:
+            numbers = _inertia_numbers(b.inertia_im)
+            numbers[_INERTIA.index(attr[8:])] = v
+            raw = inertia_tensor(*numbers)
+            if not realizable(raw):
                 raise _error(path, "inertia tensor must be positive definite and satisfy the "
                              "triangle inequality")
-            _assign(b, inertia_im=raw, inertia=b.im_rot @ raw @ b.im_rot.T)
-            k.arrays["body_inertia"][9 * row:9 * row + 9] = b.inertia.reshape(-1)
-            self._sync_energy(b)
+            _assign(b, inertia_im=raw)
+            self._dirty.add(b.id)
         elif attr.startswith("w_ic"):
             deck, deck_global, now = self._spin(b)
             now["xyz".index(attr[-1])] = v
@@ -294,6 +342,8 @@ class Parameters:
         m, k = self.model, self.kernel
         mk = m.markers[mid]
         mk.pos[axis] = v
+        if mid in self._offset_markers:
+            self._dirty.add(self._offset_markers[mid])
         body = m.bodies[mk.body]
         if body.kind != "ground" and body.cg == mid:
             body.pos[axis] = v

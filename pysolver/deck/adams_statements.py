@@ -42,9 +42,15 @@ def _list(value):
 
 def _units(r, stmt, vals, lines):
     _refuse(r, stmt, vals, lines, ("UCF",), "give FORCE, MASS, LENGTH and TIME")
-    kw = dict(_SYSTEMS.get(str(vals.pop("SYSTEM", "")).upper(), {})) if "SYSTEM" in vals else {}
-    if "SYSTEM" in lines and not kw:
-        raise r.error(stmt, f"unknown SYSTEM; expected {', '.join(_SYSTEMS)}", "SYSTEM")
+    system = str(vals.pop("SYSTEM", "")).upper() if "SYSTEM" in vals else None
+    if system == "NONE":
+        # nondimensional (Adams: UCF = 1): a dataset without UNITS
+        _refuse(r, stmt, vals, lines, ("FORCE", "MASS", "LENGTH", "TIME"),
+                "SYSTEM=NONE is a nondimensional dataset")
+        return
+    kw = dict(_SYSTEMS.get(system, {})) if system is not None else {}
+    if system is not None and not kw:
+        raise r.error(stmt, f"unknown SYSTEM; expected {', '.join(_SYSTEMS)}, NONE", "SYSTEM")
     for key in ("FORCE", "MASS", "LENGTH", "TIME"):
         if key in vals:
             kw[key] = UNIT_NAMES.get(str(vals[key]).upper(), str(vals[key]).upper())

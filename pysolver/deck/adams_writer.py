@@ -113,8 +113,8 @@ def _label(el):
     return el.a.get("label") or ""
 
 
-#: pysolver's unit names Adams spells otherwise.
-_ADAMS_UNITS = {"KILONEWTON": "KNEWTON"}
+#: pysolver's unit names Adams spells otherwise (Adams Solver C++'s UNITS statement).
+_ADAMS_UNITS = {"KILONEWTON": "KNEWTON", "MEGAGRAM": "TONNE", "MILLISECOND": "MILLISECONDS"}
 
 
 def _units(el, model, els, k):

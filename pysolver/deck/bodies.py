@@ -4,6 +4,10 @@ import numpy as np
 from ..model import Body, Marker
 from ..rotations import along, rot_313, rot_321, rot_from_e
 
+#: What a massless (dummy) part's deck must give instead (docs/deck-language.md).
+MASSLESS = ("give it a small mass, a centre-of-mass marker and a small inertia "
+            "(docs/deck-language.md, \"Massless parts\")")
+
 
 def add_bodies(model, bodies_raw, markers_raw):
     """Resolve marker frames (through rm_id chains) and add the bodies and markers to model."""
@@ -61,9 +65,11 @@ def add_bodies(model, bodies_raw, markers_raw):
         if ctx.tag == "Body_Rigid" and a["isground"]:
             continue
         if a["cg_id"] is None:
-            raise ctx.error("missing required attribute (the centre-of-mass marker)", "cg_id")
+            raise ctx.error("missing: the centre-of-mass marker, and pysolver has no massless "
+                            f"parts: {MASSLESS}", "cg_id")
         if a["mass"] is None:
-            raise ctx.error("missing required attribute", "mass")
+            raise ctx.error(f"missing: the mass, and pysolver has no massless parts: {MASSLESS}",
+                            "mass")
         cg = marker_of(ctx, a, "cg_id")
         vel = np.array([a["v_ic_x"], a["v_ic_y"], a["v_ic_z"]])
         vm = _direction_marker(model, ctx, a, "vm_id")
@@ -81,19 +87,57 @@ def add_bodies(model, bodies_raw, markers_raw):
                      "are read as global, as MotionSolve's Reference_Marker defines them, so "
                      "the LPRF moves no marker (docs/deck-language.md, \"Placement\")",
                      "lprf_id")
-        Iim = np.array([[a["inertia_xx"], a["inertia_xy"], a["inertia_xz"]],
-                        [a["inertia_xy"], a["inertia_yy"], a["inertia_yz"]],
-                        [a["inertia_xz"], a["inertia_yz"], a["inertia_zz"]]])
-        ev = np.linalg.eigvalsh(Iim)
-        if ev.min() <= 0 or ev[2] > ev[0] + ev[1] + 1e-12 * ev[2]:
+        Iim = inertia_tensor(*(a[f"inertia_{k}"] for k in ("xx", "yy", "zz", "xy", "yz", "xz")))
+        if not Iim.any():
+            raise ctx.error("missing: the part has no inertia (all its moments are 0), and "
+                            f"pysolver has no inertia-less parts: {MASSLESS}", "inertia_xx")
+        if not realizable(Iim):
             raise ctx.error("inertia tensor must be positive definite and satisfy the "
                             "triangle inequality", "inertia_xx")
         Rb = cg.rot.T @ im.rot      # im axes in the body (cg) frame
+        d = cg.rot.T @ (im.pos - cg.pos)        # the im origin from the cg, body axes
+        inertia = centroidal(Iim, Rb, a["mass"], d)
+        if not realizable(inertia):
+            raise ctx.error(f"the inertia about IM marker {im.id}'s origin, {_offset(d)} from "
+                            "the centre of mass along the CM marker's axes, less the "
+                            "parallel-axis term m(|d|^2 E - d d^T) is not positive definite "
+                            "(or breaks the triangle inequality): give the inertia about the "
+                            "IM marker's origin, not about the centre of mass", "im_id")
         omega = _spin(model, ctx, a, cg)
-        model.bodies[a["id"]] = Body(a["id"], "rigid", a["mass"], Rb @ Iim @ Rb.T,
+        model.bodies[a["id"]] = Body(a["id"], "rigid", a["mass"], inertia,
                                      cg.pos.copy(), cg.rot.copy(), vel, omega,
-                                     a["label"], cg=cg.id, im_rot=Rb, inertia_im=Iim)
+                                     a["label"], cg=cg.id, im_rot=Rb, inertia_im=Iim,
+                                     im=im.id)
 
+
+def inertia_tensor(xx, yy, zz, xy, yz, xz):
+    """The inertia tensor of a deck's six numbers: the products are positive integrals,
+    Ixy = +integral of x*y dm, as Adams' PART defines them, so the tensor holds -Ixy
+    (docs/deck-language.md, "Products of inertia")."""
+    return np.array([[xx, -xy, -xz], [-xy, yy, -yz], [-xz, -yz, zz]], dtype=float)
+
+
+def centroidal(inertia_im, im_rot, mass, offset):
+    """A body's inertia about its centre of mass in its own axes, from the tensor about the
+    IM marker's origin along its axes (`im_rot`: the IM axes in the body's), the mass and
+    the IM origin's `offset` from the centre of mass in body axes: turned into the body's
+    axes, then moved to the centre of mass (parallel axes, I_cm = I_im - m(|d|^2 E - d d^T))."""
+    inertia = im_rot @ inertia_im @ im_rot.T
+    if not np.any(offset):
+        return inertia
+    d = np.asarray(offset, dtype=float)
+    return inertia - mass * (d @ d * np.eye(3) - np.outer(d, d))
+
+
+def realizable(inertia):
+    """Whether a tensor is a rigid body's inertia: positive definite, each principal moment at
+    most the sum of the other two."""
+    ev = np.linalg.eigvalsh(inertia)
+    return bool(ev.min() > 0 and ev[2] <= ev[0] + ev[1] + 1e-12 * ev[2])
+
+
+def _offset(d):
+    return "(" + ", ".join(f"{v:.6g}" for v in d) + ")"
 
 
 def _spin(model, ctx, a, cg):

@@ -20,11 +20,15 @@ Quantity = namedtuple("Quantity", "unit kind")
 
 #: Unit symbols of the Units element's names.
 SYMBOLS = {"METER": "m", "MILLIMETER": "mm", "CENTIMETER": "cm", "KILOMETER": "km",
-           "INCH": "in", "FOOT": "ft", "MILE": "mi",
-           "SECOND": "s", "MILLISECOND": "ms", "MINUTE": "min", "HOUR": "h",
-           "NEWTON": "N", "KILONEWTON": "kN", "MILLINEWTON": "mN", "DYNE": "dyn",
+           "MICROMETER": "um", "NANOMETER": "nm", "ANGSTROM": "angstrom",
+           "INCH": "in", "MILS": "mil", "MICROINCH": "uin", "FOOT": "ft", "YARD": "yd",
+           "MILE": "mi",
+           "SECOND": "s", "MILLISECOND": "ms", "MICROSECOND": "us", "NANOSECOND": "ns",
+           "MINUTE": "min", "HOUR": "h", "DAY": "d",
+           "NEWTON": "N", "KILONEWTON": "kN", "MEGANEWTON": "MN", "CENTINEWTON": "cN",
+           "MILLINEWTON": "mN", "MICRONEWTON": "uN", "NANONEWTON": "nN", "DYNE": "dyn",
            "POUND_FORCE": "lbf", "KPOUND_FORCE": "kip", "KILOGRAM_FORCE": "kgf",
-           "OUNCE_FORCE": "ozf"}
+           "OUNCE_FORCE": "ozf", "POUNDAL": "pdl"}
 
 _F, _L, _T, _A, _D = range(5)
 

@@ -71,13 +71,15 @@ def _line(rec):
     return None
 
 
-def _emit(stmt, tag, mapping, id=None, extra=None, **kw):
+def _emit(stmt, tag, mapping, id=None, extra=None, keywords=None, **kw):
     """Record element `tag`; mapping: statement keyword -> XML attribute (or a function);
-    `extra` attributes the statement implies."""
+    `extra` attributes the statement implies; `keywords` (attribute -> keyword) names in
+    errors attributes the statement leaves out (its defaults)."""
     from ..errors import DeckError
     rec = _recorder()
     line = _line(rec)
     attrs, names = dict(extra or {}), {k: "ROUTINE" for k in extra or {}}
+    names.update(keywords or {})
     if id is not None:
         attrs["id"], names["id"] = id, "ID"
     for key, val in kw.items():
@@ -124,8 +126,10 @@ def ACCGRAV(**kw):
 
 def PART(id, **kw):
     """Rigid body (or ground with GROUND=True): MASS, CM, IM, LPRF, IP=[ixx, iyy, izz
-    (, ixy, iyz, ixz)], VX VY VZ (global), WX WY WZ (in the CM marker's axes, as Adams'
-    PART reads them), VM and WM (markers whose axes VX.. and WX.. are along instead), LABEL.
+    (, ixy, iyz, ixz)] (about IM's origin along its axes, default CM; products as positive
+    integrals, ixy = +integral of x*y dm, as Adams defines them), VX VY VZ (global), WX WY WZ
+    (in the CM marker's axes, as Adams' PART reads them), VM and WM (markers whose axes VX..
+    and WX.. are along instead), LABEL.
 
     WX.. without WM are recorded with wm_id = CM: the element's w_ic_* without wm_id are
     about the global axes (MotionSolve's Body_Rigid)."""
@@ -145,7 +149,8 @@ def PART(id, **kw):
                                  "IM": "im_id", "LPRF": "lprf_id", "IP": ip, "VX": "v_ic_x",
                                  "VY": "v_ic_y", "VZ": "v_ic_z", "WX": "w_ic_x",
                                  "WY": "w_ic_y", "WZ": "w_ic_z", "VM": "vm_id", "WM": "wm_id",
-                                 "LABEL": "label"}, id, **kw)
+                                 "LABEL": "label"}, id,
+          keywords={"mass": "MASS", "cg_id": "CM", "im_id": "IM", "inertia_xx": "IP"}, **kw)
 
 
 def POINT_MASS(id, **kw):

@@ -335,6 +335,7 @@ def _user_params(ctx, name, raw):
 
 def _unit(ctx, name, kind, raw):
     val = str(raw).strip().upper()
+    val = un.ALIASES.get(val, val)
     if val not in un.TABLES[kind]:
         raise ctx.error(f"unknown {kind} unit {raw!r}; expected one of "
                         f"{', '.join(sorted(un.TABLES[kind]))}", name)

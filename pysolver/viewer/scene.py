@@ -6,12 +6,10 @@ import os
 
 import numpy as np
 
+from ..deck.dimensions import SYMBOLS
 from . import shapes
 from .poses import Poses, quaternion, scene_of
 
-LENGTH = {"METER": "m", "MILLIMETER": "mm", "CENTIMETER": "cm", "KILOMETER": "km",
-          "INCH": "in", "FOOT": "ft", "MILE": "mi"}
-TIME = {"SECOND": "s", "MILLISECOND": "ms", "MINUTE": "min", "HOUR": "h"}
 #: Body colours, in body id order (Tableau 10).
 PALETTE = ("#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#76b7b2", "#edc948", "#b07aa1",
            "#ff9da7", "#9c755f", "#bab0ac")
@@ -104,8 +102,8 @@ class Scene:
         p = self.poses
         name = scene.source.file
         self.title = os.path.basename(name) if name and name != "<string>" else "deck text"
-        self.length = LENGTH.get(scene.units["length"], scene.units["length"].lower())
-        self.time = TIME.get(scene.units["time"], scene.units["time"].lower())
+        self.length = SYMBOLS.get(scene.units["length"], scene.units["length"].lower())
+        self.time = SYMBOLS.get(scene.units["time"], scene.units["time"].lower())
         grav = np.asarray(scene.gravity, float)
         self.up = -grav / np.linalg.norm(grav) if np.any(grav) else np.array([0, 0, 1.0])
         self.radius, self.origin = self._extent(scene)
