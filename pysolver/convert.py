@@ -15,6 +15,7 @@ from lxml import etree
 
 from . import modeling
 from .deck import adams_writer
+from .deck.adams import output_name
 from .deck.adams_writer import Function, Ref
 from .deck.loader import deck_elements, load
 from .deck.writer import to_xml
@@ -76,14 +77,16 @@ def forms(deck, output, user_code=True):
         return {output: to_xml(elements, model.source.file, title=title, out_dir=out_dir)}
     dataset, commands = adams_writer.statements(elements, model, model.source.file, out_dir)
     base = os.path.basename(stem)
+    # the output name of the deck's command file, else the new file's stem
+    kept = output_name(model.source.text) if model.source.fmt == "adm" else None
     if ext.lower() == ".adm":
         title = f"{base}  (converted by pysolver from {name})"
         texts = {output: adams_writer.dataset_text(dataset, title, about)}
         acf = stem + ".acf"
         if commands or os.path.exists(acf):     # an old .acf would give it commands
-            texts[acf] = adams_writer.command_text(commands, base)
+            texts[acf] = adams_writer.command_text(commands, base, kept)
         return texts
-    return {output: script(dataset, commands, base, about, name)}
+    return {output: script(dataset, commands, kept or base, about, name)}
 
 
 def description(text, fmt):
