@@ -6,7 +6,8 @@ Every format is read into the same list of elements (pysolver.deck.loader.deck_e
 pysolver/deck/writer.py writes it as XML, pysolver/deck/adams_writer.py as Adams statements,
 and :func:`script` writes those statements as the msolve classes of pysolver/modeling.py
 that stand for them (each class's table of keywords, read backwards), so every form builds
-the same model, number for number (docs/adams.md, "Writing datasets").
+the same model, number for number (a marker given by the nine numbers of its axes, which a
+dataset gives by REULER, to rounding: docs/adams.md, "Writing datasets").
 """
 import ast
 import os

@@ -13,6 +13,7 @@ from lxml import etree
 import pysolver
 from pysolver import DeckError, DeckWarning
 from pysolver.convert import convert
+from pysolver.deck.adams import read_elements
 from pysolver.rotations import rot_313
 
 _DATASET = """numbers in D notation
@@ -87,6 +88,15 @@ def test_a_signed_d_exponent_in_a_function_draws_a_warning_naming_its_line(tmp_p
          "minus 1; write 2.5E-1 for the number, or 2.5D - 1 for the angle (docs/adams.md, "
          "\"Numbers\")")]
     assert all(w.file == str(tmp_path / "numbers.adm") for w in caught)
+
+
+def test_user_parameters_take_d_exponents_without_a_warning():
+    """USER(...) holds numbers only, so 1.0D-3 there has one reading."""
+    text = "x\nVARIABLE/1, FUNCTION=USER(1.0D-3, 2.5D+1, 90D)\\, ROUTINE=lib::f\nEND\n"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        elements = read_elements(text, "user.adm")
+    assert elements[0][1]["expr"] == "USER(1.0E-3, 2.5E+1, 1.5707963267948966)"
 
 
 def test_converted_functions_hold_e_exponents_and_radians(tmp_path):

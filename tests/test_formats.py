@@ -56,12 +56,12 @@ ROUNDED = ("rot", "im_rot", "inertia", "vel", "omega")
 
 def _differences(a, b, path, rounded=False):
     """Where two parts of a model differ, numbers bit for bit (a zero's sign too), or with
-    `rounded` the arrays of ROUNDED to 1e-15 of their largest entry; the expressions'
+    `rounded` the arrays of ROUNDED to 2e-15 of their largest entry; the expressions'
     texts and the deck locations aside."""
     if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
         a, b = np.asarray(a), np.asarray(b)
         if rounded and path.rpartition(".")[2] in ROUNDED and a.shape == b.shape:
-            same = np.abs(a - b).max() <= 1e-15 * np.abs(a).max()
+            same = np.abs(a - b).max() <= 2e-15 * np.abs(a).max()
         else:
             same = a.shape == b.shape and np.array_equal(a, b, equal_nan=True) and \
                 (a.dtype.kind != "f" or np.array_equal(np.signbit(a), np.signbit(b)))

@@ -4,9 +4,9 @@ Longer than 420 lines because it is a language: the lexer (title line, ``!`` com
 continuation lines, ``\\``-separated functions, ``D`` for degrees and D exponents), keyword
 abbreviation and the placement of parts and markers; each statement then becomes the call of
 its pysolver.deck.msolve statement function (the translations:
-pysolver/deck/adams_statements.py), so an .adm deck builds the same elements as the XML and Python forms
-(../shared/reference/elements.md sections 8.3, 9; docs/adams.md says what is read and what
-is refused).
+pysolver/deck/adams_statements.py), so an .adm deck builds the same elements as the XML and
+Python forms (../shared/reference/elements.md sections 8.3, 9; docs/adams.md says what is
+read and what is refused).
 """
 import difflib
 import os
@@ -351,6 +351,8 @@ class _Reader:
             elif function:
                 signed = []
                 vals[name] = expression(val, signed)
+                if re.match(r"\s*USER\s*\(", val, re.I):
+                    signed = []             # USER(...) takes numbers: one reading
                 for text in signed:
                     self.warn(stmt, _signed_exponent(text), line, key)
             elif name == "Y":
