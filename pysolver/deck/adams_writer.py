@@ -8,9 +8,9 @@ Each element becomes the statement pysolver/deck/adams_statements.py reads back 
 element, attribute for attribute: numbers with their shortest exact digits (``repr``),
 markers placed as the deck placed them (every part's frame is the global frame, so QP is
 the marker's place and REULER its angles; a marker given by its axes gets ZP/XP when they
-give those axes exactly, else REULER, the same to rounding), the elements Adams has no statement for as
-pysolver's extension statements (PFORCE, LOADCONTROL, SENSOR_EVALUATE, ...), and the
-attributes Adams has no keyword for as pysolver's extension keywords (docs/adams.md,
+give those axes exactly, else REULER, the same to rounding), the elements Adams has no
+statement for as pysolver's extension statements (PFORCE, LOADCONTROL, SENSOR_EVALUATE, ...),
+and the attributes Adams has no keyword for as pysolver's extension keywords (docs/adams.md,
 "pysolver extensions"). The statements (:class:`Statement`) are also what the msolve class
 script writer (pysolver/convert.py) writes from.
 """
