@@ -6,7 +6,8 @@ Every format is read into the same list of elements (pysolver.deck.loader.deck_e
 pysolver/deck/writer.py writes it as XML, pysolver/deck/adams_writer.py as Adams statements,
 and :func:`script` writes those statements as the msolve classes of pysolver/modeling.py
 that stand for them (each class's table of keywords, read backwards), so every form builds
-the same model, number for number (docs/adams.md, "Writing datasets").
+the same model, number for number (a marker given by the nine numbers of its axes, which a
+dataset gives by REULER, to rounding: docs/adams.md, "Writing datasets").
 """
 import ast
 import os
@@ -15,6 +16,7 @@ from lxml import etree
 
 from . import modeling
 from .deck import adams_writer
+from .deck.adams import output_name
 from .deck.adams_writer import Function, Ref
 from .deck.loader import deck_elements, load
 from .deck.writer import to_xml
@@ -76,14 +78,16 @@ def forms(deck, output, user_code=True):
         return {output: to_xml(elements, model.source.file, title=title, out_dir=out_dir)}
     dataset, commands = adams_writer.statements(elements, model, model.source.file, out_dir)
     base = os.path.basename(stem)
+    # the output name of the deck's command file, else the new file's stem
+    kept = output_name(model.source.text) if model.source.fmt == "adm" else None
     if ext.lower() == ".adm":
         title = f"{base}  (converted by pysolver from {name})"
         texts = {output: adams_writer.dataset_text(dataset, title, about)}
         acf = stem + ".acf"
         if commands or os.path.exists(acf):     # an old .acf would give it commands
-            texts[acf] = adams_writer.command_text(commands, base)
+            texts[acf] = adams_writer.command_text(commands, base, kept)
         return texts
-    return {output: script(dataset, commands, base, about, name)}
+    return {output: script(dataset, commands, kept or base, about, name)}
 
 
 def description(text, fmt):

@@ -28,6 +28,33 @@ def rot_313(psi, theta, phi):
     return rz(psi) @ rx @ rz(phi)
 
 
+def angles_313(A):
+    """Body 3-1-3 angles (psi, theta, phi) of a rotation matrix, theta in [0, pi], so that
+    rot_313(psi, theta, phi) is A to rounding (a few units in the last place of its entries).
+
+    psi and phi come from the third column and row (sin(theta) times their sine and cosine)
+    where sin(theta) > 1/2; nearer theta = 0 or pi, where those lose their digits, their sum
+    (theta < pi/2) or difference comes from the upper 2 x 2 block, which holds it times
+    1 +- cos(theta), and only one of them from the third column. At theta = 0 or pi (gimbal
+    lock: psi and phi turn about one axis), or sin(theta) within rounding of it (two units
+    of 1), theta is 0 or pi and phi 0.
+    """
+    A = np.asarray(A, dtype=float)
+    s = math.hypot(A[0, 2], A[1, 2])
+    if s > 0.5:
+        return (math.atan2(A[0, 2], -A[1, 2]), math.atan2(s, A[2, 2]),
+                math.atan2(A[2, 0], A[2, 1]))
+    if A[2, 2] > 0:                 # near theta = 0: psi + phi
+        turn, sign, lock = math.atan2(A[1, 0] - A[0, 1], A[0, 0] + A[1, 1]), 1.0, 0.0
+    else:                           # near theta = pi: psi - phi
+        turn, sign, lock = math.atan2(A[1, 0] + A[0, 1], A[0, 0] - A[1, 1]), -1.0, math.pi
+    if s <= 2 * np.finfo(float).eps:
+        return turn, lock, 0.0
+    psi = math.atan2(A[0, 2], -A[1, 2])
+    phi = math.remainder(sign * (turn - psi), 2 * math.pi)
+    return psi, math.atan2(s, A[2, 2]), phi
+
+
 def rot_321(yaw, pitch, roll):
     """Body 3-2-1 rotation with Adams' PITCH (the negated second angle):
     A = Rz(yaw) Ry(-pitch) Rx(roll), so YAW, PITCH and ROLL read the angles back."""

@@ -1,7 +1,7 @@
 """pysolver convert in every direction (MotionSolve XML, Python statement scripts, Adams
 datasets with their command files, scripts of msolve classes): every example deck's forms in
 decks/forms/adams and decks/forms/msolve are what convert writes, build the same model number for
-number and give the same results; a deck of every attribute the examples leave out makes
+number (a marker given by its axes to rounding: REULER) and give the same results; a deck of every attribute the examples leave out makes
 the round trip through each format and back; what a format cannot hold is a DeckError."""
 import dataclasses
 import importlib.util
@@ -47,30 +47,41 @@ def _tree(value):
     return value
 
 
-def _differences(a, b, path):
-    """Where two parts of a model differ, numbers bit for bit (a zero's sign too); the
-    expressions' texts and the deck locations aside."""
+#: What a dataset (and a script of msolve classes) holds to rounding, not bit for bit: a
+#: marker given by the nine numbers of its axes is written with its 3-1-3 angles (REULER,
+#: docs/adams.md "Writing datasets"), and so is what its axes turn (a body's inertia about
+#: its IM marker's axes, a velocity along its VM marker's).
+ROUNDED = ("rot", "im_rot", "inertia", "vel", "omega")
+
+
+def _differences(a, b, path, rounded=False):
+    """Where two parts of a model differ, numbers bit for bit (a zero's sign too), or with
+    `rounded` the arrays of ROUNDED to 2e-15 of their largest entry; the expressions'
+    texts and the deck locations aside."""
     if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
         a, b = np.asarray(a), np.asarray(b)
-        same = a.shape == b.shape and np.array_equal(a, b, equal_nan=True) and \
-            (a.dtype.kind != "f" or np.array_equal(np.signbit(a), np.signbit(b)))
+        if rounded and path.rpartition(".")[2] in ROUNDED and a.shape == b.shape:
+            same = np.abs(a - b).max() <= 2e-15 * np.abs(a).max()
+        else:
+            same = a.shape == b.shape and np.array_equal(a, b, equal_nan=True) and \
+                (a.dtype.kind != "f" or np.array_equal(np.signbit(a), np.signbit(b)))
         return [] if same else [f"{path}: {a!r} != {b!r}"]
     if dataclasses.is_dataclass(a) and not isinstance(a, type):
         return [d for f in dataclasses.fields(a) if f.name not in ("text", "texts", "line",
                                                                    "file", "load_text")
                 for d in _differences(getattr(a, f.name), getattr(b, f.name),
-                                      f"{path}.{f.name}")]
+                                      f"{path}.{f.name}", rounded)]
     if isinstance(a, dict):
         if list(a) != list(b):
             return [f"{path}: {list(a)} != {list(b)}"]
-        return [d for k in a for d in _differences(a[k], b[k], f"{path}[{k}]")]
+        return [d for k in a for d in _differences(a[k], b[k], f"{path}[{k}]", rounded)]
     if isinstance(a, tuple) and a and a[0] in ("call", "name"):
         a, b = _tree(a), _tree(b)
     if isinstance(a, (list, tuple)):
         if not isinstance(b, (list, tuple)) or len(a) != len(b):
             return [f"{path}: {a!r} != {b!r}"]
-        return [d for k, (u, v) in enumerate(zip(a, b)) for d in _differences(u, v,
-                                                                               f"{path}[{k}]")]
+        return [d for k, (u, v) in enumerate(zip(a, b))
+                for d in _differences(u, v, f"{path}[{k}]", rounded)]
     if callable(a):
         return []
     if type(a) is not type(b) or (a != b and a == a) or \
@@ -79,10 +90,12 @@ def _differences(a, b, path):
     return []
 
 
-def model_differences(a, b):
-    """Every difference between two models' elements, units, gravity, settings, commands."""
+def model_differences(a, b, rounded=False):
+    """Every difference between two models' elements, units, gravity, settings, commands
+    (`rounded`: marker axes to rounding, as _differences)."""
     out = [d for el in catalogue.ELEMENTS
-           for d in _differences(getattr(a, el.table), getattr(b, el.table), el.table)]
+           for d in _differences(getattr(a, el.table), getattr(b, el.table), el.table,
+                                 rounded)]
     for attr in ("units", "force_scale", "gravity", "static", "commands", "output_settings"):
         out += _differences(getattr(a, attr), getattr(b, attr), attr)
     return out + _differences(vars(a.transient), vars(b.transient), "transient")
@@ -98,15 +111,26 @@ def _rel(a, b):
     return float(np.max(np.abs(a - b) / np.maximum(1.0, np.abs(b).max(axis=0))))
 
 
-def _same_results(res, ref):
-    """Same success and message, same output rows, every request channel equal to 1e-12 of
+def _same_results(res, ref, tol=1e-12):
+    """Same success and message, same output rows, every request channel equal to `tol` of
     its scale at every row."""
     assert (res.success, res.status, res.message) == (ref.success, ref.status, ref.message)
     assert len(res.t) == len(ref.t)
     assert _rel(res.t[:, None], ref.t[:, None]) <= 1e-12
     assert res.request_ids == ref.request_ids
     for rid in ref.request_ids:
-        assert _rel(res.request(rid), ref.request(rid)) <= 1e-12, rid
+        assert _rel(res.request(rid), ref.request(rid)) <= tol, rid
+
+
+def _runs_alike(model, res, ref_model, ref):
+    """A form's run `res` is its deck's `ref`: to 1e-12 of scale when the two models are the
+    same number for number; else (marker axes to rounding: IDA's steps may differ) to the
+    integration error, both run at integr_tol 1e-10 (iftomm_a05_flyball, 10 s: 3e-8)."""
+    if model_differences(ref_model, model) == []:
+        _same_results(res, ref)
+    else:
+        ref, run = (m.run(progress=False, integr_tol=1e-10) for m in (ref_model, model))
+        _same_results(run, ref, 1e-6)
 
 
 #: Decks run for a fraction of their time here: IFToMM A02 (81 links) for 2 s of its 20 s.
@@ -129,11 +153,11 @@ def test_every_form_of_an_example_deck_builds_the_same_model_and_runs_alike(deck
                 "print_interval": 0.05} if deck.stem in SHORT else None
     models = [_load(p, simulate=simulate) for p in paths]
     for path, model in zip(paths[1:], models[1:]):
-        assert model_differences(models[0], model) == [], path
+        assert model_differences(models[0], model, rounded="forms" in path.parts) == [], path
     results = [m.run(progress=False) for m in models]
     assert results[0].success, results[0].message
-    for res in results[1:]:
-        _same_results(res, results[0])
+    for model, res in zip(models[1:], results[1:]):
+        _runs_alike(model, res, models[0], results[0])
 
 
 def test_the_committed_forms_are_what_convert_writes():
@@ -153,7 +177,8 @@ def test_every_attribute_makes_the_round_trip_through_every_format(tmp_path):
     a spline surface, output settings, every integrator and statics setting, commands with
     start_time and print_increment, numbers such as 0.30000000000000004 and 5e-324: each
     format, and each format converted again, builds the model the XML builds, number for
-    number, and runs alike."""
+    number (a marker given by its axes, which a dataset writes as REULER, to rounding), and
+    runs alike."""
     ref = _load(EVERY)
     out = tmp_path / "out"
     out.mkdir()
@@ -162,28 +187,30 @@ def test_every_attribute_makes_the_round_trip_through_every_format(tmp_path):
         first = out / f"first{ext}"
         convert(EVERY, first)
         firsts.append(first)
-        assert model_differences(ref, _load(first)) == [], ext
+        assert model_differences(ref, _load(first), rounded=ext != ".xml") == [], ext
     for first in firsts:
         for ext in (".adm", ".py", ".xml"):
             again = tmp_path / f"{first.stem}_{first.suffix[1:]}{ext}"
             convert(first, again)
-            assert model_differences(ref, _load(again)) == [], again.name
+            rounded = (first.suffix, ext) != (".xml", ".xml")
+            assert model_differences(ref, _load(again), rounded=rounded) == [], again.name
     res = ref.run(progress=False)
     # the assembly's row at t = 0, 5 steps, then 100 (print_increment is kept, not used)
     assert res.success and len(res.t) == 1 + 5 + 100, res.message
     for first in firsts:
-        _same_results(_load(first).run(progress=False), res)
+        model = _load(first)
+        _runs_alike(model, model.run(progress=False), ref, res)
 
 
 def test_the_dataset_holds_adams_statements_and_pysolver_extensions(tmp_path):
     """What the .adm says: exact digits, part-relative placement as written (ZP/XP where they
-    give the axes exactly, else pysolver's AXES), pysolver's statements and keywords, the
-    commands in the .acf."""
+    give the axes exactly, else REULER), pysolver's statements and keywords, the commands in
+    the .acf."""
     convert(EVERY, tmp_path / "every.adm")
     text = (tmp_path / "every.adm").read_text()
     for line in ("MARKER/2, PART = 1, QP = 0.30000000000000004, 5e-324, 1e+300",
                  "MARKER/21, PART = 2, QP = 0.0, 2.0, 0.0, ZP = 1.0, 2.0, 0.0, XP = 0.0, 3.0, 0.0",
-                 ", AXES = 0.36, 0.48, -0.8, -0.8, 0.6, 0.0, 0.48, 0.64, 0.6",
+                 ", REULER = 2.498091544796509, 0.9272952180016122, -1.5707963267948968",
                  "VTORQUE/1, I = 20, ACTIONONLY, RM = 5, TY = 1e-4*SIN(TIME)\\, TZ = -0.001*WZ(20)\\",
                  "JOINT/1, FREE, I = 20, J = 1, VIRTUAL",
                  "SENSOR_EVALUATE/7, FUNCTION = DY(30)\\",

@@ -241,15 +241,15 @@ _RUN = 'model.simulate(type="DYNAMICS", end=1, dtout=0.1)'
 
 @pytest.mark.parametrize("tail, line, element, attribute, reason", [
     ('model.simulate(type="DYNAMICS", end=-1, dtout=0.01)', 12, "SIMULATE (Simulate)", "END",
-     "end_time -1 must be after the start time 0"),
+     "END -1 must be after the start time 0"),
     ('model.simulate(type="DYNAMICS", end=1, dtout=0)', 12, "SIMULATE (Simulate)", "DTOUT",
      "got 0; expected a value > 0"),
     ('model.simulate(type="DYNAMICS", end=1, steps=0)', 12, "SIMULATE (Simulate)", "STEPS",
      "got 0; expected a positive integer"),
     ('model.simulate(type="DYNAMICS", end=3, start=2)', 12, "SIMULATE (Simulate)", "START",
-     "start_time must equal the time the previous command ended (0)"),
+     "START must equal the time the previous command ended (0)"),
     (f'{_RUN}\nmodel.simulate(type="DYNAMICS", end=0.5)', 13, "SIMULATE (Simulate)", "END",
-     "end_time 0.5 must be after the start time 1"),
+     "END 0.5 must be after the start time 1"),
     ('model.simulate(type="DYNAMIC", end=1)', 12, "simulate", "type",
      "unknown simulate type 'DYNAMIC'; expected DYNAMICS, TRANSIENT, KINEMATICS, STATICS, "
      "STATIC, QUASI-STATIC, QUASISTATIC, ASSEMBLY"),

@@ -1,12 +1,12 @@
 """Adams datasets (.adm) and command files (.acf), read into pysolver's statements.
 
 Longer than 420 lines because it is a language: the lexer (title line, ``!`` comments,
-continuation lines, ``\\``-separated functions, ``D`` degrees), keyword abbreviation and the
-placement of parts and markers; each statement then becomes the call of its
-pysolver.deck.msolve statement function (the translations: pysolver/deck/adams_statements.py),
-so an .adm deck builds the same elements as the XML and Python forms
-(../shared/reference/elements.md sections 8.3, 9; docs/adams.md says what is read and what
-is refused).
+continuation lines, ``\\``-separated functions, ``D`` for degrees and D exponents), keyword
+abbreviation and the placement of parts and markers; each statement then becomes the call of
+its pysolver.deck.msolve statement function (the translations:
+pysolver/deck/adams_statements.py), so an .adm deck builds the same elements as the XML and
+Python forms (../shared/reference/elements.md sections 8.3, 9; docs/adams.md says what is
+read and what is refused).
 """
 import difflib
 import os
@@ -22,6 +22,8 @@ from .adams_statements import COMMANDS, DATASET, EXTENSIONS, PRIMARY, SHARED
 
 #: The comment line after END that marks the commands of a command file (load("x.acf")).
 COMMANDS_MARK = "!pysolver: commands of"
+#: The comment line before it that keeps the command file's output name (its second line).
+OUTPUT_MARK = "!pysolver: output name"
 
 #: Statements that would change the dynamics and that pysolver does not model: a DeckError.
 UNSUPPORTED = ("CONTACT", "FLEX_BODY", "BEAM", "FIELD", "DIFF", "LSE", "GSE", "TFSISO",
@@ -44,8 +46,16 @@ _SETTINGS = ("INTEGRATOR", "EQUILIBRIUM")
 #: Statements read quietly and not used (output settings; graphics are kept).
 QUIET = ("OUTPUT", "RESULTS")
 
-_NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?([dD])?$")
-_DEGREES = re.compile(r"(?<![\w.])((?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)[dD](?![\w(])")
+#: A number of an argument list (docs/adams.md, "Numbers"): a mantissa, then an E exponent
+#: (and a D for degrees), a Fortran D exponent (1.0D-3, 1.0D+3, 1.0D3), or a D for degrees.
+_NUMBER = re.compile(r"^(?P<mant>[+-]?(?:\d+\.?\d*|\.\d+))(?:(?P<exp>[eE][+-]?\d+)(?P<edeg>[dD])?"
+                     r"|(?P<dexp>[dD][+-]?\d+)|(?P<deg>[dD]))?$")
+#: The same in a function, where the number ends at any character that cannot continue it:
+#: a D exponent's digits are followed by no letter, digit or point (30D+10D is two angles),
+#: a D for degrees by no letter, digit or parenthesis.
+_FUNCTION_NUMBER = re.compile(r"(?<![\w.])(?P<mant>\d+\.?\d*|\.\d+)"
+                              r"(?:(?P<exp>[eE][+-]?\d+)(?P<edeg>[dD](?![\w(]))?"
+                              r"|(?P<dexp>[dD][+-]?\d+)(?![\w.])|(?P<deg>[dD])(?![\w(]))?")
 _VIEW_NAME = re.compile(r"""adams_view_name\s*=\s*(['"])(.*?)\1""", re.I)
 _SEP = "\x00"            # a continuation line's leading comma, before arguments are split
 
@@ -210,7 +220,8 @@ def _is_function_key(word):
 
 def _args(stmt, file):
     """[(keyword as written, [values as text] or None for a flag, is_function, line)]:
-    numbers after an assignment continue its list (names continue CNAMES=)."""
+    numbers after an assignment continue its list (names continue CNAMES=; so does a
+    malformed number, which its keyword's checks then name)."""
     out = []
     for item, function, line in stmt.args:
         key, eq, val = item.partition("=")
@@ -222,7 +233,7 @@ def _args(stmt, file):
         if eq:
             out.append([key, [val.strip()] if not function else val.strip(), function, line])
         elif out and out[-1][1] is not None and not out[-1][2] and \
-                (_NUMBER.match(key) or names):
+                (re.match(r"[+-]?\.?\d", key) or names):
             out[-1][1].append(key)          # the next value of a list (REULER=90D, 0, 0)
         else:
             out.append([key, None, False, line])
@@ -260,21 +271,48 @@ def _resolve(word, known, stmt, file, line, extensions=()):
 
 
 def _number(text, stmt, key, file, line, integer=False):
-    """A number of the dataset (a trailing D: degrees, read as radians)."""
+    """A number of the dataset (a trailing D: degrees, read as radians; a D exponent: the
+    Fortran double precision exponent)."""
     m = _NUMBER.match(text.strip())
     if not m:
         raise DeckError(f"expected a number, got {text!r}", file=file, line=line,
                         element=f"{stmt.name}/{stmt.id}", attribute=key)
-    body = text.strip()[:-1] if m.group(3) else text.strip()
-    if integer and not m.group(3) and re.fullmatch(r"[+-]?\d+", body):
-        return int(body)
-    val = float(body)
-    return np.radians(val) if m.group(3) else val
+    degrees = bool(m["deg"] or m["edeg"])
+    if integer and not degrees and re.fullmatch(r"[+-]?\d+", text.strip()):
+        return int(text.strip())
+    val = _value(m)
+    return float(np.radians(val)) if degrees else val
 
 
-def expression(text):
-    """An Adams expression in pysolver's language: numbers with a D suffix become radians."""
-    return _DEGREES.sub(lambda m: repr(float(np.radians(float(m.group(1))))), text)
+def _value(m):
+    """The number a match of _NUMBER or _FUNCTION_NUMBER writes, without its degrees."""
+    exp = m["exp"] or ("E" + m["dexp"][1:] if m["dexp"] else "")
+    return float(m["mant"] + exp)
+
+
+def expression(text, signed=None):
+    """An Adams function in pysolver's language: numbers with a D for degrees become radians,
+    a D exponent becomes an E one. `signed`, a list, collects the D exponents written with a
+    sign (1.0D-3), which would also read as degrees minus a number (1.0D - 3)."""
+    def number(m):
+        if m["deg"] or m["edeg"]:
+            return repr(float(np.radians(_value(m))))
+        if m["dexp"]:
+            if signed is not None and m["dexp"][1] in "+-":
+                signed.append(m.group(0))
+            return m["mant"] + ("e" if m["dexp"][0] == "d" else "E") + m["dexp"][1:]
+        return m.group(0)
+    return _FUNCTION_NUMBER.sub(number, text)
+
+
+def _signed_exponent(text):
+    """The warning on a D exponent with a sign in a function (docs/adams.md, "Numbers")."""
+    m = _NUMBER.match(text)
+    mant, sign, digits = m["mant"], m["dexp"][1], m["dexp"][2:]
+    angle = f"{mant}D {sign} {digits}"
+    return (f"{text} is read as a Fortran exponent, {_value(m)!r}, not as {mant} degrees "
+            f"{'plus' if sign == '+' else 'minus'} {digits}; write {mant}E{sign}{digits} for "
+            f"the number, or {angle} for the angle (docs/adams.md, \"Numbers\")")
 
 
 class _Reader:
@@ -289,10 +327,10 @@ class _Reader:
         self.ids = {}               # (statement name, Adams id) -> pysolver id, on a clash
         self.units_seen = False
 
-    def warn(self, stmt, msg, line=None):
+    def warn(self, stmt, msg, line=None, key=None):
         where = f"{stmt.name}/{stmt.id}" if stmt.id is not None else stmt.name
-        warnings.warn(DeckWarning(msg, file=self.file, line=line or stmt.line, element=where),
-                      stacklevel=3)
+        warnings.warn(DeckWarning(msg, file=self.file, line=line or stmt.line, element=where,
+                                  attribute=key), stacklevel=3)
 
     def error(self, stmt, msg, key=None, line=None):
         where = f"{stmt.name}/{stmt.id}" if stmt.id is not None else stmt.name
@@ -311,7 +349,12 @@ class _Reader:
             if val is None:
                 vals[name] = True
             elif function:
-                vals[name] = expression(val)
+                signed = []
+                vals[name] = expression(val, signed)
+                if re.match(r"\s*USER\s*\(", val, re.I):
+                    signed = []             # USER(...) takes numbers: one reading
+                for text in signed:
+                    self.warn(stmt, _signed_exponent(text), line, key)
             elif name == "Y":
                 vals.setdefault("Y", []).append(
                     [_number(v, stmt, key, self.file, line) for v in val])
@@ -641,10 +684,21 @@ def read_elements(text, file):
 def with_commands(dataset_text, acf_text, acf_file):
     """A dataset's text with a command file's commands after a marked comment (Adams reads
     nothing after END), so the model's source is one text; the command file's first line
-    (the dataset) and second (the output name) are left out."""
+    (the dataset) is left out, its second (the output name) kept in a comment of its own
+    before them (output_name), unless the first is blank (then the second is FILE/MODEL=)."""
     lines = acf_text.splitlines()
-    return (dataset_text.rstrip("\n") + f"\n{COMMANDS_MARK} {acf_file}\n"
+    name = lines[1].strip() if len(lines) > 1 and lines[0].strip() else ""
+    kept = f"\n{OUTPUT_MARK} {name}" if name else ""
+    return (dataset_text.rstrip("\n") + kept + f"\n{COMMANDS_MARK} {acf_file}\n"
             + "\n".join(lines[2:]) + "\n")
+
+
+def output_name(text):
+    """The output name of the command file merged into a dataset's text (with_commands), or
+    None."""
+    dataset = text.partition("\n" + COMMANDS_MARK)[0]
+    found = re.search(rf"^{re.escape(OUTPUT_MARK)} (.+)$", dataset, re.M)
+    return found.group(1).strip() if found else None
 
 
 def acf_dataset(acf_text, acf_file):

@@ -7,9 +7,10 @@ a statement may break, exact numbers, quoting).
 Each element becomes the statement pysolver/deck/adams_statements.py reads back into the same
 element, attribute for attribute: numbers with their shortest exact digits (``repr``),
 markers placed as the deck placed them (every part's frame is the global frame, so QP is
-the marker's place and REULER its angles), the elements Adams has no statement for as
-pysolver's extension statements (PFORCE, LOADCONTROL, SENSOR_EVALUATE, ...), and the
-attributes Adams has no keyword for as pysolver's extension keywords (docs/adams.md,
+the marker's place and REULER its angles; a marker given by its axes gets ZP/XP when they
+give those axes exactly, else REULER, the same to rounding), the elements Adams has no
+statement for as pysolver's extension statements (PFORCE, LOADCONTROL, SENSOR_EVALUATE, ...),
+and the attributes Adams has no keyword for as pysolver's extension keywords (docs/adams.md,
 "pysolver extensions"). The statements (:class:`Statement`) are also what the msolve class
 script writer (pysolver/convert.py) writes from.
 """
@@ -19,6 +20,7 @@ import re
 import numpy as np
 
 from ..errors import DeckError
+from ..rotations import angles_313
 from . import usersubs
 from .adams import axes_from_points
 from .adams_statements import JPRIM_TYPES
@@ -200,7 +202,9 @@ def _angle(a, key):
 
 def _axes(qp, columns):
     """ZP and XP (Adams' points on z and in the x-z plane) when the dataset reader makes
-    exactly these axes of them, else pysolver's AXES."""
+    exactly these axes of them, else REULER: the 3-1-3 angles of the rotation the loader
+    makes of the nine numbers (deck/bodies.py: the nearest rotation), the same to rounding
+    (a few units in the last place)."""
     axes = np.array(columns, float).reshape(3, 3).T
     origin = np.array(qp, float)
     zp, xp = origin + axes[:, 2], origin + axes[:, 0]
@@ -211,7 +215,8 @@ def _axes(qp, columns):
     if back is not None and np.array_equal(back, axes) and \
             np.array_equal(np.signbit(back), np.signbit(axes)):
         return [("ZP", zp.tolist()), ("XP", xp.tolist())]
-    return [("AXES", list(columns))]
+    u, _, vt = np.linalg.svd(axes)
+    return [("REULER", list(angles_313(u @ vt)))]
 
 
 _JOINT_NAMES = {"CONSTANT_VELOCITY": "CONVEL", "RACK_PINION": "RACKPIN"}
@@ -552,9 +557,10 @@ def dataset_text(dataset, title, description=""):
     return "\n".join(lines) + "\n"
 
 
-def command_text(commands, dataset_name):
-    """The .acf text: the dataset's name, the output's name, the commands, STOP."""
-    lines = [dataset_name, dataset_name]
+def command_text(commands, dataset_name, output_name=None):
+    """The .acf text: the dataset's name, the output's name (the dataset's when None), the
+    commands, STOP."""
+    lines = [dataset_name, output_name or dataset_name]
     for st in commands:
         if st.name == "STOP":
             break

@@ -219,6 +219,11 @@ class Ctx:
         shown = self.names.get(attribute, attribute) if attribute else None
         return DeckError(msg, **self.where(attribute), attribute=shown)
 
+    def named(self, attribute):
+        """An attribute as the deck names it (an .adm statement's keyword, END for end_time),
+        for messages that name attributes."""
+        return self.names.get(attribute, attribute)
+
     def where(self, attribute=None):
         # an .adm statement shows as written (MARKER/9), the element it became after it; an
         # attribute written on a line of its own (a <Parameter> of a task) is found there

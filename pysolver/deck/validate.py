@@ -251,21 +251,24 @@ def _simulate(ctx, a, model, t_prev):
             raise ctx.error("a Static analysis takes no duration or output interval", given[0])
         end = t_prev if a["end_time"] is None else a["end_time"]
         if end < t_prev:
-            raise ctx.error(f"end_time {end:g} is before the current time {t_prev:g}",
-                            "end_time")
+            raise ctx.error(f"{ctx.named('end_time')} {end:g} is before the current time "
+                            f"{t_prev:g}", "end_time")
         model.commands.append(Simulate("STATIC", end, 0.0, ctx.line, ctx.file))
         return end
     if a["start_time"] is not None and abs(a["start_time"] - t_prev) > 1e-12:
-        raise ctx.error(f"start_time must equal the time the previous command ended "
-                        f"({t_prev:g})", "start_time")
+        raise ctx.error(f"{ctx.named('start_time')} must equal the time the previous "
+                        f"command ended ({t_prev:g})", "start_time")
     if (a["end_time"] is None) == (a["duration"] is None):
-        raise ctx.error("give exactly one of end_time and duration", "end_time")
+        raise ctx.error(f"give exactly one of {ctx.named('end_time')} and "
+                        f"{ctx.named('duration')}", "end_time")
     end = a["end_time"] if a["end_time"] is not None else t_prev + a["duration"]
     if end <= t_prev:
-        raise ctx.error(f"end_time {end:g} must be after the start time {t_prev:g}", "end_time")
+        raise ctx.error(f"{ctx.named('end_time')} {end:g} must be after the start time "
+                        f"{t_prev:g}", "end_time")
     given = [k for k in ("print_interval", "num_step", "print_increment") if a[k] is not None]
     if len(given) > 1:
-        raise ctx.error("give one of print_interval and num_step", given[1])
+        named = [ctx.named(k) for k in given]
+        raise ctx.error(f"give one of {', '.join(named[:-1])} and {named[-1]}", given[1])
     if a["print_interval"] is not None:
         dt = a["print_interval"]
     elif a["num_step"] is not None:
