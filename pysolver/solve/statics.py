@@ -20,6 +20,7 @@ import dataclasses
 import math
 
 import numpy as np
+from scipy.linalg import solve_triangular
 
 from ..build.compiler import FROZEN_TIME
 from ..deck.expr import nodes
@@ -46,12 +47,15 @@ class StaticResult:
     success : bool
     message : str
     iterations : int
-        Newton iterations (FIM_S), kinetic-energy peaks (MKEAM), or IDA steps (FIM_D).
+        Newton iterations (FIM_S: of both passes when the first failed), kinetic-energy peaks
+        (MKEAM), or IDA steps (FIM_D).
     imbalance : float
-        Largest force imbalance at the answer, deck force units.
+        Largest force imbalance at the answer, deck force units (moments in deck force times
+        length); after a failed FIM_S, the least either pass reached.
     error : float
-        Largest increment of the last Newton iteration (or relative change between the last
-        two peaks for MKEAM).
+        Largest increment of the Newton iteration that reached the answer, or the constraints'
+        violation there if larger (or relative change between the last two peaks for
+        MKEAM).
     compliance : ndarray
         Inverse of the regularised stiffness (K + sqrt(stability) M)^-1 at the answer, in the
         velocity-like coordinates of ``coordinates`` (deck length per deck force).
@@ -75,10 +79,11 @@ class StaticProblem:
         self.k = kernel
         lay = kernel.layout
         self.cf = kernel.arrays["force_scale"]
-        rows, names, qcols, M = [], [], [], []
+        rows, names, qcols, M, force = [], [], [], [], []
         for b, qa, ua in zip(lay.bodies, lay.qadr, lay.uadr):
             nu = 6 if b.kind == "rigid" else 3
             rows += list(range(ua, ua + nu))
+            force += [True] * 3 + [False] * (nu - 3)
             qcols += list(range(qa, qa + (7 if nu == 6 else 3)))
             names += [f"body{b.id}.{c}" for c in ("dx", "dy", "dz", "rx", "ry", "rz")[:nu]]
             blk = np.eye(nu) * b.mass
@@ -90,6 +95,11 @@ class StaticProblem:
         self.names = names
         self.n = len(rows)
         self.M = _block_diag(M, self.n)
+        # which rows balance forces (the others balance moments), and the Cholesky factor of
+        # the mass metric that measures increments alike in any unit system (masses are
+        # positive and inertias positive definite: the deck checks both)
+        self.force_rows = np.array(force, dtype=bool)
+        self.chol = np.linalg.cholesky(self.M)
         self.zero = np.zeros(kernel.ny)
         # constraint equations: each one's multiplier state and its position row (displacement
         # motions and every constraint have one; the deck refuses other motions in statics);
@@ -123,6 +133,65 @@ class StaticProblem:
         if len(self.turns):
             y[self.turns] += self.k.residual_array(t, y, self.zero)[self.turns]
         return y
+
+    def norm(self, du):
+        """The size of an increment of the n coordinates in the mass metric, sqrt(du' M du):
+        translations weighed by the masses, rotations by the inertias, so that it scales alike
+        in every unit system."""
+        w = self.chol.T @ du[:self.n]
+        return math.sqrt(w @ w)
+
+    def reactions(self, t, y):
+        """y with the static multipliers at its positions: the reactions that balance the
+        bodies' forces as nearly as they can (least squares), and of those the ones that
+        balance the moments best. (The reactions of the bodies released at rest, weighed by
+        the inverse mass matrix, would turn a link towards the top: a hanging pendulum's pin
+        carries less than its weight while it falls.)"""
+        if not self.m:
+            return y
+        J = self.k.jacobian_array(t, y, self.zero, 0.0)
+        B = J[np.ix_(self.rows, self.lam)]
+        F = self.residual(t, y)[:self.n]
+        scale = np.linalg.norm(B, axis=0)
+        scale[scale == 0] = 1.0
+        B = B / scale
+        f, m = self.force_rows, ~self.force_rows
+        U, sv, Vt = np.linalg.svd(B[f], full_matrices=f.sum() < self.m)
+        rank = int(np.sum(sv > 1e-10 * sv[0])) if len(sv) else 0
+        dlam = Vt[:rank].T @ ((U[:, :rank].T @ -F[f]) / sv[:rank])
+        free = Vt[rank:].T                       # multipliers the forces leave open
+        if free.shape[1] and m.any():
+            dlam += free @ np.linalg.lstsq(B[m] @ free, -(F[m] + B[m] @ dlam), rcond=None)[0]
+        y = y.copy()
+        y[self.lam] += dlam / scale
+        return y
+
+    def restore(self, t, y, step):
+        """y moved back onto the constraints g = 0 by the smallest corrections in the mass
+        metric (Newton on g alone), after an increment of size `step` that Newton's method did
+        not take in full (its constraints hold to first order only, and a stiff force reading
+        their violation, a bushing on a joint, would answer with a force that is not there at
+        any assembled position). y unchanged if the corrections do not converge."""
+        if not self.m:
+            return y
+        n, last, y0 = self.n, math.inf, y
+        for _ in range(10):
+            g = self.residual(t, y)[n:]
+            C = self.matrix(t, y)[n:, :n]
+            # du = L^-T z with the least |z| = |du|_M: C L^-T z = -g, rows made unit size
+            Z = solve_triangular(self.chol, C.T, lower=True).T
+            rn = np.linalg.norm(Z, axis=1)
+            rn[rn == 0] = 1.0
+            z = np.linalg.lstsq(Z / rn[:, None], -g / rn, rcond=None)[0]
+            du = solve_triangular(self.chol.T, z, lower=False)
+            size = self.norm(du)
+            if size > 0.5 * last or (last == math.inf and size > step):
+                break                    # at rounding's level, or not converging
+            y = self.track(t, self.apply(y, np.concatenate([du, np.zeros(self.m)])))
+            last = size
+            if size <= 1e-14 * step:
+                break
+        return y if last < math.inf else y0
 
     def violation(self, R):
         """Largest constraint violation in a residual of :meth:`residual` (model lengths or
@@ -214,103 +283,160 @@ def _quat_mul(p, q):
 
 
 def _limit(prob, dx, tlimit, alimit):
-    """Scale an increment (and its multipliers' change with it: a damped Newton step) so that
-    no translation exceeds tlimit and no rotation alimit (Adams' TLIMIT and ALIMIT), keeping
-    its direction."""
+    """Scale an increment (and its multipliers' change with it: a damped Newton step; the
+    caller then sets the static reactions) so that no translation exceeds tlimit and no
+    rotation alimit (Adams' TLIMIT and ALIMIT), keeping its direction; returns (the
+    increment, whether tlimit was the limit that cut it)."""
     du = dx[:prob.n]
-    scale = 1.0
+    turn = move = 1.0
     c = 0
     for b in prob.k.layout.bodies:
-        scale = min(scale, tlimit / max(np.abs(du[c:c + 3]).max(), 1e-300))
+        move = min(move, tlimit / max(np.abs(du[c:c + 3]).max(), 1e-300))
         if b.kind == "rigid":
-            scale = min(scale, alimit / max(np.linalg.norm(du[c + 3:c + 6]), 1e-300))
+            turn = min(turn, alimit / max(np.linalg.norm(du[c + 3:c + 6]), 1e-300))
             c += 6
         else:
             c += 3
-    return dx * scale
+    return dx * min(move, turn), move < min(turn, 1.0)
 
 
 def fim_s(prob, t, y, params, max_iter=None):
     """Newton-Raphson on the force imbalance; returns (y, StaticResult).
 
     Each increment is limited to params.tlimit per translation and params.alimit per rotation
-    (Adams' TLIMIT, ALIMIT). Plain limited Newton is tried first; if it fails, Newton with a
-    step-halving search (halve while the step raises the imbalance and the next correction
-    would be larger still), which crosses contact onsets that make plain Newton cycle. The
-    search can stall where a neutral direction amplifies tiny moments, which plain Newton
-    does not mind; so each covers the other's failure."""
-    y1, r1 = _newton(prob, t, y, params, max_iter, search=False)
-    if r1.success:
-        return y1, r1
-    y2, r2 = _newton(prob, t, y, params, max_iter, search=True)
-    if r2.success:
-        r2.iterations += r1.iterations
-        r2.message += f" (with step halving, after {r1.iterations} plain iterations)"
-        return y2, r2
-    return y1, r1
+    (Adams' TLIMIT, ALIMIT). Plain limited Newton is tried first; if it stops making progress
+    or runs out of iterations, Newton with a step-halving search (halve while the next
+    correction would be larger), which crosses contact onsets that make plain Newton cycle.
+    The search can stall where a neutral direction amplifies tiny moments, which plain Newton
+    does not mind; so each covers the other's failure. A failure names both passes and
+    returns the point of the smallest imbalance either reached."""
+    max_iter = max_iter or params.max_num_iter
+    plain = _newton(prob, t, y, params, max_iter, search=False)
+    if plain.stop == "converged":
+        return plain.y, StaticResult(t, "FIM_S", True,
+                                     f"FIM_S converged in {plain.iterations} iterations",
+                                     plain.iterations, plain.imbalance, plain.error)
+    halving = _newton(prob, t, y, params, max_iter, search=True)
+    its = plain.iterations + halving.iterations
+    if halving.stop == "converged":
+        return halving.y, StaticResult(
+            t, "FIM_S", True, f"FIM_S converged in {its} iterations (with step halving, after "
+            f"{plain.iterations} plain iterations)", its, halving.imbalance, halving.error)
+    best = min((plain, halving), key=lambda a: a.imbalance)
+    return best.y, StaticResult(
+        t, "FIM_S", False, f"FIM_S did not converge: {plain.why()}, then "
+        f"{halving.why()}{_hint(prob, params, plain, halving)}; the best "
+        f"imbalance reached {best.imbalance:.3g} (max_imbalance {params.max_imbalance:g}) with "
+        f"increment or constraint violation {best.error:.3g}", its, best.imbalance, best.error)
+
+
+def _hint(prob, params, *passes):
+    """A note on failed passes: set stability after a singular matrix; how often tlimit cut
+    the increments of a pass that ran out of iterations, when it cut most of them (it is in
+    deck length units: its default 20 is 20 mm in a millimetre deck)."""
+    if any(p.stop.startswith("singular") for p in passes):
+        return (" (a neutral equilibrium, or the constraints at a singular position?): set "
+                "Param_Static stability > 0" if prob.m else " (a neutral equilibrium?): set "
+                "Param_Static stability > 0")
+    cut = [p for p in passes if p.stop == "limit" and 2 * p.cut > p.iterations]
+    if cut:
+        p = max(cut, key=lambda p: p.cut)
+        return (f" (tlimit cut {p.cut} of the {p.iterations} increments of {p.name} to "
+                f"{params.tlimit:g} deck length units)")
+    return ""
+
+
+#: Plain Newton gives way to the step-halving search after this many iterations without a
+#: smaller Newton correction than its best.
+STALL = 10
+
+
+@dataclasses.dataclass
+class _Attempt:
+    """How one Newton pass of FIM_S ended: `stop` is "converged", "stalled", "limit" or the
+    singular matrix met; `y`, `imbalance` and `error` are its answer, or the point of its
+    smallest imbalance; `cut` counts the increments tlimit cut."""
+    name: str
+    stop: str
+    iterations: int
+    y: np.ndarray
+    imbalance: float
+    error: float
+    cut: int = 0
+
+    def why(self):
+        """How the pass ended, as a clause of the failure message."""
+        if self.stop == "stalled":
+            return (f"{self.name} stopped after {self.iterations} iterations (no smaller "
+                    f"correction in the last {STALL})")
+        if self.stop == "limit":
+            return f"{self.name} used all {self.iterations} iterations (max_num_iter)"
+        return f"{self.name} met a {self.stop} at iteration {self.iterations + 1}"
 
 
 def _newton(prob, t, y, params, max_iter, search):
-    y = prob.track(t, prob.state(y))
+    """One Newton pass from y (plain, or with the step-halving search); an _Attempt.
+
+    Progress is measured by the size of the Newton correction in the mass metric (Deuflhard's
+    natural level function, :meth:`StaticProblem.norm`), which weighs imbalances and
+    constraint violations alike in every unit system. A step cut short by tlimit, alimit or
+    the search is followed back onto the constraints and the multipliers are set to the
+    static reactions there, so that the next matrix is the right one."""
+    name = "Newton with step halving" if search else "plain Newton"
+    y = prob.reactions(t, prob.track(t, prob.state(y)))
     reg = math.sqrt(params.stability) * prob.M
-    max_iter = max_iter or params.max_num_iter
     n = prob.n
     # a tracked angle follows its body only while each increment turns it well under pi
     alimit = min(params.alimit, TURN_LIMIT) if len(prob.turns) else params.alimit
     R = prob.residual(t, y)
-    err = math.inf
-    # progress: the imbalance and the constraints' violation, each against its tolerance
-    merit = lambda R: max(np.abs(R[:n]).max() / (prob.cf * params.max_imbalance),  # noqa
-                          prob.violation(R) / params.max_error)
-    best, best_it = merit(R), 0
+    imb, err = np.abs(R[:n]).max() / prob.cf, prob.violation(R)
+    best = (imb, y, err)
+    least, least_it, cut = math.inf, 0, 0
+
+    def ended(stop, its):
+        return _Attempt(name, stop, its, best[1], best[0], best[2], cut)
+
     for it in range(1, max_iter + 1):
-        if not search and it - best_it > 10:
-            break                     # plain Newton is cycling: let the search take over
+        if not search and it - least_it > STALL:
+            return ended("stalled", it - 1)
         A = prob.matrix(t, y, reg)
         try:
             dx = np.linalg.solve(A, -R)
         except np.linalg.LinAlgError:
             dx = None
         if dx is None or not np.all(np.isfinite(dx)):
-            imb = np.abs(R[:n]).max() / prob.cf
-            what = ("stiffness matrix is singular at iteration {} (a neutral equilibrium?)"
-                    if not prob.m else "stiffness matrix with the constraints is singular at "
-                    "iteration {} (a neutral equilibrium, or the constraints at a singular "
-                    "position?)").format(it)
-            return y, StaticResult(t, "FIM_S", False,
-                                   f"FIM_S: the {what}: set Param_Static stability > 0; "
-                                   f"imbalance reached {imb:.3g}", it - 1, imb, err)
-        dx = _limit(prob, dx, params.tlimit, alimit)
-        # accept a step that does not raise the merit, or whose next Newton correction (with
-        # this matrix) is smaller than the step itself (Deuflhard's natural monotonicity, in
-        # displacement units, so that a stiff joint's transient force does not veto it);
-        # otherwise halve it
-        f0 = merit(R)
+            return ended("singular stiffness matrix" + (" with the constraints" if prob.m
+                                                        else ""), it - 1)
+        size = prob.norm(dx)
+        if size < least:
+            least, least_it = size, it
+        dx, moved = _limit(prob, dx, params.tlimit, alimit)
+        cut += moved
         for _ in range(30 if search else 1):
             y1 = prob.track(t, prob.apply(y, dx))
+            step = prob.norm(dx)
+            if step < size:
+                y1 = prob.reactions(t, prob.restore(t, y1, step))
             R1 = prob.residual(t, y1)
-            if merit(R1) <= f0:
+            if not search:
                 break
+            # accept a step whose next correction (with this matrix) is no larger than this
+            # one (Deuflhard's natural monotonicity); otherwise halve it
             try:
-                nxt = np.abs(np.linalg.solve(A, -R1)[:n]).max()
+                nxt = prob.norm(np.linalg.solve(A, -R1))
             except np.linalg.LinAlgError:
                 nxt = math.inf
-            if nxt < np.abs(dx[:n]).max():
+            if nxt <= size:
                 break
             dx = 0.5 * dx
         y, R = y1, R1
-        if merit(R) < best:
-            best, best_it = merit(R), it
         err = max(np.abs(dx[:n]).max(), prob.violation(R))
         imb = np.abs(R[:n]).max() / prob.cf
+        if imb < best[0]:
+            best = (imb, y, err)
         if imb < params.max_imbalance and err < params.max_error:
-            return y, StaticResult(t, "FIM_S", True, f"FIM_S converged in {it} iterations", it,
-                                   imb, err)
-    imb = np.abs(R[:n]).max() / prob.cf
-    return y, StaticResult(t, "FIM_S", False,
-                           f"FIM_S did not converge in {it} iterations: imbalance "
-                           f"reached {imb:.3g} (max_imbalance {params.max_imbalance:g}), last "
-                           f"increment or constraint violation {err:.3g}", it, imb, err)
+            return _Attempt(name, "converged", it, y, imb, err, cut)
+    return ended("limit", max_iter)
 
 
 def mkeam(prob_c, t, y, params, tol):
