@@ -20,7 +20,6 @@ import dataclasses
 import math
 
 import numpy as np
-from scipy.linalg import solve_triangular
 
 from ..build.compiler import FROZEN_TIME
 from ..deck.expr import nodes
@@ -100,6 +99,7 @@ class StaticProblem:
         # positive and inertias positive definite: the deck checks both)
         self.force_rows = np.array(force, dtype=bool)
         self.chol = np.linalg.cholesky(self.M)
+        self.chol_inv = np.linalg.inv(self.chol)
         self.zero = np.zeros(kernel.ny)
         # constraint equations: each one's multiplier state and its position row (displacement
         # motions and every constraint have one; the deck refuses other motions in statics);
@@ -179,11 +179,11 @@ class StaticProblem:
             g = self.residual(t, y)[n:]
             C = self.matrix(t, y)[n:, :n]
             # du = L^-T z with the least |z| = |du|_M: C L^-T z = -g, rows made unit size
-            Z = solve_triangular(self.chol, C.T, lower=True).T
+            Z = C @ self.chol_inv.T
             rn = np.linalg.norm(Z, axis=1)
             rn[rn == 0] = 1.0
             z = np.linalg.lstsq(Z / rn[:, None], -g / rn, rcond=None)[0]
-            du = solve_triangular(self.chol.T, z, lower=False)
+            du = self.chol_inv.T @ z
             size = self.norm(du)
             if size > 0.5 * last or (last == math.inf and size > step):
                 break                    # at rounding's level, or not converging
