@@ -196,3 +196,119 @@ def test_a_rate_motion_in_a_static_analysis_is_a_deck_error(val_type, kind):
     with pytest.raises(DeckError, match=f"Motion_Joint 1 gives a {kind}") as err:
         pysolver.loads(text)
     assert err.value.element == "Simulate"
+
+
+#: The trial-43 double pendulum (SI numbers): link 2 (1.2 kg) hangs from the ground at the
+#: origin, link 3 (0.9 kg) from link 2 at P2; centres of mass C2 and C3 (the start frame).
+C2, P2, C3 = np.array([0.294515, -0.189106]), np.array([0.673177, -0.432242]), np.array(
+    [0.556351, -0.708560])
+M2, M3, G = 1.2, 0.9, 9.81
+
+
+def double_pendulum(unit, method, extra=""):
+    """The double pendulum on two revolutes about z in metres or millimetres, with a
+    Force_Bushing of translational stiffness only (1e6 N/m) on revolute 2, which holds its
+    markers together: it adds no force at any assembled position. Request 1: AZ of each
+    link; request 2: the centres of mass."""
+    s = 1000.0 if unit == "mm" else 1.0
+
+    def num(v):
+        return f'"{v * s:.12g}"'
+
+    def inertia(*v):
+        return " ".join(f'inertia_{k}="{x * s * s:.12g}"' for k, x in zip(("xx", "yy", "zz"), v))
+
+    k = f'"{1e6 / s:.12g}"'
+    return pysolver.loads(f"""<MotionSolve><Model>
+  <Units mass="KILOGRAM" length="{'MILLIMETER' if s > 1 else 'METER'}" time="SECOND"
+    force="NEWTON"/>
+  <Body_Rigid id="1" isground="TRUE"/><Reference_Marker id="1" body_id="1"/>
+  <Reference_Marker id="20" body_id="2" pos_x={num(C2[0])} pos_y={num(C2[1])} psi="1.0"/>
+  <Reference_Marker id="21" body_id="2"/>
+  <Reference_Marker id="22" body_id="2" pos_x={num(P2[0])} pos_y={num(P2[1])}/>
+  <Body_Rigid id="2" cg_id="20" mass="{M2}" {inertia(0.04, 0.06, 0.07)}/>
+  <Reference_Marker id="30" body_id="3" pos_x={num(C3[0])} pos_y={num(C3[1])} psi="-0.4"/>
+  <Reference_Marker id="31" body_id="3" pos_x={num(P2[0])} pos_y={num(P2[1])}/>
+  <Body_Rigid id="3" cg_id="30" mass="{M3}" {inertia(0.02, 0.025, 0.03)}/>
+  <Force_Gravity grav_x="0" grav_y={num(-G)} grav_z="0"/>
+  <Constraint_Joint id="1" type="REVOLUTE" i_marker_id="21" j_marker_id="1"/>
+  <Constraint_Joint id="2" type="REVOLUTE" i_marker_id="31" j_marker_id="22"/>
+  <Force_Bushing id="2" i_marker_id="31" j_marker_id="22" kx={k} ky={k} kz={k}
+    ktx="0" kty="0" ktz="0" cx="0" cy="0" cz="0" ctx="0" cty="0" ctz="0"/>
+  <Post_Request id="1" expr1="AZ(21,1)" expr2="AZ(31,22)"/>
+  <Post_Request id="2" expr1="DX(20)" expr2="DY(20)" expr3="DX(30)" expr4="DY(30)"/>
+  <Param_Static method="{method}" {extra}/></Model>
+  <Simulate analysis_type="Static"/></MotionSolve>""")
+
+
+def hanging():
+    """Both links hanging, by a hand balance: link 3's centre of mass straight below P2 (its
+    moment about P2), and the weights at C2 and at P2 (link 3's, carried by the pin) straight
+    below the origin (link 2's moment about the origin). The turns from the start frame, of
+    link 2 and of link 3 against link 2, and the centres of mass there (SI)."""
+    down = -math.pi / 2
+    turn2 = down - math.atan2(*(M2 * C2 + M3 * P2)[::-1])
+    turn3 = down - math.atan2(*(C3 - P2)[::-1])
+    return ((turn2, (turn3 - turn2 + math.pi) % (2 * math.pi) - math.pi),
+            [*rotate(C2, turn2), *(rotate(P2, turn2) + [0, -np.linalg.norm(C3 - P2)])])
+
+
+def rotate(v, a):
+    return np.array([math.cos(a) * v[0] - math.sin(a) * v[1],
+                     math.sin(a) * v[0] + math.cos(a) * v[1]])
+
+
+@pytest.mark.parametrize("method", ["FIM_S", "FIM_D", "MKEAM"])
+@pytest.mark.parametrize("unit", ["m", "mm"])
+def test_a_bushing_on_a_hinge_leaves_a_double_pendulum_hanging_in_any_unit(unit, method):
+    """Trial 43: a translational bushing on revolute 2 (1000 N/mm) made FIM_S fail in
+    millimetres (an imbalance of 9e4 after 11 iterations) while metres converged. Each
+    step tlimit or alimit cut short left the joint apart by its second-order error, which the
+    bushing turned into a large force. Now such a step is followed back onto the
+    constraints and the multipliers are set to the static reactions there. Every method
+    then finds both links hanging, in either unit, and each pin carries the weight below
+    it."""
+    s = 1000.0 if unit == "mm" else 1.0
+    res = double_pendulum(unit, method).run()
+    assert res.success, res.message
+    angles, centres = hanging()
+    np.testing.assert_allclose(res.request(1)[-1, :2], angles, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(res.request(2)[-1, :4] / s, centres, rtol=0, atol=1e-9)
+    # the reaction on each link at its pin: the weight below it (N in both units), no moment
+    np.testing.assert_allclose(res.joint(1)[-1, 1:8], [0, (M2 + M3) * G, 0, 0, 0, 0, 0],
+                               rtol=0, atol=1e-9)
+    np.testing.assert_allclose(res.joint(2)[-1, 1:8], [0, M3 * G, 0, 0, 0, 0, 0],
+                               rtol=0, atol=1e-9)
+
+
+def test_the_double_pendulum_converges_alike_in_metres_and_millimetres():
+    """With the same physical step limit (tlimit 20 m) FIM_S takes the same iterations in
+    both units to the same angles; the default tlimit, 20 deck length units, cuts each step
+    to 20 mm in millimetres, which takes more iterations to the same answer."""
+    runs = {(unit, tlimit): double_pendulum(unit, "FIM_S", f'tlimit="{tlimit}"').run()
+            for unit, tlimit in (("m", 20), ("mm", 20000), ("mm", 20))}
+    assert all(res.success for res in runs.values())
+    its = {key: res.statics[-1].iterations for key, res in runs.items()}
+    assert its[("m", 20)] == its[("mm", 20000)] < its[("mm", 20)] <= 40
+    for res in runs.values():
+        np.testing.assert_allclose(res.request(1)[-1, :2], runs[("m", 20)].request(1)[-1, :2],
+                                   rtol=0, atol=1e-10)
+
+
+def test_a_static_that_runs_out_of_iterations_names_both_passes():
+    """max_num_iter 2 on the millimetre double pendulum: both passes use their two
+    iterations; the message says so, how often tlimit cut a pass's steps, and the best
+    imbalance either pass reached (the point returned)."""
+    res = double_pendulum("mm", "FIM_S", 'max_num_iter="2"').run()
+    assert not res.success and res.status == -300
+    st = res.statics[-1]
+    assert not st.success and st.iterations == 4
+    assert res.message == (
+        "static analysis at t = 0: FIM_S did not converge: plain Newton used all 2 iterations "
+        "(max_num_iter), then Newton with step halving used all 2 iterations (max_num_iter) "
+        "(tlimit cut 2 of the 2 increments of plain Newton to 20 deck length units); the best "
+        f"imbalance reached {st.imbalance:.3g} (max_imbalance 0.0001) with increment or "
+        f"constraint violation {st.error:.3g}")
+    # the best point reached is better than the start (imbalance: link 2's moment, N mm)
+    start = double_pendulum("mm", "FIM_S", 'max_num_iter="1"').run()
+    assert st.imbalance < start.statics[-1].imbalance

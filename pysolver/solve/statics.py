@@ -1,11 +1,7 @@
-"""Static and quasi-static equilibrium (Param_Static, seed 004).
+"""Static and quasi-static equilibrium (Param_Static, seed 004): the solvers.
 
-The static equations are the dynamic rows of the kernel's residual with every velocity and
-acceleration zero: F(q, t) = M (0 - g) - Q(q, 0, t) = 0, one row per velocity coordinate u.
-Rigid bodies have seven position coordinates (Euler parameters) but six velocity coordinates, so
-Newton works in increments of u's kind: a translation and a rotation vector in the body frame,
-applied as q <- q (+) N(q) du with the exact exponential map for rotations. The stiffness in
-those coordinates is K = dF/dq N(q), from the kernel's exact Jacobian.
+The static equations, in increments of translation and body-frame rotation vector, are
+:class:`.staticproblem.StaticProblem`'s.
 
 - FIM_S: Newton-Raphson on F = 0 with K + sqrt(stability) M; converged when the largest
   imbalance is below max_imbalance (deck force units) and the largest increment below max_error.
@@ -23,294 +19,168 @@ import numpy as np
 
 from ..build.compiler import FROZEN_TIME
 from ..deck.expr import nodes
-from ..rotations import G
 from .pyida import PyIDA
+from .staticproblem import StaticFailure, StaticProblem, StaticResult  # noqa: F401
 
 #: The largest turn (rad) of one Newton increment in a scene with tracked angles.
 TURN_LIMIT = 0.5
 
 
-class StaticFailure(Exception):
-    """A static or quasi-static command did not find its equilibrium."""
-
-
-@dataclasses.dataclass
-class StaticResult:
-    """Outcome of one static solve.
-
-    Attributes
-    ----------
-    time : float
-    method : str
-        The method that produced the answer (``"MKEAM+FIM_S"`` for a polished MKEAM).
-    success : bool
-    message : str
-    iterations : int
-        Newton iterations (FIM_S), kinetic-energy peaks (MKEAM), or IDA steps (FIM_D).
-    imbalance : float
-        Largest force imbalance at the answer, deck force units.
-    error : float
-        Largest increment of the last Newton iteration (or relative change between the last
-        two peaks for MKEAM).
-    compliance : ndarray
-        Inverse of the regularised stiffness (K + sqrt(stability) M)^-1 at the answer, in the
-        velocity-like coordinates of ``coordinates`` (deck length per deck force).
-    coordinates : list of str
-    """
-    time: float
-    method: str
-    success: bool
-    message: str
-    iterations: int
-    imbalance: float
-    error: float
-    compliance: np.ndarray = None
-    coordinates: list = None
-
-
-class StaticProblem:
-    """The static equations of one compiled kernel, in increment coordinates."""
-
-    def __init__(self, kernel):
-        self.k = kernel
-        lay = kernel.layout
-        self.cf = kernel.arrays["force_scale"]
-        rows, names, qcols, M = [], [], [], []
-        for b, qa, ua in zip(lay.bodies, lay.qadr, lay.uadr):
-            nu = 6 if b.kind == "rigid" else 3
-            rows += list(range(ua, ua + nu))
-            qcols += list(range(qa, qa + (7 if nu == 6 else 3)))
-            names += [f"body{b.id}.{c}" for c in ("dx", "dy", "dz", "rx", "ry", "rz")[:nu]]
-            blk = np.eye(nu) * b.mass
-            if nu == 6:
-                blk[3:, 3:] = b.inertia
-            M.append(blk)
-        self.rows = np.array(rows, dtype=int)
-        self.qcols = np.array(qcols, dtype=int)
-        self.names = names
-        self.n = len(rows)
-        self.M = _block_diag(M, self.n)
-        self.zero = np.zeros(kernel.ny)
-        # constraint equations: each one's multiplier state and its position row (displacement
-        # motions and every constraint have one; the deck refuses other motions in statics);
-        # the tracked angles of screws, racks and couplers, kept on their measured angles
-        self.lam = np.array(lay.lam, dtype=int)
-        self.pos = np.array(lay.mu, dtype=int)
-        if np.any(self.pos < 0):               # a GCOSUB of velocities, known once traced
-            raise StaticFailure("a relation of velocities (non-holonomic) has no static "
-                                "form; run the scene as a transient")
-        self.m = len(self.lam)
-        self.size = self.n + self.m
-        self.turns = np.array(list(lay.turns.values()), dtype=int)
-
-    def state(self, y):
-        """Positions and multipliers of y with every velocity (and position multiplier mu)
-        set to zero."""
-        y = np.array(y, dtype=float)
-        y[self.rows] = 0.0
-        y[self.pos] = 0.0
-        return y
-
-    def residual(self, t, y):
-        """The static equations [F; g]: force imbalance (model units) and the constraints'
-        violations."""
-        r = self.k.residual_array(t, y, self.zero)
-        return np.concatenate([r[self.rows], r[self.pos]])
-
-    def track(self, t, y):
-        """Move the tracked angles of y (in place) onto their measured angles (each row is
-        the wrapped error, d/ds = -1): increments turn a body by less than pi."""
-        if len(self.turns):
-            y[self.turns] += self.k.residual_array(t, y, self.zero)[self.turns]
-        return y
-
-    def violation(self, R):
-        """Largest constraint violation in a residual of :meth:`residual` (model lengths or
-        radians)."""
-        return np.abs(R[self.n:]).max() if self.m else 0.0
-
-    def matrix(self, t, y, reg=None):
-        """d[F; g]/d[u-increment, lam] at y, with `reg` (n x n) added to the stiffness block:
-        [[K + reg, dF/dlam], [C, 0]]."""
-        J = self.k.jacobian_array(t, y, self.zero, 0.0)
-        N = self.N(y)
-        A = np.zeros((self.size, self.size))
-        A[:self.n, :self.n] = J[np.ix_(self.rows, self.qcols)] @ N
-        if reg is not None:
-            A[:self.n, :self.n] += reg
-        if self.m:
-            A[:self.n, self.n:] = J[np.ix_(self.rows, self.lam)]
-            A[self.n:, :self.n] = J[np.ix_(self.pos, self.qcols)] @ N
-        return A
-
-    def imbalance(self, t, y):
-        """F(q, t) in model units (mass * length / time^2)."""
-        return self.k.residual_array(t, y, self.zero)[self.rows]
-
-    def N(self, y):
-        """dq/du at y: identity for translations, 1/2 G(e) for Euler parameters (7 x 6 blocks)."""
-        N = np.zeros((len(self.qcols), self.n))
-        r = c = 0
-        for b in self.k.layout.bodies:
-            N[r:r + 3, c:c + 3] = np.eye(3)
-            if b.kind == "rigid":
-                qa = self.k.layout.qadr[self.k.layout.index[b.id]]
-                N[r + 3:r + 7, c + 3:c + 6] = 0.5 * G(y[qa + 3:qa + 7])
-                r, c = r + 7, c + 6
-            else:
-                r, c = r + 3, c + 3
-        return N
-
-    def N_pinv(self, y):
-        """Pseudo-inverse of N(q): identity for translations, 4 N^T / |e|^2 for rotations."""
-        N = self.N(y)
-        P = N.T.copy()
-        r = c = 0
-        for b in self.k.layout.bodies:
-            if b.kind == "rigid":
-                blk = N[r + 3:r + 7, c + 3:c + 6]
-                P[c + 3:c + 6, r + 3:r + 7] = blk.T / (blk.T @ blk)[0, 0]
-                r, c = r + 7, c + 6
-            else:
-                r, c = r + 3, c + 3
-        return P
-
-    def apply(self, y, dx):
-        """q <- q (+) du: translations added, rotations by the exponential map (body frame);
-        the multipliers (dx past the n increments) added."""
-        y = y.copy()
-        du = dx[:self.n]
-        y[self.lam] += dx[self.n:]
-        c = 0
-        for b, qa in zip(self.k.layout.bodies, self.k.layout.qadr):
-            y[qa:qa + 3] += du[c:c + 3]
-            if b.kind == "rigid":
-                th = du[c + 3:c + 6]
-                a = np.linalg.norm(th)
-                dq = np.concatenate([[math.cos(a / 2)],
-                                     (math.sin(a / 2) / a) * th if a > 0 else 0.5 * th])
-                e = _quat_mul(y[qa + 3:qa + 7], dq)
-                y[qa + 3:qa + 7] = e / np.linalg.norm(e)
-                c += 6
-            else:
-                c += 3
-        return y
-
-
-def _block_diag(blocks, n):
-    M = np.zeros((n, n))
-    i = 0
-    for blk in blocks:
-        k = blk.shape[0]
-        M[i:i + k, i:i + k] = blk
-        i += k
-    return M
-
-
-def _quat_mul(p, q):
-    p0, pv = p[0], p[1:]
-    q0, qv = q[0], q[1:]
-    return np.concatenate([[p0 * q0 - pv @ qv], p0 * qv + q0 * pv + np.cross(pv, qv)])
-
-
 def _limit(prob, dx, tlimit, alimit):
-    """Scale an increment (and its multipliers' change with it: a damped Newton step) so that
-    no translation exceeds tlimit and no rotation alimit (Adams' TLIMIT and ALIMIT), keeping
-    its direction."""
+    """Scale an increment (and its multipliers' change with it: a damped Newton step; the
+    caller then sets the static reactions) so that no translation exceeds tlimit and no
+    rotation alimit (Adams' TLIMIT and ALIMIT), keeping its direction; returns (the
+    increment, whether tlimit was the limit that cut it)."""
     du = dx[:prob.n]
-    scale = 1.0
+    turn = move = 1.0
     c = 0
     for b in prob.k.layout.bodies:
-        scale = min(scale, tlimit / max(np.abs(du[c:c + 3]).max(), 1e-300))
+        move = min(move, tlimit / max(np.abs(du[c:c + 3]).max(), 1e-300))
         if b.kind == "rigid":
-            scale = min(scale, alimit / max(np.linalg.norm(du[c + 3:c + 6]), 1e-300))
+            turn = min(turn, alimit / max(np.linalg.norm(du[c + 3:c + 6]), 1e-300))
             c += 6
         else:
             c += 3
-    return dx * scale
+    return dx * min(move, turn), move < min(turn, 1.0)
 
 
 def fim_s(prob, t, y, params, max_iter=None):
     """Newton-Raphson on the force imbalance; returns (y, StaticResult).
 
     Each increment is limited to params.tlimit per translation and params.alimit per rotation
-    (Adams' TLIMIT, ALIMIT). Plain limited Newton is tried first; if it fails, Newton with a
-    step-halving search (halve while the step raises the imbalance and the next correction
-    would be larger still), which crosses contact onsets that make plain Newton cycle. The
-    search can stall where a neutral direction amplifies tiny moments, which plain Newton
-    does not mind; so each covers the other's failure."""
-    y1, r1 = _newton(prob, t, y, params, max_iter, search=False)
-    if r1.success:
-        return y1, r1
-    y2, r2 = _newton(prob, t, y, params, max_iter, search=True)
-    if r2.success:
-        r2.iterations += r1.iterations
-        r2.message += f" (with step halving, after {r1.iterations} plain iterations)"
-        return y2, r2
-    return y1, r1
+    (Adams' TLIMIT, ALIMIT). Plain limited Newton is tried first; if it stops making progress
+    or runs out of iterations, Newton with a step-halving search (halve while the next
+    correction would be larger), which crosses contact onsets that make plain Newton cycle.
+    The search can stall where a neutral direction amplifies tiny moments, which plain Newton
+    does not mind; so each covers the other's failure. A failure names both passes and
+    returns the point of the smallest imbalance either reached."""
+    max_iter = max_iter or params.max_num_iter
+    plain = _newton(prob, t, y, params, max_iter, search=False)
+    if plain.stop == "converged":
+        return plain.y, StaticResult(t, "FIM_S", True,
+                                     f"FIM_S converged in {plain.iterations} iterations",
+                                     plain.iterations, plain.imbalance, plain.error)
+    halving = _newton(prob, t, y, params, max_iter, search=True)
+    its = plain.iterations + halving.iterations
+    if halving.stop == "converged":
+        return halving.y, StaticResult(
+            t, "FIM_S", True, f"FIM_S converged in {its} iterations (with step halving, after "
+            f"{plain.iterations} plain iterations)", its, halving.imbalance, halving.error)
+    best = min((plain, halving), key=lambda a: a.imbalance)
+    return best.y, StaticResult(
+        t, "FIM_S", False, f"FIM_S did not converge: {plain.why()}, then "
+        f"{halving.why()}{_hint(prob, params, plain, halving)}; the best "
+        f"imbalance reached {best.imbalance:.3g} (max_imbalance {params.max_imbalance:g}) with "
+        f"increment or constraint violation {best.error:.3g}", its, best.imbalance, best.error)
+
+
+def _hint(prob, params, *passes):
+    """A note on failed passes: set stability after a singular matrix; how often tlimit cut
+    the increments of a pass that ran out of iterations, when it cut most of them (it is in
+    deck length units: its default 20 is 20 mm in a millimetre deck)."""
+    if any(p.stop.startswith("singular") for p in passes):
+        return (" (a neutral equilibrium, or the constraints at a singular position?): set "
+                "Param_Static stability > 0" if prob.m else " (a neutral equilibrium?): set "
+                "Param_Static stability > 0")
+    cut = [p for p in passes if p.stop == "limit" and 2 * p.cut > p.iterations]
+    if cut:
+        p = max(cut, key=lambda p: p.cut)
+        return (f" (tlimit cut {p.cut} of the {p.iterations} increments of {p.name} to "
+                f"{params.tlimit:g} deck length units)")
+    return ""
+
+
+#: Plain Newton gives way to the step-halving search after this many iterations without a
+#: smaller Newton correction than its best.
+STALL = 10
+
+
+@dataclasses.dataclass
+class _Attempt:
+    """How one Newton pass of FIM_S ended: `stop` is "converged", "stalled", "limit" or the
+    singular matrix met; `y`, `imbalance` and `error` are its answer, or the point of its
+    smallest imbalance; `cut` counts the increments tlimit cut."""
+    name: str
+    stop: str
+    iterations: int
+    y: np.ndarray
+    imbalance: float
+    error: float
+    cut: int = 0
+
+    def why(self):
+        """How the pass ended, as a clause of the failure message."""
+        if self.stop == "stalled":
+            return (f"{self.name} stopped after {self.iterations} iterations (no smaller "
+                    f"correction in the last {STALL})")
+        if self.stop == "limit":
+            return f"{self.name} used all {self.iterations} iterations (max_num_iter)"
+        return f"{self.name} met a {self.stop} at iteration {self.iterations + 1}"
 
 
 def _newton(prob, t, y, params, max_iter, search):
-    y = prob.track(t, prob.state(y))
+    """One Newton pass from y (plain, or with the step-halving search); an _Attempt.
+
+    Progress is measured by the size of the Newton correction in the mass metric (Deuflhard's
+    natural level function, :meth:`StaticProblem.norm`), which weighs imbalances and
+    constraint violations alike in every unit system. A step cut short by tlimit, alimit or
+    the search is followed back onto the constraints and the multipliers are set to the
+    static reactions there, so that the next matrix is the right one."""
+    name = "Newton with step halving" if search else "plain Newton"
+    y = prob.reactions(t, prob.track(t, prob.state(y)))
     reg = math.sqrt(params.stability) * prob.M
-    max_iter = max_iter or params.max_num_iter
     n = prob.n
     # a tracked angle follows its body only while each increment turns it well under pi
     alimit = min(params.alimit, TURN_LIMIT) if len(prob.turns) else params.alimit
     R = prob.residual(t, y)
-    err = math.inf
-    # progress: the imbalance and the constraints' violation, each against its tolerance
-    merit = lambda R: max(np.abs(R[:n]).max() / (prob.cf * params.max_imbalance),  # noqa
-                          prob.violation(R) / params.max_error)
-    best, best_it = merit(R), 0
+    imb, err = np.abs(R[:n]).max() / prob.cf, prob.violation(R)
+    best = (imb, y, err)
+    least, least_it, cut = math.inf, 0, 0
+
+    def ended(stop, its):
+        return _Attempt(name, stop, its, best[1], best[0], best[2], cut)
+
     for it in range(1, max_iter + 1):
-        if not search and it - best_it > 10:
-            break                     # plain Newton is cycling: let the search take over
+        if not search and it - least_it > STALL:
+            return ended("stalled", it - 1)
         A = prob.matrix(t, y, reg)
         try:
             dx = np.linalg.solve(A, -R)
         except np.linalg.LinAlgError:
             dx = None
         if dx is None or not np.all(np.isfinite(dx)):
-            imb = np.abs(R[:n]).max() / prob.cf
-            what = ("stiffness matrix is singular at iteration {} (a neutral equilibrium?)"
-                    if not prob.m else "stiffness matrix with the constraints is singular at "
-                    "iteration {} (a neutral equilibrium, or the constraints at a singular "
-                    "position?)").format(it)
-            return y, StaticResult(t, "FIM_S", False,
-                                   f"FIM_S: the {what}: set Param_Static stability > 0; "
-                                   f"imbalance reached {imb:.3g}", it - 1, imb, err)
-        dx = _limit(prob, dx, params.tlimit, alimit)
-        # accept a step that does not raise the merit, or whose next Newton correction (with
-        # this matrix) is smaller than the step itself (Deuflhard's natural monotonicity, in
-        # displacement units, so that a stiff joint's transient force does not veto it);
-        # otherwise halve it
-        f0 = merit(R)
+            return ended("singular stiffness matrix" + (" with the constraints" if prob.m
+                                                        else ""), it - 1)
+        size = prob.norm(dx)
+        if size < least:
+            least, least_it = size, it
+        dx, moved = _limit(prob, dx, params.tlimit, alimit)
+        cut += moved
         for _ in range(30 if search else 1):
             y1 = prob.track(t, prob.apply(y, dx))
+            step = prob.norm(dx)
+            if step < size:
+                y1 = prob.reactions(t, prob.restore(t, y1, step))
             R1 = prob.residual(t, y1)
-            if merit(R1) <= f0:
+            if not search:
                 break
+            # accept a step whose next correction (with this matrix) is no larger than this
+            # one (Deuflhard's natural monotonicity); otherwise halve it
             try:
-                nxt = np.abs(np.linalg.solve(A, -R1)[:n]).max()
+                nxt = prob.norm(np.linalg.solve(A, -R1))
             except np.linalg.LinAlgError:
                 nxt = math.inf
-            if nxt < np.abs(dx[:n]).max():
+            if nxt <= size:
                 break
             dx = 0.5 * dx
         y, R = y1, R1
-        if merit(R) < best:
-            best, best_it = merit(R), it
         err = max(np.abs(dx[:n]).max(), prob.violation(R))
         imb = np.abs(R[:n]).max() / prob.cf
+        if imb < best[0]:
+            best = (imb, y, err)
         if imb < params.max_imbalance and err < params.max_error:
-            return y, StaticResult(t, "FIM_S", True, f"FIM_S converged in {it} iterations", it,
-                                   imb, err)
-    imb = np.abs(R[:n]).max() / prob.cf
-    return y, StaticResult(t, "FIM_S", False,
-                           f"FIM_S did not converge in {it} iterations: imbalance "
-                           f"reached {imb:.3g} (max_imbalance {params.max_imbalance:g}), last "
-                           f"increment or constraint violation {err:.3g}", it, imb, err)
+            return _Attempt(name, "converged", it, y, imb, err, cut)
+    return ended("limit", max_iter)
 
 
 def mkeam(prob_c, t, y, params, tol):
