@@ -10,6 +10,7 @@ the same model, number for number (a marker given by the nine numbers of its axe
 dataset gives by REULER, to rounding: docs/adams.md, "Writing datasets").
 """
 import ast
+import errno
 import os
 
 from lxml import etree
@@ -36,7 +37,8 @@ def convert(deck, output, user_code=True):
     deck : str or os.PathLike
         Any deck pysolver reads (.xml, .py, .adm, .acf).
     output : str or os.PathLike
-        The file to write.
+        The file to write; its folder is made when it does not exist (as ``pysolver run -o``
+        makes its output folder).
     user_code : bool, default True
         False refuses a deck that runs code of its own (as :func:`pysolver.load`).
 
@@ -50,8 +52,15 @@ def convert(deck, output, user_code=True):
     DeckError
         The deck does not load, holds what the format cannot (a routine given as a Python
         function), or the output's extension names no format.
+    OSError
+        The output's folder cannot be made or the file cannot be written.
     """
     texts = forms(deck, output, user_code=user_code)
+    folder = os.path.dirname(os.fspath(output))
+    if folder and os.path.exists(folder) and not os.path.isdir(folder):
+        raise NotADirectoryError(errno.ENOTDIR, "exists and is not a folder", folder)
+    if folder:
+        os.makedirs(folder, exist_ok=True)
     for path, text in texts.items():
         with open(path, "w", encoding="utf-8") as fh:
             fh.write(text)

@@ -245,6 +245,26 @@ def test_the_command_line_writes_the_format_the_extension_names(tmp_path, capsys
     assert not (tmp_path / "sc.txt").exists()
 
 
+def test_convert_makes_the_output_folder(tmp_path, capsys, monkeypatch):
+    """-o newdir/sc.xml failed with 'No such file or directory' while run -o makes its folder
+    (trial 43, item 4): the folders are made, an .adm's .acf beside it; a path through a file
+    is one line naming it (exit 2)."""
+    deck = DECKS / "joints" / "slider_crank.xml"
+    monkeypatch.chdir(tmp_path)
+    assert main(["convert", str(deck), "-o", "newdir/sc.xml"]) == 0
+    assert main(["convert", str(deck), "-o", "a/b/sc.adm"]) == 0
+    assert capsys.readouterr().out.splitlines() == [
+        "wrote newdir/sc.xml", "wrote a/b/sc.adm, a/b/sc.acf"]
+    ref = _load(deck)
+    for name in ("newdir/sc.xml", "a/b/sc.adm"):
+        assert model_differences(ref, _load(tmp_path / name)) == [], name
+    (tmp_path / "plain").write_text("")
+    assert main(["convert", str(deck), "-o", "plain/sc.xml"]) == 2
+    assert capsys.readouterr().err == "pysolver: error: plain: exists and is not a folder\n"
+    assert main(["convert", str(deck), "-o", "plain/sub/sc.xml"]) == 2
+    assert capsys.readouterr().err == "pysolver: error: plain/sub: Not a directory\n"
+
+
 def test_a_deck_without_commands_has_no_command_file(tmp_path):
     """No .acf beside the dataset (it loads with the default command, as the XML); one left
     from before would give it commands, so it is written again with none."""

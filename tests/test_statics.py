@@ -229,10 +229,10 @@ def test_a_transient_that_cannot_leave_the_equilibrium_is_a_failed_run(monkeypat
     from pysolver.build.consistent import AssemblyError
     from pysolver.build.kernel import Kernel
 
-    def refuse(self, t, y, iters=4, initial=False):
+    def refuse(self, t, y, iters=4, initial=False, **kw):
         if not initial:
             raise AssemblyError("forced")
-        return original(self, t, y, iters, initial)
+        return original(self, t, y, iters, initial, **kw)
     original = Kernel.consistent_yp
     monkeypatch.setattr(Kernel, "consistent_yp", refuse)
     res = pysolver.loads(ROCKER.format(drive="30*DTOR*SIN(2*PI*TIME)",

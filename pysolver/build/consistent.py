@@ -17,6 +17,7 @@ import numpy as np
 
 from ..options import SPARSE_THRESHOLD
 from ..rotations import G
+from .icposition import moved_note
 from .icvelocity import changed_given, velocity_scale
 
 
@@ -71,35 +72,41 @@ class _Jac:
         return (self.J @ v)[rows]
 
 
-def consistent(kernel, t, y, iters=8, initial=False):
+def consistent(kernel, t, y, iters=8, initial=False, tol=None):
     """Make y consistent in place (positions, velocities, lam, mu, w) and return yp; at the
-    `initial` state also with the motions' ic_disp and ic_vel. Its residuals at nearby times
-    are not step attempts, nor bound by max_num_steps (as in C, ps_restart_consistent)."""
+    `initial` state also with the motions' ic_disp and ic_vel, noting in
+    ``kernel.start_notes`` the bodies the assembly moved (past the limits integr_tol `tol`
+    sets, :mod:`.icposition`) and the given velocities it changed. Its residuals at nearby
+    times are not step attempts, nor bound by max_num_steps (as in C,
+    ps_restart_consistent)."""
     d = kernel.d
     kept = (d.ntimes, d.nfail, d.last_t, d.step_limit)
     d.step_limit = 0
     try:
-        return _consistent(kernel, t, y, iters, initial)
+        return _consistent(kernel, t, y, iters, initial, tol)
     finally:
         d.ntimes, d.nfail, d.last_t, d.step_limit = kept
 
 
-def start(kernel, t, y):
-    """:func:`consistent` at a run's initial state (in place; returns yp), remembered per
-    kernel: a run that starts from the same numbers as the last (every number of the kernel's
-    arrays, gravity, the stored sensor values, t and y) gets the same state and rates,
+def start(kernel, t, y, tol=None):
+    """:func:`consistent` at a run's initial state (in place; returns yp) for a run at
+    integr_tol `tol`, remembered per kernel: a run that starts from the same numbers as the
+    last (every number of the kernel's arrays, gravity, the stored sensor values, t, `tol`
+    and y) gets the same state and rates,
     bit for bit, without recomputing them (the revolute pendulum's warm run: 0.15 ms of
     Python of 0.5 ms), and the kernel's residual and Jacobian counts it took, so that a run's
     statistics do not depend on the runs before it. A kernel that calls user routines always
     recomputes (a routine may keep state between calls), as does a start that failed. The
-    given velocities it changed are noted in ``kernel.start_notes`` (the run's log)."""
+    bodies the assembly moved and the given velocities it changed are noted in
+    ``kernel.start_notes`` (the run's log), remembered with the start."""
     kernel.start_notes = []
     if kernel.model_calls_routines:
-        return consistent(kernel, t, y, initial=True)
+        return consistent(kernel, t, y, initial=True, tol=tol)
     a = kernel.arrays
     key = b"".join([np.ascontiguousarray(v).tobytes() for v in a.values()
                     if isinstance(v, np.ndarray) and v.dtype == np.float64]
-                   + [np.array([t, *kernel.m.gravity]).tobytes(),
+                   + [np.array([t, np.nan if tol is None else tol,
+                                *kernel.m.gravity]).tobytes(),
                       kernel.senval.tobytes(), np.ascontiguousarray(y, float).tobytes()])
     d = kernel.d
     got = kernel.__dict__.get("_start")
@@ -109,7 +116,7 @@ def start(kernel, t, y):
         kernel.start_notes = list(got[4])
         return got[2].copy()
     before = (d.nres, d.njac)
-    yp = consistent(kernel, t, y, initial=True)
+    yp = consistent(kernel, t, y, initial=True, tol=tol)
     if np.all(np.isfinite(yp)) and not d.bad_kind:
         kernel.__dict__["_start"] = (key, y.copy(), yp.copy(),
                                      (d.nres - before[0], d.njac - before[1]),
@@ -117,7 +124,7 @@ def start(kernel, t, y):
     return yp
 
 
-def _consistent(kernel, t, y, iters, initial):
+def _consistent(kernel, t, y, iters, initial, tol):
     """consistent() proper."""
     lay = kernel.layout
     lam, mu, rate = (np.array(v, dtype=int) for v in (lay.lam, lay.mu, lay.rate))
@@ -125,11 +132,13 @@ def _consistent(kernel, t, y, iters, initial):
     y[mu[mu >= 0]] = 0.0
     u_idx = _velocities(lay)
     yp = np.zeros_like(y)
+    deck_y = y.copy()
     # 1. positions: g (the rows of mu) to zero along the reactions' directions; the tracked
     # angles follow their measured angles (each row is its wrapped error, d/ds = -1)
     _track_turns(kernel, t, y, yp)
-    _assemble(kernel, t, y, iters, initial)
+    held_rows, deck_g, ndisp = _assemble(kernel, t, y, iters, initial)
     _track_turns(kernel, t, y, yp)
+    moved = moved_note(kernel, deck_y, y, held_rows, deck_g, ndisp, tol) if initial else []
     # 2. velocities: A motions take w = g' (or their ic_vel, and u changes); the others change u
     given = [initial and rate[k] >= 0 and lay.motion_ic[k][1] is not None
              for k in range(len(rate))]
@@ -163,7 +172,7 @@ def _consistent(kernel, t, y, iters, initial):
         if met:
             break
     if initial:
-        kernel.start_notes = changed_given(lay, u_idx, deck_u, y[u_idx], ~free)
+        kernel.start_notes = moved + changed_given(lay, u_idx, deck_u, y[u_idx], ~free)
     # 3. accelerations and reactions (linear in them unless forces read accelerations)
     rows = np.setdiff1d(np.arange(kernel.ny), lay.algebraic)
     for _ in range(4):
@@ -225,7 +234,9 @@ def redundant(kernel, t, y, tol=1e-8):
 def _assemble(kernel, t, y, iters, initial=False):
     """Move the positions of y (in place) to satisfy the position-level constraints (and at
     the `initial` state the motions' ic_disp), each Newton step the least change along the
-    reactions' directions; return the last g."""
+    reactions' directions. Return (rows, g, ndisp): the held equations' indices into
+    layout.lam (the first `ndisp` of them held by a mu, the rest motions' ic_disp) and their
+    values at the positions it started from."""
     lay = kernel.layout
     lam, mu = np.array(lay.lam, dtype=int), np.array(lay.mu, dtype=int)
     disp = np.nonzero(mu >= 0)[0]
@@ -233,7 +244,7 @@ def _assemble(kernel, t, y, iters, initial=False):
     rows = np.concatenate([disp, ic]).astype(int)
     u_idx = _velocities(lay)
     yp = np.zeros_like(y)
-    g = np.zeros(0)
+    first = None
 
     def gaps():
         """The held g and, per ic_disp, the driven measure's distance from it."""
@@ -245,15 +256,16 @@ def _assemble(kernel, t, y, iters, initial=False):
         return np.concatenate([kernel.residual_array(t, y, yp)[mu[disp]], extra])
     for _ in range(iters if len(rows) else 0):
         g = gaps()
+        first = g if first is None else first
         if np.max(np.abs(g)) <= 1e-13 * (1.0 + np.max(np.abs(y))):
-            return g
+            return rows, first, len(disp)
         du = np.zeros(kernel.ny)
         du[u_idx] = _Jac(kernel, t, y, yp, 0.0).least_change(lam[rows], u_idx, -g)
         _move(lay, y, du)
     if len(rows):
         g = gaps()
         _unassembled(kernel, lay, rows, g, y, len(disp))
-    return g
+    return rows, np.zeros(0) if first is None else first, len(disp)
 
 
 def _positions(lay):

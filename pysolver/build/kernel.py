@@ -364,14 +364,14 @@ class Kernel:
         self.jacobian(t, np.ascontiguousarray(y, float), np.ascontiguousarray(yp, float), cj, jac)
         return jac
 
-    def consistent_yp(self, t, y, iters=4, initial=False):
+    def consistent_yp(self, t, y, iters=4, initial=False, tol=None):
         """Return yp with F(t, y, yp) = 0 by Newton's method on yp (F is linear in yp unless
         expressions use accelerations). dF/dyp is the difference of the iteration matrix at
         cj = 1 and cj = 0; large scenes use the sparse path. With motions and constraints y is
         made consistent too, in place, at the `initial` state with the motions' ic_disp and
-        ic_vel (pysolver.build.consistent)."""
+        ic_vel, its changes noted for integr_tol `tol` (pysolver.build.consistent)."""
         if self.layout.lam or self.layout.turns:
-            return start(self, t, y) if initial else consistent(self, t, y)
+            return start(self, t, y, tol) if initial else consistent(self, t, y)
         sparse = self.ny >= SPARSE_THRESHOLD
         if not sparse:                     # in C: a residual, two Jacobians, LU, per step
             if self._cyp is None:            # the arrays, and the C pointers into them

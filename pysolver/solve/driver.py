@@ -75,7 +75,7 @@ def start_state(model, kernel, tol, exact_rows=True):
     kernel.d.last_t = t0
     kernel.d.bad_kind = 0
     try:
-        yp0 = kernel.consistent_yp(t0, y0, initial=True)
+        yp0 = kernel.consistent_yp(t0, y0, initial=True, tol=tol)
     except AssemblyError as err:
         raise Stop(False, -720, f"initial conditions: {err}") from None
     except np.linalg.LinAlgError:
