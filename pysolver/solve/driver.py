@@ -53,15 +53,17 @@ class Stop(Exception):
 
 
 def deck_actors(model, kernel, log, bar):
-    """The actors a deck's own elements make: its sensors, its LoadControl tasks and the
-    printer (in the order they act at one instant). Whether any of them acts at instants of
+    """The actors a deck's own elements make: its sensors, its LoadControl tasks, the printer
+    and the restarts at spline knots where a motion's velocity jumps (they act at one
+    instant in the order sensors, tasks, restarts, printer). Whether any of them acts at instants of
     its own decides whether a run can take the batched path (:mod:`.fast`)."""
     sensors = Sensors(model, kernel, log)
     printer = Printer(kernel, bar)
     printer.watchers = [sensors]
     controls = [LoadControlTask(model, kernel, model.controls[lid], k)
                 for k, lid in enumerate(sorted(model.controls))]
-    return sensors, controls, printer
+    knots = kinks.KnotRestarts(model, kernel, log)
+    return sensors, controls, printer, [knots] if knots.times else []
 
 
 def start_state(model, kernel, tol, exact_rows=True):
@@ -105,9 +107,7 @@ def failure(model, kernel, options, status, t):
     why = nonfinite.describe(model, kernel)
     if why:
         return -700, f"IDA failed at t = {t:.6g} after a {why}"
-    note = kinks.knot_note(model, t, model.commands[-1].end_time)
-    return status, (f"IDA failed at t = {t:.6g}: {Step(t, None, None, status).message}"
-                    + (f" {note}" if note else ""))
+    return status, f"IDA failed at t = {t:.6g}: {Step(t, None, None, status).message}"
 
 
 class Run:
@@ -119,10 +119,10 @@ class Run:
         self.hmin = options.h_min or 0.0
         self.events, self.log, self.statics = [], [], []
         self.bar = Progress(0.0, model.commands[-1].end_time, progress)
-        self.sensors, self.controls, self.printer = deck_actors(model, kernel, self.log,
-                                                                self.bar)
+        self.sensors, self.controls, self.printer, knots = deck_actors(model, kernel,
+                                                                       self.log, self.bar)
         self.printer.stream = stream
-        self.actors = [self.sensors, *self.controls, self.printer]
+        self.actors = [self.sensors, *self.controls, *knots, self.printer]
         # each actor's slice of IDA's root flags, in the kernel's root order
         self.root_slices, off = [], 0
         for a in self.actors:

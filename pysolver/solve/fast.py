@@ -1,7 +1,8 @@
 """The batched path of a run: IDA through print times, one C call per batch, with almost no
 Python.
 
-A run whose actors (:func:`.driver.deck_actors`: sensors, LoadControl tasks, the printer; a new
+A run whose actors (:func:`.driver.deck_actors`: sensors, LoadControl tasks, the printer, knot
+restarts; a new
 kind of actor says it through :attr:`.actors.Actor.instants`) have no instants of their own,
 integrated by IDA from C, needs none of the general loop's machinery: it is the initial
 conditions (:func:`.driver.start_state`, shared with the general loop), then per Simulate
@@ -45,9 +46,10 @@ def fast_run(compiled, options, actors):
         plan = integrator.cached_plan(compiled, options)
         # the batched path: IDA from C, transient commands only, and no actor of the deck's
         # acting at instants of its own (a new actor says so through Actor.instants)
-        sensors, controls, printer = deck_actors(model, kernel, [], Progress(0.0, 1.0, False))
+        sensors, controls, printer, knots = deck_actors(model, kernel, [],
+                                                        Progress(0.0, 1.0, False))
         ok = (plan.use_c and all(cmd.analysis == "TRANSIENT" for cmd in model.commands)
-              and not any(a.instants for a in (sensors, *controls, printer)))
+              and not any(a.instants for a in (sensors, *controls, *knots, printer)))
         c_sensors = CSensors(model, kernel) if sensors.sensors and ok else None
         cache[key] = (options, FastRun(model, kernel, options, plan, controls, c_sensors)
                       if ok else None)

@@ -1,5 +1,6 @@
 """The knots of splines of time that drive motions, where a motion's velocity or acceleration
-jumps: named in the message of an integration that fails there.
+jumps: the run stops at each knot where a velocity jumps and restarts with the impulse's
+velocities (:class:`KnotRestarts`).
 
 A spline is as smooth at its inner knots as its kind (LINSPL: continuous in value only,
 AKISPL: in its first derivative, CUBSPL: in its second, QUISPL: in its fourth) and at its
@@ -7,9 +8,20 @@ first and last knots continuous in value only (Adams' extrapolation, the parabol
 through the end points, meets the curve there with a slope of its own; LINSPL's own line with
 ``linear_extrap`` is the exception). A displacement motion through it asks for a velocity
 jump where the spline's first derivative jumps, which no body makes: IDA shrinks its step
-there and, at tight tolerances, gives up (docs/deck-language.md "Splines").
+there and, from integr_tol 1e-8 on the slider pendulum of tests/test_spline_motions.py,
+gave up (docs/deck-language.md "Splines"). An ideal
+constraint whose velocity jumps acts on the bodies by an impulse, the velocity change that is
+the least in kinetic energy among those that meet it (Lagrange's impulse equations,
+M dv = C^T P with C v+ = b+), which is what the restart gives them.
 """
+import math
+
+import numpy as np
+
+from ..build.consistent import _Jac, _velocities, consistent
+from ..build.planar import global_inertia
 from ..deck import expr as ex
+from .actors import Actor, Flow
 
 #: The highest derivative of each interpolation that is continuous at its inner knots.
 SMOOTHNESS = {"LINSPL": 0, "AKISPL": 1, "CUBSPL": 2, "QUISPL": 4}
@@ -59,27 +71,92 @@ def _jumps(model, motion):
                 yield x, k, sid, name, smooth, _RATES[rate], end
 
 
-def knot_note(model, t, end_time):
-    """A sentence naming the spline knot at t (within 1e-6 of the run's time scale) where a
-    motion's velocity or acceleration jumps, or ''."""
-    scale = 1e-6 * max(1.0, abs(end_time))
-    for mo in model.motions.values():
-        if mo.id <= 0 or mo.expr is None:
-            continue
-        for x, k, sid, name, smooth, rate, end in _jumps(model, mo):
-            if abs(t - x) > scale:
-                continue
+class KnotRestarts(Actor):
+    """Stops IDA at every knot inside the run where a displacement motion's velocity jumps
+    (:func:`_jumps`) and restarts it from the velocities of the impulse: the least change in
+    kinetic energy that meets the velocity constraints after the knot, then the accelerations
+    and reactions of the new state. The run's log names the first knot and how many there
+    are."""
+
+    def __init__(self, model, kernel, log):
+        self.kernel, self.log = kernel, log
+        end = max((c.end_time for c in model.commands), default=0.0)
+        found = {}
+        for mo in model.motions.values():
+            if mo.id > 0 and mo.expr is not None:
+                for x, _, sid, name, _, rate, _ in _jumps(model, mo):
+                    if rate == "velocity" and 0.0 < x < end:
+                        found.setdefault(x, (mo, sid, name))
+        self.times = sorted(found)
+        self.what = found
+        self.next = 0
+        self.noted = False
+
+    def next_time(self, t):
+        while self.next < len(self.times) and self.times[self.next] < t:
+            self.next += 1
+        return self.times[self.next] if self.next < len(self.times) else math.inf
+
+    def on_time(self, run):
+        t, k = run.t, self.kernel
+        y = np.array(run.y, dtype=float)
+        impulse(k, t, y, np.asarray(run.yp, dtype=float))
+        run.y, run.yp = y, consistent(k, t, y)
+        if not self.noted:
+            mo, sid, name = self.what[t]
             what = "Motion_Joint" if mo.joint else "Motion_Marker"
-            if end:
-                where = (f"the {'first' if k == 0 else 'last'} knot of Reference_Spline "
-                         f"{sid}, where {name}'s extrapolation meets the curve with a slope of "
-                         "its own")
-                advice = "give the spline's data past the run's ends"
-            else:
-                where = (f"a knot of Reference_Spline {sid}, where {name} is continuous "
-                         + ("in value only" if smooth == 0 else
-                            f"in its derivatives up to order {smooth} only"))
-                advice = "a spline smooth there, CUBSPL or QUISPL, does not"
-            return (f"t = {x:.6g} is {where}: {what} {mo.id}'s {rate} jumps there, which "
-                    f"IDA could not step across ({advice}; docs/deck-language.md, Splines)")
-    return ""
+            self.log.append(
+                f"t = {t:.6g}: {what} {mo.id}'s velocity jumps at a knot of Reference_Spline "
+                f"{sid} ({name}); the run stops there and restarts with the impulse's "
+                f"velocities, the least change in kinetic energy ({len(self.times)} such "
+                "knots before the run's end; docs/deck-language.md, Splines)")
+            self.noted = True
+        self.next += 1
+        return Flow(restart=True)
+
+    def notes(self):
+        """No lines on the run as a whole (LoadControl's protocol)."""
+        return []
+
+    def save(self):
+        return self.next, self.noted
+
+    def restore(self, snapshot, t):
+        self.next, self.noted = snapshot
+
+
+def _mass_inverse(lay):
+    """The inverse of the bodies' mass matrix over their velocities (block diagonal)."""
+    blocks = []
+    for b, (_, nu) in zip(lay.bodies, lay.sizes):
+        if nu == 6:                          # (v in global axes, w in body axes)
+            blocks += [np.eye(3) / b.mass, np.linalg.inv(np.asarray(b.inertia, float))]
+        elif b.kind == "point":
+            blocks.append(np.eye(3) / b.mass)
+        else:                                # planar: (vx, vy, wz about the global z)
+            blocks.append(np.diag([1 / b.mass, 1 / b.mass, 1 / global_inertia(b)[2, 2]]))
+    n = sum(len(m) for m in blocks)
+    out, at = np.zeros((n, n)), 0
+    for m in blocks:
+        out[at:at + len(m), at:at + len(m)] = m
+        at += len(m)
+    return out
+
+
+def impulse(kernel, t, y, yp, iters=3):
+    """Move the velocities in y onto the rate rows at t by the least change in kinetic energy
+    (an acceleration motion's driven velocity takes the new rate), in place."""
+    lay = kernel.layout
+    lam, rate = np.array(lay.lam, dtype=int), np.array(lay.rate, dtype=int)
+    u = _velocities(lay)
+    Minv = _mass_inverse(lay)
+    held = np.flatnonzero(rate < 0)
+    for _ in range(iters):
+        r = kernel.residual_array(t, y, yp)[lam]
+        for k in np.flatnonzero(rate >= 0):
+            y[rate[k]] += r[k]
+        if not len(held) or np.abs(r[held]).max() <= 1e-14 * (1.0 + np.abs(y[u]).max()):
+            return
+        C = _Jac(kernel, t, y, yp, 0.0).block(lam[held], u)
+        P = np.linalg.lstsq(C @ Minv @ C.T, -r[held], rcond=None)[0]
+        y[u] += Minv @ C.T @ P
