@@ -172,6 +172,60 @@ def test_bad_statements_are_deck_errors_naming_file_line_and_statement(tmp_path,
         assert err.value.attribute == attribute
 
 
+RM_RULE = ("Adams requires the RM marker on the marker's own part (give QP and the axes in "
+           "{part}'s frame, or an RM of {part})")
+
+
+def test_an_rm_on_another_part_is_a_deck_error(tmp_path):
+    """Adams' RM is a marker of the same part (docs/adams.md, "Placement"); a dataset whose RM
+    was on another part was read with QP in that marker's frame (trial 43, item 2). It is a
+    DeckError naming the file, RM's line, the marker and RM, for a part's marker and a point
+    mass's, and for a msolve class Marker's rm (at the script's line); an RM marker without
+    a part names that marker (it was a KeyError)."""
+    head = "rm on another part\nPART/1, GROUND\nMARKER/2, PART=1, QP=1, 0, 0, REULER=90D, 0, 0\n"
+    path = tmp_path / "rm.adm"
+    path.write_text(head + "PART/2, MASS=1, CM=20, IP=1, 1, 1, QG=0, 5, 0, REULER=0, 90D, 0\n"
+                    "MARKER/20, PART=2, QP=1, 0, 0, RM=2\nEND\n")
+    with pytest.raises(DeckError) as err:
+        _load(path)
+    assert str(err.value) == f"{path}:5, MARKER/20, attribute 'RM': RM = 2 is a marker of " \
+        "PART/1, not of PART/2: " + RM_RULE.format(part="PART/2")
+    path.write_text(head + "PART/2, MASS=1, CM=20, IP=1, 1, 1\nMARKER/20, PART=2\n"
+                    "POINT_MASS/3, MASS=1, CM=30\nMARKER/30, POINT_MASS=3,\n, RM=20\nEND\n")
+    with pytest.raises(DeckError) as err:
+        _load(path)
+    assert str(err.value) == f"{path}:8, MARKER/30, attribute 'RM': RM = 20 is a marker of " \
+        "PART/2, not of POINT_MASS/3: " + RM_RULE.format(part="POINT_MASS/3")
+    path.write_text(head + "PART/2, MASS=1, CM=20, IP=1, 1, 1\nMARKER/20, PART=2, RM=21\n"
+                    "MARKER/21, QP=1, 0, 0\nEND\n")
+    with pytest.raises(DeckError) as err:
+        _load(path)
+    assert str(err.value) == f"{path}:6, MARKER/21: a marker needs PART= (or POINT_MASS=)"
+    script = tmp_path / "classes.py"
+    script.write_text("from pysolver.msolve import *\nmodel = Model()\n"
+                      "ground = Part(ground=True)\nrm = Marker(body=ground, qp=[1, 0, 0])\n"
+                      "arm = Part(mass=1, ip=[1, 1, 1])\n"
+                      "arm.cm = Marker(body=arm, qp=[1, 0, 0], rm=rm)\n")
+    with pytest.raises(DeckError) as err:
+        _load(script)
+    assert str(err.value) == f"{script}:6, MARKER/2, attribute 'RM': RM = 1 is a marker of " \
+        "PART/1, not of PART/2: " + RM_RULE.format(part="PART/2")
+
+
+def test_an_rm_on_the_same_part_places_the_marker_in_its_frame(tmp_path):
+    """RM on the marker's own part (a moved part): QP, REULER in RM's frame."""
+    path = tmp_path / "rm.adm"
+    path.write_text("same part\nPART/1, GROUND\nMARKER/1, PART=1\n"
+                    "PART/2, MASS=1, CM=20, IP=1, 1, 1, QG=0, 5, 0, REULER=90D, 0, 0\n"
+                    "MARKER/21, PART=2, QP=1, 0, 0, REULER=90D, 0, 0\n"
+                    "MARKER/20, PART=2, QP=1, 0, 0, RM=21\nEND\n")
+    m = _load(path)
+    np.testing.assert_allclose(m.markers[21].pos, [0, 6, 0], atol=1e-15)
+    np.testing.assert_allclose(m.markers[20].pos, [-1, 6, 0], atol=1e-15)
+    np.testing.assert_allclose(m.markers[20].rot, [[-1, 0, 0], [0, -1, 0], [0, 0, 1]],
+                               atol=1e-15)
+
+
 def test_an_xml_file_holding_a_dataset_says_so(tmp_path):
     path = tmp_path / "model.xml"
     path.write_text("title\nPART/1, GROUND\nMARKER/1, PART = 1\nEND\n")

@@ -225,6 +225,63 @@ def test_the_dataset_holds_adams_statements_and_pysolver_extensions(tmp_path):
         "SIMULATE/DYNAMICS, DURATION = 0.1, PRINT_INCREMENT = 2", "STOP"]
 
 
+RM_OTHER = TEST_DECKS / "forms" / "rm_other_body.xml"
+
+
+def _marker_statements(text):
+    """{id: the statement on one line} of a dataset's MARKER statements."""
+    out, last = {}, None
+    for line in text.splitlines():
+        if line.startswith("MARKER/"):
+            last = int(line.split(",")[0][len("MARKER/"):])
+            out[last] = line
+        elif line.startswith(",") and last is not None:
+            out[last] += line
+        else:
+            last = None
+    return out
+
+
+def test_a_marker_placed_on_another_bodys_marker_is_written_in_its_parts_frame(tmp_path):
+    """convert wrote MARKER/21, PART = 2, RM = 2 with marker 2 on PART/1 (trial 43, item 2),
+    which Adams' RM cannot name (a marker of the same part). An rm_id on another body is
+    written without RM, at the marker's global place (the same doubles) with its global
+    axes: as the one marker of its rm_id chain that turns it gives them (REULER, YPR, EP:
+    the same axes), else by REULER to rounding; an rm_id on the same body stays RM. The .adm
+    and the class script, and each converted back to XML, build the deck's model (places
+    number for number, axes to rounding: exactly where one marker turns it) and run alike."""
+    ref = _load(RM_OTHER)
+    convert(RM_OTHER, tmp_path / "rm.adm")
+    markers = _marker_statements((tmp_path / "rm.adm").read_text())
+    part = {mid: st.split(", ")[1] for mid, st in markers.items()}
+    rms = {mid: int(st.rpartition("RM = ")[2]) for mid, st in markers.items() if "RM" in st}
+    assert rms == {20: 21} and part[20] == part[21] == "PART = 2"
+    assert [markers[mid] for mid in (21, 20, 22, 25, 26, 30)] == [
+        "MARKER/21, PART = 2, QP = 0.1, 0.0, 0.0, REULER = 0.0, 0.3, 0.0",
+        "MARKER/20, PART = 2, QP = 0.0, 0.05464441137043903, -0.3309289777368827, RM = 21",
+        "MARKER/22, PART = 2, QP = 0.270810328912638, 0.3144967706285145, "
+        "-0.05960079923851836, YPR = 0.4, -0.2, 0.1",
+        "MARKER/25, PART = 2, QP = 0.5, 0.0, -0.4",
+        "MARKER/26, PART = 2, QP = 0.0, 0.0, -0.1, EP = 0.9, 0.1, -0.3, 0.2",
+        "MARKER/30, POINT_MASS = 3, QP = 0.2487153924875332, 0.3159941395949384, "
+        "-0.15711783195869997, YPR = 0.4, -0.2, 0.1"]
+    # turned by two markers (23), by nine numbers (24): the 3-1-3 angles of the axes
+    assert ", REULER = " in markers[23] and ", REULER = " in markers[24]
+    convert(RM_OTHER, tmp_path / "rm.py")
+    script = (tmp_path / "rm.py").read_text()
+    assert "rm=" in script and script.count("rm=") == 1 and "rm=marker21" in script
+    convert(tmp_path / "rm.adm", tmp_path / "rm_adm.xml")
+    convert(tmp_path / "rm.py", tmp_path / "rm_py.xml")
+    res = ref.run(progress=False)
+    assert res.success, res.message
+    for name in ("rm.adm", "rm.py", "rm_adm.xml", "rm_py.xml"):
+        model = _load(tmp_path / name)
+        assert model_differences(ref, model, rounded=True) == [], name
+        for mid in (1, 2, 3, 4, 20, 21, 22, 25, 26, 30):
+            assert np.array_equal(model.markers[mid].rot, ref.markers[mid].rot), (name, mid)
+        _runs_alike(model, model.run(progress=False), ref, res)
+
+
 def test_the_command_line_writes_the_format_the_extension_names(tmp_path, capsys):
     """-o x.adm writes x.adm and x.acf, -o x.py a script of msolve classes, -o x.xml XML;
     any other extension is one line naming the formats (exit 2)."""

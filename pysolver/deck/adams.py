@@ -597,21 +597,35 @@ class _Reader:
         if stmt.id is None:
             raise self.error(stmt, f"{stmt.name} needs an id: {stmt.name}/id, ...")
 
+    def marker_body(self, mid):
+        """(keyword, id as written, pysolver id) of the part or point mass of marker mid."""
+        stmt, vals, _ = self.markers[mid]
+        if "PART" not in vals and "POINT_MASS" not in vals:
+            raise self.error(stmt, "a marker needs PART= (or POINT_MASS=)")
+        key = "PART" if "PART" in vals else "POINT_MASS"
+        return key, vals[key], self.id(vals[key], key)
+
     def marker_pose(self, mid, seen=()):
         """Global (origin, axes) of marker mid."""
         stmt, vals, lines = self.markers[mid]
         if mid in seen:
             raise self.error(stmt, "RM markers refer to each other in a loop", "RM")
-        key = "PART" if "PART" in vals else "POINT_MASS"
-        body = self.id(vals[key], key)
+        key, written, body = self.marker_body(mid)
         if body not in self.parts:
-            raise self.error(stmt, f"{key.lower().replace('_', ' ')} {vals[key]} does not "
+            raise self.error(stmt, f"{key.lower().replace('_', ' ')} {written} does not "
                              "exist", key, lines.get(key))
         ref = self.parts[body]
         if "RM" in vals and not vals.get("FLOATING"):
-            if vals["RM"] not in self.markers:
-                raise self.error(stmt, f"marker {vals['RM']} does not exist", "RM", lines["RM"])
-            ref = self.marker_pose(vals["RM"], seen + (mid,))
+            rm = vals["RM"]
+            if rm not in self.markers:
+                raise self.error(stmt, f"marker {rm} does not exist", "RM", lines["RM"])
+            rm_key, rm_written, rm_body = self.marker_body(rm)
+            if rm_body != body:
+                raise self.error(stmt, f"RM = {rm} is a marker of {rm_key}/{rm_written}, not "
+                                 f"of {key}/{written}: Adams requires the RM marker on the "
+                                 f"marker's own part (give QP and the axes in {key}/{written}'s "
+                                 f"frame, or an RM of {key}/{written})", "RM", lines["RM"])
+            ref = self.marker_pose(rm, seen + (mid,))
         if vals.get("FLOATING"):
             return ref
         return self.frame(stmt, vals, lines, MARKER_KEYS, ref)
@@ -623,8 +637,7 @@ class _Reader:
         (docs/adams.md, "Placement"); else its global place and axes."""
         o, A = self.marker_pose(mid)            # checks the part, the RM chain, the numbers
         stmt, vals, lines = self.markers[mid]
-        key = "PART" if "PART" in vals else "POINT_MASS"
-        po, pa = self.parts[self.id(vals[key], key)]
+        po, pa = self.parts[self.marker_body(mid)[2]]
         if vals.get("FLOATING") or po.any() or not np.array_equal(pa, np.eye(3)):
             return {"QP": o.tolist(), "AXES": A.T.ravel().tolist()}
         kw = {"QP": self.triple(stmt, vals, lines, "QP", np.zeros(3)).tolist()}

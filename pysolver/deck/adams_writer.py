@@ -8,11 +8,12 @@ Each element becomes the statement pysolver/deck/adams_statements.py reads back 
 element, attribute for attribute: numbers with their shortest exact digits (``repr``),
 markers placed as the deck placed them (every part's frame is the global frame, so QP is
 the marker's place and REULER its angles; a marker given by its axes gets ZP/XP when they
-give those axes exactly, else REULER, the same to rounding), the elements Adams has no
-statement for as pysolver's extension statements (PFORCE, LOADCONTROL, SENSOR_EVALUATE, ...),
-and the attributes Adams has no keyword for as pysolver's extension keywords (docs/adams.md,
-"pysolver extensions"). The statements (:class:`Statement`) are also what the msolve class
-script writer (pysolver/convert.py) writes from.
+give those axes exactly, else REULER, the same to rounding; a marker whose rm_id is on
+another body, which Adams' RM cannot name, is placed in its part's frame instead), the
+elements Adams has no statement for as pysolver's extension statements (PFORCE, LOADCONTROL,
+SENSOR_EVALUATE, ...), and the attributes Adams has no keyword for as pysolver's extension
+keywords (docs/adams.md, "pysolver extensions"). The statements (:class:`Statement`) are also
+what the msolve class script writer (pysolver/convert.py) writes from.
 """
 import dataclasses
 import re
@@ -20,7 +21,7 @@ import re
 import numpy as np
 
 from ..errors import DeckError
-from ..rotations import angles_313
+from ..rotations import angles_313, rot_313, rot_321, rot_from_e
 from . import usersubs
 from .adams import axes_from_points
 from .adams_statements import JPRIM_TYPES
@@ -181,6 +182,8 @@ def _marker(el, model, els, k):
     a = el.a
     on = "POINT_MASS" if model.bodies[a["body_id"]].kind == "point" else "PART"
     args = [(on, Ref("body", a["body_id"]))]
+    if "rm_id" in el.given and model.markers[a["rm_id"]].body != a["body_id"]:
+        return [Statement("MARKER", a["id"], args + _in_part(el, model, els), _label(el))]
     qp = [a["pos_x"], a["pos_y"], a["pos_z"]]
     if el.given & {"pos_x", "pos_y", "pos_z"}:
         args.append(("QP", qp))
@@ -194,6 +197,45 @@ def _marker(el, model, els, k):
         args += _axes(qp, [a[c] for c in _MATRIX])
     args += _marker_ref(el, "rm_id", "RM")
     return [Statement("MARKER", a["id"], args, _label(el))]
+
+
+def _in_part(el, model, els):
+    """QP and axes of a marker whose rm_id is a marker of another body, which Adams' RM
+    cannot name (RM is a marker of the same part: docs/adams.md, "Placement"): its global
+    place (the part's frame is the global frame) and its global axes, given as the one marker
+    of its rm_id chain whose own angles make exactly those axes gives them (REULER, YPR or
+    EP as written), else as a marker given by its axes (_axes: ZP/XP or REULER)."""
+    marker = model.markers[el.a["id"]]
+    qp = [float(v) for v in marker.pos]
+    args = [("QP", qp)] if any(qp) or np.signbit(qp).any() else []
+    if np.array_equal(marker.rot, np.eye(3)):
+        return args
+    markers = {e.a["id"]: e for e in els if e.tag == "Reference_Marker"}
+    mid, seen = el.a["id"], set()
+    while mid is not None and mid not in seen:       # the loader refused a loop
+        seen.add(mid)
+        own = _own_axes(markers[mid])
+        if own is not None and np.array_equal(own[1], marker.rot):
+            return args + [own[0]]
+        mid = markers[mid].a["rm_id"]
+    return args + _axes(qp, marker.rot.T.ravel().tolist())
+
+
+def _own_axes(el):
+    """((keyword, numbers), axes) of a marker's own angles, the axes as deck/bodies.py makes
+    them of the numbers; None for a marker given by none or by the nine numbers of its
+    axes."""
+    a = el.a
+    if el.given & {"psi", "theta", "phi"}:
+        angles = [_angle(a, c) for c in ("psi", "theta", "phi")]
+        return ("REULER", angles), rot_313(*angles)
+    if el.given & {"yaw", "pitch", "roll"}:
+        angles = [_angle(a, c) for c in ("yaw", "pitch", "roll")]
+        return ("YPR", angles), rot_321(*angles)
+    if el.given & {"e0", "e1", "e2", "e3"}:
+        e = np.array([a[f"e{c}"] for c in range(4)])
+        return ("EP", e.tolist()), rot_from_e(e / np.linalg.norm(e))
+    return None
 
 
 def _angle(a, key):
