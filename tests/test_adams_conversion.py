@@ -81,9 +81,10 @@ def test_markers_of_moved_parts_are_written_with_reuler_and_read_back_to_roundin
     text = (out / "moved.adm").read_text()
     assert "AXES" not in text
     lines = text.splitlines()
-    # part 3 turned 20 degrees about z: marker 30 at theta = 0, marker 31 at theta = pi
-    assert "MARKER/30, PART = 3, QP = 0.0, 0.0, 1.0, REULER = 0.34906585039886595, 0.0, 0.0" \
-        in lines
+    # part 3 turned 20 degrees about z: marker 30 (at theta = 0) by the points its axes give
+    # exactly, marker 31 (at theta = pi) by its angles
+    assert lines[lines.index("MARKER/30, PART = 3, QP = 0.0, 0.0, 1.0, ZP = 0.0, 0.0, 2.0") + 1] \
+        == ", XP = 0.9396926207859084, 0.3420201433256687, 1.0"
     assert lines[lines.index("MARKER/31, PART = 3, QP = 0.0, 0.0, 1.0") + 1] == \
         ", REULER = 0.34906585039886595, 3.141592653589793, 0.0"
     again = _load(out / "moved.adm")

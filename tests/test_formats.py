@@ -247,7 +247,8 @@ def test_a_marker_placed_on_another_bodys_marker_is_written_in_its_parts_frame(t
     which Adams' RM cannot name (a marker of the same part). An rm_id on another body is
     written without RM, at the marker's global place (the same doubles) with its global
     axes: as the one marker of its rm_id chain that turns it gives them (REULER, YPR, EP:
-    the same axes), else by REULER to rounding; an rm_id on the same body stays RM. The .adm
+    the same axes), else by ZP/XP where they give the axes exactly, else by REULER to
+    rounding; an rm_id on the same body stays RM. The .adm
     and the class script, and each converted back to XML, build the deck's model (places
     number for number, axes to rounding: exactly where one marker turns it) and run alike."""
     ref = _load(RM_OTHER)
@@ -265,8 +266,9 @@ def test_a_marker_placed_on_another_bodys_marker_is_written_in_its_parts_frame(t
         "MARKER/26, PART = 2, QP = 0.0, 0.0, -0.1, EP = 0.9, 0.1, -0.3, 0.2",
         "MARKER/30, POINT_MASS = 3, QP = 0.2487153924875332, 0.3159941395949384, "
         "-0.15711783195869997, YPR = 0.4, -0.2, 0.1"]
-    # turned by two markers (23), by nine numbers (24): the 3-1-3 angles of the axes
-    assert ", REULER = " in markers[23] and ", REULER = " in markers[24]
+    # turned by two markers (23): the 3-1-3 angles of the axes; by nine numbers (24): the
+    # points on its axes, which give them exactly
+    assert ", REULER = " in markers[23] and ", ZP = " in markers[24] and ", XP = " in markers[24]
     convert(RM_OTHER, tmp_path / "rm.py")
     script = (tmp_path / "rm.py").read_text()
     assert "rm=" in script and script.count("rm=") == 1 and "rm=marker21" in script
@@ -277,7 +279,7 @@ def test_a_marker_placed_on_another_bodys_marker_is_written_in_its_parts_frame(t
     for name in ("rm.adm", "rm.py", "rm_adm.xml", "rm_py.xml"):
         model = _load(tmp_path / name)
         assert model_differences(ref, model, rounded=True) == [], name
-        for mid in (1, 2, 3, 4, 20, 21, 22, 25, 26, 30):
+        for mid in (1, 2, 3, 4, 20, 21, 22, 24, 25, 26, 30):
             assert np.array_equal(model.markers[mid].rot, ref.markers[mid].rot), (name, mid)
         _runs_alike(model, model.run(progress=False), ref, res)
 

@@ -243,22 +243,27 @@ def _angle(a, key):
 
 
 def _axes(qp, columns):
-    """ZP and XP (Adams' points on z and in the x-z plane) when the dataset reader makes
-    exactly these axes of them, else REULER: the 3-1-3 angles of the rotation the loader
-    makes of the nine numbers (deck/bodies.py: the nearest rotation), the same to rounding
-    (a few units in the last place)."""
-    axes = np.array(columns, float).reshape(3, 3).T
+    """ZP and XP (Adams' points on z and in the x-z plane), taken on the axes as given or on
+    the rotation the loader makes of them (deck/bodies.py: the nearest rotation), when the
+    dataset reader and the loader make exactly that rotation of them again, else REULER: its
+    3-1-3 angles, the same to rounding (a few units in the last place)."""
+    axes = _nearest(np.array(columns, float).reshape(3, 3).T)   # what the loader makes
     origin = np.array(qp, float)
-    zp, xp = origin + axes[:, 2], origin + axes[:, 0]
-    try:
-        back = axes_from_points(zp - origin, xp - origin)
-    except ValueError:
-        back = None
-    if back is not None and np.array_equal(back, axes) and \
-            np.array_equal(np.signbit(back), np.signbit(axes)):
-        return [("ZP", zp.tolist()), ("XP", xp.tolist())]
-    u, _, vt = np.linalg.svd(axes)
-    return [("REULER", list(angles_313(u @ vt)))]
+    for near in (np.array(columns, float).reshape(3, 3).T, axes):
+        zp, xp = origin + near[:, 2], origin + near[:, 0]
+        try:
+            back = _nearest(axes_from_points(zp - origin, xp - origin))
+        except ValueError:
+            continue
+        if np.array_equal(back, axes):        # (a -0.0 for a 0.0 is equal)
+            return [("ZP", zp.tolist()), ("XP", xp.tolist())]
+    return [("REULER", list(angles_313(axes)))]
+
+
+def _nearest(A):
+    """The rotation deck/bodies.py makes of nine numbers (the nearest, by the SVD)."""
+    u, _, vt = np.linalg.svd(A)
+    return u @ vt
 
 
 _JOINT_NAMES = {"CONSTANT_VELOCITY": "CONVEL", "RACK_PINION": "RACKPIN"}
