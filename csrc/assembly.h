@@ -4,6 +4,7 @@
 #ifndef PYSOLVER_ASSEMBLY_H
 #define PYSOLVER_ASSEMBLY_H
 
+#include <math.h>
 #include <stddef.h>
 
 #include "internal.h"
@@ -37,6 +38,7 @@ typedef struct Assembly {
   int deriv;     /* 1 when derivatives are wanted */
   double cj;
   int ny;
+  int absolute;  /* 1: each force adds its magnitude to its rows (ps_carried), not itself */
 } Assembly;
 
 /* Add v to the iteration matrix entry (row, col). */
@@ -70,6 +72,10 @@ static inline void ps_row_gradient(const psModel* m, const psuHD* c, int tape, i
 static inline void ps_scatter(const psModel* m, const psuHD* c, int tape, int row,
                               const double* Q, Assembly* as) {
   double cf = m->force_scale;
+  if (as->absolute) {
+    as->res[row] += fabs(cf * Q[0]);
+    return;
+  }
   as->res[row] -= cf * Q[0];
   if (as->deriv) ps_row_gradient(m, c, tape, row, Q, -cf, as);
 }

@@ -282,9 +282,16 @@ static int force_rows(const psModel* m, int b) {
 
 void ps_carried(const psModel* m, psData* d, double t, const double* y, double* work,
                 double* carried) {
+  int n = m->ny;
   long nres = d->nres;
-  double *net = work, *free_y = work + m->ny, *zero = work + 2 * m->ny;
-  net_forces(m, d, t, y, free_y, zero, net);
+  double *net = work, *free_y = work + n, *zero = work + 2 * n;
+  for (int i = 0; i < n; i++) {
+    zero[i] = 0.0;
+    free_y[i] = m->state_alg[i] == 1 ? 0.0 : y[i];
+  }
+  /* the tapes' assembly, each force's magnitude summed (generated C has no such mode) */
+  Assembly as = {net, NULL, NULL, NULL, NULL, 0, 0, 0.0, n, 1};
+  assemble(m, d, t, free_y, zero, &as);
   d->nres = nres;
   for (int b = 0; b < m->nbody; b++) {
     int u = m->body_uadr[b];
@@ -296,7 +303,7 @@ void ps_carried(const psModel* m, psData* d, double t, const double* y, double* 
 
 double ps_precision(const psModel* m, psData* d, double t, const double* y,
                     const double* yp, const int* trow, const int* tcol, int ntrip,
-                    const double* carried, double* work, int* body) {
+                    const double* carried, const double* at_start, double* work, int* body) {
   int n = m->ny;
   double *noise = work, *net = work + n, *free_y = work + 2 * n, *zero = work + 3 * n;
   /* the counters and the step bookkeeping are the run's: this is not a step */
@@ -337,10 +344,15 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
     double ref = m->body_mass[b] * (a > g ? a : g) + sqrt(f);
     if (carried) {
       if (PS_PRECISION_CARRIED * carried[b] > ref) ref = PS_PRECISION_CARRIED * carried[b];
-      if (g == 0.0 && ref < most) continue;
+      /* no force acted on it at the deck's start, and none above its rounding since */
+      if (g == 0.0 && at_start[b] == 0.0 && carried[b] <= most) continue;
     }
-    if (ref > 0.0 && most / ref > worst) {
-      worst = most / ref;
+    /* a body that carries exactly nothing but would move by rounding: without what it
+     * carried over the run (carried NULL) there is nothing to measure against, and the
+     * caller measures again with it */
+    double ratio = ref > 0.0 ? most / ref : most > 0.0 && !carried ? INFINITY : 0.0;
+    if (ratio > worst) {
+      worst = ratio;
       *body = b;
     }
   }

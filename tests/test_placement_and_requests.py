@@ -253,6 +253,11 @@ def test_an_elemental_force_request_is_its_element_s_force_function(jflag):
      "elem_id belongs to an ELEMENTAL_FORCE request, not EXPRESSION"),
     ('type="MARKER_FORCE" i_marker_id="20" jflag="1"', "jflag",
      "jflag belongs to an ELEMENTAL_FORCE request, not MARKER_FORCE"),
+    ('type="ELEMENTAL_FORCE" elem_type="JOINT" elem_id="5" script_name="x.py"', "script_name",
+     "script_name belongs to a USERSUB request, not ELEMENTAL_FORCE"),
+    ('type="ELEMENTAL_FORCE" elem_type="JOINT" elem_id="5" usrsub_param_string="USER(1)"',
+     "usrsub_param_string", "usrsub_param_string belongs to a USERSUB request, not "
+     "ELEMENTAL_FORCE"),
 ])
 def test_a_bad_elemental_force_request_is_a_deck_error(attrs, attribute, message):
     """One DeckError on the element, line and attribute, saying what was expected."""

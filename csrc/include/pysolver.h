@@ -419,12 +419,13 @@ int ps_restart_consistent(const psModel* m, psData* d, const psRestart* r, doubl
  * place: IDA's error test leaves the reactions out and holds the accelerations (yp) only to
  * about the tolerance over the step, so a reaction carried percents of noise at
  * integr_tol 1e-3 (a driven rod's torque: 2 %). The saddle-point system of step 3 above is
- * solved at (t, y): one Newton step when r->row_linear (or the force rows' residual falls
- * to rounding after it), more when a force reads an acceleration; the rate rows' time
- * derivative only when r->row_timed. Its
- * evaluations are not step attempts (as ps_restart_consistent's). On failure (a singular
- * configuration, a non-finite value) the row is left as IDA gave it and the code is
- * returned. */
+ * solved at (t, y) with the position multipliers and the reactions' rates at their exact
+ * zero: one Newton step when r->row_linear (or the force rows' residual falls to rounding
+ * after it), more when a force reads an acceleration; the rate rows' time derivative only
+ * when r->row_timed. Its evaluations are not step attempts (as ps_restart_consistent's). On
+ * failure (a singular pivot, a non-finite value, a user routine's error, or reactions a
+ * thousand times IDA's largest: an ill-conditioned system near a singular configuration) the row,
+ * the error flags and the message are left as they were and the code is returned. */
 int ps_row_exact(const psModel* m, psData* d, const psRestart* r, double t, double* y,
                  double* yp);
 
@@ -638,20 +639,22 @@ int ps_interrupted(void);
  * translational force rows (sum over j of |dF_r/dy_j| u |y_j|, reactions left out) to the
  * forces the body carries (its mass times the larger of |gravity| and its acceleration, and
  * the net applied force without reactions), or 1e-3 carried[b] where that is larger
- * (carried: the largest net force each body carried over the run, ps_carried, or NULL; so
- * that a body that comes to rest unloaded is not measured against nothing; without gravity,
- * a body that carries less than its rounding change even so has no load to resolve and is
- * left out). trow and tcol (ntrip entries) are the kernel's
+ * (carried: the largest sum of the magnitudes of the forces on each body over the run,
+ * ps_carried, or NULL: so that a body that comes to rest with balanced or no loads is not
+ * measured against nothing; without gravity, a body on which no force acted at the deck's
+ * start, at_start[b] == 0, and none above its rounding change since has no load to resolve
+ * and is left out). trow and tcol (ntrip entries) are the kernel's
  * Jacobian triplet pattern (ps_jacobian_pattern; ignored with a generated library, which has
  * its own); work holds 4 ny doubles. *body is the worst body's
  * index, or -1 when no body carries a force (the ratio is then 0; NaN when a value is not
- * finite). The run's call counters are left as they were. */
+ * finite; infinite, without carried, for a body that carries exactly nothing but whose
+ * forces rounding would move). The run's call counters are left as they were. */
 double ps_precision(const psModel* m, psData* d, double t, const double* y,
                     const double* yp, const int* trow, const int* tcol, int ntrip,
-                    const double* carried, double* work, int* body);
+                    const double* carried, const double* at_start, double* work, int* body);
 
-/* The net force on each body at (t, y) without reactions (the magnitude of its translational
- * force rows at yp = 0, as ps_precision takes it) into carried (nbody); work holds 3 ny
+/* The forces on each body at (t, y) without reactions, each force's magnitude summed over
+ * its translational force rows (the tapes' assembly), into carried (nbody); work holds 3 ny
  * doubles. The run's call counters are left as they were. */
 void ps_carried(const psModel* m, psData* d, double t, const double* y, double* work,
                 double* carried);

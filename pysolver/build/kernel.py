@@ -327,13 +327,14 @@ class Kernel:
         held = re.match(r"state (\d+) was held", msg)
         return msg if held is None else self.layout.names[int(held[1])] + msg[held.end(1):]
 
-    def outputs(self, t, y, yp, out=None):
+    def outputs(self, t, y, yp, out=None, exact=True):
         """Request channels at (t, y, yp), NaN if NULL: a copy, or into the row `out` (None).
-        In a scene with reactions (pysolver.build.restart.exact_rows) the row's accelerations
-        and reactions are first made exact at its state, in y and yp themselves."""
+        In a scene with reactions (pysolver.build.restart.exact_rows) a dynamic row's
+        accelerations and reactions are first made exact at its state, in y and yp
+        themselves (`exact`; a static row keeps the equilibrium's)."""
         fb, m, d, row = ffi.from_buffer, self.m, self.d, self._out if out is None else out
         y, yp = fb("double[]", y), fb("double[]", yp)
-        if d.rows != ffi.NULL:
+        if exact and d.rows != ffi.NULL:
             lib.ps_row_exact(m, d, d.rows, t, y, yp)
         lib.ps_outputs(m, d, t, y, yp, fb("double[]", row))
         return self._out[:len(self.channels)].copy() if out is None else None

@@ -389,6 +389,9 @@ def _force_like(model, ctx, a):
         model._where[("evaluate", a["id"])] = ctx
     elif tag == "Post_Request" and (a["type"] == "ELEMENTAL_FORCE" or a["elem_type"] is not None
                                     or a["elem_id"] is not None or a["jflag"] is not None):
+        for key in ("usrsub_param_string", "script_name", "usrsub_dll_name"):
+            if a.get(key) is not None:
+                raise ctx.error(f"{key} belongs to a USERSUB request, not {a['type']}", key)
         trees, texts, names = elemental_channels(ctx, a, model.markers)
         model.requests[a["id"]] = Request(a["id"], trees, texts, names, a["label"], None)
         model._where[("request", a["id"])] = ctx

@@ -306,8 +306,10 @@ class Printer(Actor):
             self.bar.update(times[-1])
 
     # rows ----------------------------------------------------------------------------
-    def emit(self, t, y, yp, out=None):
-        """Write a row at t; a later row at the same time replaces the earlier one."""
+    def emit(self, t, y, yp, out=None, exact=True):
+        """Write a row at t; a later row at the same time replaces the earlier one. `exact`:
+        a dynamic row (its accelerations and reactions made exact: Kernel.outputs), not a
+        static one."""
         if self.ts and t < self.ts.last:
             return
         if self.ts and t == self.ts.last:
@@ -316,7 +318,7 @@ class Printer(Actor):
         self.ts.append(t)
         self.ys.append(y)
         self.yps.append(yp)
-        self.outs.append(self.kernel.outputs(t, y, yp) if out is None else out)
+        self.outs.append(self.kernel.outputs(t, y, yp, exact=exact) if out is None else out)
         for actor in self.watchers:
             actor.on_output(t, y, yp)
         self.bar.update(t)

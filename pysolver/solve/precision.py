@@ -13,14 +13,15 @@ The check (``ps_precision`` in C: the iteration matrix at cj = 0 and one residua
 microsecond on the example decks) runs once per run, not per step. It
 measures the translational rows of each moving body; a body with no force to compare with
 (no gravity, no acceleration, no applied force) is skipped. Without gravity, a body that
-fails the check is measured again against 1e-3 (PS_PRECISION_CARRIED in C) of the largest
-net force it carried, at the deck's initial state or an output row, where that is larger,
-and left out when even that is below its rounding change (it has no load to resolve): a
-damped oscillator, or a spring at its free length or at its static equilibrium, comes to
-rest carrying nothing (or a static's leftover imbalance), and its rounding was measured
-against that (-710 for a right answer). With gravity a body carries its weight, which the
-check keeps measuring against (a bead bouncing on a penalty of 1e15 carries far more than
-that at impacts).
+fails the check is measured again against 1e-3 (PS_PRECISION_CARRIED in C) of the most it
+carried, the magnitudes of the forces on it summed (not their net), at the deck's initial
+state or an output row, where that is larger; and it is left out when no force acted on it
+at the start and none above its rounding change since (it has no load to resolve). A damped
+oscillator, or a spring at its free length or at its static equilibrium, comes to rest with
+a net force of nothing (or a static's leftover imbalance), and its rounding was measured
+against that (-710 for a right answer); a stiff spring holding a push still is measured
+against the push. With gravity a body carries its weight, which the check keeps measuring
+against (a bead bouncing on a penalty of 1e15 carries far more than that at impacts).
 """
 import math
 
@@ -46,9 +47,9 @@ def check(model, kernel, t, y, yp):
         return None
     ratio, b = _ratio(kernel, t[-1], y[-1], yp[-1])
     if b >= 0 and ratio > LIMIT and not np.any(kernel.arrays["gravity"]):
-        states = [(0.0, kernel.layout.initial_state()), *zip(t, y)]
-        carried = np.max([_carried(kernel, tk, yk) for tk, yk in states], axis=0)
-        ratio, b = _ratio(kernel, t[-1], y[-1], yp[-1], carried)
+        start = _carried(kernel, 0.0, kernel.layout.initial_state())
+        carried = np.max([start] + [_carried(kernel, tk, yk) for tk, yk in zip(t, y)], axis=0)
+        ratio, b = _ratio(kernel, t[-1], y[-1], yp[-1], (carried, start))
     if b < 0 or not ratio > LIMIT:
         return None
     return _message(model, kernel, ratio, kernel.layout.bodies[b], t[-1])
@@ -77,7 +78,8 @@ def _message(model, kernel, ratio, body, t):
 
 
 def _carried(kernel, t, y):
-    """The net force on each body at (t, y) without reactions (ps_carried)."""
+    """The forces on each body at (t, y) without reactions, their magnitudes summed
+    (ps_carried)."""
     out, work = np.zeros(max(len(kernel.layout.bodies), 1)), np.zeros(3 * kernel.ny)
     fb = ffi.from_buffer
     lib.ps_carried(kernel.m, kernel.d, t, fb("double[]", np.ascontiguousarray(y, float)),
@@ -86,8 +88,9 @@ def _carried(kernel, t, y):
 
 
 def _ratio(kernel, t, y, yp, carried=None):
-    """(ratio, body index or -1) of ps_precision at (t, y, yp); `carried`: the largest net
-    force each body carried over the run (None: not used)."""
+    """(ratio, body index or -1) of ps_precision at (t, y, yp); `carried`: (the most each
+    body carried over the run, what it carried at the deck's start), ps_carried's sums, or
+    None."""
     got = kernel.__dict__.get("_precision_work")
     if got is None:                       # the arrays, and the C pointers into them
         if kernel.codegen["kernel"] == "generated":
@@ -104,6 +107,7 @@ def _ratio(kernel, t, y, yp, carried=None):
     fb = ffi.from_buffer
     ratio = lib.ps_precision(kernel.m, kernel.d, t, fb("double[]", np.ascontiguousarray(y, float)),
                              fb("double[]", np.ascontiguousarray(yp, float)), rows, cols, n,
-                             ffi.NULL if carried is None else
-                             fb("double[]", np.ascontiguousarray(carried, float)), work, body)
+                             *((ffi.NULL, ffi.NULL) if carried is None else
+                               [fb("double[]", np.ascontiguousarray(c, float)) for c in carried]),
+                             work, body)
     return ratio, body[0]

@@ -147,7 +147,7 @@ def after_static(run, t, y):
     run.kernel.d.last_t = t
     run.need_start = True
     run.equilibrium = True
-    run.printer.emit(run.t, run.y, run.yp)
+    run.printer.emit(run.t, run.y, run.yp, exact=False)       # the equilibrium's reactions
 
 
 def leave_equilibrium(run):
