@@ -14,6 +14,14 @@
 #define PS_RESTART_ITERS 8
 #define PS_RESTART_ACC_ITERS 4
 
+/* Most Newton steps of the assembly, toward the least change in the mass metric, the last
+ * PS_PLAIN_ITERS of them plain least-change steps, and the bounds of the pull's step length
+ * (as consistent.ASSEMBLY_ITERS, PLAIN_ITERS and PULL_BOUNDS: pysolver/build/icmetric.py). */
+#define PS_ASSEMBLY_ITERS 50
+#define PS_PLAIN_ITERS 5
+#define PS_PULL_MIN 0.05
+#define PS_PULL_MAX 20.0
+
 /* The accelerations' Newton iteration stops at a step below this fraction of the values' size:
  * with exact Jacobians the error left is about its square, and on rows linear in yp the steps
  * after the first are rounding (the particle bed's: 2e-12 of the size, where 1e-14 took all
@@ -112,9 +120,10 @@ static int jacobian(const psModel* m, psData* d, const psRestart* r, double t, c
 
 /* The least-norm x (written into the velocities of dx, which is zeroed first) with
  * J[rows, u] x = rhs, rows the reactions ks[0..nr-1]: x = C^T (C C^T)^-1 rhs, C = J[rows, u]
- * (J row-major ny x ny). */
+ * (J row-major ny x ny). With weights wt (one per state, read at the velocities; NULL: all 1)
+ * the least in the norm sum x^2 / wt: x = W C^T (C W C^T)^-1 rhs, W = diag(wt). */
 static int least_change_dense(const psRestart* r, int ny, const double* J, const int* ks,
-                              int nr, const double* rhs, double* dx) {
+                              int nr, const double* rhs, const double* wt, double* dx) {
   const int* cols = r->uidx;
   int nc = r->nu;
   double* CC = r->cc;
@@ -124,7 +133,8 @@ static int least_change_dense(const psRestart* r, int ny, const double* J, const
     for (int j = 0; j < nr; j++) {
       long rj = (long)r->lam[ks[j]] * ny;
       double s = 0.0;
-      for (int k = 0; k < nc; k++) s += J[ri + cols[k]] * J[rj + cols[k]];
+      for (int k = 0; k < nc; k++)
+        s += J[ri + cols[k]] * (wt ? wt[cols[k]] : 1.0) * J[rj + cols[k]];
       CC[(long)i * nr + j] = s;
     }
     z[i] = rhs[i];
@@ -134,6 +144,7 @@ static int least_change_dense(const psRestart* r, int ny, const double* J, const
   for (int k = 0; k < nc; k++) {
     double s = 0.0;
     for (int i = 0; i < nr; i++) s += J[(long)r->lam[ks[i]] * ny + cols[k]] * z[i];
+    s *= wt ? wt[cols[k]] : 1.0;
     if (!isfinite(s)) return PS_ERR_SINGULAR;
     dx[cols[k]] = s;
   }
@@ -142,14 +153,16 @@ static int least_change_dense(const psRestart* r, int ny, const double* J, const
 
 /* least_change_dense on the pattern's values J: the reactions' rows from lrow_*. */
 static int least_change_sparse(const psRestart* r, int ny, const double* J, const int* ks,
-                               int nr, const double* rhs, double* dx) {
+                               int nr, const double* rhs, const double* wt, double* dx) {
   double* CC = r->cc;
   double* z = r->z;
   double* w = r->w;
   for (int i = 0; i < nr; i++) {
     int a = r->lrow_ptr[ks[i]], b = r->lrow_ptr[ks[i] + 1];
-    for (int p = a; p < b; p++)
-      if (r->is_u[r->lrow_col[p]]) w[r->lrow_col[p]] = J[r->lrow_at[p]];
+    for (int p = a; p < b; p++) {
+      int c = r->lrow_col[p];
+      if (r->is_u[c]) w[c] = J[r->lrow_at[p]] * (wt ? wt[c] : 1.0);
+    }
     for (int j = 0; j < nr; j++) {
       double s = 0.0;
       for (int p = r->lrow_ptr[ks[j]]; p < r->lrow_ptr[ks[j] + 1]; p++)
@@ -164,15 +177,34 @@ static int least_change_sparse(const psRestart* r, int ny, const double* J, cons
   for (int i = 0; i < nr; i++)
     for (int p = r->lrow_ptr[ks[i]]; p < r->lrow_ptr[ks[i] + 1]; p++)
       if (r->is_u[r->lrow_col[p]]) dx[r->lrow_col[p]] += J[r->lrow_at[p]] * z[i];
-  for (int k = 0; k < r->nu; k++)
-    if (!isfinite(dx[r->uidx[k]])) return PS_ERR_SINGULAR;
+  for (int k = 0; k < r->nu; k++) {
+    int c = r->uidx[k];
+    if (wt) dx[c] *= wt[c];
+    if (!isfinite(dx[c])) return PS_ERR_SINGULAR;
+  }
   return PS_OK;
 }
 
 static int least_change(const psRestart* r, int ny, const double* J, const int* ks, int nr,
-                        const double* rhs, double* dx) {
-  return r->sparse ? least_change_sparse(r, ny, J, ks, nr, rhs, dx)
-                   : least_change_dense(r, ny, J, ks, nr, rhs, dx);
+                        const double* rhs, const double* wt, double* dx) {
+  return r->sparse ? least_change_sparse(r, ny, J, ks, nr, rhs, wt, dx)
+                   : least_change_dense(r, ny, J, ks, nr, rhs, wt, dx);
+}
+
+/* out[i] = J[lam[ks[i]], u] v[u] over the velocities u (J as least_change takes it). */
+static void rows_times(const psRestart* r, int ny, const double* J, const int* ks, int nr,
+                       const double* v, double* out) {
+  for (int i = 0; i < nr; i++) {
+    double s = 0.0;
+    if (r->sparse) {
+      for (int p = r->lrow_ptr[ks[i]]; p < r->lrow_ptr[ks[i] + 1]; p++)
+        if (r->is_u[r->lrow_col[p]]) s += J[r->lrow_at[p]] * v[r->lrow_col[p]];
+    } else {
+      long ri = (long)r->lam[ks[i]] * ny;
+      for (int k = 0; k < r->nu; k++) s += J[ri + r->uidx[k]] * v[r->uidx[k]];
+    }
+    out[i] = s;
+  }
 }
 
 /* q += N(q) du: translate by du's velocities, rotate by its body angular velocities (Euler
@@ -206,26 +238,128 @@ static int track_turns(const psModel* m, psData* d, const psRestart* r, double t
   return PS_OK;
 }
 
-/* Step 1: positions (consistent._assemble away from the initial state). */
+/* Each body velocity's inverse weight in the assembly's mass metric (icmetric.weights): 1 /
+ * its body's mass, or for an angular velocity 1 / its inertia about that axis (1 where not
+ * positive); zero at the other states. */
+static void metric_weights(const psModel* m, double* wt) {
+  memset(wt, 0, sizeof(double) * (size_t)m->ny);
+  for (int b = 0; b < m->nbody; b++) {
+    int ua = m->body_uadr[b], type = m->body_type[b];
+    const double* in = m->body_inertia + 9 * b;
+    double w[6] = {m->body_mass[b], m->body_mass[b], m->body_mass[b], in[0], in[4], in[8]};
+    int n = type == PS_BODY_RIGID ? 6 : 3;
+    if (type == PS_BODY_PLANAR) w[2] = in[8];
+    for (int k = 0; k < n; k++) wt[ua + k] = w[k] > 0 ? 1.0 / w[k] : 1.0;
+  }
+}
+
+/* The change from y0 to y whose least size the assembly seeks (icmetric.change): each body's
+ * translation (a planar body's x, y, rz), and for a rigid body's turn phi (the logarithm of
+ * conj(e0) e, body axes) W J_r(phi)^-T W^-1 phi, W its weights. */
+static void metric_change(const psModel* m, const double* y0, const double* y, const double* wt,
+                          double* out) {
+  memset(out, 0, sizeof(double) * (size_t)m->ny);
+  for (int b = 0; b < m->nbody; b++) {
+    int qa = m->body_qadr[b], ua = m->body_uadr[b];
+    for (int k = 0; k < 3; k++) out[ua + k] = y[qa + k] - y0[qa + k];
+    if (m->body_type[b] != PS_BODY_RIGID) continue;
+    const double* e = y0 + qa + 3;
+    const double* f = y + qa + 3;
+    double s = e[0] * f[0] + e[1] * f[1] + e[2] * f[2] + e[3] * f[3];
+    double v[3] = {e[0] * f[1] - f[0] * e[1] - (e[2] * f[3] - e[3] * f[2]),
+                   e[0] * f[2] - f[0] * e[2] - (e[3] * f[1] - e[1] * f[3]),
+                   e[0] * f[3] - f[0] * e[3] - (e[1] * f[2] - e[2] * f[1])};
+    if (s < 0.0) {
+      s = -s;
+      for (int k = 0; k < 3; k++) v[k] = -v[k];
+    }
+    double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]), phi[3] = {0.0, 0.0, 0.0};
+    if (n > 0.0)
+      for (int k = 0; k < 3; k++) phi[k] = v[k] * (2.0 * atan2(n, s) / n);
+    /* J_r(phi)^-T x = x - phi x x / 2 + c phi x (phi x x), x = W^-1 phi */
+    double t2 = phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2], th = sqrt(t2);
+    double c = th < 0.01 ? 1.0 / 12.0 + t2 / 720.0 + t2 * t2 / 30240.0
+                         : 1.0 / t2 - cos(0.5 * th) / (2.0 * th * sin(0.5 * th));
+    double x[3], px[3], ppx[3];
+    for (int k = 0; k < 3; k++) x[k] = phi[k] / wt[ua + 3 + k];
+    for (int k = 0; k < 3; k++) px[k] = phi[(k + 1) % 3] * x[(k + 2) % 3] -
+                                        phi[(k + 2) % 3] * x[(k + 1) % 3];
+    for (int k = 0; k < 3; k++) ppx[k] = phi[(k + 1) % 3] * px[(k + 2) % 3] -
+                                         phi[(k + 2) % 3] * px[(k + 1) % 3];
+    for (int k = 0; k < 3; k++)
+      out[ua + 3 + k] = wt[ua + 3 + k] * (x[k] - 0.5 * px[k] + c * ppx[k]);
+  }
+}
+
+/* a . b in the metric (sum a b / wt) over the velocities. */
+static double metric_dot(const psRestart* r, const double* a, const double* b, const double* wt) {
+  double s = 0.0;
+  for (int k = 0; k < r->nu; k++) s += a[r->uidx[k]] * b[r->uidx[k]] / wt[r->uidx[k]];
+  return s;
+}
+
+/* Step 1: positions (consistent._assemble away from the initial state): Newton steps, each
+ * the least change that zeroes the constraints' linearization plus a pull along them toward
+ * the least change from the start in the mass metric (icmetric.py), until on the constraints
+ * with a step below 1e-12 of the change (or rounding) or a change below 1e-8 of the state; the
+ * last PS_PLAIN_ITERS without the pull. */
 static int assemble(const psModel* m, psData* d, const psRestart* r, double t, double* y,
                     const double* yp) {
-  int ny = m->ny, nd = r->ndisp;
+  int ny = m->ny, nd = r->ndisp, settled = 1, have = 0;
+  double alpha = 1.0;
   if (!nd) return PS_OK;
-  for (int it = 0; it <= PS_RESTART_ITERS; it++) {
+  double* pull = r->pull;
+  double* before = r->pull + ny;
+  metric_weights(m, r->wt);
+  memcpy(r->y0, y, sizeof(double) * (size_t)ny);
+  for (int it = 0; it <= PS_ASSEMBLY_ITERS; it++) {
     int rc = ps_residual(m, d, t, y, yp, r->res);
     if (rc != PS_OK) return rc;
     for (int k = 0; k < nd; k++) r->g[k] = r->res[r->mu[r->disp[k]]];
-    double gmax = maxabs(r->g, NULL, nd);
-    if (it < PS_RESTART_ITERS && gmax <= 1e-13 * (1.0 + maxabs(y, NULL, ny))) return PS_OK;
-    if (it == PS_RESTART_ITERS)
-      return gmax <= 1e-9 * (1.0 + maxabs(y, NULL, ny)) ? PS_OK : PS_ERR_ASSEMBLY;
+    double gmax = maxabs(r->g, NULL, nd), tol = 1.0 + maxabs(y, NULL, ny);
+    if (it < PS_ASSEMBLY_ITERS && gmax <= 1e-13 * tol && settled) return PS_OK;
+    if (it == PS_ASSEMBLY_ITERS) return gmax <= 1e-9 * tol ? PS_OK : PS_ERR_ASSEMBLY;
     rc = jacobian(m, d, r, t, y, yp, 0.0, r->J0);
     if (rc != PS_OK) return rc;
     for (int k = 0; k < nd; k++) {
       r->rows[k] = r->disp[k];
-      r->g[k] = -r->g[k];
+      r->z2[k] = -r->g[k];
     }
-    if (least_change(r, ny, r->J0, r->rows, nd, r->g, r->dx) != PS_OK) return PS_ERR_SINGULAR;
+    metric_change(m, r->y0, y, r->wt, r->chg);
+    int pulls = it < PS_ASSEMBLY_ITERS - PS_PLAIN_ITERS && maxabs(r->chg, r->uidx, r->nu) > 0;
+    if (pulls) {
+      /* the change's part along the constraints, taken back by alpha (1: its Gauss-Newton
+       * length; then the secant length of the last two pulls) */
+      rows_times(r, ny, r->J0, r->rows, nd, r->chg, r->z2);
+      if (least_change(r, ny, r->J0, r->rows, nd, r->z2, r->wt, pull) != PS_OK)
+        return PS_ERR_SINGULAR;
+      for (int k = 0; k < r->nu; k++) pull[r->uidx[k]] -= r->chg[r->uidx[k]];
+      if (have) {
+        for (int k = 0; k < r->nu; k++)
+          r->dx[r->uidx[k]] = before[r->uidx[k]] - pull[r->uidx[k]];
+        double bend = metric_dot(r, before, r->dx, r->wt);
+        alpha = bend > 0 ? fmin(fmax(alpha * metric_dot(r, before, before, r->wt) / bend,
+                                     PS_PULL_MIN), PS_PULL_MAX)
+                         : 1.0;
+      }
+      memcpy(before, pull, sizeof(double) * (size_t)ny);
+      have = 1;
+      for (int k = 0; k < nd; k++) r->z2[k] = -r->g[k];
+    } else {
+      memset(r->chg, 0, sizeof(double) * (size_t)ny);
+    }
+    if (least_change(r, ny, r->J0, r->rows, nd, r->z2, r->wt, r->dx) != PS_OK)
+      return PS_ERR_SINGULAR;
+    double whole = 0.0;
+    for (int k = 0; k < r->nu; k++) {
+      int c = r->uidx[k];
+      if (pulls) r->dx[c] += alpha * pull[c];
+      whole = fmax(whole, fabs(r->chg[c] + r->dx[c]));
+    }
+    settled = whole <= 1e-8 * tol ||
+              sqrt(metric_dot(r, r->dx, r->dx, r->wt)) <=
+                  1e-12 * sqrt(metric_dot(r, r->chg, r->chg, r->wt)) ||
+              maxabs(r->dx, r->uidx, r->nu) <= 1e-13 * tol;
     move(m, y, r->dx);
   }
   return PS_OK;
@@ -251,7 +385,8 @@ static int rates(const psModel* m, psData* d, const psRestart* r, double t, doub
     if (rc != PS_OK) return rc;
     for (int k = 0, h = 0; k < nl; k++)
       if (r->rate[k] < 0) r->z2[h++] = -r->g[k];
-    if (least_change(r, ny, r->J0, r->rows, nh, r->z2, r->dx) != PS_OK) return PS_ERR_SINGULAR;
+    if (least_change(r, ny, r->J0, r->rows, nh, r->z2, NULL, r->dx) != PS_OK)
+      return PS_ERR_SINGULAR;
     for (int k = 0; k < r->nu; k++) y[r->uidx[k]] += r->dx[r->uidx[k]];
     rc = ps_residual(m, d, t, y, yp, r->res);
     if (rc != PS_OK) return rc;

@@ -384,6 +384,10 @@ typedef struct psRestart {
   double* ybak;           /* (ny) ps_row_exact's copy of the row                  */
   double* ypbak;          /* (ny)                                                 */
   int* rows;              /* (nlam)                                               */
+  double* y0;             /* (ny) the assembly's start (step 1)                   */
+  double* wt;             /* (ny) each velocity's inverse weight in its metric    */
+  double* chg;            /* (ny) the change from y0 in it (build/icmetric.py)    */
+  double* pull;           /* (2 ny) the pull toward the least change, the last one */
   /* a sparse scene (from SPARSE_THRESHOLD states) */
   int sparse;             /* 1: the fields below are used                         */
   int ntrip, jnnz;        /* the kernel's Jacobian triplets, the pattern's entries */
@@ -406,8 +410,9 @@ typedef struct psRestart {
 } psRestart;
 
 /* Make (t, y, yp) consistent in place: the reactions zeroed, the tracked angles on their
- * measured angles, the positions moved onto the position constraints and the velocities onto
- * the rate rows (each the least change), then the accelerations and the reactions solved for.
+ * measured angles, the positions moved onto the position constraints (the least change in the
+ * mass metric, pysolver/build/icmetric.py) and the velocities onto the rate rows (the least
+ * change), then the accelerations and the reactions solved for.
  * Its residual evaluations are not step attempts (d->ntimes, nfail, last_t and step_limit are
  * left as they were).
  * Returns PS_OK, PS_ERR_NONFINITE (a kernel evaluation failed, as ps_residual),

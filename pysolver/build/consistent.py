@@ -17,6 +17,7 @@ import numpy as np
 
 from ..options import SPARSE_THRESHOLD
 from ..rotations import G
+from .icmetric import change, weights
 from .icposition import moved_note
 from .icvelocity import changed_given, velocity_scale
 
@@ -136,7 +137,7 @@ def _consistent(kernel, t, y, iters, initial, tol):
     # 1. positions: g (the rows of mu) to zero along the reactions' directions; the tracked
     # angles follow their measured angles (each row is its wrapped error, d/ds = -1)
     _track_turns(kernel, t, y, yp)
-    held_rows, deck_g, ndisp = _assemble(kernel, t, y, iters, initial)
+    held_rows, deck_g, ndisp = _assemble(kernel, t, y, initial)
     _track_turns(kernel, t, y, yp)
     moved = moved_note(kernel, deck_y, y, held_rows, deck_g, ndisp, tol) if initial else []
     # 2. velocities: A motions take w = g' (or their ic_vel, and u changes); the others change u
@@ -211,7 +212,7 @@ def redundant(kernel, t, y, tol=1e-8):
     y = np.array(y, dtype=float)
     u_idx = _velocities(lay)
     _track_turns(kernel, t, y, np.zeros_like(y))
-    _assemble(kernel, t, y, 8, initial=True)
+    _assemble(kernel, t, y, initial=True)
     C = _Jac(kernel, t, y, np.zeros_like(y), 0.0).block(np.array(lay.lam, dtype=int), u_idx)
     C = C.toarray() if hasattr(C, "toarray") else np.asarray(C)
     basis, out = [], []
@@ -231,10 +232,25 @@ def redundant(kernel, t, y, tol=1e-8):
     return out
 
 
-def _assemble(kernel, t, y, iters, initial=False):
+#: Most Newton steps of the assembly (as csrc/control.c's PS_ASSEMBLY_ITERS), the last
+#: PLAIN_ITERS of them plain least-change steps onto the constraints (quadratic), whatever the
+#: steps toward the least change reached (:mod:`.icmetric`: 6 to 12 steps on a bar whose joint
+#: is up to twice its length off).
+ASSEMBLY_ITERS = 50
+PLAIN_ITERS = 5
+#: The bounds of the pull's step length (Barzilai-Borwein, :mod:`.icmetric`).
+PULL_BOUNDS = (0.05, 20.0)
+
+
+def _assemble(kernel, t, y, initial=False, iters=ASSEMBLY_ITERS):
     """Move the positions of y (in place) to satisfy the position-level constraints (and at
-    the `initial` state the motions' ic_disp), each Newton step the least change along the
-    reactions' directions. Return (rows, g, ndisp): the held equations' indices into
+    the `initial` state the motions' ic_disp) by the least change in the mass metric
+    (:mod:`.icmetric`, which says how): Newton steps along the reactions' directions, each
+    the least change that zeroes the constraints' linearization plus a pull along them
+    toward the least change from the positions it started from. They stop on the constraints
+    once a step is below 1e-12 of the change (or at rounding's level), or the whole change
+    below 1e-8 of the state's size (the constraints' curvature then moves its least change by
+    less than 1e-8 of it). Return (rows, g, ndisp): the held equations' indices into
     layout.lam (the first `ndisp` of them held by a mu, the rest motions' ic_disp) and their
     values at the positions it started from."""
     lay = kernel.layout
@@ -245,6 +261,9 @@ def _assemble(kernel, t, y, iters, initial=False):
     u_idx = _velocities(lay)
     yp = np.zeros_like(y)
     first = None
+    w = weights(kernel)
+    scale, y0 = np.sqrt(w[u_idx]), y.copy()
+    alpha, before, settled = 1.0, None, True
 
     def gaps():
         """The held g and, per ic_disp, the driven measure's distance from it."""
@@ -254,18 +273,48 @@ def _assemble(kernel, t, y, iters, initial=False):
             e = kernel.eval_tape(kernel.motion_slots[lay.motion_ids[k]], t, y, yp) - target
             extra.append(np.angle(np.exp(1j * e)) if angle else e)
         return np.concatenate([kernel.residual_array(t, y, yp)[mu[disp]], extra])
-    for _ in range(iters if len(rows) else 0):
+
+    def dot(a, b):
+        """a . b in the metric, over the velocities."""
+        return float(np.sum(a * b / w[u_idx]))
+    for it in range(iters if len(rows) else 0):
         g = gaps()
         first = g if first is None else first
-        if np.max(np.abs(g)) <= 1e-13 * (1.0 + np.max(np.abs(y))):
+        tol = 1.0 + np.max(np.abs(y))
+        if np.max(np.abs(g)) <= 1e-13 * tol and settled:
             return rows, first, len(disp)
+        J = _Jac(kernel, t, y, yp, 0.0)
         du = np.zeros(kernel.ny)
-        du[u_idx] = _Jac(kernel, t, y, yp, 0.0).least_change(lam[rows], u_idx, -g)
+        du[u_idx] = J.least_change(lam[rows], u_idx, -g, scale)
+        d = change(kernel, y0, y, w)[u_idx]
+        if it < iters - PLAIN_ITERS and d.any():
+            # the pull: the change's part along the constraints, taken back by alpha (1: its
+            # Gauss-Newton length; then the secant length of the last two pulls)
+            pull = J.least_change(lam[rows], u_idx, J.rows_times(lam[rows], _at(d, u_idx, y)),
+                                  scale) - d
+            if before is not None:
+                bend = dot(before, before - pull)
+                alpha = (min(max(alpha * dot(before, before) / bend, PULL_BOUNDS[0]),
+                             PULL_BOUNDS[1]) if bend > 0 else 1.0)
+            before = pull
+            du[u_idx] += alpha * pull
+        else:
+            d = np.zeros(len(u_idx))
+        settled = (np.max(np.abs(d + du[u_idx])) <= 1e-8 * tol
+                   or np.sqrt(dot(du[u_idx], du[u_idx])) <= 1e-12 * np.sqrt(dot(d, d))
+                   or np.max(np.abs(du)) <= 1e-13 * tol)
         _move(lay, y, du)
     if len(rows):
         g = gaps()
         _unassembled(kernel, lay, rows, g, y, len(disp))
     return rows, np.zeros(0) if first is None else first, len(disp)
+
+
+def _at(values, idx, like):
+    """A vector like `like`, zero but at idx, which holds `values`."""
+    out = np.zeros_like(like)
+    out[idx] = values
+    return out
 
 
 def _positions(lay):

@@ -41,7 +41,8 @@ class Restart:
         sizes = {"J0": jn, "J1": jn, "res": ny, "res2": ny, "dx": ny, "g": nl, "z": nl,
                  "z2": nl, "lamv": nl, "cc": nl * nl,
                  "saddle": 1 if self.sparse else (nr + nl) ** 2, "rhs": nr + nl,
-                 "ybak": ny, "ypbak": ny}
+                 "ybak": ny, "ypbak": ny, "y0": ny, "wt": ny, "chg": ny,
+                 "pull": 2 * ny}
         self.r = r = ffi.new("psRestart *")
         self.keep = []
         for name, values in ints.items():
