@@ -211,6 +211,12 @@ def _check_intervals(model):
                             f"most {MAX_ROWS:.0e} per command", attr)
 
 
+def _elemental(a):
+    """Whether Post_Request attributes `a` make (or belong to) an ELEMENTAL_FORCE request."""
+    return a["type"] == "ELEMENTAL_FORCE" or any(
+        a[k] is not None for k in ("elem_type", "elem_id", "jflag"))
+
+
 def _starts(commands):
     t = 0.0
     for c in commands:
@@ -387,22 +393,16 @@ def _force_like(model, ctx, a):
         tree, text, sub = _expression(model, ctx, a)
         model.evaluates[a["id"]] = Evaluate(a["id"], tree, text, a["label"], sub)
         model._where[("evaluate", a["id"])] = ctx
-    elif tag == "Post_Request" and (a["type"] == "ELEMENTAL_FORCE" or a["elem_type"] is not None
-                                    or a["elem_id"] is not None or a["jflag"] is not None):
+    elif tag == "Post_Request" and (a["type"].startswith("MARKER_") or _elemental(a)):
         for key in ("usrsub_param_string", "script_name", "usrsub_dll_name"):
             if a.get(key) is not None:
                 raise ctx.error(f"{key} belongs to a USERSUB request, not {a['type']}", key)
-        trees, texts, names = elemental_channels(ctx, a, model.markers)
+        channels = elemental_channels if _elemental(a) else marker_channels
+        trees, texts, names = channels(ctx, a, model.markers)
         model.requests[a["id"]] = Request(a["id"], trees, texts, names, a["label"], None)
         model._where[("request", a["id"])] = ctx
-        model._where[("elemental", a["id"])] = ctx
-    elif tag == "Post_Request" and a["type"].startswith("MARKER_"):
-        for key in ("usrsub_param_string", "script_name", "usrsub_dll_name"):
-            if a.get(key) is not None:
-                raise ctx.error(f"{key} belongs to a USERSUB request, not {a['type']}", key)
-        trees, texts, names = marker_channels(ctx, a, model.markers)
-        model.requests[a["id"]] = Request(a["id"], trees, texts, names, a["label"], None)
-        model._where[("request", a["id"])] = ctx
+        if _elemental(a):
+            model._where[("elemental", a["id"])] = ctx
     elif tag == "Post_Request":
         sub = usersubs.from_attributes(model, ctx, a)
         exprs = [a[f"expr{k}"] for k in range(1, 9)]
