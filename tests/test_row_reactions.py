@@ -136,3 +136,35 @@ def test_a_routine_failing_past_the_run_s_end_is_the_row_s_business():
     exact, raw = model.run(progress=False), model.run(progress=False, reactions="integrator")
     assert exact.success and raw.success, exact.message
     assert len(exact.t) == len(raw.t) == 11
+
+
+# a 1 kg pendulum 2 m from its revolute, released horizontally, with a friction torque that
+# reads the hinge's force magnitude (the joint carries nothing at the start)
+FRICTION = """<MotionSolve><Model>
+<Units mass="KILOGRAM" length="METER" time="SECOND" force="NEWTON"/>
+<Body_Rigid id="1" isground="TRUE"/><Reference_Marker id="2" body_id="1"/>
+<Reference_Marker id="20" body_id="2" pos_x="2"/><Reference_Marker id="21" body_id="2"/>
+<Body_Rigid id="2" cg_id="20" mass="1" inertia_xx="1e-3" inertia_yy="1e-3" inertia_zz="1e-3"/>
+<Force_Gravity grav_y="-9.81"/>
+<Constraint_Joint id="1" type="REVOLUTE" i_marker_id="21" j_marker_id="2"/>
+<Force_Scalar_TwoBody id="5" type="TORQUE" i_marker_id="21" j_marker_id="2"
+  expr="-0.05*JOINT(1,0,1,0)*TANH(WZ(21,2)*100)"/>
+<Post_Request id="1" expr1="KE(2) + 9.81*DY(20)" expr2="JOINT(1,0,1,0)"/>
+<Param_Transient integr_tol="1e-8"/>
+</Model><Simulate analysis_type="Transient" end_time="2" print_interval="0.01"/></MotionSolve>"""
+
+
+def test_a_force_reading_a_joint_force_s_magnitude_runs_from_a_joint_carrying_nothing():
+    """|F| of a joint is sqrt(Fx^2 + Fy^2 + Fz^2), whose derivative is infinite where the
+    joint carries nothing (its reactions as the consistent start's Newton iteration begins):
+    the run started with a NaN (review 43); the magnitude is now 0 with zero derivatives
+    there. At the release the pin carries m g Icm / (Icm + m L^2) (the friction is zero at
+    rest); the friction only takes energy: the pendulum's energy never rises (to the
+    tolerance) and ends below its start."""
+    res = pysolver.loads(FRICTION).run()
+    assert res.success, res.message
+    energy, force = res.request(1)[:, 0], res.request(1)[:, 1]
+    assert force[0] == pytest.approx(9.81 * 1e-3 / (1e-3 + 4.0), rel=1e-9)
+    assert force.max() > 9.81
+    assert np.diff(energy).max() <= 1e-6
+    assert energy[-1] < energy[0] - 1e-2

@@ -280,6 +280,7 @@ class _Tape:
         return self.op(add, h0, self.op(mul, dh, shape))
 
 
+
 class Compiler:
     """Turns a Model into psModel arrays (see csrc/include/pysolver.h)."""
 
@@ -443,8 +444,7 @@ class Compiler:
                                           for r in catalogue.FUNCTIONS[comp].args])
             sq = tape.op(lib.PS_OP_MUL, c, c)
             total = sq if total is None else tape.op(lib.PS_OP_ADD, total, sq)
-        zero = tape.const(0.0)
-        return tape.op(lib.PS_OP_IF, total, zero, zero, tape.op(lib.PS_OP_SQRT, total))
+        return netforce.norm_slot(tape, total)
 
     def measure(self, tape, name, ids):
         f = catalogue.FUNCTIONS[name]
@@ -590,7 +590,7 @@ class Compiler:
         total = tape.op(add, tape.op(mul, parts[0], parts[0]),
                         tape.op(add, tape.op(mul, parts[1], parts[1]),
                                 tape.op(mul, parts[2], parts[2])))
-        return tape.op(lib.PS_OP_SQRT, total)
+        return netforce.norm_slot(tape, total)
 
     def motion_measure(self, tape, mid, jflag=None, comp=None, rm=0):
         """MOTION(id): the reaction along (about) the motion's axis of J; MOTION(id, jflag,
@@ -632,7 +632,7 @@ class Compiler:
         total = tape.op(lib.PS_OP_ADD, tape.op(mul, parts[0], parts[0]),
                         tape.op(lib.PS_OP_ADD, tape.op(mul, parts[1], parts[1]),
                                 tape.op(mul, parts[2], parts[2])))
-        return tape.op(lib.PS_OP_SQRT, total)
+        return netforce.norm_slot(tape, total)
 
     def joint_measure(self, tape, jid, jflag, comp, rm):
         """JOINT(id, jflag, comp, rm): comp 1 |force|, 2-4 force, 5 |torque|, 6-8 torque of
@@ -647,7 +647,7 @@ class Compiler:
         total = tape.op(add, tape.op(mul, parts[0], parts[0]),
                         tape.op(add, tape.op(mul, parts[1], parts[1]),
                                 tape.op(mul, parts[2], parts[2])))
-        return tape.op(lib.PS_OP_SQRT, total)
+        return netforce.norm_slot(tape, total)
 
     def joint_reaction(self, tape, jid, jflag, rm):
         """(force, torque) slots of a joint, from its multipliers lam_k (the kernel applies

@@ -55,5 +55,12 @@ def lower_net(comp, tape, name, ids):
         return component(first + "XYZ".index(name[1]))
     xyz = [component(first + c) for c in range(3)]
     sq = [tape.op(lib.PS_OP_MUL, v, v) for v in xyz]
-    return tape.op(lib.PS_OP_SQRT, tape.op(lib.PS_OP_ADD, sq[0],
-                                           tape.op(lib.PS_OP_ADD, sq[1], sq[2])))
+    return norm_slot(tape, tape.op(lib.PS_OP_ADD, sq[0], tape.op(lib.PS_OP_ADD, sq[1], sq[2])))
+
+
+def norm_slot(tape, total):
+    """The slot of sqrt(total), a sum of squares: 0 with zero derivatives where it is 0 (a
+    force or a distance of nothing, where sqrt's derivative is infinite: a force that read
+    JOINT(id, 0, 1, 0) of a joint carrying nothing started with a NaN)."""
+    zero = tape.const(0.0)
+    return tape.op(lib.PS_OP_IF, total, zero, zero, tape.op(lib.PS_OP_SQRT, total))
