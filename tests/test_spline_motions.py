@@ -280,7 +280,7 @@ def _jumps(fn, val, extrap=False, order=""):
     deck = SLIDER_PENDULUM.format(fn=fn, end=2.0, val=val,
                                   extrap=' linear_extrap="TRUE"' if extrap else "")
     model = pysolver.loads(deck.replace(",5)", f",5{order})")).compile().model
-    return [(x, rate) for x, _, _, _, _, rate, _ in kinks._jumps(model, model.motions[1])]
+    return [(x, rate) for x, _, _, rate in kinks._jumps(model, model.motions[1])]
 
 
 def test_the_knots_where_a_motion_s_rates_jump():

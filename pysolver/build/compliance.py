@@ -94,6 +94,7 @@ def rate_scales(kernel, y, mass):
     compliant as in metres: a body at rest turned at 5e-4 rad/s, 250 x integr_tol 1e-3 in
     mm/s at its centre of mass), and no row is more compliant than a displacement's, whose
     compliance IFToMM A02 tuned (in metres the total mass is the larger for most bodies)."""
+    import scipy.sparse as sp
     lay = kernel.layout
     u = _velocities(lay)
     pos = {s: p for p, s in enumerate(u)}
@@ -101,24 +102,37 @@ def rate_scales(kernel, y, mass):
     J0 = _Jac(kernel, 0.0, y, zero, 0.0)
     M = np.abs(_Jac(kernel, 0.0, y, zero, 1.0).diagonal() - J0.diagonal())[u]
     rows = lay.constraint_rows
-    base = len(lay.motion_ids)
-    G = J0.block(np.array(lay.lam[base:], dtype=int), u)
-    bodies = []                          # (mass, positions of its angular velocities in u)
+    lam = np.array(lay.lam[len(lay.motion_ids):], dtype=int)
+    # the rows' gradients in the velocities, sparse (a chain of bodies gives few per row)
+    G = J0.J[:, u].tocsr()[lam] if J0.sparse else sp.csr_matrix(J0.J[np.ix_(lam, u)])
+    owner, mass_of = np.full(len(u), -1), []  # each angular velocity's body, and its mass
     for (nq, nu), ua in zip(lay.sizes, lay.uadr):
         ang = [pos[ua + k] for k in range(3, 6)] if nu == 6 else \
             [pos[ua + 2]] if nq == 3 and nu == 3 and lay.names[ua + 2].endswith(".wz") else []
-        bodies.append((M[pos[ua]], ang))
+        owner[ang] = len(mass_of)
+        mass_of.append(M[pos[ua]])
+
+    def angular(i):
+        """Row i's gradient in each body's angular velocity: {body: (columns, values)}."""
+        cols, vals = G.indices[G.indptr[i]:G.indptr[i + 1]], G.data[G.indptr[i]:G.indptr[i + 1]]
+        keep = owner[cols] >= 0
+        return {b: (cols[keep & (owner[cols] == b)], vals[keep & (owner[cols] == b)])
+                for b in set(owner[cols[keep]].tolist())}
+
+    shifts = {}                              # each joint's displacement rows
+    for i, row in enumerate(rows):
+        if row not in lay.angular_rows:
+            shifts.setdefault(row[:2], []).append(i)
     scale = np.full(len(rows), mass)
     for k, row in enumerate(rows):
         if row not in lay.angular_rows:
             continue
-        shifts = [i for i, r in enumerate(rows) if r[:2] == row[:2] and r not in lay.angular_rows]
-        inverse = 0.0
-        for m_b, ang in bodies:
-            if not ang or not np.any(G[k, ang]):
-                continue
-            lever = max([np.linalg.norm(G[i, ang]) for i in shifts], default=0.0)
-            inverse += float(np.sum(G[k, ang] ** 2 / (M[ang] + m_b * lever ** 2)))
+        lever = {}
+        for i in shifts.get(row[:2], ()):
+            for b, (_, v) in angular(i).items():
+                lever[b] = max(lever.get(b, 0.0), float(np.linalg.norm(v)))
+        inverse = sum(float(np.sum(v ** 2 / (M[c] + mass_of[b] * lever.get(b, 0.0) ** 2)))
+                      for b, (c, v) in angular(k).items())
         if inverse > 0.0 and np.isfinite(inverse):
             scale[k] = max(mass, 1.0 / inverse)
     return scale

@@ -49,9 +49,8 @@ def _splines_of_time(model, tree, seen=()):
 
 
 def _jumps(model, motion):
-    """(knot time, its index, spline id, kind, the spline's smoothness there, the rate that jumps,
-    whether at the data's end) of each knot where a rate of `motion` up to its acceleration
-    jumps."""
+    """(knot time, spline id, kind, the rate that jumps) of each knot where a rate of `motion`
+    up to its acceleration jumps (the knot at the run's start, t <= 0, left out)."""
     for name, sid, order in _splines_of_time(model, motion.expr):
         sp = model.splines.get(sid)
         if sp is None or sp.z:
@@ -59,16 +58,15 @@ def _jumps(model, motion):
         # LINSPL's line past its ends is its last segment's: no knot there
         ends = None if name == "LINSPL" and sp.linear_extrap else 0
         for k, x in enumerate(sp.x):
-            end = k in (0, len(sp.x) - 1)
             if k == 0 and x <= 0.0:
                 continue            # runs start at t = 0: the curve is never left there
-            smooth = ends if end else SMOOTHNESS[name]
+            smooth = ends if k in (0, len(sp.x) - 1) else SMOOTHNESS[name]
             if smooth is None:
                 continue
             # the first derivative of the spline that jumps, as a rate of the motion's measure
             rate = max(0, smooth + 1 - order) + _LEVEL[motion.val_type]
             if rate <= 2:
-                yield x, k, sid, name, smooth, _RATES[rate], end
+                yield x, sid, name, _RATES[rate]
 
 
 class KnotRestarts(Actor):
@@ -84,7 +82,7 @@ class KnotRestarts(Actor):
         found = {}
         for mo in model.motions.values():
             if mo.id > 0 and mo.expr is not None:
-                for x, _, sid, name, _, rate, _ in _jumps(model, mo):
+                for x, sid, name, rate in _jumps(model, mo):
                     if rate == "velocity" and 0.0 < x < end:
                         found.setdefault(x, (mo, sid, name))
         self.times = sorted(found)
