@@ -580,6 +580,7 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
     }
     if (sup[i]) {
       fi[i] = given[i];
+      flat[i] = 0;
       continue;
     }
     double h = step(d->user_coarse ? 6e-6 : 1e-3, z[i]);
