@@ -140,3 +140,85 @@ def test_meta_keeps_each_commands_end_time():
     res = pysolver.load(DECKS / "static_seed3.xml").run()
     assert res.meta["commands"] == [{"analysis": "STATIC", "end_time": 0.0},
                                     {"analysis": "TRANSIENT", "end_time": 0.1}]
+
+
+@pytest.mark.parametrize("text, unit, kind", [
+    ("AZ(10)*180/PI", "deg", "angle"), ("AZ(10)*(180/PI)", "deg", "angle"),
+    ("-AZ(10)*180/PI", "deg", "angle"), ("57.29578*AZ(10)", "deg", "angle"),
+    ("57.2958*AZ(10)", "deg", "angle"), ("AZ(10)/DTOR", "deg", "angle"),
+    ("AZ(10)*1/DTOR", "deg", "angle"), ("AZ(10)*RTOD*2", "deg", "angle"),
+    ("WZ(10)*180/PI", "deg/s", "angular velocity"),
+    ("57.29578*WDTZ(10)", "deg/s^2", "angular acceleration"),
+    ("RTOD*AZ(10)*PI/180", "rad", "angle"), ("RTOD*AZ(10)*0.0174532925", "rad", "angle"),
+])
+def test_a_written_180_over_pi_converts_to_degrees(particle, text, unit, kind):
+    """180/PI, 1/DTOR and numbers within 1e-6 of 57.29578 are RTOD; PI/180 is DTOR."""
+    assert _unit(particle, text) == (unit, kind)
+
+
+@pytest.mark.parametrize("text, unit, kind", [
+    ("-DX(10)", "mm", "length"), ("2*DX(10)", "mm", "length"), ("DX(10)*-1", "mm", "length"),
+    ("(DX(10)+DZ(10))/2", "mm", "length"), ("0.5*KE(0)", "N*mm", "energy"),
+    ("0.5*VM(10)**2", "mm^2/s^2", None), ("4/3*PI*DM(10)**3", "mm^3", None),
+    ("2*PI*DX(10)", "mm", "length"), ("DX(10)/3", "mm", "length"),
+    ("9*DX(10)", "mm", "length"), ("DX(10)*2**2", "mm", "length"), ("2/TIME", "1/s", None),
+    ("RTOD*AZ(10)", "deg", "angle"), ("KE(0)", "N*mm", "energy"),
+    ("DX(10)/DM(10)*100", "-", "dimensionless"), ("180/PI", "-", "dimensionless"),
+])
+def test_plain_factors_keep_the_unit(particle, text, unit, kind):
+    assert _unit(particle, text) == (unit, kind)
+
+
+@pytest.mark.parametrize("text", [
+    "1000*DX(10)", "DX(10)/1000", "0.1*DX(10)", "10*DX(10)", "1.7*VM(10)**2",
+    "WZ(10)*30/PI", "WZ(10)/(2*PI)", "PI*AZ(10)", "57.296*AZ(10)", "AZ(10)*180",
+    "DX(10)*2**10", "1000*DX(10) + DZ(10)", "1e-3*PFORCE(1)",
+])
+def test_other_written_factors_leave_no_unit(particle, text):
+    """A number that may be a unit conversion or a constant with units (a mass, a
+    stiffness) would make the kept unit wrong: docs/usage.md, Units."""
+    assert _unit(particle, text) == (None, None)
+
+
+DEG_DECK = """<?xml version="1.0"?>
+<MotionSolve>
+  <Model>
+    <Units mass="KILOGRAM" length="METER" time="SECOND" force="NEWTON"/>
+    <Body_Rigid id="1" isground="TRUE"/>
+    <Reference_Marker id="2" body_id="1"/>
+    <Reference_Marker id="20" body_id="2" pos_x="2"/>
+    <Reference_Marker id="21" body_id="2"/>
+    <Body_Rigid id="2" cg_id="20" mass="1" inertia_xx="1e-3" inertia_yy="1e-3"
+                inertia_zz="1e-3"/>
+    <Force_Gravity grav_y="-9.81"/>
+    <Constraint_Joint id="1" type="REVOLUTE" i_marker_id="21" j_marker_id="2"/>
+    <Post_Request id="1" expr1="AZ(20)" expr2="AZ(20)*180/PI" expr3="57.29578*AZ(20)"
+                  expr4="RTOD*AZ(20)" expr5="1000*DX(20)" expr6="WZ(20)*180/PI"
+                  name1="a_rad" name2="a_180_over_pi" name3="a_5729" name4="a_rtod"
+                  name5="x_mm" name6="w_deg"/>
+  </Model>
+  <Simulate analysis_type="Transient" end_time="1" print_interval="0.25"/>
+</MotionSolve>
+"""
+
+
+def test_degree_channels_are_labelled_deg_in_csv_units_and_plot(tmp_path):
+    """Trial 44, defect 1: the two degree channels were `[rad]` and shared the radian
+    panel."""
+    res = pysolver.loads(DEG_DECK).run()
+    res.save(tmp_path / "r.csv")
+    assert (tmp_path / "r.csv").read_text().splitlines()[0] == (
+        "time [s],a_rad [rad],a_180_over_pi [deg],a_5729 [deg],a_rtod [deg],x_mm,"
+        "w_deg [deg/s]")
+    assert res.units == {"time": "s", "a_rad": "rad", "a_180_over_pi": "deg",
+                         "a_5729": "deg", "a_rtod": "deg", "x_mm": None, "w_deg": "deg/s"}
+    np.testing.assert_allclose(res.request(1)[:, 1], res.request(1)[:, 3], rtol=1e-15)
+    np.testing.assert_allclose(res.request(1)[:, 2], res.request(1)[:, 3], rtol=1e-7)
+    pytest.importorskip("matplotlib", reason="matplotlib is not installed")
+    fig = res.plot()
+    panels = {ax.get_ylabel(): [t.get_text() for t in ax.get_legend().get_texts()]
+              for ax in fig.axes if ax.get_legend()}
+    assert panels["angle [rad]"] == ["a_rad"]
+    assert panels["angle [deg]"] == ["a_180_over_pi", "a_5729", "a_rtod"]
+    assert panels["angular velocity [deg/s]"] == ["w_deg"]
+    assert panels["no unit"] == ["x_mm"]

@@ -6,12 +6,18 @@ a mass, and a kinetic energy is a force times a length. A request channel's dime
 from walking its parsed tree: DX is a length, VX a velocity, PFORCE a force, TIME a time;
 ``+``, ``-``, MAX, MIN, IF and STEP need equal dimensions; ``*`` and ``/`` add and subtract
 exponents, ``**`` by a literal scales them. A number written in the deck adopts the dimension
-it is added to (``1 + DX(10)`` is a length) and is dimensionless in a product. An expression
-whose terms do not match (``DX(10) + VX(10)``), a spline's value and a user subroutine's have
-no unit. Units are the deck's ``Units`` (kg, m, s, N when it has none: what the loader
-assumes); angles are in radians, as pysolver reports every angle (``RTOD * AZ(i, j)`` is in
-degrees). docs/usage.md, "Units".
+it is added to (``1 + DX(10)`` is a length). In a product, the written numbers (and PI) make
+one factor: a plain one (p/q with p, q up to 9; times pi unless the product is an angle)
+keeps the unit (``2*DX(10)``, ``0.5*KE(0)``), 180/pi and pi/180 convert radians and degrees
+as RTOD and DTOR do (``AZ(10)*180/PI`` is in degrees), and any other (``1000*DX(10)``, a
+mass, ``WZ(10)*30/PI``) leaves the channel with no unit, since the number may be a unit
+conversion or a constant with units of its own. An expression whose terms do not match
+(``DX(10) + VX(10)``), a spline's value and a user subroutine's have no unit. Units are the
+deck's ``Units`` (kg, m, s, N when it has none: what the loader assumes); angles are in
+radians, as pysolver reports every angle (``RTOD * AZ(i, j)`` is in degrees). docs/usage.md,
+"Units".
 """
+import math
 from collections import namedtuple
 from fractions import Fraction
 
@@ -55,7 +61,8 @@ KINDS = {NONE: "dimensionless", LENGTH: "length", VELOCITY: "velocity",
 
 class Dim:
     """A dimension (exponents F, L, T, A, D) with the kind its measure names (``energy``
-    for KE, else None); ``number`` marks a literal, which adopts what it is added to."""
+    for KE, else None); ``number`` marks a literal, which adopts what it is added to, and
+    ``value`` its value when it is known (literals, PI and arithmetic of them)."""
     __slots__ = ("exps", "kind", "number", "value")
 
     def __init__(self, exps, kind=None, number=False, value=None):
@@ -64,6 +71,12 @@ class Dim:
 
 def _num(value=None):
     return Dim(NONE, number=True, value=value)
+
+
+def _valued(d):
+    """Whether `d` is a written number whose value is known (literals, PI, and sums,
+    products and powers of them)."""
+    return d is not None and d.number and d.value is not None
 
 
 _MEASURES = {**dict.fromkeys(("DX", "DY", "DZ", "DM"), LENGTH),
@@ -99,20 +112,51 @@ def _add(a, b):
     return Dim(a.exps, a.kind if a.kind == b.kind else None)
 
 
-def _mul(a, b, sign=1):
-    """The dimension of a * b (sign 1) or a / b (sign -1); a number times a dimensionless
-    value stays a number (``5 * SIN(TIME)`` is an amplitude of the deck's choosing)."""
-    if a is None or b is None:
+#: 180/pi and pi/180: a written factor within :data:`CLOSE` of either turns radians into
+#: degrees or degrees into radians, as RTOD and DTOR do (``AZ(i)*180/PI``, ``57.29578*AZ(i)``).
+_RTOD, _DTOR = 180 / math.pi, math.pi / 180
+#: How near (relative) a written factor must be to a value above to count as it.
+CLOSE = 1e-6
+#: Largest numerator and denominator of a plain factor (``2*DX``, ``DX/2``, ``0.5*...``,
+#: ``4/3``); other written factors (``1000*DX``, a mass, a stiffness) change the unit.
+PLAIN = 9
+
+
+def _near(x, y):
+    return abs(x - y) <= CLOSE * abs(y)
+
+
+def _plain(c):
+    """Whether |c| is p/q with p, q whole numbers 1..PLAIN (or zero)."""
+    if c == 0:
+        return True
+    f = Fraction(c).limit_denominator(PLAIN)
+    return 0 < f.numerator <= PLAIN and _near(c, float(f))
+
+
+def _scale(exps, c):
+    """The dimension `exps` (not dimensionless) times the written factor c: the same for a
+    plain factor, or one with pi in it (``2*PI*DX``, ``PI*DX**2/4``) unless `exps` is an
+    angle (``WZ/(2*PI)`` is in turns); degrees or radians for 180/pi and pi/180; None
+    otherwise (no unit: ``1000*DX`` in a metre deck is in mm, ``WZ*30/PI`` in rpm)."""
+    c = abs(c)
+    if _near(c, _RTOD):
+        return tuple(e + d for e, d in zip(exps, _dim(A=-1, D=1)))
+    if _near(c, _DTOR):
+        return tuple(e + d for e, d in zip(exps, _dim(A=1, D=-1)))
+    angle = exps[_A] != 0 or exps[_D] != 0
+    if _plain(c) or not angle and (_plain(c / math.pi) or _plain(c * math.pi)):
+        return exps
+    return None
+
+
+def _fold(op, a, b):
+    """The value of a number a op b (both with values), or None when it has none."""
+    try:
+        v = {"+": a + b, "-": a - b}[op] if op in "+-" else a ** b
+    except (OverflowError, ZeroDivisionError):
         return None
-    if a.number and (b.number or b.exps == NONE) or b.number and a.exps == NONE:
-        return _num()
-    if b.number:                        # x * 2, x / 2
-        return a
-    if a.number and sign > 0:           # 2 * x (2 / x: the inverse of x's dimension)
-        return b
-    exps = tuple(x + sign * y for x, y in zip(a.exps, b.exps))
-    kind = a.kind if b.exps == NONE else b.kind if a.exps == NONE and sign > 0 else None
-    return Dim(exps, kind)
+    return v if isinstance(v, float) and math.isfinite(v) else None
 
 
 class Typer:
@@ -126,24 +170,64 @@ class Typer:
         """The :class:`Dim` of a parsed expression, or None (no unit)."""
         kind = node[0]
         if kind == "num":
-            return _num(node[1])
+            return _num(float(node[1]))
         if kind == "name":
             name = node[1]
             return (Dim(TIME) if name == "TIME" else
                     Dim(_dim(A=1, D=-1)) if name == "DTOR" else
-                    Dim(_dim(A=-1, D=1)) if name == "RTOD" else _num())
+                    Dim(_dim(A=-1, D=1)) if name == "RTOD" else
+                    _num(math.pi) if name == "PI" else _num())
         if kind == "neg":
-            return self.of(node[1])
+            a = self.of(node[1])
+            return _num(-a.value) if _valued(a) else a
         if kind == "bin":
-            op, a, b = node[1], self.of(node[2]), self.of(node[3])
-            if op in "+-":
-                return _add(a, b)
-            if op == "*":
-                return _mul(a, b)
-            if op == "/":
-                return _mul(a, b, -1)
-            return self._power(a, b)
+            op = node[1]
+            if op in ("*", "/"):
+                return self._product(node)
+            a, b = self.of(node[2]), self.of(node[3])
+            out = _add(a, b) if op in "+-" else self._power(a, b)
+            if _valued(a) and _valued(b):
+                return _num(_fold(op, a.value, b.value))
+            return out
         return self._call(node[1], node[2])
+
+    def _product(self, node):
+        """The dimension of a chain of ``*`` and ``/``: its factors' exponents combined, and
+        its written numbers multiplied into one factor that keeps, converts (180/pi) or
+        drops the unit (:func:`_scale`). A number times dimensionless values stays a number
+        (``5 * SIN(TIME)`` is an amplitude of the deck's choosing)."""
+        factors, stack = [], [(node, 1)]
+        while stack:
+            n, sign = stack.pop()
+            if n[0] == "bin" and n[1] in ("*", "/"):
+                stack += [(n[2], sign), (n[3], sign if n[1] == "*" else -sign)]
+            else:
+                factors.append((self.of(n), sign))
+        if any(d is None for d, _ in factors):
+            return None
+        coef, numbers, dims = 1.0, [d for d, _ in factors if d.number], []
+        for d, sign in factors:
+            if d.number and d.value is not None:
+                if sign < 0 and d.value == 0:
+                    return None
+                coef = coef * d.value if sign > 0 else coef / d.value
+            elif not d.number:
+                dims.append((d, sign))
+        if all(d.exps == NONE for d, _ in dims):
+            if numbers:
+                valued = len(dims) == 0 and all(d.value is not None for d in numbers)
+                return _num(coef if valued and math.isfinite(coef) else None)
+            return Dim(NONE)
+        exps = tuple(sum(sign * d.exps[i] for d, sign in dims) for i in range(5))
+        if exps == NONE:
+            return Dim(NONE)
+        scaled = _scale(exps, coef)
+        if scaled is None:
+            return None
+        shaped = [(d, sign) for d, sign in dims if d.exps != NONE]
+        kind = shaped[0][0].kind if len(shaped) == 1 and shaped[0][1] > 0 and \
+            scaled == exps else None
+        return Dim(scaled, kind)
 
     @staticmethod
     def _power(a, b):
