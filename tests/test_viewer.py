@@ -362,3 +362,16 @@ def test_graphics_by_adams_keywords_and_the_other_types():
         with pytest.raises(shapes.Skip) as err:
             shapes.graphic(Graphic(7, kind, attrs), model.markers, poses, 2.0)
         assert str(err.value) == why
+
+
+@pytest.mark.parametrize("unit, seconds", [("SECOND", 1.0), ("MILLISECOND", 1e-3),
+                                           ("MINUTE", 60.0)])
+def test_the_scene_data_carries_seconds_per_time_unit(unit, seconds):
+    """The page's speed menu counts in real time from it (tests/test_viewer_browser.py reads
+    the menu Chromium builds)."""
+    text = README_DECK.read_text().replace('time="SECOND"', f'time="{unit}"').replace(
+        'end_time="3.0"', 'end_time="0.01"')
+    assert f'time="{unit}"' in text
+    data = pysolver.loads(text).run(progress=False).animate().scene.data()
+    assert data["seconds"] == seconds
+    assert data["time"] == {"SECOND": "s", "MILLISECOND": "ms", "MINUTE": "min"}[unit]

@@ -120,3 +120,55 @@ def test_the_page_lists_the_notes_of_animation_notes(tmp_path):
     assert got.group(1) == "1 note"
     assert re.findall(r"<li>(.*?)</li>", got.group(2)) == anim.notes == \
         ["showing 87 of 601 output rows (every 7th and the last)"]
+
+
+FALL = """<?xml version="1.0"?>
+<MotionSolve>
+  <Model>
+    <Units mass="KILOGRAM" length="MILLIMETER" time="{unit}" force="NEWTON"/>
+    <Body_Rigid id="1" isground="TRUE"/>
+    <Reference_Marker id="1" body_id="1"/>
+    <Reference_Marker id="10" body_id="2" pos_y="3"/>
+    <Body_Point id="2" cg_id="10" mass="1.0"/>
+    <Force_Gravity grav_y="-1e-6"/>
+  </Model>
+  <Simulate analysis_type="Transient" end_time="{end}" print_interval="{step}"/>
+</MotionSolve>
+"""
+
+
+def _speeds(tmp_path, unit, end):
+    """The speed menu Chromium built for a fall that lasts `end` in time unit `unit`: the
+    options' (value, text) and the selected one's text."""
+    res = pysolver.loads(FALL.format(unit=unit, end=end, step=end / 20)).run(progress=False)
+    path = tmp_path / f"{unit}.html"
+    res.animate().save(path)
+    run = subprocess.run([CHROMIUM, *FLAGS, f"--user-data-dir={tmp_path / unit}",
+                          "--dump-dom", f"{path.as_uri()}#t=0"],
+                         capture_output=True, text=True, timeout=180)
+    menu = re.search(r'<select id="speed"[^>]*>(.*?)</select>', run.stdout, re.S)
+    assert menu, f"no speed menu in the page (exit {run.returncode}): {run.stderr[-2000:]}"
+    options = re.findall(r'<option value="([^"]*)"( selected="")?>(.*?)</option>',
+                         menu.group(1))
+    return [(float(v), text) for v, _, text in options], [t for _, s, t in options if s]
+
+
+SECOND_STEPS = ["0.01×", "0.02×", "0.05×", "0.1×", "0.2×", "0.5×", "real time", "2×", "5×",
+                "10×", "20×", "50×"]
+
+
+@pytest.mark.parametrize("unit, end, selected, value, texts", [
+    ("SECOND", 2.0, "real time", 1.0, SECOND_STEPS),
+    ("MILLISECOND", 2000.0, "real time", 1000.0, SECOND_STEPS),
+    ("MINUTE", 2.0, "20×", 1 / 3, ["0.1×", "0.2×", "0.5×", "real time", "2×", "5×", "10×",
+                                   "20×", "50×", "100×", "200×", "500×", "1000×", "2000×",
+                                   "5000×"]),
+])
+def test_the_speed_menu_is_in_multiples_of_real_time(tmp_path, unit, end, selected, value,
+                                                     texts):
+    """Trial 44, defect 2: a 2 s run written in ms offered "200×" (0.2x real time) and no
+    "real time"; an option's value is deck time units per wall-clock second."""
+    options, chosen = _speeds(tmp_path, unit, end)
+    assert [text for _, text in options] == texts
+    assert chosen == [selected]
+    assert dict((t, v) for v, t in options)[selected] == pytest.approx(value, rel=1e-12)

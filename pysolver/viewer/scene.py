@@ -7,6 +7,7 @@ import os
 import numpy as np
 
 from ..deck.dimensions import SYMBOLS
+from ..deck.units import TIME as SECONDS
 from . import shapes
 from .poses import Poses, quaternion, scene_of
 
@@ -104,6 +105,7 @@ class Scene:
         self.title = os.path.basename(name) if name and name != "<string>" else "deck text"
         self.length = SYMBOLS.get(scene.units["length"], scene.units["length"].lower())
         self.time = SYMBOLS.get(scene.units["time"], scene.units["time"].lower())
+        self.seconds = SECONDS.get(scene.units["time"], 1.0)  # the playback speed
         grav = np.asarray(scene.gravity, float)
         self.up = -grav / np.linalg.norm(grav) if np.any(grav) else np.array([0, 0, 1.0])
         self.radius, self.origin = self._extent(scene)
@@ -215,6 +217,7 @@ class Scene:
                 it = dict(it, centre=(np.asarray(it["centre"]) - o).tolist())
             items.append(it)
         return {"title": self.title, "length": self.length, "time": self.time,
+                "seconds": self.seconds,
                 "n": len(p.t), "total": self.total, "t": _b64(p.t, np.float64),
                 "origin": o.tolist(), "radius": self.radius, "glyph": self.glyph,
                 "up": self.up.tolist(), "floor": self.floor, "view": self.view().tolist(),

@@ -342,9 +342,11 @@
     $('ticks').appendChild(tick);
   }
 
-  // speeds: simulated seconds per second, 1-2-5 steps; by default the run plays in ~8 s
+  // speeds: multiples of real time in 1-2-5 steps, real time when the run lasts 2 to 30 s,
+  // else the step that plays it in ~8 s; an option's value is deck time units per second
   const speed = $('speed');
-  const span = (t1 - t0) || 1;
+  const seconds = S.seconds || 1;
+  const span = ((t1 - t0) || 1) * seconds;
   const steps = [];
   for (let e = Math.floor(Math.log10(span / 200)); e <= Math.ceil(Math.log10(span)); e++)
     for (const m of [1, 2, 5]) steps.push(m * Math.pow(10, e));
@@ -355,9 +357,9 @@
   if (!steps.includes(best)) steps.push(best);
   for (const s of steps.sort((a, b) => a - b)) {
     const opt = document.createElement('option');
-    opt.value = s;
+    opt.value = s / seconds;
     opt.textContent = (s === 1 ? 'real time' : parseFloat(s.toPrecision(3)) + '\u00d7');
-    if (s === best) opt.selected = true;
+    if (s === best) opt.selected = opt.defaultSelected = true;   // defaultSelected: the DOM says so
     speed.appendChild(opt);
   }
 
