@@ -9,6 +9,7 @@ import dataclasses
 import json
 import math
 import os
+import re
 import sys
 
 import numpy as np
@@ -95,6 +96,28 @@ def _output_folder(args):
     return out
 
 
+#: The files ``pysolver run`` writes into its folder, and a LoadControl task's CSV.
+OWNED = ("requests.csv", "states.csv", "reactions.csv", "results.npz", "requests.png",
+         "scene.html", "stats.json")
+_CONTROLLER_CSV = re.compile(r"requests_controller-?[0-9]+\.csv\Z")
+
+
+def _clear_earlier_run(out):
+    """Remove an earlier run's files from `out` when it holds one (its stats.json names a
+    deck): the names in :data:`OWNED` and ``requests_controller<ID>.csv``, nothing else, so
+    that the folder holds this run alone (a file the new run does not write, a plot or a
+    states.csv, would show another run than the CSV beside it). Returns the paths removed."""
+    if _written_for(out) is None:
+        return []
+    removed = []
+    for name in sorted(os.listdir(out)):
+        path = os.path.join(out, name)
+        if (name in OWNED or _CONTROLLER_CSV.match(name)) and os.path.isfile(path):
+            os.remove(path)
+            removed.append(path)
+    return removed
+
+
 def _stats(args, res):
     """What stats.json holds."""
     return {"deck": os.path.abspath(args.deck), "success": res.success, "status": res.status,
@@ -148,6 +171,7 @@ def _run(args):
     model = load(args.deck, user_code=not args.no_user_code,
                  simulate=_command_line_simulate(args))
     out = _output_folder(args)
+    earlier = _clear_earlier_run(out)
     # the rows go to the CSV as they are made (a crashing C subroutine loses none of them); it
     # is written again only when a channel with an expression had no value at all (dropped)
     csv_path = os.path.join(out, "requests.csv")
@@ -183,7 +207,9 @@ def _run(args):
         print(line)
     print(res.summary())
     written.append(stats_path)
-    print(f"wrote {', '.join(written)}")
+    gone = [path for path in earlier if path not in written]
+    print(f"wrote {', '.join(written)}" +
+          (f"; removed {', '.join(gone)} (an earlier run's)" if gone else ""))
     if res.status == -600:
         return 130                  # interrupted: the rows so far were written
     return 0 if res.success else 1

@@ -239,6 +239,59 @@ def test_decks_of_one_stem_get_folders_of_their_own(tmp_path, capsys, monkeypatc
                                                           "deck_out-3"]
 
 
+def test_a_rerun_removes_the_files_of_the_earlier_run_it_did_not_write(tmp_path, capsys):
+    """Trial 44, defect 3: a second run into the folder left the first run's plot, scene,
+    states and npz beside its own CSV. Now the folder holds the new run alone, the last line
+    names what was removed, and files pysolver does not write stay."""
+    out = tmp_path / "out1"
+    assert main(["run", str(DECK), "-o", str(out), "-q", "--states", "--npz", "--end", "0.2",
+                 "--steps", "4"]) == 0
+    (out / "notes.txt").write_text("mine")
+    (out / "requests_controller_old.csv").write_text("not a name pysolver writes")
+    capsys.readouterr()
+    assert main(["run", str(DECK), "-o", str(out), "-q", "--end", "0.1", "--steps", "2",
+                 "--no-plot", "--no-animation"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1] == (
+        f"wrote {out / 'requests.csv'}, {out / 'stats.json'}; removed "
+        f"{out / 'requests.png'}, {out / 'results.npz'}, {out / 'scene.html'}, "
+        f"{out / 'states.csv'} (an earlier run's)")
+    assert sorted(p.name for p in out.iterdir()) == [
+        "notes.txt", "requests.csv", "requests_controller_old.csv", "stats.json"]
+    assert (out / "requests.csv").read_text().splitlines()[-1].startswith("0.1,")
+    # the same run again removes nothing: the last line is as before the change
+    assert main(["run", str(DECK), "-o", str(out), "-q", "--end", "0.1", "--steps", "2",
+                 "--no-plot", "--no-animation"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1] == \
+        f"wrote {out / 'requests.csv'}, {out / 'stats.json'}"
+
+
+def test_a_loadcontrol_runs_csv_goes_with_its_run(tmp_path, capsys):
+    """Another deck run into a LoadControl run's folder removes requests_controller1.csv."""
+    out = tmp_path / "out"
+    assert main(["run", str(DECKS / "loadcontrol_indenter.xml"), "-o", str(out), "-q",
+                 "--no-plot", "--no-animation", "--end", "0.01", "--steps", "2"]) == 0
+    assert (out / "requests_controller1.csv").is_file()
+    capsys.readouterr()
+    assert main(["run", str(DECK), "-o", str(out), "-q", "--no-plot", "--no-animation",
+                 "--end", "0.01", "--steps", "2"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1].endswith(
+        f"; removed {out / 'requests_controller1.csv'} (an earlier run's)")
+    assert sorted(p.name for p in out.iterdir()) == ["requests.csv", "stats.json"]
+
+
+def test_a_folder_without_a_run_keeps_files_of_those_names(tmp_path, capsys):
+    """Without a stats.json naming a deck the folder holds no pysolver run: a scene.html
+    there is the user's, and stays."""
+    out = tmp_path / "mine"
+    out.mkdir()
+    (out / "scene.html").write_text("<p>my page</p>")
+    assert main(["run", str(DECK), "-o", str(out), "-q", "--no-plot", "--no-animation",
+                 "--end", "0.01", "--steps", "2"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1] == \
+        f"wrote {out / 'requests.csv'}, {out / 'stats.json'}"
+    assert (out / "scene.html").read_text() == "<p>my page</p>"
+
+
 def test_states_and_reactions(tmp_path, capsys):
     """--states writes states.csv (time and every state) and reactions.csv (each joint's eight
     components, each motion's reaction), the numbers of the Python API; --npz results.npz."""
