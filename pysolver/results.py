@@ -364,7 +364,8 @@ class Result:
         params : dict, optional
             The run's numbers, by default those ``model.run(params=...)`` was given.
         max_frames : int or None, optional
-            Output rows kept at most (every k-th row and the last beyond; None: all).
+            Output rows kept at most (every k-th row and the last beyond; None: all), at
+            least 2.
 
         Returns
         -------
@@ -373,9 +374,10 @@ class Result:
         Raises
         ------
         ValueError
-            No model is known, or the run has no output rows.
+            No model is known, the run has no output rows, or `max_frames` is below 2.
         TypeError
-            `model` is not a Model (a path: the page is written by ``.save(path)``).
+            `model` is not a Model (a path: the page is written by ``.save(path)``),
+            `params` is not a dict, or `max_frames` is neither an int nor None.
         """
         from .viewer import Animation
         origin = self.__dict__.get("_origin")

@@ -375,3 +375,40 @@ def test_the_scene_data_carries_seconds_per_time_unit(unit, seconds):
     data = pysolver.loads(text).run(progress=False).animate().scene.data()
     assert data["seconds"] == seconds
     assert data["time"] == {"SECOND": "s", "MILLISECOND": "ms", "MINUTE": "min"}[unit]
+
+
+@pytest.mark.parametrize("kw, error, message", [
+    ({"max_frames": 2.5}, TypeError, "max_frames must be an int (at least 2) or None, got 2.5 "
+                                     "(float)"),
+    ({"max_frames": "10"}, TypeError, "max_frames must be an int (at least 2) or None, got "
+                                      "'10' (str)"),
+    ({"max_frames": True}, TypeError, "max_frames must be an int (at least 2) or None, got "
+                                      "True (bool)"),
+    ({"max_frames": 1}, ValueError, "max_frames must be at least 2 (the first and the last "
+                                    "row), got 1"),
+    ({"max_frames": 0}, ValueError, "max_frames must be at least 2 (the first and the last "
+                                    "row), got 0"),
+    ({"model": 5}, TypeError, "animate() takes the Model that made the run, not 5 (int)"),
+    ({"params": "abc"}, TypeError, "params must be a dict {path: number} or None, got 'abc' "
+                                   "(str)"),
+    ({"params": [1]}, TypeError, "params must be a dict {path: number} or None, got [1] "
+                                 "(list)"),
+])
+def test_animate_arguments_of_the_wrong_kind_are_named(kw, error, message):
+    """Trial 44, defect 4: max_frames=2.5 was an IndexError from NumPy and "10" a
+    comparison's TypeError; the check holds for a run shorter than max_frames too."""
+    res = pysolver.loads(README_DECK.read_text().replace('end_time="3.0"', 'end_time="0.05"'))\
+        .run(progress=False)
+    assert len(res.t) == 11
+    with pytest.raises(error) as err:
+        res.animate(**kw)
+    assert str(err.value) == message
+    assert len(res.animate(max_frames=np.int64(5)).scene.poses.t) == 5
+
+
+def test_run_params_that_are_no_dict_are_a_type_error():
+    model = pysolver.load(README_DECK)
+    with pytest.raises(TypeError) as err:
+        model.run(params=[("Force_Penalty/1/penalty", 2e4)])
+    assert str(err.value) == ("params must be a dict {path: number}, got "
+                              "[('Force_Penalty/1/penalty', 20000.0)] (list)")

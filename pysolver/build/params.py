@@ -17,6 +17,7 @@ a number or a step count of 2.5 is the DeckError a deck with that value gets.
 """
 import dataclasses
 import math
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -154,7 +155,10 @@ class Parameters:
     def apply(self, case):
         """Put the deck's values back, then set those of `case` ({path: number}); return the
         run options the case sets (Param_Transient). A case that breaks a rule is a DeckError
-        that leaves the deck's values in place."""
+        that leaves the deck's values in place; a `case` that is no dict a TypeError."""
+        if not isinstance(case, Mapping):
+            raise TypeError(f"params must be a dict {{path: number}}, got {case!r} "
+                            f"({type(case).__name__})")
         self.reset()
         try:
             options = self._set_case(case)

@@ -6,7 +6,9 @@ from __future__ import annotations
 
 import html as _html
 import os
+from collections.abc import Mapping
 
+from ..model import Model
 from .page import html
 from .scene import MAX_FRAMES, Scene
 
@@ -24,7 +26,14 @@ class Animation:
     params : dict, optional
         The run's numbers (``model.run(params=...)``, a sweep's case), when they move markers.
     max_frames : int or None, optional
-        Output rows kept at most (every k-th row and the last beyond; None: all).
+        Output rows kept at most (every k-th row and the last beyond; None: all), at least 2.
+
+    Raises
+    ------
+    TypeError
+        `model` is not a Model, `params` not a dict, `max_frames` not an int or None.
+    ValueError
+        `max_frames` is below 2, or the run has no output rows.
 
     Attributes
     ----------
@@ -34,9 +43,14 @@ class Animation:
     """
 
     def __init__(self, result, model, params=None, max_frames=MAX_FRAMES):
-        if isinstance(model, (str, os.PathLike)):
-            raise TypeError(f"animate() takes the Model that made the run, not {model!r}: "
-                            "write the page with res.animate().save(path)")
+        if not isinstance(model, Model):
+            raise TypeError(f"animate() takes the Model that made the run, not {model!r}" +
+                            (": write the page with res.animate().save(path)"
+                             if isinstance(model, (str, os.PathLike)) else
+                             f" ({type(model).__name__})"))
+        if params is not None and not isinstance(params, Mapping):
+            raise TypeError(f"params must be a dict {{path: number}} or None, got {params!r} "
+                            f"({type(params).__name__})")
         self.scene = Scene(result, model, params=params, max_frames=max_frames)
         self._html = None
 

@@ -2,6 +2,7 @@
 scene's size (which scales the camera and every glyph) and the text on screen, gathered from
 a Result and its model and written as the data the page's script reads."""
 import base64
+import numbers
 import os
 
 import numpy as np
@@ -20,12 +21,17 @@ MAX_FRAMES = 4000
 
 def rows_kept(n, max_frames):
     """Indices of the output rows an animation shows: all of them, or every k-th and the
-    last when there are more than `max_frames`."""
-    if max_frames is None or n <= max_frames:
-        return np.arange(n)
-    if max_frames < 2:
+    last when there are more than `max_frames`; TypeError when `max_frames` is not an int or
+    None, ValueError when it is below 2."""
+    if max_frames is not None and (isinstance(max_frames, bool) or
+                                   not isinstance(max_frames, numbers.Integral)):
+        raise TypeError(f"max_frames must be an int (at least 2) or None, got {max_frames!r} "
+                        f"({type(max_frames).__name__})")
+    if max_frames is not None and max_frames < 2:
         raise ValueError(f"max_frames must be at least 2 (the first and the last row), got "
                          f"{max_frames}")
+    if max_frames is None or n <= max_frames:
+        return np.arange(n)
     k = -(-(n - 1) // (max_frames - 1))
     rows = np.arange(0, n, k)
     return rows if rows[-1] == n - 1 else np.append(rows, n - 1)
