@@ -53,18 +53,58 @@ def convert(deck, output, user_code=True):
         The deck does not load, holds what the format cannot (a routine given as a Python
         function), or the output's extension names no format.
     OSError
-        The output's folder cannot be made or the file cannot be written.
+        The output's folder cannot be made or a file cannot be written; then nothing new is
+        left (an .adm is not written without its .acf, nor a folder made for them).
     """
     texts = forms(deck, output, user_code=user_code)
     folder = os.path.dirname(os.fspath(output))
     if folder and os.path.exists(folder) and not os.path.isdir(folder):
         raise NotADirectoryError(errno.ENOTDIR, "exists and is not a folder", folder)
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-    for path, text in texts.items():
-        with open(path, "w", encoding="utf-8") as fh:
-            fh.write(text)
+    made = []                                   # the folders made, deepest first
+    while folder and not os.path.exists(folder):
+        made.append(folder)
+        folder = os.path.dirname(folder)
+    if made:
+        os.makedirs(made[0])
+    try:
+        _write_all(texts)
+    except BaseException:
+        for path in made:
+            if not os.listdir(path):
+                os.rmdir(path)
+        raise
     return list(texts)
+
+
+def _write_all(texts):
+    """Write {path: text} all or nothing: each to a temporary file beside its path, then
+    renamed over it once every one is written and no path is a folder; on an error nothing
+    new is left (an .adm without its .acf would run with other commands)."""
+    temps = {path: os.path.join(os.path.dirname(path),
+                                f".{os.path.basename(path)}.{os.getpid()}.tmp")
+             for path in texts}
+    done = []
+    try:
+        for path, text in texts.items():
+            if os.path.isdir(path):
+                raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), path)
+            try:
+                with open(temps[path], "w", encoding="utf-8") as fh:
+                    fh.write(text)
+            except OSError as err:          # named by the file asked for, not the temporary
+                raise OSError(err.errno, err.strerror, path) from None
+        for path in texts:
+            existed = os.path.exists(path)
+            os.replace(temps[path], path)
+            done.append((path, existed))
+    except BaseException:
+        for path in texts:
+            if os.path.exists(temps[path]):
+                os.remove(temps[path])
+        for path, existed in done:          # a rename that failed after another succeeded
+            if not existed:
+                os.remove(path)
+        raise
 
 
 def forms(deck, output, user_code=True):

@@ -5,6 +5,7 @@ number (a marker given by its axes to rounding: REULER) and give the same result
 the round trip through each format and back; what a format cannot hold is a DeckError."""
 import dataclasses
 import importlib.util
+import os
 import shutil
 import warnings
 
@@ -322,6 +323,38 @@ def test_convert_makes_the_output_folder(tmp_path, capsys, monkeypatch):
     assert capsys.readouterr().err == "pysolver: error: plain: exists and is not a folder\n"
     assert main(["convert", str(deck), "-o", "plain/sub/sc.xml"]) == 2
     assert capsys.readouterr().err == "pysolver: error: plain/sub: Not a directory\n"
+
+
+def test_convert_leaves_nothing_new_when_a_file_cannot_be_written(tmp_path, capsys,
+                                                                  monkeypatch):
+    """Trial 44, defect 5: -o cv2/y.adm with cv2/y.acf a folder wrote y.adm and then failed.
+    Now both are written or neither: no y.adm, no temporary file, an older y.adm kept as it
+    was, and a folder made for the output removed again."""
+    deck = DECKS / "joints" / "slider_crank.xml"
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "cv2" / "y.acf").mkdir(parents=True)
+    assert main(["convert", str(deck), "-o", "cv2/y.adm"]) == 2
+    assert capsys.readouterr().err == "pysolver: error: cv2/y.acf: Is a directory\n"
+    assert sorted(p.name for p in (tmp_path / "cv2").iterdir()) == ["y.acf"]
+    (tmp_path / "cv2" / "y.adm").write_text("older")
+    assert main(["convert", str(deck), "-o", "cv2/y.adm"]) == 2
+    assert sorted(p.name for p in (tmp_path / "cv2").iterdir()) == ["y.acf", "y.adm"]
+    assert (tmp_path / "cv2" / "y.adm").read_text() == "older"
+    (tmp_path / "cv2" / "z.adm").mkdir()
+    assert main(["convert", str(deck), "-o", "cv2/z.adm"]) == 2
+    assert capsys.readouterr().err.splitlines()[-1] == \
+        "pysolver: error: cv2/z.adm: Is a directory"
+    assert not (tmp_path / "cv2" / "z.acf").exists()
+
+    def refuse(src, dst):                       # the second rename fails
+        if dst.endswith(".acf"):
+            raise PermissionError(13, "Permission denied", dst)
+        real(src, dst)
+    real = os.replace
+    monkeypatch.setattr(os, "replace", refuse)
+    assert main(["convert", str(deck), "-o", "new/deep/w.adm"]) == 2
+    assert capsys.readouterr().err == "pysolver: error: new/deep/w.acf: Permission denied\n"
+    assert not (tmp_path / "new").exists()
 
 
 def test_a_deck_without_commands_has_no_command_file(tmp_path):
