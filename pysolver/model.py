@@ -202,33 +202,54 @@ class Model:
                      f"{sum(b.kind == 'rigid' for b in moving)} rigid), "
                      f"{len(self.bodies) - len(moving)} ground")
         lines.append(f"markers: {len(self.markers)}")
+        name = self._written
         for p in self.penalties.values():
             kind = "unilateral" if p.unilateral else "bilateral"
-            lines.append(f"Force_Penalty {p.id} ({kind}): g = {p.text}")
-        for s in self.sforces.values():
-            lines.append(f"Force_Scalar_TwoBody {s.id} ({'torque' if s.torque else 'force'} "
-                         f"I={s.i} J={s.j}): {s.text}")
-        for vf in self.vforces.values():
-            lines.append(f"Force_Vector_TwoBody {vf.id} (I={vf.i} J={vf.j} in "
-                         f"{vf.ref or 'global'}): ({', '.join(vf.texts)})")
-        lines += [f"LoadControl {lc.id}: body {lc.body} along {'xyz'[lc.direction]}, load "
-                  f"{lc.load_text}, every {lc.update_time:g}" for lc in self.controls.values()]
-        lines += [(f"Motion_Joint {mo.id} ({mo.val_type} {'R' if mo.direction == 'B3' else 'T'}"
-                   f" of joint {mo.joint}): " if mo.joint else
-                   f"Motion_Marker {mo.id} ({mo.val_type} {mo.direction} I={mo.i} J={mo.j}): ")
+            lines.append(f"{name('penalty', p.id, 'Force_Penalty')} ({kind}): g = {p.text}")
+        # a spring-damper (bushing) is held as the scalar (vector) force of the negative id:
+        # listed as the deck wrote it, with its law and numbers
+        for s in (s for s in self.sforces.values() if s.id > 0):
+            lines.append(f"{name('sforce', s.id, 'Force_Scalar_TwoBody')} "
+                         f"({'torque' if s.torque else 'force'} I={s.i} J={s.j}"
+                         f"{', action only' if s.action_only else ''}): {s.text}")
+        for sd in self.springdampers.values():
+            lines.append(f"{name('springdamper', sd.id, 'Force_SpringDamper')} ({sd.type} "
+                         f"I={sd.i} J={sd.j}): {self.sforces[-sd.id].text}; k={sd.stiffness:g}"
+                         f" c={sd.damping:g} {'angle' if sd.type == 'ROTATIONAL' else 'length'}"
+                         f"={sd.length:g} preload={sd.preload:g}")
+        for vf in (vf for vf in self.vforces.values() if vf.id > 0):
+            lines.append(f"{name('vforce', vf.id, 'Force_Vector_TwoBody')} (I={vf.i} "
+                         + (f"J={vf.j} " if vf.j else "")
+                         + f"in {vf.ref or 'global'}): ({', '.join(vf.texts)})")
+        for bu in self.bushings.values():
+            lines.append(f"{name('bushing', bu.id, 'Force_Bushing')} (I={bu.i} J={bu.j}, in "
+                         f"J's axes): stiffness {_numbers(bu.stiffness)} damping "
+                         f"{_numbers(bu.damping)} preload {_numbers(bu.preload)}")
+        lines += [f"{name('loadcontrol', lc.id, 'LoadControl')}: body {lc.body} along "
+                  f"{'xyz'[lc.direction]}, load {lc.load_text}, every {lc.update_time:g}"
+                  for lc in self.controls.values()]
+        lines += [f"{name('motion', mo.id, 'Motion_Joint' if mo.joint else 'Motion_Marker')} "
+                  + (f"({mo.val_type} {'R' if mo.direction == 'B3' else 'T'} of joint "
+                     f"{mo.joint}): " if mo.joint else
+                     f"({mo.val_type} {mo.direction} I={mo.i} J={mo.j}): ")
                   + mo.text for mo in self.motions.values() if mo.id > 0]  # not LoadControl's
-        lines += [f"Constraint_Joint {jo.id} ({jo.type} I={jo.i} J={jo.j})"
+        lines += [f"{name('joint', jo.id, 'Constraint_Joint')} ({jo.type} I={jo.i} J={jo.j})"
                   for jo in self.joints.values()]
-        lines += [f"Constraint_General {gc.id}: {gc.text} = 0" for gc in self.gcons.values()]
-        lines += [f"Constraint_Coupler {cp.id}: joints {cp.joints} ({':'.join(cp.freedoms)}), "
-                  f"scales {cp.scales}" for cp in self.couplers.values()]
-        lines += [f"Reference_Variable {v.id}: {v.text}" for v in self.variables.values()]
-        lines += [f"Post_Request {r.id}: {sum(1 for t in r.texts if t)} channel(s)"
-                  for r in self.requests.values()]
+        lines += [f"{name('gcon', gc.id, 'Constraint_General')}: {gc.text} = 0"
+                  for gc in self.gcons.values()]
+        lines += [f"{name('coupler', cp.id, 'Constraint_Coupler')}: joints {cp.joints} "
+                  f"({':'.join(cp.freedoms)}), scales {cp.scales}"
+                  for cp in self.couplers.values()]
+        lines += [f"{name('variable', v.id, 'Reference_Variable')}: {v.text}"
+                  for v in self.variables.values()]
+        lines += [f"{name('request', r.id, 'Post_Request')}: "
+                  f"{sum(1 for t in r.texts if t)} channel(s)" for r in self.requests.values()]
         for se in self.sensors.values():
-            lines.append(f"Sensor_Event {se.id}: {se.text} {se.compare} {se.value:g} "
-                         f"(error_tol {se.error_tol:g}) -> {', '.join(se.actions()) or 'log'}")
-        lines += [f"Sensor_Evaluate {ev.id}: {ev.text}" for ev in self.evaluates.values()]
+            lines.append(f"{name('sensor', se.id, 'Sensor_Event')}: {se.text} {se.compare} "
+                         f"{se.value:g} (error_tol {se.error_tol:g}) -> "
+                         f"{', '.join(se.actions()) or 'log'}")
+        lines += [f"{name('evaluate', ev.id, 'Sensor_Evaluate')}: {ev.text}"
+                  for ev in self.evaluates.values()]
         t = self.transient
         lines.append(f"Param_Transient: integr_tol={t.integr_tol:g} h_max={t.h_max} h_min="
                      f"{t.h_min:g} h0_max={t.h0_max}")
@@ -241,6 +262,15 @@ class Model:
                          + (f" print_interval={c.print_interval:g}" if c.print_interval else ""))
         lines.append(self._states_line())
         return "\n".join(lines)
+
+    def _written(self, kind, eid, tag):
+        """How the deck wrote element `eid` of table `kind`: its element and id, and in an
+        Adams dataset its statement, ``Force_SpringDamper 1 [SPRINGDAMPER/1]`` (`tag` when
+        the model does not know where it came from)."""
+        ctx = self._where.get((kind, eid))
+        statement = (getattr(ctx, "names", None) or {}).get("#element")
+        return f"{getattr(ctx, 'tag', None) or tag} {eid}" + (f" [{statement}]" if statement
+                                                              else "")
 
     def _states_line(self):
         """The summary's state count: the 3-D model's, and once compiled the count run (a
@@ -284,3 +314,8 @@ def _rebuild(file, text, fmt, user_code=True, simulate=None):
     from .deck.loader import loads
     return loads(text, fmt=fmt, file=file, user_code=user_code, simulate=simulate)
 
+
+
+def _numbers(values):
+    """Six numbers of a bushing as the summary lists them: ``(10, 10, 10, 0, 0, 0)``."""
+    return "(" + ", ".join(f"{v:g}" for v in values) + ")"

@@ -16,7 +16,7 @@ import pytest
 import pysolver
 from pysolver.cli import main
 
-from helpers import DECKS
+from helpers import DECKS, TEST_DECKS
 
 DECK = DECKS / "particle_between_lines.xml"
 PEN = "Force_Penalty/1/penalty"
@@ -290,6 +290,44 @@ def test_a_folder_without_a_run_keeps_files_of_those_names(tmp_path, capsys):
     assert capsys.readouterr().out.splitlines()[-1] == \
         f"wrote {out / 'requests.csv'}, {out / 'stats.json'}"
     assert (out / "scene.html").read_text() == "<p>my page</p>"
+
+
+def test_check_lists_the_elements_the_deck_wrote(capsys):
+    """Trial 44, defect 6: a Force_SpringDamper was listed as "Force_Scalar_TwoBody -1", the
+    scalar force that holds it. Spring-dampers and bushings are listed as written, with
+    their numbers; a Jprim and a OneBody force by their own elements; in an Adams dataset
+    each with the statement it came from (renumbered ones too)."""
+    assert main(["check", str(TEST_DECKS / "springs.xml")]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert "Force_SpringDamper 1 (TRANSLATIONAL I=20 J=1): -k (DM(20,1) - length) - c " \
+        "VR(20,1) + preload; k=100 c=0.4 length=1 preload=0" in lines
+    assert "Force_SpringDamper 3 (ROTATIONAL I=40 J=41): -k (AZ(40,41) - angle) - c " \
+        "WZ(40,41,41) + preload, AZ through every turn; k=3 c=0.1 angle=0.2 preload=0.4" in lines
+    assert "Force_Vector_OneBody 8 (I=50 in global): (0.1*AKISPL(DX(50,42),0,1) + " \
+        "0.1*CUBSPL(DY(50),0,1,1), 0.1*QUISPL(DX(50),0,1,2) + 0.1*LINSPL(TIME,0,1), 0, 0, 0, " \
+        "0)" in lines
+    assert [ln.split(" (")[0] for ln in lines if ln.startswith("Force_")] == [
+        "Force_Scalar_TwoBody 6", "Force_Scalar_TwoBody 7", "Force_SpringDamper 1",
+        "Force_SpringDamper 2", "Force_SpringDamper 3", "Force_SpringDamper 4",
+        "Force_Vector_OneBody 8"]
+    assert main(["check", str(TEST_DECKS / "bushing.xml")]) == 0
+    assert "Force_Bushing 1 (I=21 J=5, in J's axes): stiffness (2000, 3000, 2500, 40, 50, " \
+        "60) damping (5, 6, 7, 0.1, 0.2, 0.3) preload (1, -2, 0.5, 0.1, -0.05, 0.02)" in \
+        capsys.readouterr().out.splitlines()
+    assert main(["check", str(TEST_DECKS / "all_joints.xml")]) == 0
+    assert "Constraint_Jprim 99 (ATPOINT I=2401 J=2402)" in capsys.readouterr().out.splitlines()
+    with pytest.warns(pysolver.DeckWarning):
+        assert main(["check", str(TEST_DECKS / "adams" / "every_statement.adm")]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    for line in ("Force_SpringDamper 1 [SPRINGDAMPER/1] (TRANSLATIONAL I=301 J=105): -k "
+                 "(DM(301,105) - length) - c VR(301,105) + preload; k=50 c=0.5 length=250 "
+                 "preload=100",
+                 "Force_Vector_TwoBody 2 [VTORQUE/1] (I=401 J=402 in 104): (0, 0, 0, 0, 0, "
+                 "100*SIN(TIME))",
+                 "Constraint_Jprim 5 [JPRIM/1] (INPLANE I=401 J=104)",
+                 "Motion_Joint 1 [MOTION/1] (D R of joint 3): 2*TIME + 0.1*SIN(3*TIME)"):
+        assert line in lines
+    assert not [ln for ln in lines if " -" in ln.split(":")[0]]     # no negative ids
 
 
 def test_states_and_reactions(tmp_path, capsys):
