@@ -54,7 +54,9 @@ class Options:
     Attributes
     ----------
     integr_tol : float, default 1e-3
-        IDA's relative and absolute tolerance.
+        IDA's relative and absolute tolerance; absolute in the deck's units, so a deck whose
+        states are small numbers in its units (ms, µs) needs a smaller one
+        (docs/deck-language.md, "integr_tol is absolute in the deck's units").
     h_max : float or None
         Largest step; None: unbounded.
     h_min : float, default 0

@@ -222,3 +222,56 @@ def test_degree_channels_are_labelled_deg_in_csv_units_and_plot(tmp_path):
     assert panels["angle [deg]"] == ["a_180_over_pi", "a_5729", "a_rtod"]
     assert panels["angular velocity [deg/s]"] == ["w_deg"]
     assert panels["no unit"] == ["x_mm"]
+
+
+PENDULUM = """<?xml version="1.0"?>
+<MotionSolve>
+  <Model>
+    <Units mass="KILOGRAM" length="{length}" time="{time}" force="NEWTON"/>
+    <Body_Rigid id="1" isground="TRUE"/>
+    <Reference_Marker id="2" body_id="1"/>
+    <Reference_Marker id="20" body_id="2" pos_x="{arm}"/>
+    <Reference_Marker id="21" body_id="2"/>
+    <Body_Rigid id="2" cg_id="20" mass="1" inertia_xx="{inertia}" inertia_yy="{inertia}"
+                inertia_zz="{inertia}"/>
+    <Force_Gravity grav_y="{g}"/>
+    <Constraint_Joint id="1" type="REVOLUTE" i_marker_id="21" j_marker_id="2"/>
+    <Reference_Marker id="3" body_id="1" pos_x="{sx}" pos_y="{sy}"/>
+    <Force_SpringDamper id="1" type="TRANSLATIONAL" i_marker_id="20" j_marker_id="3"
+                        stiffness="0" damping="0" length="{sy}"/>
+    <Post_Request id="1" expr1="AZ(20)" name1="angle"/>
+  </Model>
+  <Simulate analysis_type="Transient" end_time="{end}" print_interval="{step}"/>
+</MotionSolve>
+"""
+SI = dict(length="METER", time="SECOND", arm=2, inertia=1e-3, g=-9.81, end=2, step=0.02,
+          sx=1, sy=0.5)
+MM_MS = dict(length="MILLIMETER", time="MILLISECOND", arm=2000, inertia=1000, g=-9.81e-3,
+             end=2000, step=20, sx=1000, sy=500)
+
+
+def test_integr_tol_is_absolute_in_the_decks_units():
+    """The figures of docs/deck-language.md, "integr_tol is absolute in the deck's units"
+    (trial 44, defect 7): the trial's pendulum (its spring at stiffness 0) in kg/m/s and in
+    kg/mm/ms (its angular velocity about 1e-3 rad/ms), against the SI deck at 1e-10; forces
+    are in N in both."""
+    ref = pysolver.loads(PENDULUM.format(**SI)).run(integr_tol=1e-10)
+    errors = {}
+    for name, units in (("si", SI), ("mm_ms", MM_MS)):
+        model = pysolver.loads(PENDULUM.format(**units))
+        for tol in (1e-3, 1e-6):
+            res = model.run(integr_tol=tol)
+            force = np.abs(res.joint(1)[:, 0] - ref.joint(1)[:, 0])
+            errors[name, tol] = (np.max(force),
+                                 np.max(np.abs(res.request(1)[:, 0] - ref.request(1)[:, 0])),
+                                 force[-1] / ref.joint(1)[-1, 0])
+    peak = np.max(ref.joint(1)[:, 0])
+    assert errors["si", 1e-3][0] == pytest.approx(0.041, abs=0.001)      # 0.14 % of the peak
+    assert errors["si", 1e-3][0] / peak == pytest.approx(0.0014, abs=0.0001)
+    assert errors["si", 1e-3][1] == pytest.approx(0.0029, abs=0.0001)
+    assert errors["mm_ms", 1e-3][0] == pytest.approx(0.26, abs=0.005)    # 0.88 % of the peak
+    assert errors["mm_ms", 1e-3][0] / peak == pytest.approx(0.0088, abs=0.0001)
+    assert errors["mm_ms", 1e-3][1] == pytest.approx(0.021, abs=0.0005)
+    assert errors["mm_ms", 1e-3][2] == pytest.approx(0.034, abs=0.0005)  # at t = 2 s
+    for name in ("si", "mm_ms"):
+        assert errors[name, 1e-6][0] < 8e-4 and errors[name, 1e-6][1] < 3.2e-5
