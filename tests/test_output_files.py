@@ -92,3 +92,26 @@ def test_a_million_output_rows_stay_within_three_times_their_size(tmp_path):
     assert r["peak"] - r["base"] <= 3 * r["raw"], r
     with open(tmp_path / "big.csv", "rb") as fh:
         assert sum(1 for _ in fh) == 1_000_002
+
+
+def test_names_with_commas_and_quotes_read_back_as_the_docs_say(tmp_path):
+    """Trial 44, defect 8: docs/usage.md's NumPy recipe (names=True) cannot read a quoted
+    header; the readers it names instead give the names and numbers back exactly."""
+    text = (DECKS / "particle_between_lines.xml").read_text().replace(
+        'end_time="3.0"', 'end_time="0.01"').replace('name1="x"', 'name1="a,b"').replace(
+        'name2="z"', 'name2="say &quot;hi&quot;"')
+    res = pysolver.loads(text).run(progress=False)
+    path = tmp_path / "r.csv"
+    res.save(path)
+    assert path.read_text().splitlines()[0] == \
+        'time [s],"a,b [mm]","say ""hi"" [mm]",force_L1 [N],force_L2 [N]'
+    with open(path, newline="") as fh:
+        header = next(csv.reader(fh))
+    assert header == res.columns(units=True)[0] == [
+        "time [s]", "a,b [mm]", 'say "hi" [mm]', "force_L1 [N]", "force_L2 [N]"]
+    np.testing.assert_array_equal(np.loadtxt(path, delimiter=",", skiprows=1),
+                                  res.columns()[1])
+    pd = pytest.importorskip("pandas", reason="pandas is not installed")
+    df = pd.read_csv(path, float_precision="round_trip")      # the numbers to the bit
+    assert list(df.columns) == header
+    np.testing.assert_array_equal(df.to_numpy(), res.columns()[1])
