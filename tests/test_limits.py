@@ -230,7 +230,7 @@ def test_loadcontrol_pinned_at_max_velocity_says_so():
     assert not [s for s in pysolver.loads(LOADCONTROL).run().log if "clamped" in s]
 
 
-def test_ctrl_c_on_the_general_driver_names_the_time_of_the_last_row():
+def test_ctrl_c_on_the_general_driver_names_the_time_of_the_last_row(tmp_path):
     """A long run on the general driver (a sensor that never fires keeps it off the fast
     path) interrupted mid-batch: the message's time is that of the last row kept (it said
     "t = 1.2e-06" with rows to t = 3738)."""
@@ -240,12 +240,23 @@ def test_ctrl_c_on_the_general_driver_names_the_time_of_the_last_row():
     text = text.replace("<Post_Request", '<Sensor_Event id="1" expr="DY(10)" value="100" '
                         'compare="GE" halt="TRUE"/>\n    <Post_Request')
     model = pysolver.loads(text)
-    timer = threading.Timer(1.5, os.kill, (os.getpid(), signal.SIGINT))
-    timer.start()
+    # interrupted once rows are being made (its streamed CSV holds some), not after a fixed
+    # time, which a loaded machine can spend compiling
+    csv, done = tmp_path / "rows.csv", threading.Event()
+
+    def interrupt():
+        while not done.wait(0.05):
+            if csv.exists() and csv.read_text().count("\n") > 12:
+                os.kill(os.getpid(), signal.SIGINT)
+                return
+
+    watcher = threading.Thread(target=interrupt)
+    watcher.start()
     try:
-        res = model.run()
+        res = model.run(stream=csv)
     finally:
-        timer.cancel()
+        done.set()
+        watcher.join()
     assert res.status == -600 and res.meta["stepping"] == "normal"
     assert len(res.t) > 10
     assert res.message == f"interrupted at t = {res.t[-1]:.6g}"
