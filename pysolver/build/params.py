@@ -20,12 +20,11 @@ import math
 
 import numpy as np
 
-from ..deck.bodies import centroidal, inertia_tensor, realizable
+from ..deck.bodies import centroidal, inertia_tensor, place, realizable, spin, velocity
 from ..deck.schema import SCHEMA, Ctx, convert
 from ..deck.validate import value_rule
 from ..errors import DeckError
 from ..options import DECK_NAMES
-from ..rotations import along
 from .energy import energy_paths
 from .planar import global_inertia, plane_rows, why_not
 
@@ -109,7 +108,11 @@ class Parameters:
         self._base = {}                 # path -> the deck's value, for the paths set so far
         self._deck = {}                 # path -> the deck's value, once read (they never change)
         self._movers = {}               # body id -> its markers (a cg marker moves them all)
-        self._spins = {}                # body id -> its w_ic (see _spin)
+        self._local = {}                # marker id -> its numbers (the deck's, or a case's)
+        self._rates = {}                # body id -> (v_ic, w_ic): the deck's, or a case's
+        self._moved = set()             # markers whose numbers a case set (_sync_places)
+        self._depth = None              # marker id -> its place in rm chains (_sync_places)
+        self._children = None           # marker id -> the markers placed in its frame
         self._names = {}                # lower-case path -> canonical path
         self._dirty = set()             # bodies whose inertia about the cg must be remade
         # marker -> the body whose inertia about its cg follows it (an IM away from the cg)
@@ -161,6 +164,7 @@ class Parameters:
         except DeckError:
             self.reset()
             raise
+        self._sync_places()
         self._sync_inertias(case)
         self._sync_planar(case)
         return options
@@ -192,6 +196,9 @@ class Parameters:
         for path, v in self._base.items():
             self._set(path, v)
         self._base.clear()
+        self._sync_places()
+        self._local.clear()
+        self._rates.clear()
         self._sync_inertias(None)
         self._sync_planar(None)
 
@@ -255,11 +262,10 @@ class Parameters:
                 return b.mass
             if attr.startswith("inertia_"):
                 return _inertia_numbers(b.inertia_im)[_INERTIA.index(attr[8:])]
-            if attr.startswith("w_ic"):
-                return float(self._spin(b)[2]["xyz".index(attr[-1])])
-            return float(b.vel["xyz".index(attr[-1])])
+            rates = m.rates[b.id]
+            return float((rates.w if attr.startswith("w_ic") else rates.v)["xyz".index(attr[-1])])
         if kind == "Reference_Marker":
-            return float(m.markers[int(key[0])].pos["xyz".index(key[1][-1])])
+            return float(m.placements[int(key[0])].local["xyz".index(key[1][-1])])
         if kind == "Force_Gravity":
             return float(m.gravity["xyz".index(key[0][-1])])
         if kind == "Sensor_Event":
@@ -309,22 +315,21 @@ class Parameters:
                              "triangle inequality")
             _assign(b, inertia_im=raw)
             self._dirty.add(b.id)
-        elif attr.startswith("w_ic"):
-            deck, deck_global, now = self._spin(b)
-            now["xyz".index(attr[-1])] = v
-            b.omega[:] = deck if np.array_equal(now, deck_global) else along(b.rot.T, now)
         else:
-            b.vel["xyz".index(attr[-1])] = v
-
-    def _spin(self, b):
-        """(the deck's angular velocity in body b's axes, the same about the global axes, the
-        case's about the global axes): w_ic_* paths are about the global axes, as
-        MotionSolve's Body_Rigid gives them; the deck's own numbers come back exactly."""
-        got = self._spins.get(b.id)
-        if got is None:
-            w = along(b.rot, b.omega)
-            got = self._spins[b.id] = (b.omega.copy(), w, w.copy())
-        return got
+            # the deck's numbers, along its vm_id's / wm_id's axes when it gives one (an Adams
+            # PART's WX.. along its CM marker's), placed again as the loader places them
+            rates = self.model.rates[b.id]
+            got = self._rates.get(b.id)
+            if got is None:
+                got = self._rates[b.id] = (rates.v.copy(), rates.w.copy())
+            v_ic, w_ic = got
+            markers = self.model.markers
+            if attr.startswith("w_ic"):
+                w_ic["xyz".index(attr[-1])] = v
+                b.omega[:] = spin(w_ic, markers[b.cg], markers.get(rates.wm))
+            else:
+                v_ic["xyz".index(attr[-1])] = v
+                b.vel[:] = velocity(v_ic, markers.get(rates.vm))
 
     def _sync_energy(self, b):
         """KE's constants of body b (pysolver.build.energy) after a change of its mass or
@@ -337,28 +342,72 @@ class Parameters:
                 k.arrays["consts"][k.params[path]] = v
 
     def _set_marker(self, path, mid, axis, v):
-        """A marker's global position; a body's cg marker moves the body (its other markers
-        stay where they are in space)."""
+        """One of a marker's numbers as the deck gives them (placed by _sync_places)."""
+        local = self._local.get(mid)
+        if local is None:
+            local = self._local[mid] = self.model.placements[mid].local.copy()
+        local[axis] = v
+        self._moved.add(mid)
+
+    def _sync_places(self):
+        """Place the markers whose numbers a case set, and the markers placed in their frames
+        (rm_id, RM chains), as the loader places them (pysolver.deck.bodies.place): the numbers
+        of a marker with rm_id are in rm_id's frame, an Adams QP in its part's; so a case is
+        the deck edited by hand. A body's cg marker moves the body (its other markers stay
+        where the deck puts them)."""
+        if not self._moved:
+            return
         m, k = self.model, self.kernel
-        mk = m.markers[mid]
-        mk.pos[axis] = v
-        if mid in self._offset_markers:
-            self._dirty.add(self._offset_markers[mid])
-        body = m.bodies[mk.body]
-        if body.kind != "ground" and body.cg == mid:
-            body.pos[axis] = v
-            movers = self._movers.get(body.id)
-            if movers is None:
-                movers = self._movers[body.id] = [x for x in m.markers.values()
-                                                  if x.body == body.id]
-        else:
-            movers = [mk]
-        for x in movers:
-            if x is mk and body.kind != "ground" and body.cg == mid:
+        if self._children is None:
+            self._children, self._depth = {}, {}
+            for mid, pl in m.placements.items():
+                if pl.rm is not None:
+                    self._children.setdefault(pl.rm, []).append(mid)
+        todo, stack = set(), list(self._moved)
+        while stack:
+            mid = stack.pop()
+            if mid not in todo:
+                todo.add(mid)
+                stack += self._children.get(mid, ())
+        self._moved.clear()
+        refresh = set()                       # markers whose place in the kernel changes
+        for mid in sorted(todo, key=lambda x: (self._chain(x), x)):    # rm before its markers
+            pl, mk = m.placements[mid], m.markers[mid]
+            local = self._local.get(mid, pl.local)
+            if pl.rm is not None:
+                mk.pos[:] = place(m.markers[pl.rm].pos, pl.axes, local)
+            elif pl.origin is not None:
+                mk.pos[:] = place(pl.origin, pl.axes, local)
+            else:
+                mk.pos[:] = local
+            if mid in self._offset_markers:
+                self._dirty.add(self._offset_markers[mid])
+            body = m.bodies[mk.body]
+            if body.kind != "ground" and body.cg == mid:
+                body.pos[:] = mk.pos
+                movers = self._movers.get(body.id)
+                if movers is None:
+                    movers = self._movers[body.id] = [x.id for x in m.markers.values()
+                                                      if x.body == body.id]
+                refresh.update(movers)
+            else:
+                refresh.add(mid)
+        for mid in refresh:
+            x = m.markers[mid]
+            body = m.bodies[x.body]
+            row = k.marker_index.get(mid)
+            if row is None or (body.kind != "ground" and body.cg == mid):
                 continue                      # the cg marker stays at the body's origin
-            row = k.marker_index[x.id]
             local = x.pos if body.kind == "ground" else body.rot.T @ (x.pos - body.pos)
             k.arrays["marker_pos"][3 * row:3 * row + 3] = local
+
+    def _chain(self, mid):
+        """How many rm_id links lead from marker mid to a marker placed without one."""
+        got = self._depth.get(mid)
+        if got is None:
+            rm = self.model.placements[mid].rm
+            got = self._depth[mid] = 0 if rm is None else self._chain(rm) + 1
+        return got
 
     def _why_not(self, path):
         parts = path.split("/")
