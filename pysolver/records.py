@@ -397,6 +397,8 @@ class Source:
     fmt: str
     user_code: bool = True      # False: loaded with user_code=False (it names no code to run)
     simulate: dict = None       # Simulate attributes that replace the deck's commands
+    built: str = None           # a Python deck: a hash of the elements it recorded
+    modules: tuple = ()         # a Python deck: (path, sha256) of the user's modules it imports
 
     @functools.cached_property
     def sha256(self):

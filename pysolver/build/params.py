@@ -24,7 +24,7 @@ from ..deck.bodies import centroidal, inertia_tensor, place, realizable, spin, v
 from ..deck.schema import SCHEMA, Ctx, convert
 from ..deck.validate import value_rule
 from ..errors import DeckError
-from ..options import DECK_NAMES
+from ..options import DECK_NAMES, steps_problem
 from .energy import energy_paths
 from .planar import global_inertia, plane_rows, why_not
 
@@ -161,6 +161,7 @@ class Parameters:
         self.reset()
         try:
             options = self._set_case(case)
+            self._check_steps(options)
         except DeckError:
             self.reset()
             raise
@@ -170,9 +171,13 @@ class Parameters:
         return options
 
     def _set_case(self, case):
-        options = {}
+        options, given = {}, {}
         for raw, value in case.items():
             path = self.canonical(raw)
+            if path in given:
+                raise _error(path, f"given twice in one case, as {given[path]!r} and {raw!r} "
+                             "(paths are case-insensitive)")
+            given[path] = raw
             v = check_value(path, value)
             kind, *key = path.split("/")
             if (kind == "Force_SpringDamper" and key[1] == "length" and v < 0
@@ -188,6 +193,17 @@ class Parameters:
                 self._base[path] = base
             self._set(path, v)
         return options
+
+    def _check_steps(self, options):
+        """A DeckError when the case's h_min and h_max, with the deck's, cannot both hold."""
+        if "h_min" in options or "h_max" in options:
+            deck = self.model.transient
+            problem = steps_problem(options.get("h_min", deck.h_min),
+                                    options.get("h_max", deck.h_max))
+            if problem:
+                path = "Param_Transient/h_min" if "h_min" in options else \
+                    "Param_Transient/h_max"
+                raise _error(path, problem)
 
     def reset(self):
         """The deck's values everywhere."""

@@ -22,7 +22,7 @@ from ..model import (
     Static,
     Variable,
 )
-from ..options import DECK_NAMES, Options, rule_problem
+from ..options import DECK_NAMES, Options, rule_problem, steps_problem
 from . import units as un
 from . import usersubs
 from .bodies import add_bodies
@@ -190,6 +190,9 @@ def _transient(ctx, a):
         problem = value_rule("Param_Transient", name, val)
         if problem:
             raise ctx.error(f"got {val:g}; {problem}", name)
+    problem = steps_problem(given.get("h_min"), given.get("h_max"))
+    if problem:
+        raise ctx.error(problem, "h_min")
     return Options(**given)
 
 
