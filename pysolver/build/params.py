@@ -20,12 +20,13 @@ import math
 
 import numpy as np
 
-from ..deck.bodies import centroidal, inertia_tensor, place, realizable, spin, velocity
+from ..deck.bodies import centroidal, inertia_tensor, realizable, spin, velocity
 from ..deck.schema import SCHEMA, Ctx, convert
 from ..deck.validate import value_rule
 from ..errors import DeckError
 from ..options import DECK_NAMES, steps_problem
 from .energy import energy_paths
+from .places import Places
 from .planar import global_inertia, plane_rows, why_not
 
 _STATIC = ("max_ke_tol", "max_dq_tol", "max_num_iter", "max_imbalance", "max_error",
@@ -107,12 +108,8 @@ class Parameters:
         self.model, self.kernel = model, kernel
         self._base = {}                 # path -> the deck's value, for the paths set so far
         self._deck = {}                 # path -> the deck's value, once read (they never change)
-        self._movers = {}               # body id -> its markers (a cg marker moves them all)
-        self._local = {}                # marker id -> its numbers (the deck's, or a case's)
+        self._places = None             # the markers' places (pysolver.build.places)
         self._rates = {}                # body id -> (v_ic, w_ic): the deck's, or a case's
-        self._moved = set()             # markers whose numbers a case set (_sync_places)
-        self._depth = None              # marker id -> its place in rm chains (_sync_places)
-        self._children = None           # marker id -> the markers placed in its frame
         self._names = {}                # lower-case path -> canonical path
         self._dirty = set()             # bodies whose inertia about the cg must be remade
         # marker -> the body whose inertia about its cg follows it (an IM away from the cg)
@@ -213,7 +210,8 @@ class Parameters:
             self._set(path, v)
         self._base.clear()
         self._sync_places()
-        self._local.clear()
+        if self._places is not None:
+            self._places.forget()
         self._rates.clear()
         self._sync_inertias(None)
         self._sync_planar(None)
@@ -298,7 +296,9 @@ class Parameters:
         elif kind in ("Body_Point", "Body_Rigid"):
             self._set_body(path, m.bodies[int(key[0])], key[1], v)
         elif kind == "Reference_Marker":
-            self._set_marker(path, int(key[0]), "xyz".index(key[1][-1]), v)
+            if self._places is None:
+                self._places = Places(m, k)
+            self._places.set(int(key[0]), "xyz".index(key[1][-1]), v)
         elif kind == "Force_Gravity":
             m.gravity["xyz".index(key[0][-1])] = v
             k.m.gravity = k.arrays["gravity"] = list(m.gravity)   # the compliance reads both
@@ -357,73 +357,14 @@ class Parameters:
             if path in k.params:
                 k.arrays["consts"][k.params[path]] = v
 
-    def _set_marker(self, path, mid, axis, v):
-        """One of a marker's numbers as the deck gives them (placed by _sync_places)."""
-        local = self._local.get(mid)
-        if local is None:
-            local = self._local[mid] = self.model.placements[mid].local.copy()
-        local[axis] = v
-        self._moved.add(mid)
-
     def _sync_places(self):
-        """Place the markers whose numbers a case set, and the markers placed in their frames
-        (rm_id, RM chains), as the loader places them (pysolver.deck.bodies.place): the numbers
-        of a marker with rm_id are in rm_id's frame, an Adams QP in its part's; so a case is
-        the deck edited by hand. A body's cg marker moves the body (its other markers stay
-        where the deck puts them)."""
-        if not self._moved:
-            return
-        m, k = self.model, self.kernel
-        if self._children is None:
-            self._children, self._depth = {}, {}
-            for mid, pl in m.placements.items():
-                if pl.rm is not None:
-                    self._children.setdefault(pl.rm, []).append(mid)
-        todo, stack = set(), list(self._moved)
-        while stack:
-            mid = stack.pop()
-            if mid not in todo:
-                todo.add(mid)
-                stack += self._children.get(mid, ())
-        self._moved.clear()
-        refresh = set()                       # markers whose place in the kernel changes
-        for mid in sorted(todo, key=lambda x: (self._chain(x), x)):    # rm before its markers
-            pl, mk = m.placements[mid], m.markers[mid]
-            local = self._local.get(mid, pl.local)
-            if pl.rm is not None:
-                mk.pos[:] = place(m.markers[pl.rm].pos, pl.axes, local)
-            elif pl.origin is not None:
-                mk.pos[:] = place(pl.origin, pl.axes, local)
-            else:
-                mk.pos[:] = local
-            if mid in self._offset_markers:
-                self._dirty.add(self._offset_markers[mid])
-            body = m.bodies[mk.body]
-            if body.kind != "ground" and body.cg == mid:
-                body.pos[:] = mk.pos
-                movers = self._movers.get(body.id)
-                if movers is None:
-                    movers = self._movers[body.id] = [x.id for x in m.markers.values()
-                                                      if x.body == body.id]
-                refresh.update(movers)
-            else:
-                refresh.add(mid)
-        for mid in refresh:
-            x = m.markers[mid]
-            body = m.bodies[x.body]
-            row = k.marker_index.get(mid)
-            if row is None or (body.kind != "ground" and body.cg == mid):
-                continue                      # the cg marker stays at the body's origin
-            local = x.pos if body.kind == "ground" else body.rot.T @ (x.pos - body.pos)
-            k.arrays["marker_pos"][3 * row:3 * row + 3] = local
-
-    def _chain(self, mid):
-        """How many rm_id links lead from marker mid to a marker placed without one."""
-        got = self._depth.get(mid)
-        if got is None:
-            rm = self.model.placements[mid].rm
-            got = self._depth[mid] = 0 if rm is None else self._chain(rm) + 1
-        return got
+        """The markers whose numbers a case set, and those placed in their frames, placed as
+        the deck places them (pysolver.build.places); a body whose IM offset they change gets
+        its inertia about the cg again."""
+        if self._places is not None:
+            for mid in self._places.sync():
+                if mid in self._offset_markers:
+                    self._dirty.add(self._offset_markers[mid])
 
     def _why_not(self, path):
         parts = path.split("/")

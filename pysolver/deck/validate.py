@@ -184,15 +184,14 @@ def _gravity(ctx, a):
 
 
 def _transient(ctx, a):
-    """Param_Transient as Options, each value checked against its option's rule."""
+    """Param_Transient as Options, each value checked by its option's rule, h_min by h_max."""
     given = {k: a[k] for k in DECK_NAMES if a[k] is not None}
-    for name, val in given.items():
-        problem = value_rule("Param_Transient", name, val)
-        if problem:
-            raise ctx.error(f"got {val:g}; {problem}", name)
-    problem = steps_problem(given.get("h_min"), given.get("h_max"))
+    problems = [(name, f"got {val:g}; {why}") for name, val in given.items()
+                if (why := value_rule("Param_Transient", name, val))]
+    problems.append(("h_min", steps_problem(given.get("h_min"), given.get("h_max"))))
+    name, problem = problems[0]
     if problem:
-        raise ctx.error(problem, "h_min")
+        raise ctx.error(problem, name)
     return Options(**given)
 
 
