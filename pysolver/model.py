@@ -91,6 +91,10 @@ class Model:
                     arr.flags.writeable = False
         for mk in self.markers.values():
             mk.pos.flags.writeable = mk.rot.flags.writeable = False
+        for given in (*self.placements.values(), *self.rates.values()):
+            for arr in vars(given).values():
+                if isinstance(arr, np.ndarray):
+                    arr.flags.writeable = False
         self._moving = any(b.kind != "ground" for b in self.bodies.values())
         self._frozen = True
 

@@ -14,7 +14,9 @@ the workers need) and in a session of their own (Ctrl-C is the parent's to handl
 Idle workers are kept for the next sweep of this process (starting one costs an interpreter
 and pysolver's imports, about a second): one that ran a deck with user subroutine files or a
 Python deck is given again only to a sweep of the same fingerprint (a C library stays loaded,
-a script's imports stay imported); the others to any sweep.
+a script's imports stay imported); the others to any sweep. A worker started in another
+environment (the settings that change results, :func:`pysolver.settings.affecting_results`)
+is not reused, nor one still loading its model.
 """
 import atexit
 import collections

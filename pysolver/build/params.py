@@ -7,7 +7,13 @@ number, read with VARVAL) have constant slots of their own (the compiler's param
 inertias, marker positions, gravity and sensor thresholds are entries of the kernel's arrays;
 initial velocities and positions make the initial state; Param_Transient and Param_Static
 settings are run options. :meth:`Parameters.apply` puts the deck's values back first, so cases
-never leak into each other. Paths are case-insensitive in the element and attribute names.
+never leak into each other. Paths are case-insensitive in the element and attribute names (a
+case giving one twice is a DeckError).
+
+Each path is the deck's own number in the frame the deck gives it in, so a case is the deck
+edited by hand: a marker's ``pos_*`` in its rm_id's frame, an Adams QP in its part's
+(:mod:`pysolver.build.places`), a body's ``v_ic_*`` along vm_id's axes and ``w_ic_*`` along
+wm_id's (an Adams PART's WX.. along its CM marker's), else global.
 
 A case's value obeys the rules the deck loader applies to the same attribute
 (:func:`check_value`: the attribute's kind in :data:`pysolver.deck.schema.SCHEMA`, converted
