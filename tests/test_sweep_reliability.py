@@ -555,6 +555,11 @@ def test_a_model_that_never_compiles_stops_after_two_workers(tmp_path):
                "startup_timeout=, --startup-timeout, sets the allowance)")
     assert [(r["status"], r["message"]) for r in sw.rows] == \
         [("timeout", stopped)] * 2 + [("timeout", not_run)] * 3
+    from pysolver.cli import main
+    assert main(["sweep", str(deck), "--set", f"{PEN}=1e4,2e4,3e4", "-j", "1", "--timeout",
+                 "1", "--startup-timeout", "1.5", "-o", str(tmp_path / "cli"), "-q"]) == 1
+    table = (tmp_path / "cli" / "table.csv").read_text().splitlines()
+    assert [line.split(",")[2] for line in table[1:]] == ["timeout"] * 3
 
 
 def test_the_startup_allowance_and_its_default():
