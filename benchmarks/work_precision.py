@@ -18,7 +18,10 @@ standard output it writes work_precision.csv, work_precision.md and a log-log PN
 against time (one line per solver) into benchmarks/out/.
 """
 import argparse
+import os
 import pathlib
+import subprocess
+import sys
 import time
 
 import numpy as np
@@ -167,13 +170,24 @@ def seed3_comparators(repeat):
     return rows
 
 
+def build_c_programs(folder):
+    """Build the plain C programs of `folder` (benchmarks/c_ida) with its build.sh, against
+    the scikit-sundae of the interpreter running this (not whatever python3 is on PATH); a
+    RuntimeError with the build's own output when it fails."""
+    done = subprocess.run(["bash", str(folder / "build.sh")], capture_output=True, text=True,
+                          env=dict(os.environ, PYTHON=sys.executable))
+    if done.returncode:
+        raise RuntimeError(f"building the plain C programs ({folder / 'build.sh'}, with "
+                           f"PYTHON={sys.executable}) failed with exit status "
+                           f"{done.returncode}:\n{(done.stderr or done.stdout).strip()}")
+
+
 def c_program(name, *args):
     """Run benchmarks/c_ida/NAME ARGS (built on first use): (first output line's numbers,
     the remaining lines as an array)."""
-    import subprocess
     exe = ROOT / "benchmarks" / "c_ida" / name
     if not exe.exists():
-        subprocess.run(["bash", str(exe.parent / "build.sh")], check=True, capture_output=True)
+        build_c_programs(exe.parent)
     out = subprocess.run([str(exe), *map(str, args)], check=True, capture_output=True,
                          text=True).stdout.split("\n")
     rows = np.array([[float(v) for v in line.split()] for line in out[1:] if line.strip()])

@@ -23,6 +23,8 @@ from .records import (  # noqa: F401 - the records are the model's vocabulary
     Marker,
     Motion,
     Penalty,
+    Placement,
+    Rates,
     Request,
     ScalarForce,
     Sensor,
@@ -62,6 +64,11 @@ class Model:
         self.output_settings = {}       # ResOutput, H3DOutput: kept as written, not used
         self.static = Static()
         self.commands = []
+        # the deck's own numbers of marker places and initial rates, in the frames it gives
+        # them in (the paths of run(params=...) and sweeps mean them): marker id -> Placement,
+        # body id -> Rates
+        self.placements = {}
+        self.rates = {}
         self.default_command = False    # no Simulate: the default transient (validate)
         self.has_units = False
         self._compiled = {}       # CompiledModel by kind of kernel (compile)
@@ -84,6 +91,10 @@ class Model:
                     arr.flags.writeable = False
         for mk in self.markers.values():
             mk.pos.flags.writeable = mk.rot.flags.writeable = False
+        for given in (*self.placements.values(), *self.rates.values()):
+            for arr in vars(given).values():
+                if isinstance(arr, np.ndarray):
+                    arr.flags.writeable = False
         self._moving = any(b.kind != "ground" for b in self.bodies.values())
         self._frozen = True
 

@@ -114,6 +114,9 @@ class Options:
             problem = rule_problem(name, getattr(self, name))
             if problem:
                 raise ValueError(f"{name} must be {problem}")
+        problem = steps_problem(self.h_min, self.h_max)
+        if problem:
+            raise ValueError(problem)
         # a whole number given as 5000.0 or a NumPy integer is the C long it goes to
         object.__setattr__(self, "max_num_steps", int(self.max_num_steps))
         for name, allowed in _CHOICES.items():
@@ -154,6 +157,29 @@ class Options:
 NAMES = tuple(f.name for f in dataclasses.fields(Options))
 #: The options a deck's Param_Transient sets.
 DECK_NAMES = NAMES[:7]
+
+
+#: Param_Transient's settings that act on transient commands only: a static or quasi-static
+#: command (FIM_S, MKEAM, FIM_D) takes integr_tol alone (docs/statics.md).
+TRANSIENT_ONLY = ("h_max", "h_min", "h0_max", "max_num_steps", "max_step_growth",
+                  "nonlin_conv_coef")
+
+
+def transient_only(options):
+    """The settings of TRANSIENT_ONLY that `options` (an Options, or a dict of some of them)
+    sets to other than their defaults."""
+    default = Options()
+    if isinstance(options, dict):
+        return [n for n in TRANSIENT_ONLY if n in options and options[n] != getattr(default, n)]
+    return [n for n in TRANSIENT_ONLY if getattr(options, n) != getattr(default, n)]
+
+
+def steps_problem(h_min, h_max):
+    """Why the step bounds h_min and h_max (None: unbounded) cannot both hold, or None."""
+    if h_max is not None and h_min is not None and h_min > h_max:
+        return (f"h_min ({h_min:g}) > h_max ({h_max:g}): the smallest step IDA may take is "
+                "larger than the largest")
+    return None
 
 
 def resolve_kernel(kind):

@@ -41,6 +41,31 @@ class Marker:
 
 
 @record
+class Placement:
+    """How the deck places a marker, kept so that a sweep's ``Reference_Marker/ID/pos_*`` mean
+    the deck's own numbers (pysolver.build.params): `local` (its pos_*, an Adams QP) are in
+    the frame of marker `rm` (rm_id, RM: the marker moves with it; `axes` its axes as the
+    loader used them) or, without one, in a fixed frame (`origin`, `axes`: an Adams part's),
+    or global (both None). The global place is origin + axes @ local, as the loader made it."""
+    local: np.ndarray
+    rm: int = None
+    origin: np.ndarray = None
+    axes: np.ndarray = None
+
+
+@record
+class Rates:
+    """A body's initial velocity and spin as the deck gives them (for a sweep's v_ic_* and
+    w_ic_*, which mean the deck's numbers): `v` along marker `vm`'s axes (None: the global
+    axes), `w` along marker `wm`'s (None: the global axes; an Adams or msolve PART's WX..
+    without WM have wm = its CM marker)."""
+    v: np.ndarray
+    vm: int = None
+    w: np.ndarray = None
+    wm: int = None
+
+
+@record
 class Body:
     id: int
     kind: str              # "ground", "point" or "rigid"
@@ -372,6 +397,8 @@ class Source:
     fmt: str
     user_code: bool = True      # False: loaded with user_code=False (it names no code to run)
     simulate: dict = None       # Simulate attributes that replace the deck's commands
+    built: str = None           # a Python deck: a hash of the elements it recorded
+    modules: tuple = ()         # a Python deck: (path, sha256) of the user's modules it imports
 
     @functools.cached_property
     def sha256(self):

@@ -112,6 +112,17 @@ def held():
     return (_get("PYSOLVER_HELD") or "").strip().lower() not in ("off", "0", "no", "false")
 
 
+def affecting_results():
+    """The settings a run's results depend on (the kernel and backend chosen, planar and held
+    states, the compiler and its time limit that decide whether generated C runs, where user
+    subroutine files are found), as (name, value) pairs: part of a sweep's resume key, and
+    what a sweep's worker kept for later sweeps must have been started with."""
+    return (("kernel", kernel() or ""), ("backend", backend() or ""), ("planar", planar()),
+            ("held", held()), ("CC", compiler_command() or ""),
+            ("compile_timeout", compile_timeout()),
+            ("usersub_dir", os.environ.get("PYSOLVER_USERSUB_DIR", "")))
+
+
 def no_inplace_build():
     """Whether ``PYSOLVER_NO_INPLACE_BUILD`` forbids building the C kernel in a checkout."""
     return bool(os.environ.get("PYSOLVER_NO_INPLACE_BUILD"))

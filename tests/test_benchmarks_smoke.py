@@ -4,8 +4,11 @@ import contextlib
 import importlib.util
 import io
 import os
+import shutil
 import subprocess
 import sys
+
+import pytest
 
 import pysolver
 
@@ -88,3 +91,39 @@ def test_actors_report_runs():
         assert rows[name][1] == "batched", name
     assert rows["loadcontrol_indenter.xml"][3] == "300"
     assert rows["loadcontrol_bed.py"][3] == "120"
+
+
+def _c_ida_copy(tmp_path):
+    """benchmarks/c_ida in a folder of its own, beside csrc (its programs include from it)."""
+    shutil.copytree(BENCH / "c_ida", tmp_path / "benchmarks" / "c_ida",
+                    ignore=shutil.ignore_patterns("seed3_ida", "pendulum_ida"))
+    (tmp_path / "csrc").symlink_to(ROOT / "csrc")
+    return tmp_path / "benchmarks" / "c_ida"
+
+
+def test_the_c_programs_build_with_the_benchmarks_interpreter(tmp_path, monkeypatch):
+    """build.sh finds scikit-sundae's SUNDIALS through the interpreter running the benchmark,
+    even when the python3 on PATH has no scikit-sundae (trial 44, defect 9)."""
+    if shutil.which("gcc") is None:
+        pytest.skip("no gcc to build the plain C programs")
+    folder = _c_ida_copy(tmp_path)
+    bare = tmp_path / "bin"
+    bare.mkdir()
+    (bare / "python3").write_text("#!/bin/sh\necho 'No module named sksundae' >&2\nexit 1\n")
+    (bare / "python3").chmod(0o755)
+    monkeypatch.setenv("PATH", f"{bare}{os.pathsep}{os.environ['PATH']}")
+    _module("work_precision").build_c_programs(folder)
+    assert (folder / "seed3_ida").exists() and (folder / "pendulum_ida").exists()
+
+
+def test_a_failed_build_of_the_c_programs_shows_its_error(tmp_path):
+    """A build that fails is a RuntimeError carrying the build's own error output, not a bare
+    CalledProcessError."""
+    folder = _c_ida_copy(tmp_path)
+    (folder / "build.sh").write_text("echo 'ModuleNotFoundError: No module named sksundae' >&2"
+                                     "\nexit 3\n")
+    with pytest.raises(RuntimeError) as err:
+        _module("work_precision").build_c_programs(folder)
+    assert str(err.value) == (
+        f"building the plain C programs ({folder / 'build.sh'}, with PYTHON={sys.executable}) "
+        "failed with exit status 3:\nModuleNotFoundError: No module named sksundae")

@@ -449,16 +449,34 @@ def test_converting_a_spin_keeps_it_in_every_format(name, tmp_path):
         assert "WM" not in " ".join(part)
 
 
-def test_a_sweep_sets_w_ic_about_the_global_axes():
-    """Body_Rigid/2/w_ic_* of a sweep are about the global axes, whatever the form: a case
-    giving the deck's spin in ground runs the deck exactly, a case's spin is the one in
-    ground, and the next run without it is the deck's again, exactly."""
-    for name, w in SPIN_FORMS.items():
-        model = _load(SPIN / name)
-        plain = model.run(progress=False).request(1)
-        same = model.run(progress=False, params={f"Body_Rigid/2/w_ic_{c}": v
-                                                 for c, v in zip("xyz", w)})
-        assert np.array_equal(same.request(1), plain), name
-        case = model.run(progress=False, params={"Body_Rigid/2/w_ic_y": 2.0})
-        np.testing.assert_allclose(case.request(1)[0, :3], [w[0], 2.0, w[2]], atol=1e-15)
-        assert np.array_equal(model.run(progress=False).request(1), plain), name
+#: Each spin form's text and how a spin of 2 about y is written in it by hand.
+SPIN_EDITS = {"turned_cm.xml": ('w_ic_x="0.3"', 'w_ic_x="0.3" w_ic_y="2.0"'),
+              "turned_cm.adm": ("WX = 0.3, WZ = 1", "WX = 0.3, WY = 2.0, WZ = 1"),
+              "turned_cm_statements.py": ("WX=0.3, WZ=1", "WX=0.3, WY=2.0, WZ=1"),
+              "turned_cm_classes.py": ("wx=0.3, wz=1", "wx=0.3, wy=2.0, wz=1")}
+
+
+@pytest.mark.parametrize("name", list(SPIN_FORMS))
+def test_a_sweep_sets_w_ic_as_the_deck_gives_it(name, tmp_path):
+    """Body_Rigid/2/w_ic_* of a sweep are the deck's own numbers, in the axes the form reads
+    them in (the XML's about the global axes, Adams' and msolve's WX.. along the CM marker's):
+    the deck's numbers come back as the values, a case is the deck edited by hand bit for bit
+    (the spin in ground is the form's), and the next run is the deck's again, exactly."""
+    model = _load(SPIN / name)
+    params = model.compile().parameters
+    assert [params._get(f"Body_Rigid/2/w_ic_{c}") for c in "xyz"] == [0.3, 0.0, 1.0]
+    plain = model.run(progress=False)
+    case = model.run(progress=False, params={"Body_Rigid/2/w_ic_y": 2.0})
+    old, new = SPIN_EDITS[name]
+    edited = tmp_path / name
+    edited.write_text((SPIN / name).read_text().replace(old, new))
+    if name.endswith(".adm"):
+        (tmp_path / "turned_cm.acf").write_text((SPIN / "turned_cm.acf").read_text())
+    by_hand = _load(edited).run(progress=False)
+    assert np.array_equal(case.y, by_hand.y)
+    assert np.array_equal(case.request(1), by_hand.request(1))
+    # about global y in the XML; along the CM marker's y, which is global z, in the others
+    w = np.array(SPIN_FORMS[name]) + ([0.0, 2.0, 0.0] if name.endswith(".xml") else
+                                      [0.0, 0.0, 2.0])
+    np.testing.assert_allclose(case.request(1)[0, :3], w, atol=1e-15)
+    assert np.array_equal(model.run(progress=False).request(1), plain.request(1))

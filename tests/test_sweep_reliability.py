@@ -533,3 +533,46 @@ def test_a_runs_statistics_do_not_depend_on_the_runs_before():
     for a, b in ((first, again), (heavy, heavy_again)):
         assert a.stats == b.stats
         assert np.array_equal(a.y, b.y)
+
+
+HANGS = '''
+def PFOSUB(id, time_, par, npar, dflag, iflag):
+    while True:
+        pass
+'''
+
+
+def test_a_model_that_never_compiles_stops_after_two_workers(tmp_path):
+    """A routine that never returns when it is traced (at the worker's compile; the parent
+    compiles nothing): each worker gets startup_timeout, not the case's timeout; after two in a
+    row the cases not yet run are rows at once (trial 44, defect 5)."""
+    deck = usersub_deck(tmp_path, HANGS)
+    cases = [{PEN: 1e4 + i} for i in range(5)]
+    sw = pysolver.sweep(deck, cases, processes=1, timeout=1.0, startup_timeout=1.5)
+    stopped = "stopped: the worker did not load and compile the model within 1.5 s"
+    not_run = ("not run: the model did not finish loading and compiling in a worker within "
+               "1.5 s, 2 times in a row (a deck, user subroutine or compiler that hangs; "
+               "startup_timeout=, --startup-timeout, sets the allowance)")
+    assert [(r["status"], r["message"]) for r in sw.rows] == \
+        [("timeout", stopped)] * 2 + [("timeout", not_run)] * 3
+    from pysolver.cli import main
+    assert main(["sweep", str(deck), "--set", f"{PEN}=1e4,2e4,3e4", "-j", "1", "--timeout",
+                 "1", "--startup-timeout", "1.5", "-o", str(tmp_path / "cli"), "-q"]) == 1
+    table = (tmp_path / "cli" / "table.csv").read_text().splitlines()
+    assert [line.split(",")[2] for line in table[1:]] == ["timeout"] * 3
+
+
+def test_the_startup_allowance_and_its_default():
+    """Without startup_timeout: no limit without a timeout, else the larger of the timeout and
+    pool.STARTUP; a startup_timeout that is not a positive number is refused."""
+    from pysolver.batch import pool
+    payload = ("fp", b"", True)
+    assert pool.Pool(payload, 1).startup is None
+    assert pool.Pool(payload, 1, timeout=2.0).startup == pool.STARTUP == 300.0
+    assert pool.Pool(payload, 1, timeout=900.0).startup == 900.0
+    assert pool.Pool(payload, 1, timeout=2.0, startup=5.0).startup == 5.0
+    for bad in (0, -1.0, float("nan"), True, "10"):
+        with pytest.raises(ValueError) as err:
+            pysolver.sweep(DECK, [{PEN: 1e4}], processes=0, startup_timeout=bad)
+        assert str(err.value) == f"startup_timeout: got {bad!r}; expected a number of " \
+                                 "seconds > 0"

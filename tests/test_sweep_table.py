@@ -134,3 +134,37 @@ def test_sample_takes_any_whole_number_of_cases():
         got = pysolver.sample({PEN: (5e3, 2e4)}, np.int64(4), method=method, seed=1)
         assert len(got) == 4 and all(5e3 <= c[PEN] <= 2e4 and not math.isnan(c[PEN])
                                      for c in got)
+
+
+def test_a_path_given_twice_is_refused_before_any_case_runs(tmp_path, capsys):
+    """Paths are case-insensitive: two spellings in one case, one path spelled two ways across
+    cases, a repeated --set or a repeated CSV column are each one clear error (trial 44,
+    defect 4), never a case run with one of the values and shown with the other."""
+    from pysolver.cli import main
+    twice = [{PEN: 5e3, "force_penalty/1/PENALTY": 2e4}]
+    with pytest.raises(ValueError) as err:
+        _sweep(twice)
+    assert str(err.value) == ("case 0 gives one path twice, as 'Force_Penalty/1/penalty' and "
+                              "'force_penalty/1/PENALTY' (paths are case-insensitive)")
+    with pytest.raises(ValueError) as err:
+        _sweep([{PEN: 5e3}, {"force_penalty/1/PENALTY": 2e4}])
+    assert str(err.value) == ("the cases spell one path two ways, 'Force_Penalty/1/penalty' "
+                              "and 'force_penalty/1/PENALTY' (case 1); paths are "
+                              "case-insensitive: use one spelling")
+    with pytest.raises(pysolver.DeckError) as err:
+        pysolver.load(DECK).run(params=twice[0])
+    assert err.value.reason == ("sweep parameter 'Force_Penalty/1/penalty': given twice in one "
+                                "case, as 'Force_Penalty/1/penalty' and "
+                                "'force_penalty/1/PENALTY' (paths are case-insensitive)")
+    base = ["sweep", str(DECK), "-j", "0", "-o", str(tmp_path / "out"), "-q"]
+    assert main(base + ["--set", f"{PEN}=5000", "--set", f"{PEN}=20000"]) == 2
+    assert capsys.readouterr().err.strip().splitlines()[-1] == (
+        f"pysolver: error: --set: one path given twice, '{PEN}=5000' and '{PEN}=20000' (paths "
+        "are case-insensitive); give its values once, --set PATH=V1,V2,...")
+    table = tmp_path / "cases.csv"
+    table.write_text(f"{PEN},{PEN.upper()}\n5000,20000\n")
+    assert main(base + ["--cases", str(table)]) == 2
+    assert capsys.readouterr().err.strip().splitlines()[-1] == (
+        f"pysolver: error: --cases {table}: columns 1 ('{PEN}') and 2 ('{PEN.upper()}') name one "
+        "path (paths are case-insensitive); give each path one column")
+    assert not (tmp_path / "out").exists()

@@ -2,13 +2,15 @@
 ``processes=0``), and the key its row is stored under.
 
 A stored row is reused only while everything its result depends on is the same:
-:func:`fingerprint` hashes the deck's text, the content of every file it names (user
-subroutine scripts and C libraries), pysolver's version, the kernel and backend chosen by
-environment, and the outputs asked for; :func:`case_key` adds the case.
+:func:`fingerprint` hashes the deck's text, the Simulate command that replaced its own
+(``load(deck, simulate=...)``), what a Python deck built and the user's modules it imports
+(:mod:`pysolver.deck.provenance`), the content of every file it names (user subroutine
+scripts and C libraries), pysolver's version, the environment settings that change results
+(:func:`pysolver.settings.affecting_results`), and the outputs asked for; :func:`case_key`
+adds the case.
 """
 import hashlib
 import json
-import marshal
 import math
 import numbers
 import os
@@ -19,6 +21,7 @@ import numpy as np
 
 from .. import settings
 from .._version import __version__
+from ..deck.provenance import code_token
 from ..errors import DeckError
 
 #: Result.status of a run stopped by Ctrl-C (SIGINT): its case is not a result.
@@ -53,10 +56,17 @@ def fingerprint(model, outputs):
             h.update(p if isinstance(p, bytes) else str(p).encode("utf-8", "surrogatepass"))
             h.update(b"\0")
 
-    put("pysolver", __version__, model.source.fmt, model.source.sha256)
+    source = model.source
+    put("pysolver", __version__, source.fmt, source.sha256)
+    put("simulate", json.dumps(source.simulate, sort_keys=True, default=repr)
+        if source.simulate else "")
+    put("built", source.built or "")
+    for path, digest in source.modules:
+        put("module", path, digest)
     for path in referenced_files(model):
         put("file", path, _file_digest(path))
-    put("kernel", settings.kernel() or "", "backend", settings.backend() or "")
+    for name, value in settings.affecting_results():
+        put("setting", name, value)
     for name in sorted(outputs or {}, key=str):
         put("output", name, _spec_token(outputs[name]))
     return h.hexdigest()
@@ -75,20 +85,7 @@ def _file_digest(path):
 
 def _spec_token(spec):
     """An output spec as text: the spec itself, or a function by its name and code."""
-    if not callable(spec):
-        return "spec:" + str(spec)
-    fn = getattr(spec, "__func__", spec)
-    parts = [getattr(fn, "__module__", ""), getattr(fn, "__qualname__", repr(fn))]
-    code = getattr(fn, "__code__", None)
-    if code is not None:
-        parts.append(hashlib.sha256(marshal.dumps(code)).hexdigest())
-        parts.append(repr(getattr(fn, "__defaults__", None)))
-        for cell in getattr(fn, "__closure__", None) or ():
-            try:
-                parts.append(repr(cell.cell_contents))
-            except ValueError:
-                parts.append("<empty>")
-    return "function:" + "|".join(parts)
+    return code_token(spec) if callable(spec) else "spec:" + str(spec)
 
 
 def _canonical(v):

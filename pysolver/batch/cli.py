@@ -42,6 +42,10 @@ def add_parser(sub, number):
                    help="worker processes (default: one per core; 0: in this process)")
     p.add_argument("--timeout", type=number(float, 0.0, "a finite number > 0"), default=None,
                    help="seconds per case")
+    p.add_argument("--startup-timeout", type=number(float, 0.0, "a finite number > 0"),
+                   default=None, metavar="S",
+                   help="seconds a worker may take to load and compile the model (default: "
+                        "with --timeout, the larger of it and 300)")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="a Dask scheduler (tcp://...) to run the cases on")
     p.add_argument("-o", "--output", action="append", default=[], metavar="DIR",
@@ -81,11 +85,16 @@ def _cases(args):
     if not args.set:
         raise UsageError("no cases: give --set PATH=V1,V2,... (a grid), --sample with --set "
                      "ranges, or --cases CSV")
-    values = {}
+    values, given = {}, {}
     for item in args.set:
         path, sep, rest = item.partition("=")
         if not sep or not rest:
             raise UsageError(f"--set {item!r}: expected PATH=V1,V2,...")
+        if path.lower() in given:
+            raise UsageError(f"--set: one path given twice, {given[path.lower()]!r} and "
+                             f"{item!r} (paths are case-insensitive); give its values once, "
+                             "--set PATH=V1,V2,...")
+        given[path.lower()] = item
         try:
             values[path] = [_finite(v) for v in rest.split(",")]
         except ValueError:
@@ -120,6 +129,15 @@ def _read_cases(path):
                      "case)")
     if not rows:
         raise UsageError(f"--cases {path}: no cases (a header and no rows)")
+    seen = {}
+    for k, name in enumerate(header, start=1):
+        low = name.strip().lower()
+        if low in seen:
+            first = seen[low]
+            raise UsageError(f"--cases {path}: columns {first} ({header[first - 1].strip()!r}) "
+                             f"and {k} ({name.strip()!r}) name one path (paths are "
+                             "case-insensitive); give each path one column")
+        seen[low] = k
     cases = []
     for line, row in enumerate(rows, start=2):
         if len(row) != len(header):
@@ -162,7 +180,8 @@ def run(args):
     try:
         sw = sweep(args.deck, cases, processes=args.processes, client=client,
                    timeout=args.timeout, outputs=outputs, directory=out,
-                   progress=False if args.quiet else None, keep=keep)
+                   progress=False if args.quiet else None, keep=keep,
+                   startup_timeout=args.startup_timeout)
     except StorageError as err:
         raise UsageError(str(err)) from None
     except ValueError as err:

@@ -14,7 +14,9 @@ the workers need) and in a session of their own (Ctrl-C is the parent's to handl
 Idle workers are kept for the next sweep of this process (starting one costs an interpreter
 and pysolver's imports, about a second): one that ran a deck with user subroutine files or a
 Python deck is given again only to a sweep of the same fingerprint (a C library stays loaded,
-a script's imports stay imported); the others to any sweep.
+a script's imports stay imported); the others to any sweep. A worker started in another
+environment (the settings that change results, :func:`pysolver.settings.affecting_results`)
+is not reused, nor one still loading its model.
 """
 import atexit
 import collections
@@ -28,16 +30,22 @@ import threading
 import time
 from multiprocessing.connection import Connection, wait
 
+from .. import settings
+
 _ONE_THREAD = {k: "1" for k in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS",
                                  "MKL_NUM_THREADS")}
 #: Cases each worker holds: the one it runs and the next.
 DEPTH = 2
 #: Seconds a worker may take to start, load and compile its model before the case it holds is
-#: stopped as ``timeout`` (when the sweep has a time limit; at least that limit).
+#: stopped as ``timeout``, when the sweep has a time limit and no ``startup_timeout`` of its
+#: own (at least that limit: generating and compiling a large deck's C takes a while).
 STARTUP = 300.0
 #: Workers in a row that die while loading the model before the cases not yet given to one
 #: are rows ``crashed`` without running.
 LOAD_DEATHS = 3
+#: Workers in a row that run out of time while loading the model before the cases not yet
+#: given to one are rows ``timeout`` without running (each one waited its startup allowance).
+LOAD_HANGS = 2
 #: Idle workers kept for later sweeps of this process.
 KEEP_IDLE = max(2, os.cpu_count() or 1)
 
@@ -66,6 +74,7 @@ class Worker:
             os.close(life_r)
         self.conn = Connection(ours.detach())
         self.life = life_w
+        self.settings = settings.affecting_results()     # its environment's, for reuse
         self.fp, self.ready, self.pure = None, False, True
         self.jobs = collections.deque()
         self.t0 = time.perf_counter()
@@ -124,9 +133,10 @@ _LOCK = threading.Lock()
 def _take(fp, pure, n):
     """Up to n idle workers that may run the model `fp`: its own first."""
     got = []
+    now = settings.affecting_results()
     with _LOCK:
         for w in list(_IDLE):
-            if not w.alive():
+            if not w.alive() or w.settings != now:   # dead, or started in another environment
                 _IDLE.remove(w)
                 w.stop(kill=True)
         for match in (lambda w: w.fp == fp, lambda w: pure and w.pure):
@@ -179,13 +189,19 @@ class Pool:
     n : int
     timeout : float, optional
         Seconds a case may run before its worker is killed.
+    startup : float, optional
+        Seconds a worker may take to load and compile the model (default: with a `timeout`,
+        the larger of it and :data:`STARTUP`; without one, no limit).
     """
 
-    def __init__(self, payload, n, timeout=None):
+    def __init__(self, payload, n, timeout=None, startup=None):
         self.fp, self.blob, self.pure = payload
         self.n, self.timeout = max(1, int(n)), timeout
+        self.startup = startup if startup is not None else \
+            None if timeout is None else max(timeout, STARTUP)
         self.workers = []
         self.load_deaths = 0              # workers in a row that died before they were ready
+        self.load_hangs = 0               # workers in a row out of time before they were ready
 
     def _new(self):
         w = Worker()
@@ -206,13 +222,15 @@ class Pool:
             self.workers.append(self._new())
         finished = False
         try:
-            while pending or any(w.jobs for w in self.workers):
+            while pending or any(w.jobs for w in self.workers if w is not None):
                 for k, w in enumerate(self.workers):
+                    if w is None:                        # the model never loads: none
+                        continue
                     if pending and w.conn.closed:        # it died idle: a new one
                         w = self.workers[k] = self._new()
                     while len(w.jobs) < DEPTH and pending:
                         self._give(w, pending.popleft())
-                busy = [w for w in self.workers if w.jobs]
+                busy = [w for w in self.workers if w is not None and w.jobs]
                 limits = [self._limit(w) for w in busy]
                 limits = [x for x in limits if x is not None]
                 wait([w.conn for w in busy],
@@ -225,11 +243,8 @@ class Pool:
 
     def _limit(self, w):
         """When the case worker w runs must end (perf_counter time), or None."""
-        if self.timeout is None:
-            return None
-        if w.ready:
-            return w.t0 + self.timeout
-        return w.t0 + max(self.timeout, STARTUP)
+        limit = self.timeout if w.ready else self.startup
+        return None if limit is None else w.t0 + limit
 
     def _give(self, w, job):
         if not w.jobs and w.ready:
@@ -242,6 +257,8 @@ class Pool:
         """Rows of worker k's finished cases; its running case's row if it died or ran out of
         time (the cases queued behind go back to the front of `pending`)."""
         w = self.workers[k]
+        if w is None:
+            return
         dead = False
         while w.jobs:
             try:
@@ -257,7 +274,7 @@ class Pool:
                 continue
             w.jobs.popleft()
             w.t0 = time.perf_counter()       # the next one starts
-            self.load_deaths = 0
+            self.load_deaths = self.load_hangs = 0
             idx, row, blob = got
             if row["status"] == "interrupted":
                 raise KeyboardInterrupt(f"case {idx}: {row['message']}")
@@ -278,37 +295,50 @@ class Pool:
             w.proc.kill()
             msg = f"stopped after {self.timeout:g} s" if w.ready else \
                 f"stopped: the worker did not load and compile the model within " \
-                f"{max(self.timeout, STARTUP):g} s"
+                f"{self.startup:g} s"
             row = {"status": "timeout", "message": msg, "wall": now - w.t0, "steps": None}
+            self.load_hangs = 0 if w.ready else self.load_hangs + 1
         else:
             return
         w.stop(kill=True)
         idx = w.jobs.popleft()[0]
         pending.extendleft(reversed(w.jobs))
         w.jobs.clear()
-        self.workers[k] = self._new()
         yield idx, row, None
+        # the model kills (or never finishes loading in) every worker that loads it: the
+        # other cases would do the same, so they are rows now, without a worker
         if why is not None and self.load_deaths >= LOAD_DEATHS:
-            # the model kills every worker that loads it: the other cases would too
             msg = (f"not run: the worker process died while loading and compiling the model, "
                    f"{self.load_deaths} times in a row (the last: {why})")
-            self.load_deaths = 0
-            while pending:
-                yield pending.popleft()[0], {"status": "crashed", "message": msg, "wall": 0.0,
-                                             "steps": None}, None
+            status = "crashed"
+        elif why is None and self.load_hangs >= LOAD_HANGS:
+            msg = (f"not run: the model did not finish loading and compiling in a worker "
+                   f"within {self.startup:g} s, {self.load_hangs} times in a row (a deck, user "
+                   "subroutine or compiler that hangs; startup_timeout=, --startup-timeout, "
+                   "sets the allowance)")
+            status = "timeout"
+        else:
+            self.workers[k] = self._new()
+            return
+        self.workers[k] = None
+        while pending:
+            yield pending.popleft()[0], {"status": status, "message": msg, "wall": 0.0,
+                                         "steps": None}, None
 
     def close(self, finished=True):
         """Keep healthy idle workers for later sweeps; stop the others (at once when the
         sweep did not finish: their cases are not wanted)."""
         for w in self.workers:
-            if finished and not w.jobs and w.alive():
+            if w is None:
+                continue
+            if finished and not w.jobs and w.ready and w.alive():
                 _give_back(w)
             else:
-                w.stop(kill=True)
+                w.stop(kill=True)             # not wanted, or still loading the model
         self.workers = []
 
 
-def run_chunk(payload, chunk, timeout, want):
+def run_chunk(payload, chunk, timeout, want, startup=None):
     """Cases on one worker of this process (a Dask task): a list of (index, row, Result
     pickle or None)."""
-    return list(Pool(payload, 1, timeout).run(chunk, want))
+    return list(Pool(payload, 1, timeout, startup).run(chunk, want))

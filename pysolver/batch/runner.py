@@ -10,11 +10,14 @@ outputs and the case: :func:`.case.fingerprint`) is there with status ``ok`` (``
 chooses), and runs the others.
 """
 import math
+import numbers
 import os
 import pickle
 import sys
 import time
+import warnings
 
+from ..options import TRANSIENT_ONLY
 from .case import CaseRunner, case_key, check_outputs, fingerprint, reusable
 from .pool import Pool, run_chunk
 from .store import STATUSES, WITH_RESULT, StorageError, Store
@@ -100,7 +103,7 @@ class Sweep:
 
 
 def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, outputs=None,
-          directory=None, progress=None, keep=("ok",)):
+          directory=None, progress=None, keep=("ok",), startup_timeout=None):
     """Run every case of a model: one call for a whole parameter study.
 
     Parameters
@@ -120,7 +123,8 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
         Run the cases as tasks on this Dask cluster instead; each Dask worker runs them in a
         worker process of its own, so crashes and ``timeout`` are handled as here.
     timeout : float, optional
-        Seconds a case may run before its worker is killed (status ``timeout``).
+        Seconds a case may run before its worker is killed (status ``timeout``), counted from
+        when the worker has loaded and compiled the model.
     outputs : dict, optional
         Name -> scalar to record per case: ``"final:request/1/2"``, ``"max:body2.z"``,
         ``"first_event"``, ``"steps"``, or a function of the Result (sent to the workers by
@@ -132,6 +136,11 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
     keep : str or sequence of str, default ("ok",)
         Statuses of stored rows to reuse; the other stored cases run again (a ``timeout``
         with a longer limit, say). ``"all"`` reuses every stored row.
+    startup_timeout : float, optional
+        Seconds a worker may take to load and compile the model before the case it holds is
+        ``timeout`` (default: with a `timeout`, the larger of it and 300 s, the time a large
+        deck's generated C may take; without one, no limit). Two workers in a row that run
+        out of it make the cases not yet run ``timeout`` rows at once.
 
     Returns
     -------
@@ -150,7 +159,9 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
     outputs = dict(outputs or {})
     check_outputs(model, outputs)
     columns = _columns(cases, outputs)
+    _warn_transient_only(model, columns)
     keep = _keep(keep)
+    startup_timeout = _seconds("startup_timeout", startup_timeout)
     fp = fingerprint(model, outputs)
     keys = [case_key(fp, c) for c in cases]
     in_process = processes == 0 and client is None
@@ -165,11 +176,12 @@ def sweep(deck_or_model, cases, *, processes=None, client=None, timeout=None, ou
     bar = _Bar(len(cases), len(cases) - len(todo), progress)
     want = store.directory is not None
     if client is not None:
-        finished = _dask(client, payload, todo, timeout, want)
+        finished = _dask(client, payload, todo, timeout, want, startup_timeout)
     elif in_process:
         finished = _serial(model, todo, outputs, want)
     else:
-        finished = Pool(payload, processes or os.cpu_count() or 1, timeout).run(todo, want)
+        finished = Pool(payload, processes or os.cpu_count() or 1, timeout,
+                        startup_timeout).run(todo, want)
     try:
         for idx, row, blob in finished:
             row = _row(columns, idx, cases[idx], row, False)
@@ -202,7 +214,7 @@ def _columns(cases, outputs):
     """The table's columns: ``case``, every path of the cases, the bookkeeping, the outputs
     (an output ``steps`` is the bookkeeping column of that name), ``resumed``. An output
     named as another column is refused: it would hide that column."""
-    paths = list(dict.fromkeys(str(k) for c in cases for k in c))
+    paths = _paths(cases)
     for name, spec in outputs.items():
         if name in paths or (name in BOOKKEEPING and (name, spec) != ("steps", "steps")):
             raise ValueError(f"output {name!r}: the table has a column {name!r} already (case, "
@@ -210,6 +222,40 @@ def _columns(cases, outputs):
                              "choose another name")
     return list(dict.fromkeys(["case", *paths, "status", "message", "wall", "steps",
                                *outputs, "resumed"]))
+
+
+def _paths(cases):
+    """Every path of the cases, in the order they first appear; a ValueError for a path a
+    case gives twice (paths are case-insensitive: two spellings are one number) or that the
+    cases spell two ways (two columns for one number)."""
+    spelled = {}                        # lower-case path -> its spelling in the cases
+    for i, case in enumerate(cases):
+        seen = {}
+        for key in map(str, case):
+            low = key.lower()
+            if low in seen:
+                raise ValueError(f"case {i} gives one path twice, as {seen[low]!r} and {key!r} "
+                                 "(paths are case-insensitive)")
+            seen[low] = key
+            first = spelled.setdefault(low, key)
+            if first != key:
+                raise ValueError(f"the cases spell one path two ways, {first!r} and {key!r} "
+                                 f"(case {i}); paths are case-insensitive: use one spelling")
+    return list(spelled.values())
+
+
+def _warn_transient_only(model, paths):
+    """A warning for Param_Transient paths a deck without a transient command does not use
+    (its static and quasi-static commands take integr_tol alone): they would vary nothing."""
+    analyses = {c.analysis for c in model.commands}
+    if "TRANSIENT" in analyses or not analyses & {"STATIC", "QUASI-STATIC"}:
+        return
+    unused = [p for p in paths if p.lower().startswith("param_transient/")
+              and p.split("/")[-1].lower() in TRANSIENT_ONLY]
+    if unused:
+        warnings.warn(f"{', '.join(unused)}: the deck has no transient command, and its static "
+                      "and quasi-static commands take integr_tol alone (docs/statics.md): these "
+                      "values change nothing", UserWarning, stacklevel=3)
 
 
 def _row(columns, idx, case, got, resumed):
@@ -222,6 +268,16 @@ def _row(columns, idx, case, got, resumed):
                if k in row and (k not in inputs or k in BOOKKEEPING))
     row["case"], row["resumed"] = idx, resumed
     return row
+
+
+def _seconds(name, value):
+    """A time limit: None, or a finite number of seconds > 0 (else a ValueError naming it)."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or \
+            not math.isfinite(value) or value <= 0:
+        raise ValueError(f"{name}: got {value!r}; expected a number of seconds > 0")
+    return float(value)
 
 
 def _keep(keep):
@@ -271,7 +327,7 @@ def _serial(model, todo, outputs, want):
         yield idx, row, blob
 
 
-def _dask(client, payload, todo, timeout, want):
+def _dask(client, payload, todo, timeout, want, startup=None):
     """Cases as Dask tasks, a few dozen per task (a task costs the scheduler about a
     millisecond), each run by a worker process of the Dask worker (:func:`.pool.run_chunk`:
     a crashing case is its row ``crashed``, the Dask worker lives on). A task that fails
@@ -280,8 +336,8 @@ def _dask(client, payload, todo, timeout, want):
     nworkers = max(1, len(client.scheduler_info().get("workers", {})))
     size = max(1, min(50, len(todo) // (8 * nworkers)))
     chunks = [todo[i:i + size] for i in range(0, len(todo), size)]
-    futures = {client.submit(run_chunk, payload, chunk, timeout, want, pure=False): chunk
-               for chunk in chunks}
+    futures = {client.submit(run_chunk, payload, chunk, timeout, want, startup, pure=False):
+               chunk for chunk in chunks}
     try:
         for fut in as_completed(futures):
             chunk = futures[fut]
@@ -294,7 +350,7 @@ def _dask(client, payload, todo, timeout, want):
                                         "message": f"{type(err).__name__}: {err}",
                                         "wall": math.nan, "steps": None}, None
                 else:
-                    yield from _dask(client, payload, chunk, timeout, want)
+                    yield from _dask(client, payload, chunk, timeout, want, startup)
                 continue
             yield from got
     finally:

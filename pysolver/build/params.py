@@ -7,7 +7,13 @@ number, read with VARVAL) have constant slots of their own (the compiler's param
 inertias, marker positions, gravity and sensor thresholds are entries of the kernel's arrays;
 initial velocities and positions make the initial state; Param_Transient and Param_Static
 settings are run options. :meth:`Parameters.apply` puts the deck's values back first, so cases
-never leak into each other. Paths are case-insensitive in the element and attribute names.
+never leak into each other. Paths are case-insensitive in the element and attribute names (a
+case giving one twice is a DeckError).
+
+Each path is the deck's own number in the frame the deck gives it in, so a case is the deck
+edited by hand: a marker's ``pos_*`` in its rm_id's frame, an Adams QP in its part's
+(:mod:`pysolver.build.places`), a body's ``v_ic_*`` along vm_id's axes and ``w_ic_*`` along
+wm_id's (an Adams PART's WX.. along its CM marker's), else global.
 
 A case's value obeys the rules the deck loader applies to the same attribute
 (:func:`check_value`: the attribute's kind in :data:`pysolver.deck.schema.SCHEMA`, converted
@@ -21,13 +27,13 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..deck.bodies import centroidal, inertia_tensor, realizable
+from ..deck.bodies import centroidal, inertia_tensor, realizable, spin, velocity
 from ..deck.schema import SCHEMA, Ctx, convert
 from ..deck.validate import value_rule
 from ..errors import DeckError
-from ..options import DECK_NAMES
-from ..rotations import along
+from ..options import DECK_NAMES, steps_problem
 from .energy import energy_paths
+from .places import Places
 from .planar import global_inertia, plane_rows, why_not
 
 _STATIC = ("max_ke_tol", "max_dq_tol", "max_num_iter", "max_imbalance", "max_error",
@@ -109,8 +115,8 @@ class Parameters:
         self.model, self.kernel = model, kernel
         self._base = {}                 # path -> the deck's value, for the paths set so far
         self._deck = {}                 # path -> the deck's value, once read (they never change)
-        self._movers = {}               # body id -> its markers (a cg marker moves them all)
-        self._spins = {}                # body id -> its w_ic (see _spin)
+        self._places = None             # the markers' places (pysolver.build.places)
+        self._rates = {}                # body id -> (v_ic, w_ic): the deck's, or a case's
         self._names = {}                # lower-case path -> canonical path
         self._dirty = set()             # bodies whose inertia about the cg must be remade
         # marker -> the body whose inertia about its cg follows it (an IM away from the cg)
@@ -162,17 +168,23 @@ class Parameters:
         self.reset()
         try:
             options = self._set_case(case)
+            self._check_steps(options)
         except DeckError:
             self.reset()
             raise
+        self._sync_places()
         self._sync_inertias(case)
         self._sync_planar(case)
         return options
 
     def _set_case(self, case):
-        options = {}
+        options, given = {}, {}
         for raw, value in case.items():
             path = self.canonical(raw)
+            if path in given:
+                raise _error(path, f"given twice in one case, as {given[path]!r} and {raw!r} "
+                             "(paths are case-insensitive)")
+            given[path] = raw
             v = check_value(path, value)
             kind, *key = path.split("/")
             if (kind == "Force_SpringDamper" and key[1] == "length" and v < 0
@@ -189,6 +201,17 @@ class Parameters:
             self._set(path, v)
         return options
 
+    def _check_steps(self, options):
+        """A DeckError when the case's h_min and h_max, with the deck's, cannot both hold."""
+        if "h_min" in options or "h_max" in options:
+            deck = self.model.transient
+            problem = steps_problem(options.get("h_min", deck.h_min),
+                                    options.get("h_max", deck.h_max))
+            if problem:
+                path = "Param_Transient/h_min" if "h_min" in options else \
+                    "Param_Transient/h_max"
+                raise _error(path, problem)
+
     def reset(self):
         """The deck's values everywhere."""
         if not self._base:
@@ -196,6 +219,10 @@ class Parameters:
         for path, v in self._base.items():
             self._set(path, v)
         self._base.clear()
+        self._sync_places()
+        if self._places is not None:
+            self._places.forget()
+        self._rates.clear()
         self._sync_inertias(None)
         self._sync_planar(None)
 
@@ -259,11 +286,10 @@ class Parameters:
                 return b.mass
             if attr.startswith("inertia_"):
                 return _inertia_numbers(b.inertia_im)[_INERTIA.index(attr[8:])]
-            if attr.startswith("w_ic"):
-                return float(self._spin(b)[2]["xyz".index(attr[-1])])
-            return float(b.vel["xyz".index(attr[-1])])
+            rates = m.rates[b.id]
+            return float((rates.w if attr.startswith("w_ic") else rates.v)["xyz".index(attr[-1])])
         if kind == "Reference_Marker":
-            return float(m.markers[int(key[0])].pos["xyz".index(key[1][-1])])
+            return float(m.placements[int(key[0])].local["xyz".index(key[1][-1])])
         if kind == "Force_Gravity":
             return float(m.gravity["xyz".index(key[0][-1])])
         if kind == "Sensor_Event":
@@ -280,7 +306,9 @@ class Parameters:
         elif kind in ("Body_Point", "Body_Rigid"):
             self._set_body(path, m.bodies[int(key[0])], key[1], v)
         elif kind == "Reference_Marker":
-            self._set_marker(path, int(key[0]), "xyz".index(key[1][-1]), v)
+            if self._places is None:
+                self._places = Places(m, k)
+            self._places.set(int(key[0]), "xyz".index(key[1][-1]), v)
         elif kind == "Force_Gravity":
             m.gravity["xyz".index(key[0][-1])] = v
             k.m.gravity = k.arrays["gravity"] = list(m.gravity)   # the compliance reads both
@@ -313,22 +341,21 @@ class Parameters:
                              "triangle inequality")
             _assign(b, inertia_im=raw)
             self._dirty.add(b.id)
-        elif attr.startswith("w_ic"):
-            deck, deck_global, now = self._spin(b)
-            now["xyz".index(attr[-1])] = v
-            b.omega[:] = deck if np.array_equal(now, deck_global) else along(b.rot.T, now)
         else:
-            b.vel["xyz".index(attr[-1])] = v
-
-    def _spin(self, b):
-        """(the deck's angular velocity in body b's axes, the same about the global axes, the
-        case's about the global axes): w_ic_* paths are about the global axes, as
-        MotionSolve's Body_Rigid gives them; the deck's own numbers come back exactly."""
-        got = self._spins.get(b.id)
-        if got is None:
-            w = along(b.rot, b.omega)
-            got = self._spins[b.id] = (b.omega.copy(), w, w.copy())
-        return got
+            # the deck's numbers, along its vm_id's / wm_id's axes when it gives one (an Adams
+            # PART's WX.. along its CM marker's), placed again as the loader places them
+            rates = self.model.rates[b.id]
+            got = self._rates.get(b.id)
+            if got is None:
+                got = self._rates[b.id] = (rates.v.copy(), rates.w.copy())
+            v_ic, w_ic = got
+            markers = self.model.markers
+            if attr.startswith("w_ic"):
+                w_ic["xyz".index(attr[-1])] = v
+                b.omega[:] = spin(w_ic, markers[b.cg], markers.get(rates.wm))
+            else:
+                v_ic["xyz".index(attr[-1])] = v
+                b.vel[:] = velocity(v_ic, markers.get(rates.vm))
 
     def _sync_energy(self, b):
         """KE's constants of body b (pysolver.build.energy) after a change of its mass or
@@ -340,29 +367,14 @@ class Parameters:
             if path in k.params:
                 k.arrays["consts"][k.params[path]] = v
 
-    def _set_marker(self, path, mid, axis, v):
-        """A marker's global position; a body's cg marker moves the body (its other markers
-        stay where they are in space)."""
-        m, k = self.model, self.kernel
-        mk = m.markers[mid]
-        mk.pos[axis] = v
-        if mid in self._offset_markers:
-            self._dirty.add(self._offset_markers[mid])
-        body = m.bodies[mk.body]
-        if body.kind != "ground" and body.cg == mid:
-            body.pos[axis] = v
-            movers = self._movers.get(body.id)
-            if movers is None:
-                movers = self._movers[body.id] = [x for x in m.markers.values()
-                                                  if x.body == body.id]
-        else:
-            movers = [mk]
-        for x in movers:
-            if x is mk and body.kind != "ground" and body.cg == mid:
-                continue                      # the cg marker stays at the body's origin
-            row = k.marker_index[x.id]
-            local = x.pos if body.kind == "ground" else body.rot.T @ (x.pos - body.pos)
-            k.arrays["marker_pos"][3 * row:3 * row + 3] = local
+    def _sync_places(self):
+        """The markers whose numbers a case set, and those placed in their frames, placed as
+        the deck places them (pysolver.build.places); a body whose IM offset they change gets
+        its inertia about the cg again."""
+        if self._places is not None:
+            for mid in self._places.sync():
+                if mid in self._offset_markers:
+                    self._dirty.add(self._offset_markers[mid])
 
     def _why_not(self, path):
         parts = path.split("/")

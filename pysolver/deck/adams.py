@@ -16,6 +16,7 @@ import warnings
 import numpy as np
 
 from ..errors import DeckError, DeckWarning
+from ..records import Placement
 from ..rotations import rot_313, rot_321, rot_from_e
 from . import msolve
 from .adams_statements import COMMANDS, DATASET, EXTENSIONS, PRIMARY, SHARED
@@ -651,6 +652,20 @@ class _Reader:
         if "RM" in vals:
             kw["RM"] = vals["RM"]
         return kw
+
+    def marker_reference(self, mid):
+        """How QP places marker `mid` when marker_placement gives its global place (its part's
+        frame is not the global one): its QP in RM's frame (with RM's axes as marker_pose
+        makes them) or in the part's; None when the statement's own QP and RM say it (or a
+        FLOATING marker has none). A sweep's pos_* then mean QP (pysolver.build.params)."""
+        stmt, vals, lines = self.markers[mid]
+        po, pa = self.parts[self.marker_body(mid)[2]]
+        if vals.get("FLOATING") or not (po.any() or not np.array_equal(pa, np.eye(3))):
+            return None
+        qp = self.triple(stmt, vals, lines, "QP", np.zeros(3))
+        if "RM" in vals:
+            return Placement(qp, rm=vals["RM"], axes=self.marker_pose(vals["RM"])[1])
+        return Placement(qp, origin=po, axes=pa)
 
 
 #: The orientation keywords of a part (origin, 3-1-3 angles, a point on z, a point in the x-z

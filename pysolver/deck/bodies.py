@@ -1,7 +1,7 @@
 """Markers and bodies of a deck: global frames of markers, mass properties of bodies."""
 import numpy as np
 
-from ..model import Body, Marker
+from ..model import Body, Marker, Placement, Rates
 from ..rotations import along, rot_313, rot_321, rot_from_e
 
 #: What a massless (dummy) part's deck must give instead (docs/deck-language.md).
@@ -27,19 +27,25 @@ def add_bodies(model, bodies_raw, markers_raw):
         ctx.id = mid
         R = _orientation(ctx, a)
         p = np.array([a["pos_x"], a["pos_y"], a["pos_z"]])
+        placed = Placement(p.copy())
         if a["rm_id"] is not None:
             if a["rm_id"] not in markers_raw:
                 raise ctx.error(f"rm_id {a['rm_id']} is not a Reference_Marker", "rm_id")
             if a["rm_id"] in stack:
                 raise ctx.error("rm_id chain refers back to this marker", "rm_id")
-            p0, R0 = frame(a["rm_id"], stack + (mid,))
-            p, R = p0 + R0 @ p, R0 @ R
-        frames[mid] = (p, R)
+            p0, R0, _ = frame(a["rm_id"], stack + (mid,))
+            placed = Placement(p.copy(), rm=a["rm_id"], axes=R0)
+            p, R = place(p0, R0, p), R0 @ R
+        # an Adams marker of a part whose frame is not the global one: the reader gives its
+        # global place, and how QP placed it (pysolver.deck.adams, marker_reference)
+        given = ctx.names.get("#placement")
+        frames[mid] = (p, R, given if given is not None else placed)
         return frames[mid]
 
     for mid, (_, a) in markers_raw.items():
-        p, R = frame(mid)
+        p, R, placed = frame(mid)
         model.markers[mid] = Marker(mid, a["body_id"], p, R, a["label"])
+        model.placements[mid] = placed
 
     # a marker on an undeclared body is its own error, before a body's cg_id names it
     declared = set(model.bodies) | {a["id"] for _, a in bodies_raw}
@@ -71,10 +77,14 @@ def add_bodies(model, bodies_raw, markers_raw):
             raise ctx.error(f"missing: the mass, and pysolver has no massless parts: {MASSLESS}",
                             "mass")
         cg = marker_of(ctx, a, "cg_id")
-        vel = np.array([a["v_ic_x"], a["v_ic_y"], a["v_ic_z"]])
+        v_ic = np.array([a["v_ic_x"], a["v_ic_y"], a["v_ic_z"]])
         vm = _direction_marker(model, ctx, a, "vm_id")
-        if vm is not None:                   # v_ic along vm's axes
-            vel = along(vm.rot, vel)
+        vel = velocity(v_ic, vm)
+        w_ic = np.array([a.get("w_ic_x", 0.0), a.get("w_ic_y", 0.0), a.get("w_ic_z", 0.0)])
+        wm = _direction_marker(model, ctx, a, "wm_id")
+        # an Adams or msolve PART without WX..: those a sweep gives are along its CM marker
+        wm_id = wm.id if wm is not None else ctx.names.get("#wm")
+        model.rates[a["id"]] = Rates(v_ic, vm and vm.id, w_ic, wm_id)
         if ctx.tag == "Body_Point":
             model.bodies[a["id"]] = Body(a["id"], "point", a["mass"], None, cg.pos.copy(),
                                          np.eye(3), vel, np.zeros(3), a["label"], cg=cg.id)
@@ -103,7 +113,7 @@ def add_bodies(model, bodies_raw, markers_raw):
                             "parallel-axis term m(|d|^2 E - d d^T) is not positive definite "
                             "(or breaks the triangle inequality): give the inertia about the "
                             "IM marker's origin, not about the centre of mass", "im_id")
-        omega = _spin(model, ctx, a, cg)
+        omega = spin(w_ic, cg, wm)
         model.bodies[a["id"]] = Body(a["id"], "rigid", a["mass"], inertia,
                                      cg.pos.copy(), cg.rot.copy(), vel, omega,
                                      a["label"], cg=cg.id, im_rot=Rb, inertia_im=Iim,
@@ -140,17 +150,27 @@ def _offset(d):
     return "(" + ", ".join(f"{v:.6g}" for v in d) + ")"
 
 
-def _spin(model, ctx, a, cg):
+def place(origin, axes, local):
+    """A marker's global position from its deck numbers `local` in the frame (`origin`,
+    `axes`) they are given in: the one formula the loaders and a sweep's marker paths use."""
+    return origin + axes @ local
+
+
+def velocity(v_ic, vm):
+    """A body's initial velocity (global) from the deck's v_ic: along marker vm's axes when
+    given (a Marker or None), else global."""
+    return v_ic.copy() if vm is None else along(vm.rot, v_ic)
+
+
+def spin(w_ic, cg, wm):
     """A rigid body's initial angular velocity in its own (cg marker's) axes: w_ic about the
     global axes, as MotionSolve's Body_Rigid defines it, or along wm_id's axes when given (the
     Adams and msolve readers give WX, WY, WZ with WM = the CM marker when no WM is given:
     Adams reads them along the CM marker's axes); docs/deck-language.md, "Initial angular
-    velocity"."""
-    omega = np.array([a["w_ic_x"], a["w_ic_y"], a["w_ic_z"]])
-    wm = _direction_marker(model, ctx, a, "wm_id")
+    velocity". `cg` and `wm` are Markers (wm may be None)."""
     if wm is not None and wm.id == cg.id:
-        return omega
-    return along(cg.rot.T if wm is None else cg.rot.T @ wm.rot, omega)
+        return w_ic.copy()
+    return along(cg.rot.T if wm is None else cg.rot.T @ wm.rot, w_ic)
 
 
 def _direction_marker(model, ctx, a, key):

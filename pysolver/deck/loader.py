@@ -10,7 +10,7 @@ import traceback
 
 from ..errors import DeckError, MissingFileError
 from ..model import Model, Source
-from . import adams, msolve
+from . import adams, msolve, provenance
 from .validate import build_model
 from .xml_reader import read_elements
 
@@ -167,12 +167,15 @@ def loads(text: str, fmt: str = "xml", file: str = "<string>",
     dataset). See :func:`load`."""
     _not_class_model(text, "loads", "a deck's text")
     elements = _elements(text, fmt, file, user_code)
+    source = Source(file, text, fmt, user_code, dict(simulate) if simulate else None)
+    if fmt == "py":                     # a program: what it built, and the modules it imports
+        source.built = provenance.elements_digest(elements)
+        source.modules = provenance.local_modules(text, file)
     if simulate:
         elements = [e for e in elements if e[0].lower() not in ("simulate", "stop")]
         elements.append(("Simulate", dict(simulate), None,
                          {k: f"--{k}" for k in simulate}))
-    return build_model(elements, Source(file, text, fmt, user_code,
-                                        dict(simulate) if simulate else None))
+    return build_model(elements, source)
 
 
 def _elements(text, fmt, file, user_code):

@@ -141,8 +141,9 @@ def PART(id, **kw):
                 "inertia_xz"]
         return dict(zip(keys, vals))
     given = {k.upper(): v for k, v in kw.items()}
-    if any(given.get(k) is not None for k in ("WX", "WY", "WZ")) and \
-            given.get("WM") is None and given.get("CM") is not None:
+    spun = any(given.get(k) is not None for k in ("WX", "WY", "WZ"))
+    along_cm = given.get("WM") is None and given.get("CM") is not None
+    if spun and along_cm:
         kw = {k: v for k, v in kw.items() if k.upper() != "WM"}
         kw["WM"] = given["CM"]
     _emit("PART", "Body_Rigid", {"GROUND": "isground", "MASS": "mass", "CM": "cg_id",
@@ -151,6 +152,8 @@ def PART(id, **kw):
                                  "WY": "w_ic_y", "WZ": "w_ic_z", "VM": "vm_id", "WM": "wm_id",
                                  "LABEL": "label"}, id,
           keywords={"mass": "MASS", "cg_id": "CM", "im_id": "IM", "inertia_xx": "IP"}, **kw)
+    if along_cm and not spun:           # WX.. a sweep gives are along CM too (Rates.wm)
+        _recorder().elements[-1][3]["#wm"] = given["CM"]
 
 
 def POINT_MASS(id, **kw):

@@ -22,7 +22,7 @@ from ..model import (
     Static,
     Variable,
 )
-from ..options import DECK_NAMES, Options, rule_problem
+from ..options import DECK_NAMES, Options, rule_problem, steps_problem
 from . import units as un
 from . import usersubs
 from .bodies import add_bodies
@@ -184,12 +184,14 @@ def _gravity(ctx, a):
 
 
 def _transient(ctx, a):
-    """Param_Transient as Options, each value checked against its option's rule."""
+    """Param_Transient as Options, each value checked by its option's rule, h_min by h_max."""
     given = {k: a[k] for k in DECK_NAMES if a[k] is not None}
-    for name, val in given.items():
-        problem = value_rule("Param_Transient", name, val)
-        if problem:
-            raise ctx.error(f"got {val:g}; {problem}", name)
+    problems = [(name, f"got {val:g}; {why}") for name, val in given.items()
+                if (why := value_rule("Param_Transient", name, val))]
+    problems.append(("h_min", steps_problem(given.get("h_min"), given.get("h_max"))))
+    name, problem = problems[0]
+    if problem:
+        raise ctx.error(problem, name)
     return Options(**given)
 
 

@@ -24,7 +24,7 @@ from .actors import Actor, Flow
 from .loadcontrol import Interrupted, LoadControlTask, NonFinite
 from .outputs import Printer, Progress, command_rows, over_budget
 from .sensors import Chatter, Sensors
-from .step import ROOT_RETURN, TOO_MUCH_WORK, Step
+from .step import CONV_FAIL, ERR_FAIL, ROOT_RETURN, TOO_MUCH_WORK, Step
 
 
 def max_steps_message(limit, t):
@@ -107,7 +107,11 @@ def failure(model, kernel, options, status, t):
     why = nonfinite.describe(model, kernel)
     if why:
         return -700, f"IDA failed at t = {t:.6g} after a {why}"
-    return status, f"IDA failed at t = {t:.6g}: {Step(t, None, None, status).message}"
+    message = f"IDA failed at t = {t:.6g}: {Step(t, None, None, status).message}"
+    if options.h_min and status in (ERR_FAIL, CONV_FAIL):
+        message += (f" (h_min = {options.h_min:g} is set: IDA may take no smaller step; a "
+                    "smaller h_min, or 0, lets it)")
+    return status, message
 
 
 class Run:

@@ -12,6 +12,7 @@ import math
 import numpy as np
 
 from ..build.consistent import AssemblyError
+from ..options import transient_only
 from .outputs import print_times
 from .pyida import PyIDA
 from .statics import StaticFailure, StaticProblem, fim_s, finished, solve_static  # noqa: F401
@@ -103,6 +104,23 @@ def quasi_static(model, t0, y0, times, params, tol, kind=None):
             x = np.concatenate([yy[prob.qcols], yy[cols]])
         out.append((tp, embed(x)))
     return out, results
+
+
+def unused_note(model, options):
+    """A log line when a run sets settings its static and quasi-static commands do not use
+    (None when it has no such command or sets none)."""
+    if not any(c.analysis in ("STATIC", "QUASI-STATIC") for c in model.commands):
+        return None
+    unused = transient_only(options)
+    if not unused:
+        return None
+    names, one = ", ".join(unused), len(unused) == 1
+    why = "static and quasi-static commands (FIM_S, MKEAM, FIM_D) take integr_tol alone"
+    if any(c.analysis == "TRANSIENT" for c in model.commands):
+        return (f"Param_Transient {names} act{'s' if one else ''} on the transient commands "
+                f"only: {why} (docs/statics.md)")
+    return (f"Param_Transient {names} {'is' if one else 'are'} not used: {why}, and the run "
+            "has no transient command (docs/statics.md)")
 
 
 def run_static(run, cmd):

@@ -6,7 +6,7 @@ import time
 
 from ..build.bindings import lib
 from ..deck.dimensions import channel_units
-from . import integrator, report
+from . import integrator, quasistatic, report
 from .driver import Run
 from .fast import fast_run
 from .outputs import Stream
@@ -31,6 +31,9 @@ def run_model(compiled, progress=None, overrides=None, actors=(), stream=None):
     log = [f"kernel: the tapes run ({gen['why']})"] if gen["kernel"] == "tapes" and \
         kind != "tapes" else []
     log += compiled.notes
+    unused = quasistatic.unused_note(compiled.model, options)
+    if unused:
+        log.append(unused)
     if getattr(compiled.model, "default_command", False):
         log.append("no Simulate command: the default run, a transient of 1 s with 100 "
                    "outputs (docs/deck-language.md)")

@@ -5,6 +5,7 @@ import numpy as np
 
 ROOT_RETURN = 2
 TOO_MUCH_WORK = -1
+ERR_FAIL, CONV_FAIL = -3, -4
 
 _MESSAGES = {0: "Successful function return.", 1: "Reached specified tstop.",
              2: "Found a root.", -1: "Could not reach endpoint after 'max_num_steps'.",
