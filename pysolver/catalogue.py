@@ -351,9 +351,9 @@ REFUSED = {
     "DELAY": "MotionSolve interpolates its history between the points where the solver "
              "happened to evaluate it, which is not exact and makes a run depend on its steps; "
              "pysolver keeps no history of past states",
-    "SWEEP": "its public definitions disagree (MotionSolve's page and Adams' differ in the "
-             "phase of the chirp and in where its STEP5 ramp starts); write the chirp with "
-             "SIN, STEP5 and IF",
+    "SWEEP": "its public definitions disagree (MotionSolve's page and the Adams-derived ones "
+             "differ in the chirp's phase and in where its STEP5 ramp starts); write the "
+             "chirp with SIN, STEP5 and IF",
     "INVPSD": "the signal it rebuilds from a power spectral density depends on random phases "
               "drawn by a generator that is not public",
     "INTERP": "it reads SPLINEs of DAC or RPC III time-history files (Adams Durability), "

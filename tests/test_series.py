@@ -235,9 +235,9 @@ def test_step_bounds_that_meet_at_run_time_stop_a_force_naming_it(kernel):
      "drawn by a generator that is not public"),
     ("INTERP", "it reads SPLINEs of DAC or RPC III time-history files (Adams Durability), "
      "which pysolver does not read; use AKISPL, CUBSPL or LINSPL"),
-    ("SWEEP", "its public definitions disagree (MotionSolve's page and Adams' differ in the "
-     "phase of the chirp and in where its STEP5 ramp starts); write the chirp with SIN, STEP5 "
-     "and IF"),
+    ("SWEEP", "its public definitions disagree (MotionSolve's page and the Adams-derived ones "
+     "differ in the chirp's phase and in where its STEP5 ramp starts); write the chirp with "
+     "SIN, STEP5 and IF"),
     ("VTORQ", "force functions of Force_Vector_TwoBody are not supported yet; FX..TZ(i, j, k) "
      "give the net force and torque at a marker"),
     ("FIELD", "pysolver does not model the Force_Field (Adams FIELD) it reads"),
