@@ -8,11 +8,13 @@ Everything else reads this table: the parser's names, arities and id arguments
 tape basis (``build/compiler.py``), the generated C's tables (``build/codegen``) and the
 function table of docs/deck-language.md (``python -m pysolver.catalogue``). C cannot read it:
 tests/test_catalogue.py checks that ``csrc/include/pysolver.h``'s ``PS_OP_*`` and ``PS_M_*``
-enums and ``csrc/usersub.c``'s c_sysfnc table agree with it. The element kinds (their kernel
+enums and ``csrc/usersub.c``'s c_sysfnc table agree with it. The functions of MotionSolve
+and Adams that pysolver does not have (:data:`REFUSED`), the element kinds (their kernel
 layouts) and the joint types' equations are declared here too.
 
-Longer than 420 lines because it is a table: the functions, the element kinds and the joint
-types, each a record or a row, are the one place they are declared.
+Longer than 420 lines because it is a table: the functions, those it does not have, the
+element kinds and the joint types, each a record or a row, are the one place they are
+declared.
 """
 import operator
 import re
@@ -28,7 +30,8 @@ READS = ("time", "positions", "velocities", "accelerations", "forces", "variable
 #: constraint's g may not have them).
 DYNAMIC = frozenset({"velocities", "accelerations", "forces"})
 #: Kinds of record.
-KINDS = ("name", "arithmetic", "math1", "math2", "step", "special", "measure", "internal")
+KINDS = ("name", "arithmetic", "math1", "math2", "step", "expanded", "special", "measure",
+         "internal")
 
 
 @dataclass(frozen=True)
@@ -100,6 +103,9 @@ class Function:
         if self.name == "IF":
             return "IF(e1: e2, e3, e4)"
         lo, hi = self.arity
+        if hi - lo > 3:                 # a series: its first optional argument and its last
+            return f"{self.name}({', '.join(self.args[:lo])}[, {self.args[lo]}, ..., " \
+                   f"{self.args[-1]}])"
         tail = "".join(f"[, {a}" for a in self.args[lo:]) + "]" * (hi - lo)
         return f"{self.name}({', '.join(self.args[:lo])}{tail})"
 
@@ -115,6 +121,15 @@ def _math2(name, args, py, doc, math_name=None):
 
 def _step(name, doc):
     return Function(name, "step", ("x", "x0", "h0", "x1", "h1"), "PS_OP_STEPC", doc)
+
+
+def _expanded(name, args, doc, required=None):
+    """A function the parser writes as other operations (pysolver.deck.series)."""
+    return Function(name, "expanded", args, None, doc, required=required)
+
+
+#: The coefficients of POLY, CHEBY, FORCOS and FORSIN: at most 31 (Adams, MotionSolve).
+_COEFFICIENTS = tuple(f"a{j}" for j in range(31))
 
 
 _POS = frozenset({"positions"})
@@ -189,6 +204,20 @@ TABLE = (
     _step("STEP", "h0 + (h1 - h0) D^2 (3 - 2 D), D = (x - x0) / (x1 - x0) clamped to [0, 1]"),
     _step("STEP5", "as STEP with D^3 (10 - 15 D + 6 D^2): smooth second derivative"),
     _step("HAVSIN", "as STEP with (1 - cos(pi D)) / 2"),
+    # series and harmonics, written as arithmetic and SIN/COS when parsed
+    _expanded("SHF", ("x", "x0", "a", "w", "phi", "b"),
+              "simple harmonic function a SIN(w (x - x0) - phi) + b"),
+    _expanded("POLY", ("x", "x0") + _COEFFICIENTS,
+              "polynomial a0 + a1 u + a2 u^2 + ... + an u^n, u = x - x0", required=3),
+    _expanded("CHEBY", ("x", "x0") + _COEFFICIENTS,
+              "Chebyshev series a0 T0(u) + ... + an Tn(u), u = x - x0, T0 = 1, T1 = u, "
+              "Tj = 2 u Tj-1 - Tj-2", required=3),
+    _expanded("FORCOS", ("x", "x0", "w") + _COEFFICIENTS,
+              "Fourier cosine series a0 + a1 COS(w u) + ... + an COS(n w u), u = x - x0",
+              required=4),
+    _expanded("FORSIN", ("x", "x0", "w") + _COEFFICIENTS,
+              "Fourier sine series a0 + a1 SIN(w u) + ... + an SIN(n w u), u = x - x0",
+              required=4),
     Function("IF", "special", ("e1", "e2", "e3", "e4"), "PS_OP_IF",
              "e2 where e1 < 0, e3 where e1 = 0, e4 where e1 > 0"),
     Function("IMPACT", "special", ("x", "dx", "x1", "k", "e", "cmax", "d"), None,
@@ -248,7 +277,8 @@ TABLE = (
                ids=(None, None, "spline", None), py_sysfnc=False)
       for name, what in (("AKISPL", "Akima's cubic spline"),
                          ("CUBSPL", "the cubic spline (not-a-knot ends)"),
-                         ("LINSPL", "the broken line"), ("QUISPL", "the quintic spline"))),
+                         ("LINSPL", "the broken line"),
+                         ("QUISPL", "the natural quintic spline (Herriot-Reinsch)"))),
     *(Function(name, "special", ("i", "j", "k"), None,
                f"{what} acting at marker i (from the elements between i and j when j is not 0), "
                "in k's axes: forces and constraint forces (pysolver.build.netforce)",
@@ -295,6 +325,9 @@ TABLE = (
              "2-4 force in rm's axes, 5 |torque|, 6-8 torque; on I's body at I (jflag 0) or "
              "on J's at J (1)", reads=frozenset({"forces"}),
              ids=("joint", None, None, "marker"), py_sysfnc=True),
+    Function("JPRIM", "expanded", _FORCE_ARGS, None,
+             "Adams' name of JOINT(id, jflag, comp, rm) for a Constraint_Jprim",
+             reads=frozenset({"forces"}), ids=("joint", None, None, "marker")),
     Function("MOTION", "special", _FORCE_ARGS, None,
              "reaction of Motion_Marker or Motion_Joint id along its axis; with 4 arguments a "
              "component as SFORCE's", required=1, reads=frozenset({"forces"}),
@@ -308,6 +341,41 @@ TABLE = (
     _internal("user", "a user subroutine the kernel calls"),
     _internal("state", "a state entry read with its derivative (a motion's reaction)"),
 )
+
+# the functions pysolver does not have -------------------------------------------------------
+_NOT_MODELLED = "pysolver does not model the {} it reads"
+#: Functions of MotionSolve or Adams that pysolver does not support, and why: the parser says
+#: "not supported", never "unknown" (docs/deck-language.md, "Functions pysolver does not
+#: have"); a function of the table above of the same name wins.
+REFUSED = {
+    "DELAY": "MotionSolve interpolates its history between the points where the solver "
+             "happened to evaluate it, which is not exact and makes a run depend on its steps; "
+             "pysolver keeps no history of past states",
+    "SWEEP": "its public definitions disagree (MotionSolve's page and the Adams-derived ones "
+             "differ in the chirp's phase and in where its STEP5 ramp starts); write the "
+             "chirp with SIN, STEP5 and IF",
+    "INVPSD": "the signal it rebuilds from a power spectral density depends on random phases "
+              "drawn by a generator that is not public",
+    "INTERP": "it reads SPLINEs of DAC or RPC III time-history files (Adams Durability), "
+              "which pysolver does not read; use AKISPL, CUBSPL or LINSPL",
+    "INCANG": "not yet; the included angle is ACOS of the dot product of the two "
+              "displacements, written with DX, DY, DZ and DM",
+    "TRIM": "MotionSolve's page does not give its formula",
+    **dict.fromkeys(("VFORCE", "VTORQ", "VTORQUE", "GFORCE"),
+                    "force functions of Force_Vector_TwoBody are not supported yet; FX..TZ(i, "
+                    "j, k) give the net force and torque at a marker"),
+    **{name: _NOT_MODELLED.format(what) for name, what in (
+        ("BEAM", "Force_Beam (Adams BEAM)"), ("FIELD", "Force_Field (Adams FIELD)"),
+        ("FRICTION", "Force_Friction (Adams FRICTION)"), ("NFORCE", "Adams NFORCE"),
+        ("CONTACT", "Force_Contact (Adams CONTACT)"), ("CVCV", "Adams CVCV"),
+        ("PTCV", "Adams PTCV"), ("CURVE", "Reference_Curve (Adams CURVE)"),
+        ("ARYVAL", "Reference_Array (Adams ARRAY)"), ("DIF", "Control_Diff (Adams DIFF)"),
+        ("DIF1", "Control_Diff (Adams DIFF)"), ("PINVAL", "Control_PlantInput (Adams PINPUT)"),
+        ("POUVAL", "Control_PlantOutput (Adams POUTPUT)"),
+        ("FXFREQ", "flexible bodies"), ("FXMODE", "flexible bodies"))},
+}
+#: Names of Adams that pysolver does not support (a linear analysis' mode number).
+REFUSED_NAMES = {"MODE": "pysolver runs no linear (modal) analysis"}
 
 #: Callable functions of the deck language by name (not names, arithmetic or instructions).
 #: WM, ACCM and WDTM: the three components whose norm each is (in the global axes).

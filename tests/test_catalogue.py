@@ -134,7 +134,9 @@ def test_the_jacobian_deck_uses_every_function():
     the state); ORIENT, an output whose derivative is singular where a
     parameter passes 0, in springs.xml's request; BUSH, which would remove the bushing the
     bushing tests replace, is compared with the bushing's law in test_bushing.py; FX..TM, sums
-    of the element force functions, are compared with them in test_netforce.py)."""
+    of the element force functions, are compared with them in test_netforce.py; SHF, POLY,
+    CHEBY, FORCOS and FORSIN, written as operations when parsed, are in springs.xml's vector
+    force; JPRIM is JOINT once parsed, test_series.py)."""
     text = (TEST_DECKS / "all_functions.xml").read_text().upper()
     used = set(re.findall(r"\b([A-Z][A-Z0-9]*)\s*\(", text))
     assert set(catalogue.FUNCTIONS) - used == {"SENVAL", "MOTION", "JOINT", "KE", "WDTX",
@@ -142,12 +144,15 @@ def test_the_jacobian_deck_uses_every_function():
                                                 "AZU", "SPDP", "BUSH", "AKISPL",
                                                 "CUBSPL", "LINSPL", "QUISPL", "FX", "FY",
                                                 "FZ", "FM", "TX", "TY", "TZ", "TM", "WM", "ACCM",
-                                                "WDTM"}
+                                                "WDTM", "JPRIM", "SHF", "POLY", "CHEBY",
+                                                "FORCOS", "FORSIN"}
     assert "JOINT(" in (TEST_DECKS / "all_joints.xml").read_text()
     assert "KE(4)" in (TEST_DECKS / "springs.xml").read_text()
     assert "ORIENT(27" in (TEST_DECKS / "springs.xml").read_text()
     assert all(f"A{c}U(" in (TEST_DECKS / "springs.xml").read_text() for c in "XYZ")
     assert "SPDP(4" in (TEST_DECKS / "springs.xml").read_text()
+    assert all(f"{f}(" in (TEST_DECKS / "springs.xml").read_text() for f in
+               ("SHF", "POLY", "CHEBY", "FORCOS", "FORSIN"))
     assert all(f"{f}(" in (TEST_DECKS / "springs.xml").read_text() for f in
                ("AKISPL", "CUBSPL", "LINSPL", "QUISPL"))
     assert all(f"WDT{c}(" in (TEST_DECKS / "nonholonomic.xml").read_text() for c in "XYZ")

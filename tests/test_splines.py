@@ -14,6 +14,41 @@ Y = np.sin(X) * 2 + 0.3 * X ** 2
 POINTS = "\n".join(f"{a!r} {b!r}" for a, b in zip(X.tolist(), Y.tolist()))
 
 
+def natural_quintic(xk, yk):
+    """The natural quintic spline through (xk, yk) solved from its conditions with NumPy (not
+    SciPy's spline code): one quintic per interval, in powers of x - its left knot, taking
+    the data at both ends, its derivatives 1..4 continuous at the inner knots and its third
+    and fourth derivatives 0 at the first and last knots (Herriot and Reinsch's natural
+    spline). Returns f(x, order) on [xk[0], xk[-1]]."""
+    from math import factorial
+    n = len(xk) - 1
+    A, b = np.zeros((6 * n, 6 * n)), np.zeros(6 * n)
+
+    def row(i, t, r):                   # the r-th derivative of piece i at t, as a row
+        out = np.zeros(6 * n)
+        for k in range(r, 6):
+            out[6 * i + k] = factorial(k) / factorial(k - r) * t ** (k - r)
+        return out
+    eqs = []
+    for i in range(n):
+        h = xk[i + 1] - xk[i]
+        eqs += [(row(i, 0.0, 0), yk[i]), (row(i, h, 0), yk[i + 1])]
+        if i + 1 < n:
+            eqs += [(row(i, h, r) - row(i + 1, 0.0, r), 0.0) for r in range(1, 5)]
+    eqs += [(row(0, 0.0, r), 0.0) for r in (3, 4)]
+    eqs += [(row(n - 1, xk[-1] - xk[-2], r), 0.0) for r in (3, 4)]
+    for k, (a, v) in enumerate(eqs):
+        A[k], b[k] = a, v
+    c = np.linalg.solve(A, b).reshape(n, 6)
+
+    def f(x, order=0):
+        i = np.clip(np.searchsorted(xk, x, side="right") - 1, 0, n - 1)
+        t = np.asarray(x) - xk[i]
+        return sum(c[i, k] * factorial(k) / factorial(k - order) * t ** (k - order)
+                   for k in range(order, 6))
+    return f
+
+
 def deck(requests, spline_attrs='num_xy_pair="7"', points=POINTS):
     """A point moving at 1 m/s along x from -0.5 through the data and past its end, so x =
     DX(20) sweeps the spline, both extrapolations included."""
@@ -29,8 +64,8 @@ def deck(requests, spline_attrs='num_xy_pair="7"', points=POINTS):
 @pytest.mark.parametrize("kernel", ["tapes", "generated"])
 def test_each_function_is_scipys_interpolant_with_its_derivatives(kernel):
     """Inside the data, every function and derivative order equals SciPy's (interp1d-like
-    broken line, CubicSpline not-a-knot, Akima1DInterpolator, quintic make_interp_spline) to
-    1e-13."""
+    broken line, CubicSpline not-a-knot, Akima1DInterpolator) or, for QUISPL, the natural
+    quintic spline solved from its conditions, to 1e-13."""
     calls = [(f, n) for f in ("LINSPL", "CUBSPL", "AKISPL", "QUISPL") for n in (0, 1, 2)]
     reqs = "".join(f'<Post_Request id="{10 + k}" ' + " ".join(
         f'expr{j + 1}="{f}(DX(20),0,7,{n})"' for j, (f, n) in enumerate(calls[4 * k:4 * k + 4]))
@@ -40,11 +75,34 @@ def test_each_function_is_scipys_interpolant_with_its_derivatives(kernel):
     xs = -0.5 + res.t
     inside = (xs > 0) & (xs < 3.5)
     ref = {"LINSPL": make_interp_spline(X, Y, k=1), "CUBSPL": CubicSpline(X, Y),
-           "AKISPL": Akima1DInterpolator(X, Y), "QUISPL": make_interp_spline(X, Y, k=5)}
+           "AKISPL": Akima1DInterpolator(X, Y), "QUISPL": natural_quintic(X, Y)}
     got = np.hstack([res.request(10 + k)[:, :4] for k in range(3)])
     for j, (f, n) in enumerate(calls):
         want = ref[f](xs[inside], n) if not (f == "LINSPL" and n == 2) else 0 * xs[inside]
         np.testing.assert_allclose(got[inside, j], want, rtol=0, atol=1e-13, err_msg=(f, n))
+
+
+def test_quispl_is_the_natural_quintic_spline_near_the_ends_too():
+    """Trial 44's data (8 uneven knots): QUISPL and its derivatives are the natural quintic
+    (MotionSolve's QUISPL page cites Herriot and Reinsch's natural spline) in the first and
+    last intervals, where a not-a-knot quintic differs by 1.1 (at x = 4.675: 1.2552, not
+    2.3504)."""
+    xk = np.array([0, 0.7, 1.1, 2.0, 2.4, 3.5, 4.0, 5.0])
+    yk = np.array([0, 1.2, 0.8, 2.5, 2.2, -0.5, 0.3, 1.0])
+    points = "\n".join(f"{a!r} {b!r}" for a, b in zip(xk.tolist(), yk.tolist()))
+    text = deck('<Post_Request id="1" expr1="QUISPL(DX(20),0,7)" expr2="QUISPL(DX(20),0,7,1)" '
+                'expr3="QUISPL(DX(20),0,7,2)"/>', "", points).replace(
+        'pos_x="-0.5"', 'pos_x="0"').replace('end_time="4.5" print_interval="0.01"',
+                                               'end_time="5" print_interval="0.005"')
+    res = pysolver.loads(text).run()
+    inside = res.t < 4.999             # the last knot on takes Adams' extrapolation
+    xs, q = res.t[inside], res.request(1)[inside, :3]
+    ref = natural_quintic(xk, yk)
+    for order in range(3):
+        np.testing.assert_allclose(q[:, order], ref(xs, order), rtol=0, atol=1e-12)
+    k = int(np.argmin(abs(xs - 4.675)))
+    assert q[k, 0] == pytest.approx(1.2551556600555565, abs=1e-12)
+    assert make_interp_spline(xk, yk, k=5)(xs[k]) == pytest.approx(2.3503764141700305)
 
 
 @pytest.mark.parametrize("linear", [False, True])

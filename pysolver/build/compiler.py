@@ -248,7 +248,13 @@ class _Tape:
 
     # smoothing functions, built from elementary operations on slots
     def ramp(self, x, x0, x1):
-        d = self.op(lib.PS_OP_DIV, self.op(lib.PS_OP_SUB, x, x0), self.op(lib.PS_OP_SUB, x1, x0))
+        w = self.op(lib.PS_OP_SUB, x1, x0)
+        d = self.op(lib.PS_OP_DIV, self.op(lib.PS_OP_SUB, x, x0), w)
+        # bounds that meet make the ramp NaN for every x, not a jump clamped to 0 or 1 (the
+        # kernel then names the element): 1/w - 1/w is exactly 0, with zero derivatives,
+        # while w is not 0, and NaN where it is
+        inv = self.op(lib.PS_OP_DIV, self.const(1), w)
+        d = self.op(lib.PS_OP_ADD, d, self.op(lib.PS_OP_SUB, inv, inv))
         return self.emit(lib.PS_OP_CLAMP01, d)
 
     def step_const(self, x, x0, h0, x1, h1, kind="STEP"):

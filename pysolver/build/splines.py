@@ -9,7 +9,10 @@ piecewise polynomial whose pieces this module computes with SciPy, at the same k
 - CUBSPL: scipy.interpolate.CubicSpline with its default not-a-knot ends (C2; at least 4);
 - AKISPL: scipy.interpolate.Akima1DInterpolator (Akima's local cubic: C1, the second
   derivative jumps at the knots; at least 4);
-- QUISPL: the quintic interpolating spline (make_interp_spline, k = 5, C4; at least 6).
+- QUISPL: the natural quintic spline of Herriot and Reinsch (ACM Algorithm 507, which
+  MotionSolve's QUISPL page cites): C4, its third and fourth derivatives 0 at the first and
+  last knots (make_interp_spline, k = 5, with those end conditions; at least 6 points, as
+  MotionSolve asks).
 
 Outside the data (Adams' rule): the parabola through the first (last) three points, or with
 ``linear_extrap`` the line through the first (last) two. The compiler lowers a call to a
@@ -28,6 +31,8 @@ import numpy as np
 from ..deck.splinedata import FEWEST
 
 NAMES = tuple(FEWEST)
+#: QUISPL's end conditions: the third and fourth derivatives vanish (a natural quintic).
+NATURAL = [(3, 0.0), (4, 0.0)]
 
 
 def pieces(spline, method):
@@ -40,8 +45,10 @@ def pieces(spline, method):
         pp = CubicSpline(x, y)
     elif method == "AKISPL":
         pp = Akima1DInterpolator(x, y)
+    elif method == "LINSPL":
+        pp = PPoly.from_spline(make_interp_spline(x, y, k=1))
     else:
-        pp = PPoly.from_spline(make_interp_spline(x, y, k=1 if method == "LINSPL" else 5))
+        pp = PPoly.from_spline(make_interp_spline(x, y, k=5, bc_type=(NATURAL, NATURAL)))
     inner = []
     for k in range(len(x) - 1):
         # PPoly's breakpoints may repeat knots (from a B-spline): take the piece at x[k]

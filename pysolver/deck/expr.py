@@ -19,6 +19,7 @@ import re
 
 from .. import catalogue
 from ..errors import ExpressionError
+from . import series
 
 #: Named constants.
 CONSTANTS = {name: f.py() for name, f in catalogue.NAMES.items() if f.py is not None}
@@ -30,10 +31,8 @@ MEASURES = {f.name: f.arity for f in catalogue.of_kind("measure")}
 FUNCTIONS = {name: f.arity for name, f in catalogue.FUNCTIONS.items()}
 #: Functions whose arguments are element ids (integer literals): the kind of the first.
 ID_ARGS = {name: f.ids[0] for name, f in catalogue.FUNCTIONS.items() if f.ids}
-#: Functions of MotionSolve or Adams that pysolver refuses, and why (docs/deck-language.md).
-REFUSED = {"DELAY": "MotionSolve interpolates its history between the points where the "
-                    "solver happened to evaluate it, which is not exact and makes a run "
-                    "depend on its steps; pysolver keeps no history of past states"}
+#: Functions and names of MotionSolve or Adams that pysolver does not support, and why.
+REFUSED, REFUSED_NAMES = catalogue.REFUSED, catalogue.REFUSED_NAMES
 
 #: The interpolation functions: x and z are expressions, the spline id and order literals.
 SPLINES = ("AKISPL", "CUBSPL", "LINSPL", "QUISPL")
@@ -192,7 +191,10 @@ def parse(text):
         raise _too_deep(0)
     _check(node)
     _constant_parts(node)
-    return node
+    expanded = series.expand(node)
+    if expanded is not node:            # a series of constants may overflow
+        _constant_parts(expanded)
+    return expanded
 
 
 def _fn(name):
@@ -238,6 +240,41 @@ def _constant_parts(tree):
                 raise ExpressionError(f"{unparse(node)} is {v} (a constant part of the "
                                       "expression)", node[3] if tag == "call" else 0)
             values[id(node)] = v
+    for node in order:
+        if node[0] == "call" and node[1] in _RANGES:
+            _check_ranges(node, [values.get(id(a)) for a in node[2]])
+
+
+#: The arguments of the smoothing and contact functions that must lie in a range, checked
+#: when they are constants (Adams' and MotionSolve's function pages): (index, name, test,
+#: the range, what the argument is).
+_NONNEG, _POS = (lambda v: v >= 0, ">= 0"), (lambda v: v > 0, "> 0")
+_IMPACT = (("k", _NONNEG, "the stiffness"), ("e", _POS, "the exponent"),
+           ("cmax", _NONNEG, "the largest damping coefficient"),
+           ("d", _POS, "the penetration of full damping"))
+_RANGES = {"IMPACT": tuple((3 + k,) + r for k, r in enumerate(_IMPACT)),
+           "BISTOP": tuple((4 + k,) + r for k, r in enumerate(_IMPACT)),
+           **dict.fromkeys(catalogue.STEP_SHAPES, ())}
+
+
+def _check_ranges(node, vals):
+    """ExpressionError when a constant argument of a STEP-family, IMPACT or BISTOP call is
+    out of its range: x1 = x0 (a jump the step cannot fit), k < 0, e <= 0, cmax < 0, d <= 0,
+    BISTOP's x1 >= x2."""
+    name, col = node[1], node[3]
+    if name in catalogue.STEP_SHAPES and (vals[1] is not None and vals[1] == vals[3]
+                                          or unparse(node[2][1]) == unparse(node[2][3])):
+        same = f"both {vals[1]:g}" if vals[1] is not None else "the same expression"
+        raise ExpressionError(f"{name}(x, x0, h0, x1, h1): x0 and x1 are {same}; x1 must "
+                              f"differ from x0 (equal values are a jump, which {name} cannot "
+                              "fit)", col)
+    if name == "BISTOP" and None not in vals[2:4] and not vals[2] < vals[3]:
+        raise ExpressionError(f"BISTOP: x1 = {vals[2]:g} and x2 = {vals[3]:g}; expected x1 "
+                              "< x2 (the lower and upper bounds of the gap)", col)
+    for k, arg, (ok, rule), what in _RANGES[name]:
+        if vals[k] is not None and not ok(vals[k]):
+            raise ExpressionError(f"{name}: {arg} = {vals[k]:g}; expected {arg} {rule} "
+                                  f"({what})", col)
 
 
 def depth(node):
@@ -265,6 +302,9 @@ def _check(node):
             _check(a)
         return
     if tag == "name":
+        if node[1] in REFUSED_NAMES:
+            raise ExpressionError(f"{node[1]} is not supported: {REFUSED_NAMES[node[1]]}",
+                                  node[2])
         if node[1] != "TIME" and node[1] not in CONSTANTS:
             raise ExpressionError(f"unknown name {node[1]!r} (known: TIME, PI, DTOR, RTOD)",
                                   node[2])
@@ -275,9 +315,9 @@ def _check(node):
         _check(node[3])
     elif tag == "call":
         name, args, col = node[1], node[2], node[3]
-        if name in REFUSED:
-            raise ExpressionError(f"{name} is not supported: {REFUSED[name]}", col)
         if name not in FUNCTIONS:
+            if name in REFUSED:
+                raise ExpressionError(f"{name} is not supported: {REFUSED[name]}", col)
             raise ExpressionError(f"unknown function {name}", col)
         lo, hi = FUNCTIONS[name]
         if not lo <= len(args) <= hi:
@@ -294,7 +334,7 @@ def _check(node):
                 raise ExpressionError(f"{name}: the derivative order is 0, 1 or 2", col)
             return
         if name in ID_ARGS:
-            elements = ("SFORCE", "MOTION", "JOINT", "SPDP", "BUSH")
+            elements = ("SFORCE", "MOTION", "JOINT", "JPRIM", "SPDP", "BUSH")
             nid = len(args) if name not in elements else 1
             for a in args[:nid]:
                 if a[0] != "num" or a[1] != int(a[1]) or a[1] < 0:
