@@ -303,9 +303,11 @@ def test_check_lists_the_elements_the_deck_wrote(capsys):
         "VR(20,1) + preload; k=100 c=0.4 length=1 preload=0" in lines
     assert "Force_SpringDamper 3 (ROTATIONAL I=40 J=41): -k (AZ(40,41) - angle) - c " \
         "WZ(40,41,41) + preload, AZ through every turn; k=3 c=0.1 angle=0.2 preload=0.4" in lines
-    assert "Force_Vector_OneBody 8 (I=50 in global): (0.1*AKISPL(DX(50,42),0,1) + " \
-        "0.1*CUBSPL(DY(50),0,1,1), 0.1*QUISPL(DX(50),0,1,2) + 0.1*LINSPL(TIME,0,1), 0, 0, 0, " \
-        "0)" in lines
+    (vector,) = [ln for ln in lines if ln.startswith("Force_Vector_OneBody 8 ")]
+    assert vector.startswith("Force_Vector_OneBody 8 (I=50 in global): (0.1*AKISPL(DX(50,42),"
+                             "0,1) + 0.1*CUBSPL(DY(50),0,1,1), 0.1*QUISPL(DX(50),0,1,2) + "
+                             "0.1*LINSPL(TIME,0,1), 0.01*SHF(DX(50),0.1,1.2,2,0.3,0.1) + ")
+    assert vector.endswith("0.01*STEP(DZ(50),DX(50)-4,0,DX(50)+4,1), 0, 0, 0)")
     assert [ln.split(" (")[0] for ln in lines if ln.startswith("Force_")] == [
         "Force_Scalar_TwoBody 6", "Force_Scalar_TwoBody 7", "Force_SpringDamper 1",
         "Force_SpringDamper 2", "Force_SpringDamper 3", "Force_SpringDamper 4",
