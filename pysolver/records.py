@@ -38,6 +38,8 @@ class Marker:
     pos: np.ndarray        # global position at t = 0
     rot: np.ndarray        # global axes at t = 0 (columns x, y, z)
     label: str = ""
+    floating: bool = False # a floating marker (Adams' FLOATING): placed by the force using it
+    at: int = 0            # a floating marker's place: the I marker of its vector forces
 
 
 @record

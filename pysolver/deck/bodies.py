@@ -39,7 +39,7 @@ def add_bodies(model, bodies_raw, markers_raw):
 
     for mid, (_, a) in markers_raw.items():
         p, R = frame(mid)
-        model.markers[mid] = Marker(mid, a["body_id"], p, R, a["label"])
+        model.markers[mid] = Marker(mid, a["body_id"], p, R, a["label"], a["floating"])
 
     # a marker on an undeclared body is its own error, before a body's cg_id names it
     declared = set(model.bodies) | {a["id"] for _, a in bodies_raw}

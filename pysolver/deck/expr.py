@@ -368,3 +368,16 @@ def references(tree, out=None):
             if kind is not None and (int(a[1]) != 0 or kind not in ("marker", "body")):
                 out.setdefault(kind, set()).add(int(a[1]))
     return out
+
+
+#: The single-axis angles a deck writes, each continuous through every turn (a tracked angle
+#: of the kernel), and MotionSolve's U forms, the same angle (docs/deck-language.md, "Angles").
+TRACKED_ANGLES = ("AX", "AY", "AZ", "AXU", "AYU", "AZU")
+
+
+def wrapped(name, i, j=0):
+    """An internal leaf: AX, AY or AZ (`name`) of marker i about marker j's axis, its value in
+    (-pi, pi] read directly (no tracked angle); the elements that wrap their own error or
+    track the angle themselves (a rotational spring, a coupler, a bushing, a joint's motion)
+    build it. Deck text never makes one."""
+    return ("wrapped", name, int(i), int(j))

@@ -164,13 +164,14 @@ def POINT_MASS(id, **kw):
 def MARKER(id, **kw):
     """Marker: PART, QP=[x, y, z], one of REULER=[psi, theta, phi] (3-1-3),
     YPR=[yaw, pitch, roll] (3-2-1), EP=[e0, e1, e2, e3] or
-    AXES=[a00, a10, a20, a01, a11, a21, a02, a12, a22]; RM, LABEL."""
+    AXES=[a00, a10, a20, a01, a11, a21, a02, a12, a22]; RM, FLOATING=True (a floating
+    marker: a vector force's JFLOAT, at its I marker), LABEL."""
     _emit("MARKER", "Reference_Marker",
           {"PART": "body_id", "QP": _vec(["pos_x", "pos_y", "pos_z"]),
            "REULER": _vec(["psi", "theta", "phi"]), "YPR": _vec(["yaw", "pitch", "roll"]),
            "EP": _vec(["e0", "e1", "e2", "e3"]),
            "AXES": _vec(["a00", "a10", "a20", "a01", "a11", "a21", "a02", "a12", "a22"]),
-           "RM": "rm_id", "LABEL": "label"}, id, **kw)
+           "RM": "rm_id", "FLOATING": "floating", "LABEL": "label"}, id, **kw)
 
 
 #: The keywords that name a user subroutine, on a statement whose TYPE means something else.

@@ -26,6 +26,7 @@ from ..options import DECK_NAMES, Options, rule_problem
 from . import units as un
 from . import usersubs
 from .bodies import add_bodies
+from .floating import place_floating
 from .joints import add_coupler, add_gcon, add_joint
 from .motions import add_joint_motion, add_motion
 from .references import check_references, velocity_level
@@ -109,6 +110,7 @@ def build_model(elements, source):
             add_joint_motion(model, ctx, a)
         elif ctx.tag == "Constraint_Coupler":
             add_coupler(model, ctx, a)
+    place_floating(model)
     _check_static_motions(model)
     check_references(model)
     if not model.commands:
