@@ -566,8 +566,9 @@ class Compiler:
 
     def vforce_measure(self, tape, vid, jflag, comp, rm):
         """A vector force's force (comp 1-4) or torque (5-8) on I's body at I (jflag 0), or on
-        the floating marker's body at that marker (1: -F, and -T - d x F with d = oI - oJ), in
-        rm's axes (a bushing's BUSH())."""
+        the J marker's body at that marker (1: -F, and -T - d x F with d = oI - oJ; -F and -T
+        at a floating J, which the force keeps on I: deck.floating), in rm's axes (a
+        bushing's BUSH())."""
         vf = self.model.vforces[vid]
         mul, add, sub = lib.PS_OP_MUL, lib.PS_OP_ADD, lib.PS_OP_SUB
         mref, sref = self.marker(tape, vf.ref)
@@ -585,7 +586,12 @@ class Compiler:
                 out.append(v)
             return out
         force, torque = resolved(comps[:3]), resolved(comps[3:])
-        if jflag:
+        if jflag and vid > 0 and vf.j and self.model.markers[vf.j].floating:
+            # the reaction at the floating marker, which the force keeps on I: -F, -T
+            minus = tape.const(-1.0)
+            torque = [tape.op(mul, minus, t) for t in torque]
+            force = [tape.op(mul, minus, f) for f in force]
+        elif jflag:
             d = [self.measure(tape, n, [vf.i, vf.j, rm]) for n in ("DX", "DY", "DZ")]
             dxf = [tape.op(sub, tape.op(mul, d[(c + 1) % 3], force[(c + 2) % 3]),
                            tape.op(mul, d[(c + 2) % 3], force[(c + 1) % 3])) for c in range(3)]

@@ -12,12 +12,13 @@ applies the reaction at I's point already; here the marker itself is put there
 derivative frame), and a force function's value at it (VFORCE(id, 1, ...), FX(9), TZ(9, 20))
 is the reaction at I's point: -F and -T.
 
-Decisions: the forces that use one floating marker share their I marker (else a DeckError:
-the marker would be in two places); a floating marker no force uses stays at its part's
-frame, as placed; a floating marker anywhere else (a body's cg or inertia marker, a joint's,
-motion's, spring's, bushing's or scalar force's marker, a vector force's I or reference
-marker) is a DeckError: Adams takes floating markers on vector forces (and curve contacts,
-which pysolver does not model) only.
+Decisions: each force's reaction is at its own I point, whatever else uses the marker; a
+floating marker whose forces have different I markers has no one place (``at`` is -1) and an
+expression that names it is a DeckError (give each I marker its own floating marker); a
+floating marker no force uses stays at its part's frame, as placed; a floating marker
+anywhere else (a body's cg or inertia marker, a joint's, motion's, spring's, bushing's or
+scalar force's marker, a vector force's I or reference marker) is a DeckError: Adams takes
+floating markers on vector forces (and curve contacts, which pysolver does not model) only.
 """
 import dataclasses
 
@@ -27,35 +28,41 @@ from ..errors import DeckError
 def placed(model, mid):
     """The marker whose frame marker `mid` is in a measure: a floating marker's I marker,
     else `mid` itself (0, the global frame, stays 0)."""
-    return (model.markers[mid].at or mid) if mid else 0
+    return (max(model.markers[mid].at, 0) or mid) if mid else 0
+
+
+def users(model, mid):
+    """[(vector force id, its I marker)] of the two-body vector forces whose JFLOAT is mid."""
+    return [(vid, vf.i) for vid, vf in sorted(model.vforces.items()) if vid > 0 and vf.j == mid]
 
 
 def place_floating(model):
     """Put each floating marker at the I marker of the vector forces that use it (its
-    ``at``), after every element is loaded; DeckError for a floating marker used elsewhere
-    or by forces with different I markers."""
+    ``at``; -1 where they have different I markers), after every element is loaded;
+    DeckError for a floating marker used elsewhere."""
     floating = {mid for mid, m in model.markers.items() if m.floating}
-    if not floating:
-        return
     _refuse_elsewhere(model, floating)
-    at = {}
-    for vid in sorted(model.vforces):
-        vf = model.vforces[vid]
-        if vid < 0 or vf.j not in floating:
-            continue
-        first = at.setdefault(vf.j, (vf.i, vid))
-        if first[0] != vf.i:
-            raise model._where[("vforce", vid)].error(
-                f"floating marker {vf.j} is the JFLOAT of vector force {first[1]} (I = "
-                f"{first[0]}) and of this one (I = {vf.i}); a floating marker sits on its "
-                "force's I marker, one place: give each I marker its own floating marker",
-                "j_floating_marker_id")
-    for mid, (i, _) in at.items():
-        model.markers[mid] = dataclasses.replace(model.markers[mid], at=i)
+    for mid in sorted(floating):
+        places = {i for _, i in users(model, mid)}
+        if places:
+            at = places.pop() if len(places) == 1 else -1
+            model.markers[mid] = dataclasses.replace(model.markers[mid], at=at)
+
+
+def unplaced(model, mid):
+    """The reason an expression may not name marker `mid` (a floating marker with no one
+    place), or None."""
+    if mid not in model.markers or model.markers[mid].at >= 0:
+        return None
+    forces = ", ".join(f"{vid} (I = {i})" for vid, i in users(model, mid))
+    return (f"marker {mid} floats with vector forces {forces}, at more than one place, so an "
+            "expression cannot read it; give each I marker its own floating marker")
 
 
 def _refuse_elsewhere(model, floating):
     """DeckError for a floating marker that is not a two-body vector force's JFLOAT."""
+    if not floating:
+        return
     for b in model.bodies.values():
         for role, mid in (("cg_id", b.cg), ("im_id", b.im)):
             if mid in floating:

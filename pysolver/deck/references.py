@@ -3,7 +3,7 @@ cycles of VARVAL, PFORCE and SFORCE references, and penalty constraints g(q, t) 
 displacement measures only."""
 from .. import catalogue
 from . import expr as ex
-from .floating import placed
+from .floating import placed, unplaced
 from .splinedata import FEWEST
 
 
@@ -32,6 +32,8 @@ def check_references(model):
                 if i not in tables[kind]:
                     raise ctx.error(f"the expression refers to {kind} id {i}, which does not "
                                     "exist", attr)
+                if kind == "marker" and unplaced(model, i):
+                    raise ctx.error(unplaced(model, i), attr)
     # each interpolation function has the points it needs
     for key, attr, tree in items:
         for n in ex.nodes(tree):
