@@ -136,7 +136,8 @@ class VectorForce:
     """Force_Vector_TwoBody or OneBody (or, under the negative id, a Force_Bushing's law): a
     force and a torque with components exprs (fx, fy, fz, tx, ty, tz in marker `ref`'s axes;
     0: global axes) on I's body at I, and their opposite on J's body at the same point (J is
-    the floating marker: only its body matters; 0 for a OneBody force: no reaction)."""
+    the floating marker: only its body matters to the motion, and a `floating` one is at I
+    for measures, deck.floating; 0 for a OneBody force: no reaction)."""
     id: int
     i: int
     j: int

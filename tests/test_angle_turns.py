@@ -152,3 +152,47 @@ def test_a_bushing_keeps_its_small_angles_in_the_half_turn():
     assert q[:, 0].max() > np.pi
     np.testing.assert_allclose(q[:, 1], -10 * wrapped, rtol=0, atol=1e-7)
     assert [n for n in res.state_names if n.endswith(".angle")] == ["AZ(20,1).angle"]
+
+
+SFOSUB_PY = """
+def SFOSUB(id, time, par, npar, dflag, iflag):
+    return -par[0] * py_sysfnc("AZ", [21, 1])[0]
+"""
+SFOSUB_C = r"""
+#include "pysolver_usersub.h"
+void SFOSUB(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+            double *value) {
+  int ids[2] = {21, 1}, err;
+  double az;
+  c_sysfnc("AZ", ids, 2, &az, &err);
+  *value = -par[0] * az;
+}
+"""
+
+
+@pytest.mark.parametrize("language", ["python", "c"])
+def test_a_routine_reads_az_through_the_turn(tmp_path, language):
+    """The torsion spring as an SFOSUB (a traced Python routine, a C library) reading
+    py_sysfnc / c_sysfnc("AZ", [21, 1]): the value it gets is the tracked angle too, so the
+    disc swings back as with the expression (within 1e-6 rad of it)."""
+    if language == "python":
+        (tmp_path / "sub.py").write_text(SFOSUB_PY)
+        routine = f'script_name="{tmp_path / "sub.py"}"'
+    else:
+        import shutil
+        import subprocess
+        cc = shutil.which("cc") or shutil.which("gcc")
+        if cc is None:
+            pytest.skip("no C compiler on this machine to build the test's routine")
+        (tmp_path / "sub.c").write_text(SFOSUB_C)
+        subprocess.run([cc, "-shared", "-fPIC", f"-I{pysolver.get_include()}",
+                        str(tmp_path / "sub.c"), "-o", str(tmp_path / "sub.so")], check=True)
+        routine = f'usrsub_dll_name="{tmp_path / "sub.so"}"'
+    text = TORSION_XML.replace('expr="-10*AZ(21,1)"',
+                               f'{routine} usrsub_param_string="USER(10)"')
+    ref = pysolver.loads(TORSION_XML).run(integr_tol=1e-10)
+    res = pysolver.loads(text).run(integr_tol=1e-10)
+    assert res.success, res.message
+    assert "AZ(21,1).angle" in res.state_names
+    assert res.request(1)[:, 0].max() > np.pi + 0.5
+    np.testing.assert_allclose(res.request(1)[:, 0], ref.request(1)[:, 0], rtol=0, atol=1e-6)

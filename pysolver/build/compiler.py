@@ -136,7 +136,8 @@ class Layout:
                                + [f"{kind}{jid}.position_reaction"] * held)
                 off += 1 + held
         # per angle tracked through its turns (a SCREW's or RACK_PINION's, a coupler's
-        # rotation k) its state s, algebraic: (owner kind, id, k) -> s
+        # rotation k, a rotational spring's, an expression's AX..AZ of a pair of markers) its
+        # state s, algebraic: (owner kind, id, k) -> s
         self.turns = {}
         keys = [("joint", jid, 0) for jid in sorted(model.joints) if model.joints[jid].lead]
         keys += [("coupler", cid, k) for cid in sorted(model.couplers)
