@@ -433,4 +433,4 @@ def test_unwrapped_angles_count_every_turn():
         np.testing.assert_allclose(q[:, :3], np.outer(5 * t, [1, 1, 1]), rtol=0, atol=1e-8)
         np.testing.assert_allclose(q[:, 3:6], q[:, :3], rtol=0, atol=1e-12)
         assert [n for n in res.state_names if n.endswith(".angle")] == [
-            "AX(30,0).angle", "AY(31,0).angle", "AY(31,1).angle", "AZ(32,0).angle"]
+            "AX_30_0.angle", "AY_31_0.angle", "AY_31_1.angle", "AZ_32_0.angle"]

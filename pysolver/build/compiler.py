@@ -147,7 +147,7 @@ class Layout:
         for key in keys:
             self.turns[key] = off
             owner = (f"springdamper{-key[1]}" if key[0] == "sforce" else
-                     "{}({},{})".format(*key[1]) if key[0] == "unwrap" else
+                     "{}_{}_{}".format(*key[1]) if key[0] == "unwrap" else
                      f"{key[0]}{key[1]}")
             self.names.append(f"{owner}.angle" + (f"{key[2] + 1}" if key[0] == "coupler"
                                                   else ""))
