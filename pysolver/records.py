@@ -193,8 +193,9 @@ class Bushing:
 @record
 class Motion:
     """Motion_Marker: the displacement (D), velocity (V) or acceleration (A) of marker I
-    relative to J along one axis of J (X, Y, Z: DX/DY/DZ(I, J, J)) or about it (B1, B2, B3:
-    AX/AY/AZ(I, J)) follows expr, a function of time. A Motion_Joint is one on its joint's
+    relative to J along one axis of J (X, Y, Z: DX/DY/DZ(I, J, J)) or its angle B1, B2, B3
+    (the body-fixed 1-2-3 angles of I relative to J, ORIENT(1, k, I, J)) follows expr, a
+    function of time. A Motion_Joint is one on its joint's
     markers (`joint` its id; 0 for a Motion_Marker): Z for a translation, B3 for a rotation.
     ic_disp (V or A) and ic_vel (A): the driven measure and its rate at t = 0 (None: the
     bodies' initial state decides)."""

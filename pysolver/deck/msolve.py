@@ -317,10 +317,11 @@ def _motion_type(val):
 
 def MOTION(id, **kw):
     """Motion of marker I relative to J (Motion_Marker): DIRECTION (X, Y, Z translations along
-    J's axes; B1, B2, B3 rotations about them), VAL_TYPE (D displacement, V velocity,
-    A acceleration), FUNCTION (a function of time), IC_DISP, IC_VEL, LABEL. With JOINT= the
-    motion of a joint's coordinate instead (Motion_Joint): TYPE (R or ROTATION, T or
-    TRANSLATION; needed on a CYLINDRICAL joint), VAL_TYPE, FUNCTION, IC_DISP, IC_VEL, LABEL.
+    J's axes; B1, B2, B3 the body-fixed 1-2-3 angles of I relative to J), VAL_TYPE (D
+    displacement, V velocity, A acceleration), FUNCTION (a function of time), IC_DISP,
+    IC_VEL, LABEL. With JOINT= the motion of a joint's coordinate instead (Motion_Joint):
+    TYPE (R or ROTATION, T or TRANSLATION; needed on a CYLINDRICAL joint), VAL_TYPE,
+    FUNCTION, IC_DISP, IC_VEL, LABEL.
     ROUTINE (MOTSUB), SCRIPT, INTERPRETER and FUNCTION="USER(...)" for a user subroutine.
     The reaction is res.motion(id)."""
     if "JOINT" in {k.upper() for k in kw}:
