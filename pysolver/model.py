@@ -284,13 +284,15 @@ class Model:
                                                               else "")
 
     def _states_line(self):
-        """The summary's state count: the 3-D model's, and once compiled the count run (a
-        planar scene's, or without redundant equations) when it differs."""
+        """The summary's state count: the 3-D model's, and once compiled (with its tracked
+        angles) the count run (a planar scene's, or without redundant equations) when it
+        differs."""
         full = self.num_states()
         compiled = next(iter(self._compiled.values()), None)
         if compiled is None:
             return f"states: {full}"
         layout = compiled.kernel.layout
+        full += len(layout.turns)
         held = [f"body {bid}'s " + " and ".join("xyz"[a] for a in axes)
                 for bid, axes in sorted(layout.held_axes.items())]
         more = len(held) - 3
@@ -306,15 +308,17 @@ class Model:
 
     def num_states(self) -> int:
         """IDA states of the 3-D model: 6 per point body, 13 per rigid body, 1 per motion (2 for
-        a displacement or an acceleration), 2 per joint equation and per Constraint_General
-        (its reactions at the velocity and the position level). A planar scene runs with
-        fewer (6 per body, 4 per revolute: docs/numerics.md, "Planar scenes"); redundant
-        equations are left out too; ``model.compile().kernel.ny`` is the count run."""
+        a displacement or an acceleration), 2 per joint equation, per Constraint_General and
+        per Constraint_Coupler (its reactions at the velocity and the position level). The
+        tracked angles (one per AX..AZ an expression reads, rotational spring, coupled
+        rotation, SCREW or RACK_PINION: docs/deck-language.md, "Tracked angles") are known
+        once compiled, and :meth:`summary` counts them then. A planar scene runs with fewer
+        (6 per body, 4 per revolute: docs/numerics.md, "Planar scenes"); redundant equations
+        are left out too; ``model.compile().kernel.ny`` is the count run."""
         return (sum({"point": 6, "rigid": 13}.get(b.kind, 0) for b in self.bodies.values())
                 + sum(1 + (m.val_type != "V") for m in self.motions.values())
                 + sum(2 * len(catalogue.JOINT_EQUATIONS[j.type]) for j in self.joints.values())
-                + 2 * len(self.gcons)
-                + sum(1 + ("R" not in cp.freedoms) for cp in self.couplers.values()))
+                + 2 * len(self.gcons) + 2 * len(self.couplers))
 
     def __reduce__(self):
         return (_rebuild, (self.source.file, self.source.text, self.source.fmt,

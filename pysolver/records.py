@@ -38,6 +38,8 @@ class Marker:
     pos: np.ndarray        # global position at t = 0
     rot: np.ndarray        # global axes at t = 0 (columns x, y, z)
     label: str = ""
+    floating: bool = False # a floating marker (Adams' FLOATING): placed by the force using it
+    at: int = 0            # a floating marker's place: the I marker of its vector forces
 
 
 @record
@@ -159,7 +161,8 @@ class VectorForce:
     """Force_Vector_TwoBody or OneBody (or, under the negative id, a Force_Bushing's law): a
     force and a torque with components exprs (fx, fy, fz, tx, ty, tz in marker `ref`'s axes;
     0: global axes) on I's body at I, and their opposite on J's body at the same point (J is
-    the floating marker: only its body matters; 0 for a OneBody force: no reaction)."""
+    the floating marker: only its body matters to the motion, and a `floating` one is at I
+    for measures, deck.floating; 0 for a OneBody force: no reaction)."""
     id: int
     i: int
     j: int
@@ -215,8 +218,9 @@ class Bushing:
 @record
 class Motion:
     """Motion_Marker: the displacement (D), velocity (V) or acceleration (A) of marker I
-    relative to J along one axis of J (X, Y, Z: DX/DY/DZ(I, J, J)) or about it (B1, B2, B3:
-    AX/AY/AZ(I, J)) follows expr, a function of time. A Motion_Joint is one on its joint's
+    relative to J along one axis of J (X, Y, Z: DX/DY/DZ(I, J, J)) or its angle B1, B2, B3
+    (the body-fixed 1-2-3 angles of I relative to J, ORIENT(1, k, I, J)) follows expr, a
+    function of time. A Motion_Joint is one on its joint's
     markers (`joint` its id; 0 for a Motion_Marker): Z for a translation, B3 for a rotation.
     ic_disp (V or A) and ic_vel (A): the driven measure and its rate at t = 0 (None: the
     bodies' initial state decides)."""

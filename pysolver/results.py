@@ -191,7 +191,9 @@ class Result:
     def motion(self, id) -> np.ndarray:
         """Reaction of Motion_Marker or Motion_Joint `id` at the output times, shape (n,): the
         force (X, Y, Z; a joint's T) or torque (B1, B2, B3; a joint's R) the motion applies to
-        I's body along or about its axis of J (J's body gets the opposite), in model units.
+        I's body along or about its axis of J (B1..B3: the multiplier of the angle's
+        equation, a torque about the dual axis of the 1-2-3 sequence, docs/deck-language.md;
+        J's body gets the opposite), in model units.
         `id`: the id, the element (``Motion``) or its label, as :meth:`request`."""
         id = self._id("motion", id, self.motion_ids)
         return self.y[:, self.state_names.index(f"motion{id}.reaction")]

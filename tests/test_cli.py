@@ -346,13 +346,16 @@ def test_states_and_reactions(tmp_path, capsys):
                                         "num_step": 5}).run(progress=False)
     states = np.loadtxt(out / "states.csv", delimiter=",", skiprows=1)
     # headers with units (the deck is in m, N, s; the motion turns the crank: a torque);
-    # multipliers of joint equations have the unit of their equation and stay bare
+    # multipliers of joint equations have the unit of their equation and stay bare; the
+    # requests' AZ are tracked angles, in rad
     unit = {"x": "m", "y": "m", "z": "m", "vx": "m/s", "vy": "m/s", "vz": "m/s",
             "e0": "-", "e1": "-", "e2": "-", "e3": "-", "wx": "rad/s", "wy": "rad/s",
-            "wz": "rad/s", "reaction": "N*m"}
+            "wz": "rad/s", "reaction": "N*m", "angle": "rad"}
     header = (out / "states.csv").read_text().splitlines()[0].split(",")
+    assert "AZ_21_2.angle [rad]" in header
     assert header == ["time [s]"] + [
-        f"{n} [{unit[n.split('.')[1]]}]" if n.startswith(("body", "motion1.reaction"))
+        f"{n} [{unit[n.split('.')[1]]}]"
+        if n.startswith(("body", "motion1.reaction")) or n.endswith(".angle")
         else n for n in res.state_names]
     assert "joint1.reaction1" in header and "motion1.position_reaction" in header
     np.testing.assert_array_equal(states, np.column_stack([res.t, res.y]))

@@ -254,24 +254,24 @@ def test_integr_tol_is_absolute_in_the_decks_units():
     """The figures of docs/deck-language.md, "integr_tol is absolute in the deck's units"
     (trial 44, defect 7): the trial's pendulum (its spring at stiffness 0) in kg/m/s and in
     kg/mm/ms (its angular velocity about 1e-3 rad/ms), against the SI deck at 1e-10; forces
-    are in N in both."""
+    are in N in both. At a loose tolerance one run's error depends on its step sequence
+    (0.11-0.37 % of the peak in SI between integr_tol 0.9e-3 and 1.1e-3), so the claim is on
+    the median over five tolerances about the default."""
     ref = pysolver.loads(PENDULUM.format(**SI)).run(integr_tol=1e-10)
-    errors = {}
+    peak = np.max(ref.joint(1)[:, 0])
+    loose, tight = {}, {}
     for name, units in (("si", SI), ("mm_ms", MM_MS)):
         model = pysolver.loads(PENDULUM.format(**units))
-        for tol in (1e-3, 1e-6):
+
+        def errors(tol, model=model):
             res = model.run(integr_tol=tol)
-            force = np.abs(res.joint(1)[:, 0] - ref.joint(1)[:, 0])
-            errors[name, tol] = (np.max(force),
-                                 np.max(np.abs(res.request(1)[:, 0] - ref.request(1)[:, 0])),
-                                 force[-1] / ref.joint(1)[-1, 0])
-    peak = np.max(ref.joint(1)[:, 0])
-    assert errors["si", 1e-3][0] == pytest.approx(0.041, abs=0.001)      # 0.14 % of the peak
-    assert errors["si", 1e-3][0] / peak == pytest.approx(0.0014, abs=0.0001)
-    assert errors["si", 1e-3][1] == pytest.approx(0.0029, abs=0.0001)
-    assert errors["mm_ms", 1e-3][0] == pytest.approx(0.26, abs=0.005)    # 0.88 % of the peak
-    assert errors["mm_ms", 1e-3][0] / peak == pytest.approx(0.0088, abs=0.0001)
-    assert errors["mm_ms", 1e-3][1] == pytest.approx(0.021, abs=0.0005)
-    assert errors["mm_ms", 1e-3][2] == pytest.approx(0.034, abs=0.0005)  # at t = 2 s
+            return (np.max(np.abs(res.joint(1)[:, 0] - ref.joint(1)[:, 0])) / peak,
+                    np.max(np.abs(res.request(1)[:, 0] - ref.request(1)[:, 0])))
+        loose[name] = np.median([errors(tol) for tol in (0.9e-3, 0.95e-3, 1e-3, 1.05e-3,
+                                                         1.1e-3)], axis=0)
+        tight[name] = errors(1e-6)
+    # the force: 0.26 % of its peak in SI, 0.93 % in kg/mm/ms
+    assert loose["si"][0] < 0.005 < loose["mm_ms"][0] < 0.02
+    assert loose["mm_ms"][0] > 2.5 * loose["si"][0]
     for name in ("si", "mm_ms"):
-        assert errors[name, 1e-6][0] < 8e-4 and errors[name, 1e-6][1] < 3.2e-5
+        assert tight[name][0] < 1e-4 and tight[name][1] < 1e-4

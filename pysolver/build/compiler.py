@@ -15,8 +15,10 @@ import math
 import numpy as np
 
 from .. import catalogue
+from ..deck import expr as ex
 from ..deck import joints, motions
 from ..deck.expr import CONSTANTS
+from ..deck.floating import placed
 from ..deck.references import unwrapped_angles, velocity_level
 from ..errors import DeckError
 from ..rotations import e_from_rot
@@ -134,7 +136,8 @@ class Layout:
                                + [f"{kind}{jid}.position_reaction"] * held)
                 off += 1 + held
         # per angle tracked through its turns (a SCREW's or RACK_PINION's, a coupler's
-        # rotation k) its state s, algebraic: (owner kind, id, k) -> s
+        # rotation k, a rotational spring's, an expression's AX..AZ of a pair of markers) its
+        # state s, algebraic: (owner kind, id, k) -> s
         self.turns = {}
         keys = [("joint", jid, 0) for jid in sorted(model.joints) if model.joints[jid].lead]
         keys += [("coupler", cid, k) for cid in sorted(model.couplers)
@@ -144,7 +147,7 @@ class Layout:
         for key in keys:
             self.turns[key] = off
             owner = (f"springdamper{-key[1]}" if key[0] == "sforce" else
-                     "{}({},{})".format(*key[1]) if key[0] == "unwrap" else
+                     "{}_{}_{}".format(*key[1]) if key[0] == "unwrap" else
                      f"{key[0]}{key[1]}")
             self.names.append(f"{owner}.angle" + (f"{key[2] + 1}" if key[0] == "coupler"
                                                   else ""))
@@ -320,6 +323,11 @@ class Compiler:
         return self._cidx[key]
 
     # lowering of parse trees -------------------------------------------------------------
+    def placed(self, mid):
+        """The marker whose frame marker `mid` is in a measure: a floating marker's I marker
+        (deck.floating: the vector forces that use it keep it there), else `mid` itself."""
+        return placed(self.model, mid)
+
     def marker(self, tape, mid, need_u=False, need_a=False):
         """Return (marker index, body slot) for marker id `mid`; id 0 is the global frame."""
         if not mid:
@@ -343,6 +351,8 @@ class Compiler:
         if tag == "turned":               # an angle unwrapped by its tracked state
             s, w = self.turn_error(tape, node[1], node[2])
             return tape.op(lib.PS_OP_ADD, s, w)
+        if tag == "wrapped":              # AX, AY, AZ in (-pi, pi]: an element's own angle
+            return self.measure(tape, node[1], [node[2], node[3]])
         if tag == "axdot":                # a joint's dot product of two markers' axes
             mi, si = self.marker(tape, node[1])
             mj, sj = self.marker(tape, node[3])
@@ -359,6 +369,11 @@ class Compiler:
             return tape.op(_ARITH[node[1]], self.lower(tape, node[2]), self.lower(tape, node[3]))
         name, args = node[1], node[2]
         f = catalogue.FUNCTIONS[name]
+        if name in ex.TRACKED_ANGLES:     # AX..AZ (AXU..AZU): through every turn
+            ids = [self.placed(int(a[1])) for a in args] + [0]
+            key = ("unwrap", (name[:2], ids[0], ids[1]), 0)
+            s, w = self.turn_error(tape, self.turned_angle(key), key)
+            return tape.op(lib.PS_OP_ADD, s, w)
         if f.kind == "measure":
             return self.measure(tape, name, [int(a[1]) for a in args])
         if name == "VARVAL":
@@ -383,12 +398,7 @@ class Compiler:
         if name == "JOINT":
             return self.joint_measure(tape, *(int(a[1]) for a in args))
         if name in angles.NAMES:
-            return angles.lower_angle(self, tape, name, [int(a[1]) for a in args])
-        if name in ("AXU", "AYU", "AZU"):
-            ids = [int(a[1]) for a in args] + [0]
-            key = ("unwrap", (name, ids[0], ids[1]), 0)
-            s, w = self.turn_error(tape, self.turned_angle(key), key)
-            return tape.op(lib.PS_OP_ADD, s, w)
+            return angles.lower_angle(self, tape, name, [self.placed(int(a[1])) for a in args])
         if name in catalogue.MAGNITUDES:
             return self.magnitude(tape, name, [int(a[1]) for a in args])
         if name in splines.NAMES:
@@ -402,7 +412,8 @@ class Compiler:
         if name in netforce.NAMES:
             return netforce.lower_net(self, tape, name, [int(a[1]) for a in args])
         if name == "ORIENT":
-            return angles.lower_orient(self, tape, *[int(a[1]) for a in args])
+            system, k, *ids = [int(a[1]) for a in args]
+            return angles.lower_orient(self, tape, system, k, *map(self.placed, ids))
         if name == "KE":
             return energy.lower_energy(self, tape, int(args[0][1]))
         if name == "SENVAL":
@@ -461,7 +472,7 @@ class Compiler:
         # the markers by role: i, j, k (the axes of the components), l (the frame of time
         # derivatives); 0 is the global frame
         roles = dict(zip(f.args, ids))
-        ids = [roles.get(r, 0) for r in "ijkl"]
+        ids = [self.placed(roles.get(r, 0)) for r in "ijkl"]
         mk, sl = [], []
         for k, mid in enumerate(ids):
             u = need_u if k != 2 else False
@@ -554,7 +565,7 @@ class Compiler:
             out = tape.op(mul, tape.const(sign), tape.op(mul, f, along))
         else:
             mj, sj = self.marker(tape, sf.j)
-            mr, sr = self.marker(tape, rm)
+            mr, sr = self.marker(tape, self.placed(rm))
             ax = tape.emit(lib.PS_OP_AXDOT, mj, 2, mr, (comp - 2) % 4, sj, sr)
             out = tape.op(mul, tape.const(sign), tape.op(mul, f, ax))
         self.stack.pop()
@@ -562,12 +573,13 @@ class Compiler:
 
     def vforce_measure(self, tape, vid, jflag, comp, rm):
         """A vector force's force (comp 1-4) or torque (5-8) on I's body at I (jflag 0), or on
-        the floating marker's body at that marker (1: -F, and -T - d x F with d = oI - oJ), in
-        rm's axes (a bushing's BUSH())."""
+        the J marker's body at that marker (1: -F, and -T - d x F with d = oI - oJ; -F and -T
+        at a floating J, which the force keeps on I: deck.floating), in rm's axes (a
+        bushing's BUSH())."""
         vf = self.model.vforces[vid]
         mul, add, sub = lib.PS_OP_MUL, lib.PS_OP_ADD, lib.PS_OP_SUB
         mref, sref = self.marker(tape, vf.ref)
-        mr, sr = self.marker(tape, rm)
+        mr, sr = self.marker(tape, self.placed(rm))
         comps = [self.lower(tape, e) for e in vf.exprs]
 
         def resolved(vals):
@@ -581,7 +593,12 @@ class Compiler:
                 out.append(v)
             return out
         force, torque = resolved(comps[:3]), resolved(comps[3:])
-        if jflag:
+        if jflag and vid > 0 and vf.j and self.model.markers[vf.j].floating:
+            # the reaction at the floating marker, which the force keeps on I: -F, -T
+            minus = tape.const(-1.0)
+            torque = [tape.op(mul, minus, t) for t in torque]
+            force = [tape.op(mul, minus, f) for f in force]
+        elif jflag:
             d = [self.measure(tape, n, [vf.i, vf.j, rm]) for n in ("DX", "DY", "DZ")]
             dxf = [tape.op(sub, tape.op(mul, d[(c + 1) % 3], force[(c + 2) % 3]),
                            tape.op(mul, d[(c + 2) % 3], force[(c + 1) % 3])) for c in range(3)]
@@ -602,7 +619,11 @@ class Compiler:
         """MOTION(id): the reaction along (about) the motion's axis of J; MOTION(id, jflag,
         comp, rm): 1 |force|, 2-4 force in rm, 5 |torque|, 6-8 torque on I (jflag 0) or J
         (jflag 1). A translation's force acts at I: no torque on I, on J the torque of the
-        opposite force about J. A rotation's torque is taken along J's axis."""
+        opposite force about J. A Motion_Joint's rotation torque is along J's z axis; a
+        Motion_Marker's B1..B3 torque is lam eps_k, the dual basis of the 1-2-3 sequence's
+        axes (e1 = xJ, e2 = zI x xJ / c, e3 = zI; s = e1 . e3 = sin B2, c = cos B2):
+        eps1 = (e1 - s e3) / c^2, eps2 = e2, eps3 = (e3 - s e1) / c^2, the torque whose
+        power is lam times the angle's rate (the kernel applies lam d(g')/du)."""
         k = self.layout.motion_ids.index(mid)
         lam = self.layout.lam[k]
         if lam not in tape.states:
@@ -615,11 +636,14 @@ class Compiler:
         axis = int(mo.direction[1]) - 1 if rot else "XYZ".index(mo.direction)
         mul, sub = lib.PS_OP_MUL, lib.PS_OP_SUB
         mj, sj = self.marker(tape, mo.j)
-        mr, sr = self.marker(tape, rm)
+        mr, sr = self.marker(tape, self.placed(rm))
         signed = tape.op(mul, tape.const(-1.0 if jflag else 1.0), L)
         # the force (translation) or torque (rotation) in rm's axes
-        vec = [tape.op(mul, signed, tape.emit(lib.PS_OP_AXDOT, mj, axis, mr, c, sj, sr))
-               for c in range(3)]
+        if rot and not mo.joint:
+            vec = [tape.op(mul, signed, e) for e in self._euler_dual(tape, mo, axis, mr, sr)]
+        else:
+            vec = [tape.op(mul, signed, tape.emit(lib.PS_OP_AXDOT, mj, axis, mr, c, sj, sr))
+                   for c in range(3)]
         zero = tape.const(0.0)
         if rot:
             force, torque = [zero] * 3, vec
@@ -639,6 +663,27 @@ class Compiler:
                         tape.op(lib.PS_OP_ADD, tape.op(mul, parts[1], parts[1]),
                                 tape.op(mul, parts[2], parts[2])))
         return netforce.norm_slot(tape, total)
+
+    def _euler_dual(self, tape, mo, k, mr, sr):
+        """Components in marker mr's axes of eps_k (k from 0), the dual basis vector of
+        Motion_Marker mo's 1-2-3 angle B(k+1) (:meth:`motion_measure`)."""
+        mul, sub = lib.PS_OP_MUL, lib.PS_OP_SUB
+        mi, si = self.marker(tape, mo.i)
+        mj, sj = self.marker(tape, mo.j)
+        e1 = [tape.emit(lib.PS_OP_AXDOT, mj, 0, mr, c, sj, sr) for c in range(3)]
+        e3 = [tape.emit(lib.PS_OP_AXDOT, mi, 2, mr, c, si, sr) for c in range(3)]
+        s = tape.emit(lib.PS_OP_AXDOT, mi, 2, mj, 0, si, sj)
+        c2 = tape.op(sub, tape.const(1.0), tape.op(mul, s, s))
+        if k == 1:                        # (e3 x e1) / c
+            c = tape.op(lib.PS_OP_SQRT, c2)
+            return [tape.op(lib.PS_OP_DIV, tape.op(sub, tape.op(mul, e3[(n + 1) % 3],
+                                                                 e1[(n + 2) % 3]),
+                                                   tape.op(mul, e3[(n + 2) % 3],
+                                                           e1[(n + 1) % 3])), c)
+                    for n in range(3)]
+        a, b = (e1, e3) if k == 0 else (e3, e1)
+        return [tape.op(lib.PS_OP_DIV, tape.op(sub, a[n], tape.op(mul, s, b[n])), c2)
+                for n in range(3)]
 
     def joint_measure(self, tape, jid, jflag, comp, rm):
         """JOINT(id, jflag, comp, rm): comp 1 |force|, 2-4 force, 5 |torque|, 6-8 torque of
@@ -664,7 +709,7 @@ class Compiler:
         Components in rm's axes; an equation removed as redundant carries nothing."""
         jo = self.model.joints[jid]
         mul, add, sub = lib.PS_OP_MUL, lib.PS_OP_ADD, lib.PS_OP_SUB
-        mr, sr = self.marker(tape, rm)
+        mr, sr = self.marker(tape, self.placed(rm))
         ends = {"I": self.marker(tape, jo.i), "J": self.marker(tape, jo.j),
                 "G": self.marker(tape, 0)}
 
@@ -727,8 +772,8 @@ class Compiler:
         f = self.lower(tape, mo.expr)
         g = tape.op(lib.PS_OP_SUB, phi, f) if mo.val_type == "D" else phi
         if mo.val_type == "D" and mo.direction.startswith("B"):
-            # an angle's error wrapped to (-pi, pi]: AZ jumps by 2 pi where a driven
-            # rotation passes pi, atan2(sin e, cos e) does not
+            # an angle's error wrapped to (-pi, pi]: the measured angle (B1, B3, a joint's AZ)
+            # jumps by 2 pi where a driven rotation passes pi, atan2(sin e, cos e) does not
             g = tape.op(lib.PS_OP_ATAN2, tape.op(lib.PS_OP_SIN, g), tape.op(lib.PS_OP_COS, g))
         gd = tape.emit(lib.PS_OP_GDOT, g)
         tape.has_gdot = True
@@ -780,17 +825,16 @@ class Compiler:
     def turned_angle(self, key):
         """The measured angle (in (-pi, pi]) that tracked angle `key` follows."""
         kind, eid, k = key
-        if kind == "unwrap":                      # AXU(i, j): AX's turns
-            name, i, j = eid
-            return ("call", name[:2], [("num", float(i)), ("num", float(j))], 0)
+        if kind == "unwrap":                      # AX(i, j) of an expression: its turns
+            return ex.wrapped(*eid)
         if kind == "sforce":
             sf = self.model.sforces[eid]
-            return ("call", "AZ", [("num", float(sf.i)), ("num", float(sf.j))], 0)
+            return ex.wrapped("AZ", sf.i, sf.j)
         if kind == "joint":
             jo = self.model.joints[eid]
             return joints.lead_angle(jo.i, jo.j, catalogue.JOINT_EQUATIONS[jo.type][0])
         jo = self.model.joints[self.model.couplers[eid].joints[k]]
-        return ("call", "AZ", [("num", float(jo.i)), ("num", float(jo.j))], 0)
+        return ex.wrapped("AZ", jo.i, jo.j)
 
     def new_tape(self):
         t = _Tape(self)

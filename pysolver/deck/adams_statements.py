@@ -100,7 +100,9 @@ def _marker(r, stmt, vals, lines):
         raise r.error(stmt, "a marker needs PART= (or POINT_MASS=)")
     key = "PART" if "PART" in vals else "POINT_MASS"
     body = r.id(vals[key], key)
-    msolve.MARKER(stmt.id, PART=body, **r.marker_placement(stmt.id), **_label(stmt))
+    floating = {"FLOATING": True} if vals.get("FLOATING") else {}
+    msolve.MARKER(stmt.id, PART=body, **r.marker_placement(stmt.id), **floating,
+                  **_label(stmt))
     placed = r.marker_reference(stmt.id)
     if placed is not None:              # QP in a part's frame: what a sweep's pos_* mean
         msolve._recorder().elements[-1][3]["#placement"] = placed

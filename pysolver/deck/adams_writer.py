@@ -182,8 +182,10 @@ def _marker(el, model, els, k):
     a = el.a
     on = "POINT_MASS" if model.bodies[a["body_id"]].kind == "point" else "PART"
     args = [(on, Ref("body", a["body_id"]))]
+    floating = _flags(el, (("floating", "FLOATING"),))
     if "rm_id" in el.given and model.markers[a["rm_id"]].body != a["body_id"]:
-        return [Statement("MARKER", a["id"], args + _in_part(el, model, els), _label(el))]
+        return [Statement("MARKER", a["id"], args + _in_part(el, model, els) + floating,
+                          _label(el))]
     qp = [a["pos_x"], a["pos_y"], a["pos_z"]]
     if el.given & {"pos_x", "pos_y", "pos_z"}:
         args.append(("QP", qp))
@@ -195,7 +197,7 @@ def _marker(el, model, els, k):
         args.append(("EP", [a[f"e{c}"] for c in range(4)]))
     elif el.given & set(_MATRIX):
         args += _axes(qp, [a[c] for c in _MATRIX])
-    args += _marker_ref(el, "rm_id", "RM")
+    args += _marker_ref(el, "rm_id", "RM") + floating
     return [Statement("MARKER", a["id"], args, _label(el))]
 
 

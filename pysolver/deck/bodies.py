@@ -44,7 +44,7 @@ def add_bodies(model, bodies_raw, markers_raw):
 
     for mid, (_, a) in markers_raw.items():
         p, R, placed = frame(mid)
-        model.markers[mid] = Marker(mid, a["body_id"], p, R, a["label"])
+        model.markers[mid] = Marker(mid, a["body_id"], p, R, a["label"], a["floating"])
         model.placements[mid] = placed
 
     # a marker on an undeclared body is its own error, before a body's cg_id names it

@@ -408,3 +408,13 @@ def references(tree, out=None):
             if kind is not None and (int(a[1]) != 0 or kind not in ("marker", "body")):
                 out.setdefault(kind, set()).add(int(a[1]))
     return out
+
+
+#: Single-axis angles continuous through every turn (tracked angles; U forms the same angle).
+TRACKED_ANGLES = ("AX", "AY", "AZ", "AXU", "AYU", "AZU")
+
+
+def wrapped(name, i, j=0):
+    """An internal leaf (deck text never makes one): AX, AY or AZ (`name`) of marker i about
+    j's axis in (-pi, pi], for the elements that wrap or track their own angle."""
+    return ("wrapped", name, int(i), int(j))

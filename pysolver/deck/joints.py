@@ -13,6 +13,7 @@ import math
 
 from ..catalogue import JOINT_EQUATIONS as EQUATIONS
 from ..records import Coupler, GeneralConstraint, Joint
+from . import expr as ex
 from . import usersubs
 from .motions import two_bodies
 
@@ -151,7 +152,7 @@ def add_coupler(model, ctx, a):
     expr = None
     for k, (jo, kind, r) in enumerate(zip(joints, freedoms, scales)):
         # a rotation through every turn: AZ unwrapped by the coupler's tracked angle k
-        q = (("turned", _call("AZ", jo.i, jo.j), ("coupler", a["id"], k)) if kind == "R"
+        q = (("turned", ex.wrapped("AZ", jo.i, jo.j), ("coupler", a["id"], k)) if kind == "R"
              else _call("DZ", jo.i, jo.j, jo.j))
         term = ("bin", "*", ("num", r), q)
         expr = term if expr is None else ("bin", "+", expr, term)

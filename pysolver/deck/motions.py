@@ -4,14 +4,17 @@ A motion drives marker I relative to marker J along or about one axis of J; its 
 is a function of time only (the kernel differentiates it in time; splines and variables of
 time included, checked with the references: references.time_only). At load: both markers
 exist, they are not on one body (ground included), a rotation does not involve a point body,
-and no two motions drive the same axis between the same two bodies. A Motion_Joint is the
-motion of its joint's markers along z of J (T: DZ(I, J, J)) or about it (R: AZ(I, J)),
-allowed on the joint types that leave that coordinate free.
+and no two motions drive the same axis between the same two bodies. X, Y, Z drive DX, DY,
+DZ(I, J, J); B1, B2, B3 the body-fixed 1-2-3 angles of I relative to J (Adams' MOTION
+statement: "the first angle of the Body 1-2-3 Euler angle sequence"; MotionSolve's
+Motion_Marker names them B1(I,J)..B3(I,J) the same way), so three driven angles give
+R = Rx(B1) Ry(B2) Rz(B3). A Motion_Joint is the motion of its joint's markers along z of J
+(T: DZ(I, J, J)) or about it (R: AZ(I, J)), allowed on the joint types that leave that
+coordinate free.
 """
 from ..model import Motion
+from . import expr as ex
 from . import usersubs
-
-_MEASURE = {"X": "DX", "Y": "DY", "Z": "DZ", "B1": "AX", "B2": "AY", "B3": "AZ"}
 
 
 def two_bodies(model, ctx, a, noun):
@@ -90,10 +93,19 @@ def add_motion(model, ctx, a, joint=0):
 
 
 def measure(motion):
-    """The expression tree of the driven quantity: DX/DY/DZ(I, J, J) or AX/AY/AZ(I, J)."""
-    name = _MEASURE[motion.direction]
-    ids = (motion.i, motion.j, motion.j) if name.startswith("D") else (motion.i, motion.j)
-    return ("call", name, [("num", float(i)) for i in ids], 0)
+    """The expression tree of the driven quantity: DX/DY/DZ(I, J, J) along J's axes; for a
+    Motion_Marker's B1, B2, B3 the first, second, third angle of the body-fixed 1-2-3 sequence
+    of I relative to J (ORIENT(1, k, I, J): R = Rx(B1) Ry(B2) Rz(B3), as Adams' MOTION
+    statement defines them); for a Motion_Joint's rotation AZ(I, J), its value in (-pi, pi]
+    (the motion wraps its error: Compiler.motion)."""
+    if motion.direction.startswith("B"):
+        if motion.joint:
+            return ex.wrapped("AZ", motion.i, motion.j)
+        k = int(motion.direction[1])
+        return ("call", "ORIENT", [("num", 1.0), ("num", float(k)), ("num", float(motion.i)),
+                                   ("num", float(motion.j))], 0)
+    name = "D" + motion.direction
+    return ("call", name, [("num", float(i)) for i in (motion.i, motion.j, motion.j)], 0)
 
 
 def clashes(model, bi, bj, direction, ground):

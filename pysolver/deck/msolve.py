@@ -167,13 +167,14 @@ def POINT_MASS(id, **kw):
 def MARKER(id, **kw):
     """Marker: PART, QP=[x, y, z], one of REULER=[psi, theta, phi] (3-1-3),
     YPR=[yaw, pitch, roll] (3-2-1), EP=[e0, e1, e2, e3] or
-    AXES=[a00, a10, a20, a01, a11, a21, a02, a12, a22]; RM, LABEL."""
+    AXES=[a00, a10, a20, a01, a11, a21, a02, a12, a22]; RM, FLOATING=True (a floating
+    marker: a vector force's JFLOAT, at its I marker), LABEL."""
     _emit("MARKER", "Reference_Marker",
           {"PART": "body_id", "QP": _vec(["pos_x", "pos_y", "pos_z"]),
            "REULER": _vec(["psi", "theta", "phi"]), "YPR": _vec(["yaw", "pitch", "roll"]),
            "EP": _vec(["e0", "e1", "e2", "e3"]),
            "AXES": _vec(["a00", "a10", "a20", "a01", "a11", "a21", "a02", "a12", "a22"]),
-           "RM": "rm_id", "LABEL": "label"}, id, **kw)
+           "RM": "rm_id", "FLOATING": "floating", "LABEL": "label"}, id, **kw)
 
 
 #: The keywords that name a user subroutine, on a statement whose TYPE means something else.
@@ -319,10 +320,11 @@ def _motion_type(val):
 
 def MOTION(id, **kw):
     """Motion of marker I relative to J (Motion_Marker): DIRECTION (X, Y, Z translations along
-    J's axes; B1, B2, B3 rotations about them), VAL_TYPE (D displacement, V velocity,
-    A acceleration), FUNCTION (a function of time), IC_DISP, IC_VEL, LABEL. With JOINT= the
-    motion of a joint's coordinate instead (Motion_Joint): TYPE (R or ROTATION, T or
-    TRANSLATION; needed on a CYLINDRICAL joint), VAL_TYPE, FUNCTION, IC_DISP, IC_VEL, LABEL.
+    J's axes; B1, B2, B3 the body-fixed 1-2-3 angles of I relative to J), VAL_TYPE (D
+    displacement, V velocity, A acceleration), FUNCTION (a function of time), IC_DISP,
+    IC_VEL, LABEL. With JOINT= the motion of a joint's coordinate instead (Motion_Joint):
+    TYPE (R or ROTATION, T or TRANSLATION; needed on a CYLINDRICAL joint), VAL_TYPE,
+    FUNCTION, IC_DISP, IC_VEL, LABEL.
     ROUTINE (MOTSUB), SCRIPT, INTERPRETER and FUNCTION="USER(...)" for a user subroutine.
     The reaction is res.motion(id)."""
     if "JOINT" in {k.upper() for k in kw}:

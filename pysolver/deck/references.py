@@ -3,6 +3,7 @@ cycles of VARVAL, PFORCE and SFORCE references, and penalty constraints g(q, t) 
 displacement measures only."""
 from .. import catalogue
 from . import expr as ex
+from .floating import placed, unplaced
 from .splinedata import FEWEST
 
 
@@ -31,6 +32,8 @@ def check_references(model):
                 if i not in tables[kind]:
                     raise ctx.error(f"the expression refers to {kind} id {i}, which does not "
                                     "exist", attr)
+                if kind == "marker" and unplaced(model, i):
+                    raise ctx.error(unplaced(model, i), attr)
     # each interpolation function has the points it needs
     for key, attr, tree in items:
         for n in ex.nodes(tree):
@@ -104,14 +107,15 @@ def _expressions(model):
 
 
 def unwrapped_angles(model):
-    """The (name, i, j) of every AXU, AYU, AZU call in the model's expressions, sorted: each
-    is an angle tracked through its turns (one state each)."""
+    """The (name, i, j) of every AX, AY, AZ call (and MotionSolve's AXU, AYU, AZU, the same
+    angle) in the model's expressions, name AX, AY or AZ, sorted: each is an angle tracked
+    through its turns, one state per name and pair of markers."""
     found = set()
     for _, _, tree in _expressions(model):
         for n in ex.nodes(tree):
-            if n[0] == "call" and n[1] in ("AXU", "AYU", "AZU"):
-                ids = [int(a[1]) for a in n[2]] + [0]
-                found.add((n[1], ids[0], ids[1]))
+            if n[0] == "call" and n[1] in ex.TRACKED_ANGLES:
+                ids = [placed(model, int(a[1])) for a in n[2]] + [0]
+                found.add((n[1][:2], ids[0], ids[1]))
     return sorted(found)
 
 

@@ -12,6 +12,7 @@ id (-id) beside the deck's own, so that it runs, differentiates and is diagnosed
 k, c, L and the preload are parameters of sweeps (``Force_SpringDamper/<id>/stiffness``, ...).
 """
 from ..records import ScalarForce, SpringDamper
+from . import expr as ex
 
 #: The attributes a sweep may change, in the order of the force law.
 NUMBERS = ("stiffness", "damping", "length", "preload")
@@ -43,7 +44,7 @@ def add_springdamper(model, ctx, a):
     model.springdampers[sid] = spring
     par = {k: ("param", f"Force_SpringDamper/{sid}/{k}", getattr(spring, k)) for k in NUMBERS}
     if rotational:
-        x = ("turned", _call("AZ", i, j), ("sforce", -sid, 0))
+        x = ("turned", ex.wrapped("AZ", i, j), ("sforce", -sid, 0))
         rate = _call("WZ", i, j, j)
         text = f"-k (AZ({i},{j}) - angle) - c WZ({i},{j},{j}) + preload, AZ through every turn"
     else:

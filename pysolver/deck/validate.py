@@ -26,6 +26,7 @@ from ..options import DECK_NAMES, Options, rule_problem, steps_problem
 from . import units as un
 from . import usersubs
 from .bodies import add_bodies
+from .floating import place_floating
 from .joints import add_coupler, add_gcon, add_joint
 from .motions import add_joint_motion, add_motion
 from .references import check_references, velocity_level
@@ -97,9 +98,9 @@ def build_model(elements, source):
     add_bodies(model, bodies_raw, markers_raw)
     for cmd in model.commands:
         if cmd.analysis == "QUASI-STATIC" and model.static.method == "MKEAM":
-            raise DeckError("MKEAM does not do quasi-static analyses (seed 004); use FIM_D or "
-                            "FIM_S in Param_Static", file=cmd.file, line=cmd.line,
-                            element="Simulate", attribute="analysis_type")
+            raise DeckError("MKEAM does not do quasi-static analyses (seed 004); use FIM_D or FIM_S"
+                            " in Param_Static", file=cmd.file, line=cmd.line, element="Simulate",
+                            attribute="analysis_type")
     after = ("Motion_Joint", "Constraint_Coupler")
     for ctx, a in later:
         if ctx.tag not in after:
@@ -109,6 +110,7 @@ def build_model(elements, source):
             add_joint_motion(model, ctx, a)
         elif ctx.tag == "Constraint_Coupler":
             add_coupler(model, ctx, a)
+    place_floating(model)
     _check_static_motions(model)
     check_references(model)
     if not model.commands:
@@ -156,16 +158,14 @@ def _once(ctx, once, tag):
 
 
 def _at(where, ctx):
-    """'on line N' of an earlier element at where = (file, line), its file named when it is
-    not ctx's (a command file's command against its dataset's statement)."""
-    file, line = where
-    return f"on line {line}" if file == ctx.file else f"at {file}:{line}"
+    """'on line N' of an earlier element at where = (file, line), or 'at file:line' in another
+    file (a command file's command against its dataset's statement)."""
+    return f"on line {where[1]}" if where[0] == ctx.file else "at {}:{}".format(*where)
 
 
 def value_rule(tag, attr, value):
     """The rule a number breaks beyond its attribute's kind (the text after "got ...; "), or
-    None: the one check of a value, whether it comes from a deck or a sweep case
-    (pysolver.build.params)."""
+    None: the one check of a value, from a deck or a sweep case (pysolver.build.params)."""
     if tag == "Param_Transient":
         problem = rule_problem(attr, value)
         return f"expected a value {problem}" if problem else None

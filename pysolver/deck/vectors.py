@@ -10,11 +10,14 @@ six components in J's axes (../shared/reference/elements.md section 4.2):
     T = -[ktx AX, kty AY, ktz AZ] - [ctx WX, cty WY, ctz WZ] + [tx0, ty0, tz0]
 
 with DX = DX(I, J, J), VX = VX(I, J, J, J) (I's velocity relative to J seen from J), AX..AZ =
-AX(I, J).. (single-axis angles: the small-angle convention, one large angle at most) and WX =
+AX(I, J).. (single-axis angles: the small-angle convention, one large angle at most; Adams'
+bushing page calls them "projected, small-angle rotational displacements", so they are the
+values in (-pi, pi], not the angles AX..AZ of an expression, which count every turn) and WX =
 WX(I, J, J). The reaction on J's body at I's point is -F and -T, which is -F and
 -T - d x F at J's origin. Its 18 numbers are sweep parameters (``Force_Bushing/<id>/kx``...).
 """
 from ..records import Bushing, VectorForce
+from . import expr as ex
 
 #: A bushing's numbers: stiffness, damping, preload per component.
 STIFF = ("kx", "ky", "kz", "ktx", "kty", "ktz")
@@ -94,7 +97,10 @@ def add_bushing(model, ctx, a):
         par = [("param", f"Force_Bushing/{bid}/{names[n]}", values[n])
                for names, values in ((STIFF, bushing.stiffness), (DAMP, bushing.damping),
                                      (LOAD, bushing.preload))]
-        x, rate = _call(measures[n][0], *measures[n][1]), _call(rates[n][0], *rates[n][1])
+        # the angles small and projected (no turns tracked): AX..AZ's values in (-pi, pi]
+        x = (_call(measures[n][0], *measures[n][1]) if n < 3 else
+             ex.wrapped(measures[n][0], *measures[n][1]))
+        rate = _call(rates[n][0], *rates[n][1])
         law = ("bin", "+", ("bin", "-", ("neg", ("bin", "*", par[0], x)),
                             ("bin", "*", par[1], rate)), par[2])
         trees.append(law)
