@@ -209,8 +209,9 @@ class Model:
             lines.append(f"Force_Scalar_TwoBody {s.id} ({'torque' if s.torque else 'force'} "
                          f"I={s.i} J={s.j}): {s.text}")
         for vf in self.vforces.values():
-            lines.append(f"Force_Vector_TwoBody {vf.id} (I={vf.i} J={vf.j} in "
-                         f"{vf.ref or 'global'}): ({', '.join(vf.texts)})")
+            tag, eid = vf.owner or ("Force_Vector_TwoBody", vf.id)
+            lines.append(f"{tag} {eid} (I={vf.i} J={vf.j} in {vf.ref or 'global'}): "
+                         f"({', '.join(vf.texts)})")
         lines += [f"LoadControl {lc.id}: body {lc.body} along {'xyz'[lc.direction]}, load "
                   f"{lc.load_text}, every {lc.update_time:g}" for lc in self.controls.values()]
         lines += [(f"Motion_Joint {mo.id} ({mo.val_type} {'R' if mo.direction == 'B3' else 'T'}"

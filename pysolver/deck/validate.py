@@ -26,6 +26,7 @@ from ..options import DECK_NAMES, Options, rule_problem
 from . import units as un
 from . import usersubs
 from .bodies import add_bodies
+from .fields import add_beam, add_field
 from .joints import add_coupler, add_gcon, add_joint
 from .motions import add_joint_motion, add_motion
 from .references import check_references, velocity_level
@@ -295,7 +296,6 @@ def _simulate(ctx, a, model, t_prev):
     return end
 
 
-
 def _parsed(val):
     return val if val is None else val[0]
 
@@ -316,6 +316,12 @@ def _expression(model, ctx, a, key="expr"):
     if a.get(key) is None:
         raise ctx.error("missing required attribute for type EXPRESSION", key)
     return a[key][0], a[key][1], None
+
+
+#: The forces held as a scalar or vector force, each added by its module's function.
+_FORCES = {"Force_SpringDamper": add_springdamper, "Force_Vector_TwoBody": add_vforce,
+           "Force_Vector_OneBody": add_vforce, "Force_Bushing": add_bushing,
+           "Force_Field": add_field, "Force_Beam": add_beam}
 
 
 def _force_like(model, ctx, a):
@@ -360,12 +366,8 @@ def _force_like(model, ctx, a):
         model.graphics[a["id"]] = Graphic(a["id"], a["type"], {
             k: v for k, v in a.items() if k not in ("id", "type", "label")}, a["label"])
         model._where[("graphic", a["id"])] = ctx
-    elif tag == "Force_SpringDamper":
-        add_springdamper(model, ctx, a)
-    elif tag in ("Force_Vector_TwoBody", "Force_Vector_OneBody"):
-        add_vforce(model, ctx, a)
-    elif tag == "Force_Bushing":
-        add_bushing(model, ctx, a)
+    elif tag in _FORCES:
+        _FORCES[tag](model, ctx, a)
     elif tag == "Motion_Marker":
         add_motion(model, ctx, a)
     elif tag in ("Constraint_Joint", "Constraint_Jprim"):
