@@ -521,7 +521,21 @@ class Bushing(_Element):
              "force": "FORCE", "torque": "TORQUE"}
 
 
-class Field(_Element):
+class _Matrices(_Element):
+    """An element whose 6x6 matrices may be given by rows: written as Adams' 36 numbers,
+    column by column."""
+    _matrices = ("KMATRIX", "CMATRIX")
+
+    def _arguments(self):
+        out = []
+        for key, val in super()._arguments():
+            if key in self._matrices and np.shape(val) == (6, 6):
+                val = np.asarray(val, dtype=float).T.ravel().tolist()
+            out.append((key, val))
+        return out
+
+
+class Field(_Matrices):
     """A field: i, j, kmatrix, cmatrix (36 numbers each, column by column as Adams enters
     them, or 6x6 matrices by rows) or cratio, length and force (six numbers each: x, y, z and
     the rotations a, b, c; three forces and three torques, in j's axes)."""
@@ -530,7 +544,7 @@ class Field(_Element):
              "cratio": "CRATIO", "length": "LENGTH", "force": "FORCE"}
 
 
-class Beam(_Element):
+class Beam(_Matrices):
     """A massless Timoshenko beam along j's x: i, j, length, ixx, iyy, izz, area, asy, asz,
     emodulus, gmodulus, cratio or cmatrix (21 numbers as Adams, 36, or a 6x6 matrix), force
     and torque (preloads, three numbers each in j's axes)."""

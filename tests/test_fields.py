@@ -429,6 +429,10 @@ def test_every_form_converts_and_builds_the_same_model(tmp_path):
     text = (tmp_path / "first.adm").read_text()
     assert "FIELD/1, I = 21, J = 5" in text and "BEAM/2, I = 31, J = 22" in text
     assert ", CMATRIX = 24.0, -10.0, 1.4, 0.25, -0.24, -0.18, -10.0" in text
+    # XML with MotionSolve's spelling of Force_Field's and Force_Beam's attributes
+    xml = (tmp_path / "again.adm.xml").read_text()
+    assert 'K11="12300.0" K12="-5220.0"' in xml and 'C66="0.13"' in xml
+    assert 'E="200000000.0" G="80000000.0"' in xml and 'ASY="1.2" ASZ="1.1"' in xml
 
 
 def test_the_python_statements_take_matrices_by_rows_or_columns(tmp_path):
@@ -455,6 +459,28 @@ def test_the_python_statements_take_matrices_by_rows_or_columns(tmp_path):
         "REQUEST(1, F1='DX(21,5,5)', F2='AZ(21,5)', F3='FIELD(1,0,3,5)', "
         "F4='BEAM(2,1,8,0)')\n")
     _same(pysolver.load(deck), pysolver.loads(_xml()))
+
+
+def test_the_msolve_classes_take_matrices_by_rows(tmp_path):
+    """Field(kmatrix=K) with K a 6x6 array by rows and Beam(cmatrix=) likewise: written as
+    Adams' columns, read back as the rows given."""
+    K = np.diag([100.0, 200, 300, 4, 5, 6])
+    K[1, 5], K[5, 1] = -10.0, -12.0
+    C = np.arange(36.0).reshape(6, 6)
+    deck = tmp_path / "classes.py"
+    deck.write_text(
+        "import numpy as np\nfrom pysolver.msolve import *\nmodel = Model()\n"
+        "ground = Part(ground=True)\nj = Marker(body=ground)\n"
+        "b = Part(mass=1, ip=[1, 1, 1])\nb.cm = Marker(body=b, qp=[1, 0, 0])\n"
+        "i = Marker(body=b, qp=[1, 0, 0])\n"
+        f"Field(i=i, j=j, kmatrix=np.array({K.tolist()}), cratio=0.01, "
+        "length=[1, 0, 0, 0, 0, 0])\n"
+        "Beam(i=i, j=j, length=1, ixx=1e-6, iyy=1e-6, izz=1e-6, area=1e-4, emodulus=1e9, "
+        f"gmodulus=4e8, cmatrix={C.tolist()}, force=[0, 1, 0], torque=[0, 0, 2])\n")
+    model = pysolver.load(deck)
+    assert model.fields[1].stiffness == tuple(K.ravel())
+    assert model.beams[1].damping == tuple(C.ravel())
+    assert model.beams[1].preload == (0.0, 1.0, 0.0, 0.0, 0.0, 2.0)
 
 
 # bad input ----------------------------------------------------------------------------------------
@@ -524,7 +550,7 @@ def test_a_field_and_a_beam_that_go_non_finite_are_named_with_their_laws():
     compiled = pysolver.load(TEST_DECKS / "field_beam.xml").compile()
     kernel = compiled.kernel
     named = {}
-    for k, (kind, eid, *_) in enumerate(kernel.elements):
+    for k, (kind, *_) in enumerate(kernel.elements):
         if kind == "vforce":
             name, rec = nonfinite._element(compiled.model, kernel, lib.PS_BAD_ELEMENT, k)
             named[(name, rec.id)] = "; ".join(rec.texts)

@@ -213,6 +213,10 @@ SCHEMA = {
     "H3DOutput": {"*": None},
 }
 COMMANDS = ("Simulate", "Stop", "ResOutput", "H3DOutput")
+#: Attributes MotionSolve spells in capitals (names are read in any case; XML is written so).
+SPELLING = {"Force_Beam": {"e": "E", "g": "G", "asy": "ASY", "asz": "ASZ",
+                           **{k: k.upper() for k in _MATRIX if k[0] == "c"}},
+            "Force_Field": {k: k.upper() for k in _MATRIX}}
 CANONICAL = {name.lower(): name for name in SCHEMA}
 #: The id namespace of each element with a required id (the catalogue's kinds; a LoadControl's
 #: id is optional and its tasks are numbered by deck.tasks).
