@@ -108,6 +108,23 @@ def test_without_shear_factors_it_is_euler_bernoulli_and_the_numbers_are_paramet
                                rtol=1e-9)
 
 
+def test_a_fields_nonzero_numbers_are_sweep_parameters():
+    """field_beam.xml's field 3: its nonzero k entries and cratio are paths, a zero entry is a
+    DeckError that says why; a case's stiffness is the deck's with that number."""
+    model = pysolver.load(TEST_DECKS / "field_beam.xml", simulate=SHORT)
+    paths = set(model.compile().parameters.paths())
+    assert {p for p in paths if p.startswith("Force_Field/3/")} == {
+        "Force_Field/3/k11", "Force_Field/3/k12", "Force_Field/3/k21", "Force_Field/3/k22",
+        "Force_Field/3/k33", "Force_Field/3/cratio"}
+    with pytest.raises(DeckError, match="the deck's k13 is 0, so the compiled model has no "
+                                        "term of it to change"):
+        model.run(params={"Force_Field/3/k13": 5.0})
+    swept = model.run(params={"Force_Field/3/k33": 1400.0}).request(2)
+    text = (TEST_DECKS / "field_beam.xml").read_text().replace('k33="700"', 'k33="1400"')
+    edited = pysolver.loads(text, simulate=SHORT).run().request(2)
+    np.testing.assert_array_equal(swept, edited)
+
+
 # fields against bushings and beams ------------------------------------------------------------
 def test_a_diagonal_field_is_the_bushing_of_the_same_numbers():
     """tests/decks/bushing.xml's tumbling body on its bushing and on a field of the same
