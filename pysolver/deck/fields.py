@@ -46,6 +46,10 @@ def _param(tag, eid, name, value):
     return ("param", f"{tag}/{eid}/{name}", float(value)), name
 
 
+def _num(v):
+    return ("num", v), repr(v)
+
+
 def _bin(op, a, b, text):
     return ("bin", op, a[0], b[0]), text
 
@@ -135,8 +139,8 @@ def add_field(model, ctx, a):
 
 
 def beam_stiffness(p):
-    """The 6x6 stiffness of a beam (docstring above) from its numbers `p` (name -> pair, None
-    for a shear ratio of zero), as pairs (None: zero)."""
+    """The 6x6 stiffness of a beam (the module's docstring) from its numbers `p` (name -> pair,
+    None for a shear ratio of zero), as pairs (None: zero)."""
     e, g, area, length = p["e"], p["g"], p["area"], p["length"]
     k = [[None] * 6 for _ in _ROWS]
     k[0][0] = _bin("/", _times(e, area), length, "K11")
@@ -161,10 +165,6 @@ def beam_stiffness(p):
         four = _num(4.0) if phi is None else _bin("+", _num(4.0), phi, "4 + P")
         k[r][r] = _bin("/", _times(four, ei), _times(length, grow), f"K{r + 1}{r + 1}")
     return k
-
-
-def _num(v):
-    return ("num", v), repr(v)
 
 
 def add_beam(model, ctx, a):
