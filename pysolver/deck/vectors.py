@@ -24,7 +24,7 @@ LOAD = ("preload_x", "preload_y", "preload_z", "preload_tx", "preload_ty", "prel
 _ZERO = ("num", 0.0)
 
 
-def call(name, *ids):
+def _call(name, *ids):
     """The expression tree of measure `name` of marker ids."""
     return ("call", name, [("num", float(i)) for i in ids], 0)
 
@@ -42,7 +42,7 @@ def measures(table, i, j):
     out = []
     for name, roles in table:
         ids = [i if r == "i" else j for r in roles]
-        out.append((call(name, *ids), f"{name}({', '.join(map(str, ids))})"))
+        out.append((_call(name, *ids), f"{name}({', '.join(map(str, ids))})"))
     return out
 
 
