@@ -321,6 +321,12 @@ TABLE = (
              "|torque|, 6-8 torque; on I's body at I (jflag 0) or on J's at J (1)",
              reads=frozenset({"forces"}), ids=("bushing", None, None, "marker"),
              py_sysfnc=True),
+    Function("FIELD", "special", _FORCE_ARGS, None,
+             "force and torque of Force_Field id, as BUSH's", reads=frozenset({"forces"}),
+             ids=("field", None, None, "marker"), py_sysfnc=True),
+    Function("BEAM", "special", _FORCE_ARGS, None,
+             "force and torque of Force_Beam id, as BUSH's", reads=frozenset({"forces"}),
+             ids=("beam", None, None, "marker"), py_sysfnc=True),
     Function("JOINT", "special", _FORCE_ARGS, None,
              "reaction of Constraint_Joint id from its equations' multipliers: comp 1 |force|, "
              "2-4 force in rm's axes, 5 |torque|, 6-8 torque; on I's body at I (jflag 0) or "
@@ -479,6 +485,12 @@ ELEMENTS = (
     Element(("Force_Bushing",), "bushing", "bushings", "BUSHING",
             "six linear springs and dampers in J's axes between two markers (held as a vector "
             "force: pysolver.deck.vectors)"),
+    Element(("Force_Field",), "field", "fields", "FIELD",
+            "a linear 6x6 stiffness and damping in J's axes between two markers (held as a "
+            "vector force: pysolver.deck.fields)"),
+    Element(("Force_Beam",), "beam", "beams", "BEAM",
+            "a massless Timoshenko beam along J's x between two markers (held as a vector "
+            "force: pysolver.deck.fields)"),
     Element(("Force_Vector_TwoBody", "Force_Vector_OneBody"), "vforce", "vforces", "VFORCE",
             "a force and a torque by their components, between two bodies or on one",
             c="PS_EL_VFORCE",

@@ -180,7 +180,8 @@ def _dedent(text):
 CLASSES = {cls._statement: cls for cls in (
     modeling.Units, modeling.Accgrav, modeling.Part, modeling.PointMass, modeling.Marker,
     modeling.Joint, modeling.Jprim, modeling.Gcon, modeling.Coupler, modeling.Motion,
-    modeling.Sforce, modeling.SpringDamper, modeling.Bushing, modeling.Vforce,
+    modeling.Sforce, modeling.SpringDamper, modeling.Bushing, modeling.Field,
+    modeling.Beam, modeling.Vforce,
     modeling.Vtorque, modeling.Gforce, modeling.Variable, modeling.Spline, modeling.Sensor,
     modeling.SensorEvaluate, modeling.Request, modeling.Graphics, modeling.ResOutput,
     modeling.H3DOutput, modeling.Integrator, modeling.Equilibrium, modeling.Pforce,

@@ -232,6 +232,12 @@ class Model:
             lines.append(f"{name('vforce', vf.id, 'Force_Vector_TwoBody')} (I={vf.i} "
                          + (f"J={vf.j} " if vf.j else "")
                          + f"in {vf.ref or 'global'}): ({', '.join(vf.texts)})")
+        # a field's (beam's) law, held as a vector force under a negative key: its own name
+        for vf in (vf for vf in self.vforces.values() if vf.id < 0 and vf.owner
+                   and vf.owner[0] in ("Force_Field", "Force_Beam")):
+            tag, eid = vf.owner
+            lines.append(f"{name(tag[6:].lower(), eid, tag)} (I={vf.i} J={vf.j}, in J's axes): "
+                         f"({', '.join(vf.texts)})")
         for bu in self.bushings.values():
             lines.append(f"{name('bushing', bu.id, 'Force_Bushing')} (I={bu.i} J={bu.j}, in "
                          f"J's axes): stiffness {_numbers(bu.stiffness)} damping "

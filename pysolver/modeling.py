@@ -45,9 +45,9 @@ from .errors import DeckError
 
 __all__ = ["Model", "Units", "Accgrav", "Part", "PointMass", "Marker", "Point", "Vector",
            "Joint", "Jprim", "Gcon", "Coupler", "Motion", "Sforce", "SpringDamper",
-           "Bushing", "Vforce", "Vtorque", "Gforce", "Variable", "Spline", "Sensor",
-           "SensorEvaluate", "Request", "Output", "Integrator", "DaeIntegrator", "Equilibrium",
-           "Graphics", "Sphere", "Box", "Cylinder", "Frustum", "Ellipsoid", "Pforce",
+           "Bushing", "Field", "Beam", "Vforce", "Vtorque", "Gforce", "Variable", "Spline",
+           "Sensor", "SensorEvaluate", "Request", "Output", "Integrator", "DaeIntegrator",
+           "Equilibrium", "Graphics", "Sphere", "Box", "Cylinder", "Frustum", "Ellipsoid", "Pforce",
            "LoadControl", "ResOutput", "H3DOutput"]
 
 _STATE = threading.local()
@@ -519,6 +519,40 @@ class Bushing(_Element):
     _statement = "BUSHING"
     _keys = {"i": "I", "j": "J", "k": "K", "c": "C", "kt": "KT", "ct": "CT",
              "force": "FORCE", "torque": "TORQUE"}
+
+
+class _Matrices(_Element):
+    """An element whose 6x6 matrices may be given by rows: written as Adams' 36 numbers,
+    column by column."""
+    _matrices = ("KMATRIX", "CMATRIX")
+
+    def _arguments(self):
+        out = []
+        for key, val in super()._arguments():
+            if key in self._matrices and np.shape(val) == (6, 6):
+                val = np.asarray(val, dtype=float).T.ravel().tolist()
+            out.append((key, val))
+        return out
+
+
+class Field(_Matrices):
+    """A field: i, j, kmatrix, cmatrix (36 numbers each, column by column as Adams enters
+    them, or 6x6 matrices by rows) or cratio, length and force (six numbers each: x, y, z and
+    the rotations a, b, c; three forces and three torques, in j's axes)."""
+    _statement = "FIELD"
+    _keys = {"i": "I", "j": "J", "kmatrix": "KMATRIX", "cmatrix": "CMATRIX",
+             "cratio": "CRATIO", "length": "LENGTH", "force": "FORCE"}
+
+
+class Beam(_Matrices):
+    """A massless Timoshenko beam along j's x: i, j, length, ixx, iyy, izz, area, asy, asz,
+    emodulus, gmodulus, cratio or cmatrix (21 numbers as Adams, 36, or a 6x6 matrix), force
+    and torque (preloads, three numbers each in j's axes)."""
+    _statement = "BEAM"
+    _keys = {"i": "I", "j": "J", "length": "LENGTH", "ixx": "IXX", "iyy": "IYY",
+             "izz": "IZZ", "area": "AREA", "asy": "ASY", "asz": "ASZ",
+             "emodulus": "EMODULUS", "gmodulus": "GMODULUS", "cratio": "CRATIO",
+             "cmatrix": "CMATRIX", "force": "FORCE", "torque": "TORQUE"}
 
 
 class Vforce(_Element):

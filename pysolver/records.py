@@ -1,6 +1,9 @@
 """The records a Model holds: one frozen dataclass per element kind (Body, Marker, Penalty,
 Sensor, ...), read-only once loaded; an assignment says how a number is changed (``run(params=
 ...)`` or the deck). :mod:`pysolver.model` re-exports them.
+
+Longer than 420 lines because it is the model's vocabulary: one short record per kind of
+element (twenty of them), which every stage after the deck reads.
 """
 import dataclasses
 import functools
@@ -158,11 +161,12 @@ class SpringDamper:
 
 @record
 class VectorForce:
-    """Force_Vector_TwoBody or OneBody (or, under the negative id, a Force_Bushing's law): a
-    force and a torque with components exprs (fx, fy, fz, tx, ty, tz in marker `ref`'s axes;
-    0: global axes) on I's body at I, and their opposite on J's body at the same point (J is
-    the floating marker: only its body matters to the motion, and a `floating` one is at I
-    for measures, deck.floating; 0 for a OneBody force: no reaction)."""
+    """Force_Vector_TwoBody or OneBody (or, under a negative key, the law of a Force_Bushing,
+    Force_Field or Force_Beam: `owner` names it): a force and a torque with components exprs
+    (fx, fy, fz, tx, ty, tz in marker `ref`'s axes; 0: global axes) on I's body at I, and
+    their opposite on J's body at the same point (J is the floating marker: only its body
+    matters, and a `floating` one is at I for measures, deck.floating; 0 for a OneBody force:
+    no reaction)."""
     id: int
     i: int
     j: int
@@ -170,6 +174,19 @@ class VectorForce:
     exprs: list
     texts: list
     label: str = ""
+    owner: tuple = ()          # (tag, id) of the element whose law it is; () for a deck's own
+
+
+#: The elements held as a vector force (pysolver.deck.vectors, pysolver.deck.fields), each
+#: with the offset of its laws' keys in Model.vforces (law_key).
+LAW_OFFSETS = {"Force_Bushing": 0, "Force_Field": 2 ** 61, "Force_Beam": 2 ** 62}
+
+
+def law_key(tag, eid):
+    """The key in Model.vforces of the vector force that holds element `eid` of `tag` (a
+    Force_Bushing, Force_Field or Force_Beam): negative, so it meets no deck vector force's
+    id, and apart for each kind (a bushing's is -id)."""
+    return -(LAW_OFFSETS[tag] + eid)
 
 
 @record
@@ -210,6 +227,48 @@ class Bushing:
     i: int
     j: int
     stiffness: tuple
+    damping: tuple
+    preload: tuple
+    label: str = ""
+
+
+@record
+class Field:
+    """Force_Field (pysolver.deck.fields): F = -K (X - length) - C V + preload in J's axes,
+    X = (DX, DY, DZ, AX, AY, AZ) of I relative to J and V their rates; `stiffness` and
+    `damping` the 36 entries of K and C row by row (K[r][c] multiplies X[c] in component r),
+    C = cratio K when `cratio` is not None (then `damping` is all zero)."""
+    id: int
+    i: int
+    j: int
+    stiffness: tuple
+    damping: tuple
+    cratio: object
+    length: tuple
+    preload: tuple
+    label: str = ""
+
+
+@record
+class Beam:
+    """Force_Beam (pysolver.deck.fields): a massless uniform Timoshenko beam along J's x,
+    I at `length` from J undeformed; the field of its closed-form stiffness (e: Young's
+    modulus, g: shear modulus, ixx the torsion constant, iyy and izz the bending moments,
+    asy and asz the shear area ratios) with damping C = cratio K or `damping` (36 entries row
+    by row), and a preload (three forces, three torques in J's axes)."""
+    id: int
+    i: int
+    j: int
+    length: float
+    e: float
+    g: float
+    area: float
+    ixx: float
+    iyy: float
+    izz: float
+    asy: float
+    asz: float
+    cratio: object
     damping: tuple
     preload: tuple
     label: str = ""

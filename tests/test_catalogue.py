@@ -133,15 +133,17 @@ def test_the_jacobian_deck_uses_every_function():
     springs.xml's forces, as are SPDP and the splines (LINSPL of TIME: its kinks are not in
     the state); ORIENT, an output whose derivative is singular where a
     parameter passes 0, in springs.xml's request; BUSH, which would remove the bushing the
-    bushing tests replace, is compared with the bushing's law in test_bushing.py; FX..TM, sums
-    of the element force functions, are compared with them in test_netforce.py; SHF, POLY,
-    CHEBY, FORCOS and FORSIN, written as operations when parsed, are in springs.xml's vector
-    force; JPRIM is JOINT once parsed, test_series.py)."""
+    bushing tests replace, is compared with the bushing's law in test_bushing.py; FIELD and
+    BEAM in field_beam.xml's requests, also in test_jacobian.py; FX..TM, sums of the element
+    force functions, are compared with them in test_netforce.py; SHF, POLY, CHEBY, FORCOS and
+    FORSIN, written as operations when parsed, are in springs.xml's vector force; JPRIM is
+    JOINT once parsed, test_series.py)."""
     text = (TEST_DECKS / "all_functions.xml").read_text().upper()
     used = set(re.findall(r"\b([A-Z][A-Z0-9]*)\s*\(", text))
     assert set(catalogue.FUNCTIONS) - used == {"SENVAL", "MOTION", "JOINT", "KE", "WDTX",
                                                 "WDTY", "WDTZ", "ORIENT", "AXU", "AYU",
-                                                "AZU", "SPDP", "BUSH", "AKISPL",
+                                                "AZU", "SPDP", "BUSH", "FIELD", "BEAM",
+                                                "AKISPL",
                                                 "CUBSPL", "LINSPL", "QUISPL", "FX", "FY",
                                                 "FZ", "FM", "TX", "TY", "TZ", "TM", "WM", "ACCM",
                                                 "WDTM", "JPRIM", "SHF", "POLY", "CHEBY",
@@ -156,6 +158,7 @@ def test_the_jacobian_deck_uses_every_function():
     assert all(f"{f}(" in (TEST_DECKS / "springs.xml").read_text() for f in
                ("AKISPL", "CUBSPL", "LINSPL", "QUISPL"))
     assert all(f"WDT{c}(" in (TEST_DECKS / "nonholonomic.xml").read_text() for c in "XYZ")
+    assert all(f"{f}(" in (TEST_DECKS / "field_beam.xml").read_text() for f in ("FIELD", "BEAM"))
 
 
 def test_the_docs_function_table_is_generated():

@@ -9,7 +9,7 @@ from helpers import TEST_DECKS, fd_iteration_matrix
 SCENES = [TEST_DECKS / "all_functions.xml", TEST_DECKS / "all_joints.xml",
           TEST_DECKS / "gcon.xml", TEST_DECKS / "couplers.xml", TEST_DECKS / "lead_joints.xml",
           TEST_DECKS / "springs.xml", TEST_DECKS / "bushing.xml", TEST_DECKS / "nonholonomic.xml",
-          TEST_DECKS / "planar_fourbar.xml"] + [
+          TEST_DECKS / "planar_fourbar.xml", TEST_DECKS / "field_beam.xml"] + [
     f"{name}.xml" for name in ("catenary_bead", "particle_above_line", "particle_between_lines",
                                "torque_free_spin")]
 

@@ -230,7 +230,7 @@ def test_an_elemental_force_request_is_its_element_s_force_function(jflag):
 @pytest.mark.parametrize("attrs, attribute, message", [
     ('type="ELEMENTAL_FORCE" elem_type="CONTACT" elem_id="7"', "elem_type",
      "got 'CONTACT'; expected an element with a force function: JOINT (JPRIM), BUSHING, "
-     "SPRINGDAMPER, SFORCE or MOTION"),
+     "FIELD, BEAM, SPRINGDAMPER, SFORCE or MOTION"),
     ('type="ELEMENTAL_FORCE" elem_id="5"', "elem_type",
      "an ELEMENTAL_FORCE request needs elem_type"),
     ('type="ELEMENTAL_FORCE" elem_type="JOINT"', "elem_id",

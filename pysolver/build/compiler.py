@@ -21,6 +21,7 @@ from ..deck.expr import CONSTANTS
 from ..deck.floating import placed
 from ..deck.references import unwrapped_angles, velocity_level
 from ..errors import DeckError
+from ..records import law_key
 from ..rotations import e_from_rot
 from . import angles, energy, netforce, splines
 from .bindings import lib
@@ -37,6 +38,8 @@ _C = {name: getattr(lib, name) for name in catalogue.OPCODES + catalogue.MEASURE
 _ARITH = {op: _C[f.c] for op, f in catalogue.ARITHMETIC.items() if op != "neg"}
 # constant folding of arithmetic (Python floats follow the same IEEE rules as the kernel)
 _FOLD = {_C[f.c]: f.py for f in catalogue.ARITHMETIC.values() if f.fold}
+# the force functions of the elements held as a vector force, and their elements
+_LAWS = {"BUSH": "Force_Bushing", "FIELD": "Force_Field", "BEAM": "Force_Beam"}
 
 
 def _key_ids(key):
@@ -390,9 +393,9 @@ class Compiler:
         if name == "SPDP":                # a spring-damper is a scalar force under -id
             sid, *rest = (int(a[1]) for a in args)
             return self.sforce_measure(tape, -sid, *rest)
-        if name == "BUSH":                # a bushing is a vector force under -id
-            bid, *rest = (int(a[1]) for a in args)
-            return self.vforce_measure(tape, -bid, *rest)
+        if name in _LAWS:                 # a bushing, field or beam is a vector force
+            eid, *rest = (int(a[1]) for a in args)
+            return self.vforce_measure(tape, law_key(_LAWS[name], eid), *rest)
         if name == "MOTION":
             return self.motion_measure(tape, *(int(a[1]) for a in args))
         if name == "JOINT":
@@ -574,8 +577,8 @@ class Compiler:
     def vforce_measure(self, tape, vid, jflag, comp, rm):
         """A vector force's force (comp 1-4) or torque (5-8) on I's body at I (jflag 0), or on
         the J marker's body at that marker (1: -F, and -T - d x F with d = oI - oJ; -F and -T
-        at a floating J, which the force keeps on I: deck.floating), in rm's axes (a
-        bushing's BUSH())."""
+        at a floating J, which the force keeps on I: deck.floating), in rm's axes (BUSH(),
+        FIELD() and BEAM() of the elements held as one)."""
         vf = self.model.vforces[vid]
         mul, add, sub = lib.PS_OP_MUL, lib.PS_OP_ADD, lib.PS_OP_SUB
         mref, sref = self.marker(tape, vf.ref)

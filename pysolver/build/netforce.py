@@ -5,9 +5,9 @@ reading of the Adams functions, ../shared/reference/elements.md section 7.2): ev
 whose I marker is I contributes its action on I's body (jflag 0 of its force function), every
 element whose J marker is I its reaction there (jflag 1); with J given (not 0) only the
 elements between I and J. Counted: scalar forces and spring-dampers (SFORCE, SPDP), vector
-forces and bushings (BUSH), joints (JOINT), motions (MOTION). Not counted: penalties, general
-constraints and couplers, which have no marker of their own. Components in K's axes (0 or
-omitted: global); FM and TM are the magnitudes.
+forces, bushings, fields and beams (BUSH, FIELD, BEAM), joints (JOINT), motions (MOTION).
+Not counted: penalties, general constraints and couplers, which have no marker of their own.
+Components in K's axes (0 or omitted: global); FM and TM are the magnitudes.
 """
 from .bindings import lib
 

@@ -389,5 +389,9 @@ class Parameters:
                                        for p in near):
             ids = sorted({p.split("/")[1] for p in near if len(p.split("/")) == 3})
             return f"no {parts[0]} {parts[1]} in this model (its {parts[0]}s: {', '.join(ids)})"
+        if len(parts) == 3 and parts[0].lower() in ("force_field", "force_beam") and \
+                parts[2].lower() in SCHEMA[parts[0].title()]:
+            return (f"the deck's {parts[2]} is 0, so the compiled model has no term of it to "
+                    f"change (a structural change: give the deck a nonzero {parts[2]})")
         return ("no such number in this model (structural attributes such as ids, types and "
                 f"flags cannot change); this element's: {', '.join(near[:12])}")

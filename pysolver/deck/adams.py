@@ -27,7 +27,7 @@ COMMANDS_MARK = "!pysolver: commands of"
 OUTPUT_MARK = "!pysolver: output name"
 
 #: Statements that would change the dynamics and that pysolver does not model: a DeckError.
-UNSUPPORTED = ("CONTACT", "FLEX_BODY", "BEAM", "FIELD", "DIFF", "LSE", "GSE", "TFSISO",
+UNSUPPORTED = ("CONTACT", "FLEX_BODY", "DIFF", "LSE", "GSE", "TFSISO",
                "NFORCE", "CVCV", "PTCV", "CURVE", "SURFACE", "FRICTION", "GEAR", "MFORCE",
                "FEMDATA", "IC", "ARRAY", "STRING", "MATRIX", "PSTATE", "EXTERNAL_SYSTEM",
                "COUSUB", "CLEARANCE", "ENVIRONMENT", "USER", "SECTION", "FE_PART", "FE_NODE",
@@ -359,10 +359,12 @@ class _Reader:
             elif name == "Y":
                 vals.setdefault("Y", []).append(
                     [_number(v, stmt, key, self.file, line) for v in val])
-            elif not val[0].strip():
+            elif not val[0].strip() and len(val) == 1:
                 raise self.error(stmt, f"{key} = has no value (the statement is cut short?)",
                                  key, line)
             else:
+                # a list may start on the next line (KMATRIX = at a line's end, then numbers)
+                val = val[1:] if not val[0].strip() else val
                 conv = [_number(v, stmt, key, self.file, line, integer=True)
                         if _NUMBER.match(v) else v.strip().strip("\"'") for v in val]
                 vals[name] = conv[0] if len(conv) == 1 else conv

@@ -197,6 +197,45 @@ def _bushing(r, stmt, vals, lines):
     msolve.BUSHING(stmt.id, **kw, **_label(stmt))
 
 
+def _counted(r, stmt, vals, lines, keys):
+    """{KEY: numbers} of the list keywords `keys` ({KEY: the counts it takes}) given."""
+    out = {}
+    for key, counts in keys.items():
+        if key not in vals:
+            continue
+        value = _list(vals[key])
+        if len(value) not in counts or not all(isinstance(v, (int, float)) for v in value):
+            want = " or ".join(str(n) for n in counts)
+            raise r.error(stmt, f"{key} takes {want} numbers, got {len(value)}", key,
+                          lines[key])
+        out[key] = [float(v) for v in value]
+    return out
+
+
+def _field(r, stmt, vals, lines):
+    r.need_id(stmt)
+    _refuse(r, stmt, vals, lines, ("FUNCTION", "ROUTINE"), "a nonlinear field (a FIESUB "
+            "user subroutine); give KMATRIX, CMATRIX or CRATIO, LENGTH and FORCE")
+    kw = _same(vals, ("I", "J", "CRATIO"))
+    kw.update(_counted(r, stmt, vals, lines, {"KMATRIX": (36,), "CMATRIX": (36,),
+                                              "LENGTH": (6,), "FORCE": (6,)}))
+    msolve.FIELD(stmt.id, **kw, **_label(stmt))
+
+
+def _beam(r, stmt, vals, lines):
+    r.need_id(stmt)
+    form = str(vals.get("FORMULATION", "LINEAR")).upper()
+    if form != "LINEAR":
+        raise r.error(stmt, f"FORMULATION = {form} is not supported: pysolver's BEAM is the "
+                      "linear Timoshenko beam (FORMULATION = LINEAR)", "FORMULATION",
+                      lines["FORMULATION"])
+    kw = _same(vals, ("I", "J", "LENGTH", "IXX", "IYY", "IZZ", "AREA", "ASY", "ASZ",
+                      "EMODULUS", "GMODULUS", "CRATIO"))
+    kw.update(_counted(r, stmt, vals, lines, {"CMATRIX": (21, 36), "FORCE": (3,),
+                                              "TORQUE": (3,)}))
+    msolve.BEAM(stmt.id, **kw, **_label(stmt))
+
+
 def _vector(function, comps):
     def emit(r, stmt, vals, lines):
         r.need_id(stmt)
@@ -405,6 +444,10 @@ DATASET = {
     "SPRINGDAMPER": (("I", "J", "TRANSLATION", "ROTATION", "K", "C", "LENGTH", "FORCE", "KT",
                       "CT", "ANGLE", "TORQUE"), (), _springdamper),
     "BUSHING": (("I", "J", "K", "C", "KT", "CT", "FORCE", "TORQUE"), (), _bushing),
+    "FIELD": (("I", "J", "KMATRIX", "CMATRIX", "CRATIO", "LENGTH", "FORCE", "FUNCTION",
+               "ROUTINE"), (), _field),
+    "BEAM": (("I", "J", "LENGTH", "IXX", "IYY", "IZZ", "AREA", "ASY", "ASZ", "EMODULUS",
+              "GMODULUS", "CRATIO", "CMATRIX", "FORMULATION"), ("FORCE", "TORQUE"), _beam),
     "VFORCE": (("I", "JFLOAT", "RM", "FX", "FY", "FZ", "FUNCTION", "ROUTINE"), ("ACTIONONLY",),
                _vector(msolve.VFORCE, ("FX", "FY", "FZ"))),
     "VTORQUE": (("I", "JFLOAT", "RM", "TX", "TY", "TZ", "FUNCTION", "ROUTINE"),

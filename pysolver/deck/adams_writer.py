@@ -370,6 +370,47 @@ def _bushing(el, model, els, k):
     return [Statement("BUSHING", el.a["id"], args, _label(el))]
 
 
+def _columns(el, prefix):
+    """The 36 entries of matrix `prefix` (k, c) column by column (Adams' KMATRIX order), or
+    None when the element gave none of them."""
+    keys = [f"{prefix}{r}{c}" for c in range(1, 7) for r in range(1, 7)]
+    return [el.a[key] for key in keys] if el.given & set(keys) else None
+
+
+def _six(el, prefix, keys=("x", "y", "z", "tx", "ty", "tz")):
+    attrs = [f"{prefix}{c}" for c in keys]
+    return [el.a[c] for c in attrs] if el.given & set(attrs) else None
+
+
+def _field(el, model, els, k):
+    args = _marker_ref(el, "i_marker_id", "I") + _marker_ref(el, "j_marker_id", "J")
+    for key, value in (("KMATRIX", _columns(el, "k")), ("CMATRIX", _columns(el, "c")),
+                       ("CRATIO", el.get("cratio")), ("LENGTH", _six(el, "length_")),
+                       ("FORCE", _six(el, "preload_"))):
+        if value is not None:
+            args.append((key, value))
+    return [Statement("FIELD", el.a["id"], args, _label(el))]
+
+
+def _beam(el, model, els, k):
+    args = _marker_ref(el, "i_marker_id", "I") + _marker_ref(el, "j_marker_id", "J") + \
+        _args(el, (("length", "LENGTH"), ("ixx", "IXX"), ("iyy", "IYY"), ("izz", "IZZ"),
+                   ("area", "AREA"), ("asy", "ASY"), ("asz", "ASZ"), ("e", "EMODULUS"),
+                   ("g", "GMODULUS"), ("cratio", "CRATIO")))
+    damping = _columns(el, "c")
+    if damping is not None:
+        square = np.reshape(damping, (6, 6))           # columns as rows: C transposed
+        col, row = np.triu_indices(6)
+        # Adams' 21 numbers, the lower half column by column, when C is symmetric
+        half = [float(square[c, r]) for c, r in zip(col, row)]
+        args.append(("CMATRIX", half if np.array_equal(square, square.T) else damping))
+    for key, value in (("FORCE", _six(el, "preload_", ("x", "y", "z"))),
+                       ("TORQUE", _six(el, "preload_", ("tx", "ty", "tz")))):
+        if value is not None:
+            args.append((key, value))
+    return [Statement("BEAM", el.a["id"], args, _label(el))]
+
+
 def _penalty(el, model, els, k):
     args = _function(el, "expr") + _args(el, (("penalty", "PENALTY"),
                                               ("penalty1", "PENALTY1"),
@@ -557,7 +598,8 @@ _TRANSLATE = {
     "Motion_Marker": _motion, "Motion_Joint": _motion, "Constraint_General": _gcon,
     "Constraint_Coupler": _coupler, "Force_Scalar_TwoBody": _sforce,
     "Force_SpringDamper": _springdamper, "Force_Vector_TwoBody": _vforce,
-    "Force_Vector_OneBody": _vforce, "Force_Bushing": _bushing, "Force_Penalty": _penalty,
+    "Force_Vector_OneBody": _vforce, "Force_Bushing": _bushing, "Force_Field": _field,
+    "Force_Beam": _beam, "Force_Penalty": _penalty,
     "LoadControl": _loadcontrol, "Reference_Variable": _variable, "Reference_Spline": _spline,
     "Sensor_Event": _sensor, "Sensor_Evaluate": _evaluate, "Post_Request": _request,
     "Param_Transient": _transient, "Param_Static": _static, "Simulate": _simulate,

@@ -96,7 +96,7 @@ _SAME = ("ABS", "AINT", "ANINT", "SIGN")
 _AGREE = {"MAX": (0, 1), "MIN": (0, 1), "MOD": (0, 1), "DIM": (0, 1), "IF": (1, 2, 3),
           "STEP": (2, 4), "STEP5": (2, 4), "HAVSIN": (2, 4)}
 #: Reaction and element force functions: comp 1-4 a force, 5-8 a torque.
-_ELEMENT_FORCES = ("SFORCE", "SPDP", "BUSH", "JOINT", "MOTION")
+_ELEMENT_FORCES = ("SFORCE", "SPDP", "BUSH", "FIELD", "BEAM", "JOINT", "MOTION")
 
 
 def _add(a, b):

@@ -334,7 +334,7 @@ def _check(node):
                 raise ExpressionError(f"{name}: the derivative order is 0, 1 or 2", col)
             return
         if name in ID_ARGS:
-            elements = ("SFORCE", "MOTION", "JOINT", "JPRIM", "SPDP", "BUSH")
+            elements = ("SFORCE", "MOTION", "JOINT", "JPRIM", "SPDP", "BUSH", "FIELD", "BEAM")
             nid = len(args) if name not in elements else 1
             for a in args[:nid]:
                 if a[0] != "num" or a[1] != int(a[1]) or a[1] < 0:

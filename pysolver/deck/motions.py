@@ -12,9 +12,11 @@ R = Rx(B1) Ry(B2) Rz(B3). A Motion_Joint is the motion of its joint's markers al
 (T: DZ(I, J, J)) or about it (R: AZ(I, J)), allowed on the joint types that leave that
 coordinate free.
 """
+from ..errors import DeckError
 from ..model import Motion
 from . import expr as ex
 from . import usersubs
+from .references import velocity_level
 
 
 def two_bodies(model, ctx, a, noun):
@@ -119,3 +121,26 @@ def clashes(model, bi, bj, direction, ground):
         if bodies == pair and other.direction == direction:
             return other.id
     return None
+
+
+def check_static_motions(model):
+    """Statics hold a motion's displacement; a velocity or acceleration motion gives none to
+    hold (docs/deck-language.md, "Statics with constraints")."""
+    static = [c for c in model.commands if c.analysis in ("STATIC", "QUASI-STATIC")]
+    moving = [gc for gc in model.gcons.values() if velocity_level(gc)]
+    if static and moving:
+        raise DeckError(f"{static[0].analysis.lower()} analyses hold positions, and "
+                        f"Constraint_General {moving[0].id} is a relation of velocities "
+                        "(non-holonomic); run the scene as a transient", file=static[0].file,
+                        line=static[0].line, element="Simulate", attribute="analysis_type")
+    rated = [mo for mo in model.motions.values() if mo.val_type != "D"]
+    if static and rated:
+        mo = rated[0]
+        kind = "velocity" if mo.val_type == "V" else "acceleration"
+        what = (f"LoadControl {-mo.id} drives its body through a {kind}" if mo.id < 0 else
+                f"{'Motion_Joint' if mo.joint else 'Motion_Marker'} {mo.id} gives a {kind} "
+                f"(val_type {mo.val_type}); write it as a displacement (val_type D)")
+        raise DeckError(f"{static[0].analysis.lower()} analyses hold each motion's "
+                        f"displacement, and {what}, or run the scene as a transient",
+                        file=static[0].file, line=static[0].line, element="Simulate",
+                        attribute="analysis_type")

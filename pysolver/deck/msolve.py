@@ -29,8 +29,8 @@ import numpy as np
 _STATE = threading.local()
 
 __all__ = ["UNITS", "ACCGRAV", "PART", "POINT_MASS", "MARKER", "PFORCE", "SFORCE", "SPRINGDAMPER",
-           "VFORCE", "VTORQUE", "GFORCE", "BUSHING", "GRAPHICS", "SPLINE", "MOTION", "JOINT",
-           "JPRIM", "GCON", "COUPLER",
+           "VFORCE", "VTORQUE", "GFORCE", "BUSHING", "FIELD", "BEAM", "GRAPHICS", "SPLINE",
+           "MOTION", "JOINT", "JPRIM", "GCON", "COUPLER",
            "LOADCONTROL", "VARIABLE",
            "REQUEST", "INTEGRATOR", "SIMULATE", "STOP", "SENSOR", "SENSOR_EVALUATE", "EQUILIBRIUM",
            "RESOUTPUT", "H3DOUTPUT",
@@ -93,6 +93,9 @@ def _emit(stmt, tag, mapping, id=None, extra=None, keywords=None, **kw):
         if callable(target):
             try:
                 pairs = target(val)
+            except Expected as err:
+                raise DeckError(f"got {val!r}; expected {err}", file=rec.file, line=line,
+                                element=stmt, id=id, attribute=up) from None
             except (TypeError, ValueError):
                 raise DeckError(f"got {val!r}; expected a list of numbers", file=rec.file,
                                 line=line, element=stmt, id=id, attribute=up) from None
@@ -101,6 +104,10 @@ def _emit(stmt, tag, mapping, id=None, extra=None, keywords=None, **kw):
         else:
             attrs[target], names[target] = val, up
     rec.elements.append((tag, attrs, line, names))
+
+
+class Expected(ValueError):
+    """A keyword's value is not of its form: the message says what it expects."""
 
 
 def _vec(keys):
@@ -278,6 +285,72 @@ def BUSHING(id, **kw):
           {"I": "i_marker_id", "J": "j_marker_id", "K": _triple("k"), "C": _triple("c"),
            "KT": _triple("kt"), "CT": _triple("ct"), "FORCE": _triple("preload_"),
            "TORQUE": _triple("preload_t"), "LABEL": "label"}, id, **kw)
+
+
+_SIX = ("x", "y", "z", "tx", "ty", "tz")
+
+
+def _six(prefix, count=6):
+    """The first `count` of the six components (x, y, z, tx, ty, tz) as attributes."""
+    def split(val):
+        vals = [float(v) for v in val]
+        if len(vals) != count:
+            raise Expected(f"{count} numbers")
+        return {f"{prefix}{c}": v for c, v in zip(_SIX, vals)}
+    return split
+
+
+def matrix(val, half=False):
+    """The 6x6 matrix (rows) of a KMATRIX or CMATRIX value: 36 numbers column by column, as
+    Adams enters them; a 6x6 nested list (or array) by rows; with `half` also Adams' BEAM
+    CMATRIX, 21 numbers of the symmetric matrix (its lower half column by column)."""
+    arr = np.asarray(val, dtype=float)
+    if arr.shape == (6, 6):
+        return arr
+    flat = arr.ravel() if arr.ndim == 1 else None
+    if flat is not None and flat.size == 36:
+        return flat.reshape(6, 6).T
+    if half and flat is not None and flat.size == 21:
+        out = np.zeros((6, 6))
+        col, row = np.triu_indices(6)           # column by column, rows from the diagonal
+        out[row, col] = out[col, row] = flat
+        return out
+    half_text = ", 21 (the lower half, column by column)" if half else ""
+    raise Expected(f"36 numbers (column by column){half_text} or a 6x6 matrix (rows)")
+
+
+def _entries(prefix, half=False):
+    def split(val):
+        m = matrix(val, half)
+        return {f"{prefix}{r + 1}{c + 1}": float(m[r, c]) for r in range(6) for c in range(6)}
+    return split
+
+
+def FIELD(id, **kw):
+    """Field (Force_Field): I, J, KMATRIX (the 6x6 stiffness: 36 numbers column by column, as
+    Adams enters them, or a 6x6 matrix by rows), CMATRIX (the damping, the same) or CRATIO
+    (C = CRATIO K), LENGTH (x, y, z, a, b, c: where the field gives FORCE), FORCE (three
+    forces and three torques, in J's axes), LABEL; Adams' FIELD keywords."""
+    _emit("FIELD", "Force_Field",
+          {"I": "i_marker_id", "J": "j_marker_id", "KMATRIX": _entries("k"),
+           "CMATRIX": _entries("c"), "CRATIO": "cratio", "LENGTH": _six("length_"),
+           "FORCE": _six("preload_"), "LABEL": "label"}, id, **kw)
+
+
+def BEAM(id, **kw):
+    """Beam (Force_Beam): I, J, LENGTH, IXX (torsion constant), IYY, IZZ (bending moments
+    about J's y and z), AREA, ASY, ASZ (shear area ratios), EMODULUS, GMODULUS, CRATIO or
+    CMATRIX (21 numbers: the lower half column by column, as Adams; or 36, or a 6x6 matrix,
+    as FIELD's), pysolver's FORCE and TORQUE (preloads, three numbers each in J's axes),
+    LABEL; Adams' BEAM keywords."""
+    _emit("BEAM", "Force_Beam",
+          {"I": "i_marker_id", "J": "j_marker_id", "LENGTH": "length", "IXX": "ixx",
+           "IYY": "iyy", "IZZ": "izz", "AREA": "area", "ASY": "asy", "ASZ": "asz",
+           "EMODULUS": "e", "GMODULUS": "g", "CRATIO": "cratio",
+           "CMATRIX": _entries("c", half=True), "FORCE": _six("preload_", 3),
+           "TORQUE": lambda v: {k.replace("preload_", "preload_t"): x
+                                for k, x in _six("preload_", 3)(v).items()},
+           "LABEL": "label"}, id, **kw)
 
 
 def GRAPHICS(id, TYPE=None, **kw):

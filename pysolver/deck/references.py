@@ -13,7 +13,8 @@ def check_references(model):
               "penalty": model.penalties, "sforce": model.sforces,
               "evaluate": model.evaluates, "motion": model.motions, "joint": model.joints,
               "body": model.bodies, "springdamper": model.springdampers,
-              "bushing": model.bushings, "spline": model.splines}
+              "bushing": model.bushings, "field": model.fields, "beam": model.beams,
+              "spline": model.splines}
     where = model._where
     for se in model.sensors.values():
         if se.evaluate_id is not None and se.evaluate_id not in model.evaluates:

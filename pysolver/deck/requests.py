@@ -38,6 +38,8 @@ CHANNELS = {
 #: writes for joint and bushing outputs), by the Adams statement's name or the XML element's.
 ELEMENT_FUNCTIONS = {"JOINT": "JOINT", "JPRIM": "JOINT", "CONSTRAINT_JOINT": "JOINT",
                      "CONSTRAINT_JPRIM": "JOINT", "BUSHING": "BUSH", "FORCE_BUSHING": "BUSH",
+                     "FIELD": "FIELD", "FORCE_FIELD": "FIELD", "BEAM": "BEAM",
+                     "FORCE_BEAM": "BEAM",
                      "SPRINGDAMPER": "SPDP", "FORCE_SPRINGDAMPER": "SPDP", "SFORCE": "SFORCE",
                      "FORCE_SCALAR_TWOBODY": "SFORCE", "MOTION": "MOTION",
                      "MOTION_JOINT": "MOTION", "MOTION_MARKER": "MOTION"}
@@ -71,7 +73,8 @@ def elemental_channels(ctx, a, markers):
         raise ctx.error("an ELEMENTAL_FORCE request needs elem_type", "elem_type")
     if str(a["elem_type"]).upper() not in ELEMENT_FUNCTIONS:
         raise ctx.error(f"got {a['elem_type']!r}; expected an element with a force function: "
-                        "JOINT (JPRIM), BUSHING, SPRINGDAMPER, SFORCE or MOTION", "elem_type")
+                        "JOINT (JPRIM), BUSHING, FIELD, BEAM, SPRINGDAMPER, SFORCE or MOTION",
+                        "elem_type")
     if a.get("elem_id") is None:
         raise ctx.error("an ELEMENTAL_FORCE request needs elem_id", "elem_id")
     if a.get("ref_marker_id") and a["ref_marker_id"] not in markers:

@@ -24,6 +24,12 @@ _USERSUB = {"usrsub_dll_name": ("str", OPT, None), "usrsub_fnc_name": ("routine"
             "interpreter": (("PYTHON", "MATLAB"), OPT, None)}
 
 _VTYPES = ("FORCEONLY", "TORQUEONLY", "FORCEANDTORQUE")
+#: The six components of a field, a bushing, a beam: forces along and torques about J's axes.
+SIX = ("x", "y", "z", "tx", "ty", "tz")
+_PRELOADS = {f"preload_{c}": ("float", OPT, 0.0) for c in SIX}
+#: A 6x6 matrix's entries: k11..k66 (row, column; MotionSolve's K11..K66).
+_MATRIX = {f"{m}{r}{c}": ("float", OPT, 0.0) for m in "kc" for r in range(1, 7)
+           for c in range(1, 7)}
 _VCOMPS = {f"{lead}{c}_expression": ("expr?", OPT, None) for lead in "ft" for c in "xyz"}
 
 #: Every element, its attributes, their kinds, whether required, and defaults.
@@ -84,6 +90,21 @@ SCHEMA = {
                                                            "cty", "ctz")},
                       **{f"preload_{c}": ("float", OPT, 0.0)
                          for c in ("x", "y", "z", "tx", "ty", "tz")}},
+    # Force_Field: K and C entry by entry (c11..c66 or cratio); nonlinear (FIESUB) refused
+    "Force_Field": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                    "i_marker_id": ("id", REQ, None), "j_marker_id": ("id", REQ, None),
+                    **_MATRIX, "cratio": ("nonneg", OPT, None),
+                    **{f"length_{c}": ("float", OPT, 0.0) for c in SIX}, **_PRELOADS,
+                    **_USERSUB},
+    # Force_Beam: MotionSolve's attributes (E, G, ASY, ASZ in any case), and pysolver's
+    # c11..c66 for Adams' CMATRIX
+    "Force_Beam": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
+                   "i_marker_id": ("id", REQ, None), "j_marker_id": ("id", REQ, None),
+                   **{k: ("pos", REQ, None) for k in ("length", "e", "g", "area", "ixx",
+                                                      "iyy", "izz")},
+                   "asy": ("nonneg", OPT, 0.0), "asz": ("nonneg", OPT, 0.0),
+                   "cratio": ("nonneg", OPT, None),
+                   **{k: v for k, v in _MATRIX.items() if k[0] == "c"}, **_PRELOADS},
     "Constraint_Joint": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
                          "type": (("CONSTANT_VELOCITY", "CYLINDRICAL", "FIXED", "FREE", "HOOKE",
                                    "INLINE", "INPLANE", "ORIENTATION", "PARALLEL_AXES",
@@ -193,6 +214,10 @@ SCHEMA = {
     "H3DOutput": {"*": None},
 }
 COMMANDS = ("Simulate", "Stop", "ResOutput", "H3DOutput")
+#: Attributes MotionSolve spells in capitals (names are read in any case; XML is written so).
+SPELLING = {"Force_Beam": {"e": "E", "g": "G", "asy": "ASY", "asz": "ASZ",
+                           **{k: k.upper() for k in _MATRIX if k[0] == "c"}},
+            "Force_Field": {k: k.upper() for k in _MATRIX}}
 CANONICAL = {name.lower(): name for name in SCHEMA}
 #: The id namespace of each element with a required id (the catalogue's kinds; a LoadControl's
 #: id is optional and its tasks are numbered by deck.tasks).

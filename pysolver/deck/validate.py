@@ -26,10 +26,11 @@ from ..options import DECK_NAMES, Options, rule_problem, steps_problem
 from . import units as un
 from . import usersubs
 from .bodies import add_bodies
+from .fields import add_beam, add_field
 from .floating import place_floating
 from .joints import add_coupler, add_gcon, add_joint
-from .motions import add_joint_motion, add_motion
-from .references import check_references, velocity_level
+from .motions import add_joint_motion, add_motion, check_static_motions
+from .references import check_references
 from .requests import elemental_channels, marker_channels
 from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes, element_file
 from .splinedata import add_spline
@@ -111,7 +112,7 @@ def build_model(elements, source):
         elif ctx.tag == "Constraint_Coupler":
             add_coupler(model, ctx, a)
     place_floating(model)
-    _check_static_motions(model)
+    check_static_motions(model)
     check_references(model)
     if not model.commands:
         model.commands.append(Simulate("TRANSIENT", 1.0, 0.01))
@@ -124,29 +125,6 @@ def build_model(elements, source):
 #: Largest magnitude of a gravity component, in any unit system (9.81 m/s^2 is 9.81e9 nm/s^2):
 #: past it forces and accelerations are beyond what the integrator can carry.
 MAX_GRAVITY = 1e20
-
-
-def _check_static_motions(model):
-    """Statics hold a motion's displacement; a velocity or acceleration motion gives none to
-    hold (docs/deck-language.md, "Statics with constraints")."""
-    static = [c for c in model.commands if c.analysis in ("STATIC", "QUASI-STATIC")]
-    moving = [gc for gc in model.gcons.values() if velocity_level(gc)]
-    if static and moving:
-        raise DeckError(f"{static[0].analysis.lower()} analyses hold positions, and "
-                        f"Constraint_General {moving[0].id} is a relation of velocities "
-                        "(non-holonomic); run the scene as a transient", file=static[0].file,
-                        line=static[0].line, element="Simulate", attribute="analysis_type")
-    rated = [mo for mo in model.motions.values() if mo.val_type != "D"]
-    if static and rated:
-        mo = rated[0]
-        kind = "velocity" if mo.val_type == "V" else "acceleration"
-        what = (f"LoadControl {-mo.id} drives its body through a {kind}" if mo.id < 0 else
-                f"{'Motion_Joint' if mo.joint else 'Motion_Marker'} {mo.id} gives a {kind} "
-                f"(val_type {mo.val_type}); write it as a displacement (val_type D)")
-        raise DeckError(f"{static[0].analysis.lower()} analyses hold each motion's "
-                        f"displacement, and {what}, or run the scene as a transient",
-                        file=static[0].file, line=static[0].line, element="Simulate",
-                        attribute="analysis_type")
 
 
 def _once(ctx, once, tag):
@@ -297,7 +275,6 @@ def _simulate(ctx, a, model, t_prev):
     return end
 
 
-
 def _parsed(val):
     return val if val is None else val[0]
 
@@ -318,6 +295,12 @@ def _expression(model, ctx, a, key="expr"):
     if a.get(key) is None:
         raise ctx.error("missing required attribute for type EXPRESSION", key)
     return a[key][0], a[key][1], None
+
+
+#: The forces held as a scalar or vector force, each added by its module's function.
+_FORCES = {"Force_SpringDamper": add_springdamper, "Force_Vector_TwoBody": add_vforce,
+           "Force_Vector_OneBody": add_vforce, "Force_Bushing": add_bushing,
+           "Force_Field": add_field, "Force_Beam": add_beam}
 
 
 def _force_like(model, ctx, a):
@@ -362,12 +345,8 @@ def _force_like(model, ctx, a):
         model.graphics[a["id"]] = Graphic(a["id"], a["type"], {
             k: v for k, v in a.items() if k not in ("id", "type", "label")}, a["label"])
         model._where[("graphic", a["id"])] = ctx
-    elif tag == "Force_SpringDamper":
-        add_springdamper(model, ctx, a)
-    elif tag in ("Force_Vector_TwoBody", "Force_Vector_OneBody"):
-        add_vforce(model, ctx, a)
-    elif tag == "Force_Bushing":
-        add_bushing(model, ctx, a)
+    elif tag in _FORCES:
+        _FORCES[tag](model, ctx, a)
     elif tag == "Motion_Marker":
         add_motion(model, ctx, a)
     elif tag in ("Constraint_Joint", "Constraint_Jprim"):

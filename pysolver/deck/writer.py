@@ -16,7 +16,7 @@ import os
 from lxml import etree
 
 from ..errors import DeckError
-from .schema import CANONICAL, SCHEMA, Ctx, convert, element_file
+from .schema import CANONICAL, SCHEMA, SPELLING, Ctx, convert, element_file
 
 #: Elements that are commands: they follow <Model>.
 COMMANDS = ("Simulate", "Stop")
@@ -67,6 +67,7 @@ def to_xml(elements, file="<deck>", title=None, out_dir=None):
     for tag, attrs, line, names in elements:
         parent = root if tag in COMMANDS else model
         el = etree.SubElement(parent, tag)
+        spelled = SPELLING.get(CANONICAL.get(tag.lower()), {})
         for key, value in attrs.items():
             if value is None:
                 continue
@@ -86,7 +87,7 @@ def to_xml(elements, file="<deck>", title=None, out_dir=None):
             if key == "#text":
                 el.text = "\n" + text + "\n"
             else:
-                el.set(key, text)
+                el.set(spelled.get(key, key), text)
     etree.indent(root, space="  ")
     return etree.tostring(root, xml_declaration=True, encoding="utf-8").decode() + "\n"
 

@@ -25,8 +25,9 @@ def _element(model, kernel, kind, index):
         e = catalogue.ELEMENT_OF_KIND[name]
         if name == "sforce" and eid < 0:          # a Force_SpringDamper's law
             return "Force_SpringDamper", SimpleNamespace(id=-eid, text=model.sforces[eid].text)
-        if name == "vforce" and eid < 0:          # a Force_Bushing's law
-            return "Force_Bushing", SimpleNamespace(id=-eid, texts=model.vforces[eid].texts)
+        if name == "vforce" and model.vforces[eid].owner:   # a bushing's, field's or beam's
+            tag, oid = model.vforces[eid].owner
+            return tag, SimpleNamespace(id=oid, texts=model.vforces[eid].texts)
         if name == "turn":                        # the tracked angle of a joint, coupler, spring
             return "tracked angle of element", SimpleNamespace(
                 id=eid, text="atan2(sin(theta - s), cos(theta - s))")

@@ -136,6 +136,10 @@ class Scene:
             self.items += shapes.spring(sd, g)
         for bu in scene.bushings.values():
             self.items += shapes.bushing(bu, g)
+        for fi in scene.fields.values():
+            self.items += shapes.field(fi, g)
+        for be in scene.beams.values():
+            self.items += shapes.beam(be, g)
         for sid, sf in sorted(scene.sforces.items()):
             if sid > 0 and not sf.torque and not sf.action_only:
                 self.items += shapes.scalar_force(sf)
@@ -160,7 +164,7 @@ class Scene:
         for jo in scene.joints.values():
             used.update((jo.i, jo.j))
         for el in [*scene.springdampers.values(), *scene.bushings.values(),
-                   *scene.sforces.values()]:
+                   *scene.fields.values(), *scene.beams.values(), *scene.sforces.values()]:
             used.update((el.i, el.j))
         pts += [p.marker_position(mid)[:1] for mid in sorted(used) if mid in p.local]
         pts = _finite(np.concatenate(pts)) if pts else np.zeros((0, 3))

@@ -219,6 +219,18 @@ def bushing(bu, g):
             dict(kind="line", markers=[bu.j, bu.i], dashed=False, color=SPRING, label=label)]
 
 
+def field(el, g):
+    """A Force_Field: drawn as a bushing is."""
+    label = f"Force_Field {el.id}" + (f" {el.label}" if el.label else "")
+    return [dict(item, label=label) for item in bushing(el, g)]
+
+
+def beam(el, g):
+    """A Force_Beam: a line from J to I (the beam's axis while it is straight)."""
+    label = f"Force_Beam {el.id}" + (f" {el.label}" if el.label else "")
+    return [dict(kind="line", markers=[el.j, el.i], dashed=False, color=SPRING, label=label)]
+
+
 def scalar_force(sf):
     label = f"Force_Scalar_TwoBody {sf.id}" + (f" {sf.label}" if sf.label else "")
     return [dict(kind="line", markers=[sf.j, sf.i], dashed=True, color=FORCE, label=label)]
