@@ -11,11 +11,10 @@ read and what is refused).
 import difflib
 import os
 import re
-import warnings
 
 import numpy as np
 
-from ..errors import DeckError, DeckWarning
+from ..errors import DeckError, DeckWarning, warn
 from ..rotations import rot_313, rot_321, rot_from_e
 from . import msolve
 from .adams_statements import COMMANDS, DATASET, EXTENSIONS, PRIMARY, SHARED
@@ -329,8 +328,8 @@ class _Reader:
 
     def warn(self, stmt, msg, line=None, key=None):
         where = f"{stmt.name}/{stmt.id}" if stmt.id is not None else stmt.name
-        warnings.warn(DeckWarning(msg, file=self.file, line=line or stmt.line, element=where,
-                                  attribute=key), stacklevel=3)
+        warn(DeckWarning(msg, file=self.file, line=line or stmt.line, element=where,
+                         attribute=key))
 
     def error(self, stmt, msg, key=None, line=None):
         where = f"{stmt.name}/{stmt.id}" if stmt.id is not None else stmt.name
