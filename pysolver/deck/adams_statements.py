@@ -347,7 +347,8 @@ def _integrator(r, stmt, vals, lines):
 
 
 def _equilibrium(r, stmt, vals, lines):
-    other = [k for k in ("PATTERN", "DYNAMIC", "STATIC") if k in vals]
+    # STATIC is the static equilibrium pysolver finds; DYNAMIC and PATTERN tune Adams' own
+    other = [k for k in ("PATTERN", "DYNAMIC") if k in vals]
     if other:
         r.warn(stmt, f"{', '.join(other)} set aside: pysolver's statics are its own Newton "
                "methods (docs/statics.md)")
@@ -377,6 +378,10 @@ _ANALYSES = {"DYNAMICS": "TRANSIENT", "TRANSIENT": "TRANSIENT", "KINEMATICS": "T
 
 def _simulate(r, stmt, vals, lines):
     kind = _ANALYSES[_one_flag(r, stmt, vals, tuple(_ANALYSES), "the analysis")]
+    if kind == "STATIC" and vals.get("DTOUT") == 0:
+        # no output step (as Inspire writes SIMULATE/STATICS, END = 0, DTOUT = 0): one
+        # equilibrium at END
+        vals = {k: v for k, v in vals.items() if k != "DTOUT"}
     if kind == "STATIC" and any(k in vals for k in ("STEPS", "DTOUT", "DURATION")):
         kind = "QUASI-STATIC"       # Adams: STATICS to END with output steps
     msolve.SIMULATE(TYPE=kind, **_same(vals, ("END", "DURATION", "STEPS", "DTOUT", "START",
