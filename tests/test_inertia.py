@@ -186,8 +186,8 @@ def test_an_im_that_leaves_no_inertia_at_the_centre_of_mass_is_refused(tmp_path)
     assert err.reason == (
         "the inertia about IM marker 21's origin, (0, 3, 0) from the centre of mass along the "
         "CM marker's axes, less the parallel-axis term m(|d|^2 E - d d^T) is not positive "
-        "definite (or breaks the triangle inequality): give the inertia about the IM "
-        "marker's origin, not about the centre of mass")
+        "definite: give the inertia about the IM marker's origin, not about the centre of "
+        "mass")
 
 
 MASSLESS = ("pysolver has no massless parts: give it a small mass, a centre-of-mass marker "
@@ -212,8 +212,8 @@ END
     ("MASS = 0.1, CM = 30", "IP", "missing: the part has no inertia (all its moments are "
      "0), and pysolver has no inertia-less parts: give it a small mass, a centre-of-mass "
      "marker and a small inertia (docs/deck-language.md, \"Massless parts\")"),
-    ("MASS = 0.1, CM = 30, IP = 1, 1, 3", "IP", "inertia tensor must be positive definite "
-     "and satisfy the triangle inequality"),
+    ("MASS = 0.1, CM = 30, IP = 1, 1, -3", "IP", "the inertia tensor must be positive "
+     "definite; its principal moments are -3, 1, 1"),
 ])
 def test_a_massless_part_is_refused_naming_the_datasets_keywords(tmp_path, part3, attribute,
                                                                   reason):

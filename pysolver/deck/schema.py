@@ -4,6 +4,7 @@ the conversion of raw attribute values (XML strings or Python values) to those k
 Both deck readers produce raw elements; :func:`attributes` checks one against :data:`SCHEMA`
 and raises a :class:`~pysolver.DeckError` that names file, line, element, id and attribute.
 """
+import difflib
 import math
 import re
 
@@ -193,6 +194,31 @@ SCHEMA = {
 }
 COMMANDS = ("Simulate", "Stop", "ResOutput", "H3DOutput")
 CANONICAL = {name.lower(): name for name in SCHEMA}
+#: MotionSolve elements pysolver does not model: a DeckError saying so (not "unknown"). An
+#: element added to SCHEMA leaves this list (tests/test_bad_input.py keeps them apart, and
+#: docs/deck-language.md, "Not modelled", lists the same).
+NOT_MODELLED = ("Body_Flexible", "Constraint_CVCV", "Constraint_CVSF", "Constraint_Gear",
+                "Constraint_PTCV", "Constraint_PTSF", "Constraint_PTdCV", "Constraint_PTdSF",
+                "Control_Diff", "Control_SISO", "Control_StateEqn", "Force_Beam",
+                "Force_Contact", "Force_Field", "Force_JointFriction", "Force_Scalar_OneBody",
+                "Reference_Array", "Reference_Matrix", "Reference_ParamCurve",
+                "Reference_ParamSurface", "Reference_String")
+#: MotionSolve elements that only name a plant's inputs and outputs (Adams' PINPUT, POUTPUT):
+#: read and set aside with a DeckWarning.
+SET_ASIDE = ("Control_PlantInput", "Control_PlantOutput")
+
+
+def unknown_element(tag):
+    """The message for an element tag SCHEMA does not have: not modelled (NOT_MODELLED), or
+    unknown, with the closest name pysolver knows."""
+    known = {n.lower(): n for n in NOT_MODELLED}
+    if tag.lower() in known:
+        return (f"<{known[tag.lower()]}> is not supported: a MotionSolve element pysolver "
+                "does not model (docs/deck-language.md, \"Not modelled\")")
+    close = difflib.get_close_matches(tag, list(SCHEMA) + list(NOT_MODELLED) + list(SET_ASIDE),
+                                      n=1, cutoff=0.75)
+    hint = f"; did you mean <{close[0]}>?" if close else ""
+    return f"unknown element <{tag}>{hint} (known elements: {', '.join(sorted(SCHEMA))})"
 #: The id namespace of each element with a required id (the catalogue's kinds; a LoadControl's
 #: id is optional and its tasks are numbered by deck.tasks).
 _ID_KIND = {tag: e.kind for e in catalogue.ELEMENTS for tag in e.tags

@@ -30,7 +30,16 @@ from .joints import add_coupler, add_gcon, add_joint
 from .motions import add_joint_motion, add_motion
 from .references import check_references, velocity_level
 from .requests import elemental_channels, marker_channels
-from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes, element_file
+from .schema import (
+    _ID_KIND,
+    CANONICAL,
+    SCHEMA,
+    SET_ASIDE,
+    Ctx,
+    attributes,
+    element_file,
+    unknown_element,
+)
 from .splinedata import add_spline
 from .springs import add_springdamper
 from .tasks import add_loadcontrol
@@ -56,10 +65,14 @@ def build_model(elements, source):
     sim_t = 0.0
     for tag, attrs, line, names in elements:
         canon = CANONICAL.get(tag.lower())
+        if canon is None and tag.lower() in {n.lower() for n in SET_ASIDE}:
+            Ctx(source.file, tag, attrs, line, names).warn(
+                "only names the variables that are a plant's inputs or outputs for "
+                "linearization and control co-simulation; set aside")
+            continue
         if canon is None:
-            raise DeckError(f"unknown element <{tag}>; known elements: "
-                            f"{', '.join(sorted(SCHEMA))}",
-                            file=element_file(names, source.file), line=line, element=tag)
+            raise DeckError(unknown_element(tag), file=element_file(names, source.file),
+                            line=line, element=tag)
         ctx = Ctx(source.file, canon, attrs, line, names)
         a = attributes(ctx)
         kind = _ID_KIND.get(canon)
