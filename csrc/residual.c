@@ -141,6 +141,18 @@ static void diagnose(const psModel* m, psData* d, double t, const double* y, con
         found_bad(d, PS_BAD_ELEMENT, e, v))
       return;
   }
+  /* every value finite: an element whose load has no direction */
+  for (int e = 0; e < m->nel; e++) {
+    int tape = m->el_tape[e];
+    const psElementKind* k = &ps_element_kinds[m->el_kind[e]];
+    if (!k->undefined) continue;
+    int base = m->tape_order[tape] > k->order ? m->tape_order[tape] : k->order;
+    ps_tape_run(m, d, tape, base, 1, t, y, yp);
+    psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], 0, m->hd_stride};
+    if (k->undefined(m, d, &c, tape, m->el_int + m->el_adr[e], &v) &&
+        found_bad(d, PS_BAD_DIRECTION, e, v))
+      return;
+  }
   found_bad(d, deriv ? PS_BAD_JACOBIAN : PS_BAD_RESIDUAL, -1, NAN);
 }
 

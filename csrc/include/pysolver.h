@@ -317,10 +317,12 @@ typedef struct psData {
 
 /* Where a non-finite value was found (psData.bad_kind): the state or its rate, an element's
  * values (bad_index its row in the element table), a Sensor_Event expression, or, when no
- * element's value is, a residual row or a Jacobian entry (a derivative overflowed). */
+ * element's value is, an element whose load has no direction (bad_index its row, bad_value
+ * its value: a translational force whose markers coincide), else a residual row or a
+ * Jacobian entry (a derivative overflowed). */
 enum {
   PS_BAD_NONE = 0, PS_BAD_STATE, PS_BAD_RATE, PS_BAD_ELEMENT, PS_BAD_SENSOR, PS_BAD_RESIDUAL,
-  PS_BAD_JACOBIAN
+  PS_BAD_JACOBIAN, PS_BAD_DIRECTION
 };
 
 /* The layout of element kind `kind` (PS_EL_*): its number of ints, how many leading ones are

@@ -168,6 +168,21 @@ def _once(ctx, once, tag):
     once[tag] = (ctx.file, ctx.line)
 
 
+def _check_direction(ctx, model, a):
+    """A translational force between markers that coincide for ever (one marker, or two of
+    one body at one place) has no direction: a DeckError (docs/deck-language.md,
+    "Coincident markers")."""
+    if a["type"] == "TORQUE" or a["is_action_only"]:
+        return
+    mi, mj = (model.markers[a[k]] for k in ("i_marker_id", "j_marker_id"))
+    if mi.body == mj.body and np.array_equal(mi.pos, mj.pos):
+        what = "are one marker" if mi.id == mj.id else f"coincide on body {mi.body}"
+        raise ctx.error(f"markers I = {mi.id} and J = {mj.id} {what}, so DM is 0 for ever and "
+                        "a translational force, which acts along the line from J to I, has "
+                        "no direction (docs/deck-language.md, \"Coincident markers\")",
+                        "j_marker_id")
+
+
 def _at(where, ctx):
     """'on line N' of an earlier element at where = (file, line), its file named when it is
     not ctx's (a command file's command against its dataset's statement)."""
@@ -355,6 +370,7 @@ def _force_like(model, ctx, a):
         for key in ("i_marker_id", "j_marker_id"):
             if a[key] not in model.markers:
                 raise ctx.error(f"marker {a[key]} does not exist", key)
+        _check_direction(ctx, model, a)
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
                                              a["j_marker_id"], tree, text, a["label"], sub,
                                              action_only=a["is_action_only"])
