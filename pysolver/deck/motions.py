@@ -11,6 +11,8 @@ allowed on the joint types that leave that coordinate free.
 from ..model import Motion
 from . import usersubs
 
+#: The motions that integrate from an initial condition, in words.
+_TYPES = {"VA": "a V or A motion", "A": "an A motion"}
 _MEASURE = {"X": "DX", "Y": "DY", "Z": "DZ", "B1": "AX", "B2": "AY", "B3": "AZ"}
 
 
@@ -78,10 +80,10 @@ def add_motion(model, ctx, a, joint=0):
         if a.get(key) is not None and a["val_type"] not in kinds:
             if a[key] != 0:
                 ctx.warn(f"{ctx.names.get(key, key)} = {a[key]:g} is not used: it is the "
-                         f"integration constant of a {' or '.join(kinds)} motion, and this "
-                         f"one is val_type "
-                         f"{a['val_type']} (its function gives the displacement and its "
-                         "derivatives)", key)
+                         f"integration constant of {_TYPES[kinds]}, and this one is val_type "
+                         f"{a['val_type']}, whose function gives the "
+                         f"{'displacement' if a['val_type'] == 'D' else 'velocity'} itself",
+                         key)
             a[key] = None
     other = clashes(model, bi, bj, a["direction"], ground)
     if other is not None:
