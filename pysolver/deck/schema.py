@@ -208,17 +208,24 @@ NOT_MODELLED = ("Body_Flexible", "Constraint_CVCV", "Constraint_CVSF", "Constrai
 SET_ASIDE = ("Control_PlantInput", "Control_PlantOutput")
 
 
-def unknown_element(tag):
-    """The message for an element tag SCHEMA does not have: not modelled (NOT_MODELLED), or
-    unknown, with the closest name pysolver knows."""
+def not_in_schema(ctx):
+    """An element whose tag SCHEMA does not have: one of SET_ASIDE draws a DeckWarning; else a
+    DeckError, "not supported" for one of NOT_MODELLED, "unknown" with the closest name
+    pysolver knows for any other."""
+    tag = ctx.tag
+    if tag.lower() in {n.lower() for n in SET_ASIDE}:
+        ctx.warn("only names the variables that are a plant's inputs or outputs for "
+                 "linearization and control co-simulation; set aside")
+        return
     known = {n.lower(): n for n in NOT_MODELLED}
     if tag.lower() in known:
-        return (f"<{known[tag.lower()]}> is not supported: a MotionSolve element pysolver "
-                "does not model (docs/deck-language.md, \"Not modelled\")")
+        raise ctx.error(f"<{known[tag.lower()]}> is not supported: a MotionSolve element "
+                        "pysolver does not model (docs/deck-language.md, \"Not modelled\")")
     close = difflib.get_close_matches(tag, list(SCHEMA) + list(NOT_MODELLED) + list(SET_ASIDE),
                                       n=1, cutoff=0.75)
     hint = f"; did you mean <{close[0]}>?" if close else ""
-    return f"unknown element <{tag}>{hint} (known elements: {', '.join(sorted(SCHEMA))})"
+    raise ctx.error(f"unknown element <{tag}>{hint} (known elements: "
+                    f"{', '.join(sorted(SCHEMA))})")
 #: The id namespace of each element with a required id (the catalogue's kinds; a LoadControl's
 #: id is optional and its tasks are numbered by deck.tasks).
 _ID_KIND = {tag: e.kind for e in catalogue.ELEMENTS for tag in e.tags

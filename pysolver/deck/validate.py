@@ -30,18 +30,9 @@ from .joints import add_coupler, add_gcon, add_joint
 from .motions import add_joint_motion, add_motion
 from .references import check_references, velocity_level
 from .requests import elemental_channels, marker_channels
-from .schema import (
-    _ID_KIND,
-    CANONICAL,
-    SCHEMA,
-    SET_ASIDE,
-    Ctx,
-    attributes,
-    element_file,
-    unknown_element,
-)
+from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes, not_in_schema
 from .splinedata import add_spline
-from .springs import add_springdamper
+from .springs import add_springdamper, fixed_line
 from .tasks import add_loadcontrol
 from .vectors import add_bushing, add_vforce
 
@@ -65,14 +56,9 @@ def build_model(elements, source):
     sim_t = 0.0
     for tag, attrs, line, names in elements:
         canon = CANONICAL.get(tag.lower())
-        if canon is None and tag.lower() in {n.lower() for n in SET_ASIDE}:
-            Ctx(source.file, tag, attrs, line, names).warn(
-                "only names the variables that are a plant's inputs or outputs for "
-                "linearization and control co-simulation; set aside")
+        if canon is None:           # a DeckError, or a DeckWarning for one set aside
+            not_in_schema(Ctx(source.file, tag, attrs, line, names))
             continue
-        if canon is None:
-            raise DeckError(unknown_element(tag), file=element_file(names, source.file),
-                            line=line, element=tag)
         ctx = Ctx(source.file, canon, attrs, line, names)
         a = attributes(ctx)
         kind = _ID_KIND.get(canon)
@@ -166,21 +152,6 @@ def _once(ctx, once, tag):
         raise ctx.error(f"a second {tag} (the first is {_at(once[tag], ctx)}; in a Python "
                         "deck INTEGRATOR, EQUILIBRIUM or ACCGRAV); give one")
     once[tag] = (ctx.file, ctx.line)
-
-
-def _check_direction(ctx, model, a):
-    """A translational force between markers that coincide for ever (one marker, or two of
-    one body at one place) has no direction: a DeckError (docs/deck-language.md,
-    "Coincident markers")."""
-    if a["type"] == "TORQUE" or a["is_action_only"]:
-        return
-    mi, mj = (model.markers[a[k]] for k in ("i_marker_id", "j_marker_id"))
-    if mi.body == mj.body and np.array_equal(mi.pos, mj.pos):
-        what = "are one marker" if mi.id == mj.id else f"coincide on body {mi.body}"
-        raise ctx.error(f"markers I = {mi.id} and J = {mj.id} {what}, so DM is 0 for ever and "
-                        "a translational force, which acts along the line from J to I, has "
-                        "no direction (docs/deck-language.md, \"Coincident markers\")",
-                        "j_marker_id")
 
 
 def _at(where, ctx):
@@ -370,7 +341,7 @@ def _force_like(model, ctx, a):
         for key in ("i_marker_id", "j_marker_id"):
             if a[key] not in model.markers:
                 raise ctx.error(f"marker {a[key]} does not exist", key)
-        _check_direction(ctx, model, a)
+        fixed_line(ctx, model, a)
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
                                              a["j_marker_id"], tree, text, a["label"], sub,
                                              action_only=a["is_action_only"])
