@@ -128,6 +128,10 @@ NO_DIRECTION = ("a translational force acts along the line from J to I, which ha
 @pytest.mark.parametrize("force, named, value", [
     ('<Force_Scalar_TwoBody id="1" type="Force" i_marker_id="10" j_marker_id="1" expr="5"/>',
      "Force_Scalar_TwoBody 1 (5)", "5"),
+    # with a motion the start is made consistent in Python (pysolver.build.consistent)
+    ('<Force_Scalar_TwoBody id="1" type="Force" i_marker_id="10" j_marker_id="1" expr="5"/>'
+     '<Motion_Marker id="1" i_marker_id="10" j_marker_id="1" direction="Z" expr="0.1*TIME"/>',
+     "Force_Scalar_TwoBody 1 (5)", "5"),
     ('<Force_SpringDamper id="3" type="TRANSLATIONAL" i_marker_id="10" j_marker_id="1" '
      'stiffness="10" damping="1" length="1" preload="0"/>',
      "Force_SpringDamper 3 (-k (DM(10,1) - length) - c VR(10,1) + preload)", "10"),
