@@ -125,6 +125,11 @@ typedef struct psElementKind {
   int nint;     /* ints of its layout in el_int                                       */
   int nvalue;   /* its leading ints that are tape slots of its values (diagnosis)      */
   int order;    /* least derivative order of its tape's run (1: rates of g read)       */
+  /* NULL, or whether the element's load is undefined at this state though its values are
+   * finite (a translational force whose markers coincide), its value in *value: the
+   * diagnosis of a non-finite residual (PS_BAD_DIRECTION) */
+  int (*undefined)(const psModel* m, psData* d, const psuHD* c, int tape, const int* I,
+                   double* value);
 } psElementKind;
 
 /* The kinds, indexed by PS_EL_* (csrc/elements/table.c). */

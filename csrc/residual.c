@@ -120,18 +120,33 @@ static int bad_slots(const psModel* m, psData* d, int tape, int order, const int
 }
 
 /* A residual (deriv = 0) or Jacobian (deriv = 1) came out non-finite at (t, y, yp): find the
- * first state, element value (or, for the Jacobian, its first partials) that is, in the order
- * the residual assembles them. Runs only on that failure path. */
+ * first state that is, else an element whose load has no direction at these positions (a
+ * translational force at coincident markers), else the first rate, element value (or, for the
+ * Jacobian, its first partials) that is, in the order the residual assembles them. Runs only
+ * on that failure path. */
 static void diagnose(const psModel* m, psData* d, double t, const double* y, const double* yp,
                      int deriv) {
   double v = 0.0;
   d->bad_t = t;
   d->bad_partial = 0;
   memcpy(d->bad_y, y, sizeof(double) * (size_t)m->ny);
-  for (int i = 0; i < m->ny; i++) {
+  for (int i = 0; i < m->ny; i++)
     if (!isfinite(y[i]) && found_bad(d, PS_BAD_STATE, i, y[i])) return;
-    if (!isfinite(yp[i]) && found_bad(d, PS_BAD_RATE, i, yp[i])) return;
+  /* an element whose load has no direction at these positions (its value finite), before the
+   * rates it makes not finite once solved for */
+  for (int e = 0; e < m->nel; e++) {
+    int tape = m->el_tape[e];
+    const psElementKind* k = &ps_element_kinds[m->el_kind[e]];
+    if (!k->undefined) continue;
+    int base = m->tape_order[tape] > k->order ? m->tape_order[tape] : k->order;
+    ps_tape_run(m, d, tape, base, 1, t, y, yp);
+    psuHD c = {m->tape_nbasis[tape], m->tape_nh[tape], 0, m->hd_stride};
+    if (k->undefined(m, d, &c, tape, m->el_int + m->el_adr[e], &v) &&
+        found_bad(d, PS_BAD_DIRECTION, e, v))
+      return;
   }
+  for (int i = 0; i < m->ny; i++)
+    if (!isfinite(yp[i]) && found_bad(d, PS_BAD_RATE, i, yp[i])) return;
   for (int e = 0; e < m->nel; e++) {
     int tape = m->el_tape[e];
     const psElementKind* k = &ps_element_kinds[m->el_kind[e]];

@@ -372,7 +372,6 @@ REFUSED = {
                     "force functions of Force_Vector_TwoBody are not supported yet; FX..TZ(i, "
                     "j, k) give the net force and torque at a marker"),
     **{name: _NOT_MODELLED.format(what) for name, what in (
-        ("BEAM", "Force_Beam (Adams BEAM)"), ("FIELD", "Force_Field (Adams FIELD)"),
         ("FRICTION", "Force_Friction (Adams FRICTION)"), ("NFORCE", "Adams NFORCE"),
         ("CONTACT", "Force_Contact (Adams CONTACT)"), ("CVCV", "Adams CVCV"),
         ("PTCV", "Adams PTCV"), ("CURVE", "Reference_Curve (Adams CURVE)"),

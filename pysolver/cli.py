@@ -11,12 +11,13 @@ import math
 import os
 import re
 import sys
+import warnings
 
 import numpy as np
 
 from ._version import __version__
 from .deck.loader import load
-from .errors import DeckError, UsageError
+from .errors import DeckError, DeckWarning, UsageError
 
 
 class Parser(argparse.ArgumentParser):
@@ -289,6 +290,18 @@ def _one_line(text):
     return " ".join(part.strip() for part in str(text).splitlines() if part.strip())
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    """A DeckWarning as one line ``pysolver: warning: ...`` on standard error (the deck's
+    file, line and statement are in its text); other warnings as Python shows them."""
+    if issubclass(category, DeckWarning):
+        print(f"pysolver: warning: {_one_line(message)}", file=sys.stderr)
+    else:
+        _PYTHON_SHOW(message, category, filename, lineno, file, line)
+
+
+_PYTHON_SHOW = warnings.showwarning
+
+
 def main(argv=None):
     """Entry point of the ``pysolver`` command; returns the exit status.
 
@@ -302,8 +315,15 @@ def main(argv=None):
     int
         0 done, 1 a run (or a sweep's case) failed, 2 a user error (printed as one line
         ``pysolver: error: ...`` on standard error), 130 interrupted, 141 standard output
-        closed early (``| head``).
+        closed early (``| head``). A deck's warnings are lines ``pysolver: warning: ...`` on
+        standard error.
     """
+    with warnings.catch_warnings():
+        warnings.showwarning = _show_warning
+        return _main(argv)
+
+
+def _main(argv):
     try:
         args = parser().parse_args(argv)
         status = args.func(args)

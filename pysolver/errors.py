@@ -1,5 +1,11 @@
-"""Exceptions raised for bad input."""
+"""Exceptions raised for bad input, and the warning a deck that loads may give."""
 import errno
+import os
+import sys
+import warnings
+
+#: The package's folder: a DeckWarning is attributed to the first frame outside it.
+_PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
 
 class DeckError(ValueError):
@@ -92,6 +98,18 @@ class DeckWarning(UserWarning):
         self.reason, self.file, self.line = message, file, line
         self.element, self.id, self.attribute = element, id, attribute
         super().__init__(str(where))
+
+
+def warn(warning):
+    """Issue `warning` (a :class:`DeckWarning`) as the user's code's: attributed to the first
+    frame outside pysolver (the line that loads the deck, or the Python deck's own
+    statement), so that Python's warning line never shows a line of pysolver's code (the
+    ``pysolver`` command prints ``pysolver: warning: ...`` instead)."""
+    frame, level = sys._getframe(1), 2
+    while frame.f_back is not None and \
+            os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(warning, stacklevel=level)
 
 
 class ExpressionError(ValueError):

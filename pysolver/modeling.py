@@ -37,18 +37,20 @@ import itertools
 import os
 import sys
 import threading
+import warnings
 
 import numpy as np
 
 from .deck.adams_writer import SHAPES, Function, Raw, Statement, statement_lines, view_name
-from .errors import DeckError
+from .errors import DeckError, DeckWarning, warn
 
 __all__ = ["Model", "Units", "Accgrav", "Part", "PointMass", "Marker", "Point", "Vector",
            "Joint", "Jprim", "Gcon", "Coupler", "Motion", "Sforce", "SpringDamper",
            "Bushing", "Field", "Beam", "Vforce", "Vtorque", "Gforce", "Variable", "Spline",
            "Sensor", "SensorEvaluate", "Request", "Output", "Integrator", "DaeIntegrator",
-           "Equilibrium", "Graphics", "Sphere", "Box", "Cylinder", "Frustum", "Ellipsoid", "Pforce",
-           "LoadControl", "ResOutput", "H3DOutput"]
+           "Equilibrium", "Graphics", "Sphere", "Box", "Cylinder", "Frustum", "Ellipsoid",
+           "External", "Pforce", "LoadControl", "ResOutput", "H3DOutput", "H3dOutput", "Pinput",
+           "Poutput"]
 
 _STATE = threading.local()
 _COMMANDS = "<simulate commands>"        # the file the commands' errors name, then mapped
@@ -131,9 +133,10 @@ class _Element:
     _numbered = True               # has an id
     _any = False                   # takes any keyword (kept as written)
     _refused = {}                  # msolve attributes pysolver does not take -> why
+    _kept = ()                     # msolve attributes taken and kept, not written: not used
 
     def __init__(self, id=None, label="", active=True, name=None, **kw):
-        unknown = sorted(set(kw) - set(self._keys)) if not self._any else []
+        unknown = sorted(set(kw) - set(self._keys) - set(self._kept)) if not self._any else []
         file, line = _caller()
         if unknown and unknown[0] in self._refused:
             raise DeckError(f"{unknown[0]} is not supported: {self._refused[unknown[0]]}",
@@ -148,7 +151,7 @@ class _Element:
                             line=line, element=type(self).__name__, attribute="active")
         object.__setattr__(self, "_where", (file, line))
         object.__setattr__(self, "_extra", {})
-        self.__dict__.update({k: None for k in self._keys})
+        self.__dict__.update({k: None for k in (*self._keys, *self._kept)})
         for key, value in kw.items():
             setattr(self, key, value)
         self.label, self.active, self.name = label, bool(active), name
@@ -162,6 +165,9 @@ class _Element:
         return cls._statement
 
     def __setattr__(self, name, value):
+        if name in self._kept:              # not part of the model: never a change
+            object.__setattr__(self, name, value)
+            return
         if name not in self._keys and name not in _BASE and not self._any:
             raise AttributeError(f"{type(self).__name__} has no attribute {name!r}; it takes "
                                  f"{', '.join(sorted(self._keys))}")
@@ -203,8 +209,10 @@ class _Element:
                 out.append((key, None))
             else:
                 out.append((key, _plain(key, val)))
-        for k, v in self._extra.items():
-            if v is not None:
+        for k, v in self._extra.items():       # an element kept as written (_any)
+            if isinstance(v, (bool, np.bool_)):
+                out.append((k.upper(), None if v else Raw("FALSE")))   # a flag, or FALSE
+            elif v is not None:
                 _active_refs(k, v)
                 out.append((k.upper(), _plain(k.upper(), v)))
         if self._any:               # kept as written: the text of each value
@@ -465,13 +473,6 @@ class Motion(_Element):
         if self.function is None and self.routine is None:
             raise _bad("function", "give function= (an expression of time), or routine= (a "
                        'MOTSUB, with function="USER(...)")')
-        dtype = self._flag("dtype") or "DISPLACEMENT"
-        for attr, kinds in (("icdisp", ("VELOCITY", "ACCELERATION")),
-                            ("icvel", ("ACCELERATION",))):
-            if getattr(self, attr) is not None and dtype not in kinds:
-                raise _bad(attr, f"{attr} is an initial condition of {' or '.join(kinds)} "
-                           f"motions; this one is dtype={dtype}"
-                           + (" (the default)" if self.dtype is None else ""))
         return out
 
     def _joint_motion(self):
@@ -587,9 +588,18 @@ class Gforce(_Element):
 
 class Variable(_Element):
     """A variable read with VARVAL(id): function, ic; routine, script, interpreter (a
-    VARSUB)."""
+    VARSUB). msolve's implicit (False; an implicit variable is not supported), and
+    auto_balance, penalty, penalty1 (an implicit variable's: taken, not used)."""
     _statement = "VARIABLE"
     _keys = {"function": "FUNCTION", "ic": "IC", **_SUB}
+    _kept = ("implicit", "auto_balance", "penalty", "penalty1")
+
+    def _arguments(self):
+        if self.implicit:
+            raise _bad("implicit", "an implicit Variable (its function held at zero by a "
+                       "constraint or a penalty) is not supported: pysolver's variables are "
+                       "explicit, VARVAL(id) the function's value (docs/msolve.md)")
+        return super()._arguments()
 
 
 class Spline(_Element):
@@ -635,7 +645,8 @@ class SensorEvaluate(_Element):
 class Request(_Element):
     """An output request: type DISPLACEMENT, VELOCITY, ACCELERATION or FORCE with i, j, rm;
     or f1..f8 (expressions), or function="USER(...)" with routine, script, interpreter (a
-    REQSUB); comment; cnames (the channels' names)."""
+    REQSUB); comment; cnames (the channels' names); msolve's results_name (taken, not used:
+    pysolver names a request's results by its id and label)."""
     _statement = "REQUEST"
     _keys = {"type": _choices("DISPLACEMENT", "VELOCITY", "ACCELERATION", "FORCE",
                               EXPRESSION=None, USERSUB=None,
@@ -644,6 +655,7 @@ class Request(_Element):
                               MARKER_FORCE="FORCE"),
              "i": "I", "j": "J", "rm": "RM", **{f"f{k}": f"F{k}" for k in range(1, 9)},
              "function": "FUNCTION", "comment": "COMMENT", "cnames": "CNAMES", **_SUB}
+    _kept = ("results_name",)
 
 
 class Graphics(_Element):
@@ -705,6 +717,13 @@ class Ellipsoid(_Shape):
     _shape = "ELLIPSOID"
 
 
+class External(_Shape):
+    """Graphics from a CAD file (msolve's External, which Inspire writes for every part):
+    file, element, rm, color, refinement_level, ..., kept as written (the 3-D view does not
+    read CAD files)."""
+    _shape = "EXTERNAL"
+
+
 class ResOutput(_Settings):
     """pysolver: MotionSolve's ResOutput settings, any attribute, kept (not used)."""
     _statement = "RESOUTPUT"
@@ -712,40 +731,70 @@ class ResOutput(_Settings):
 
 
 class H3DOutput(_Settings):
-    """pysolver: MotionSolve's H3DOutput settings, any attribute, kept (not used)."""
+    """MotionSolve's H3D output settings (save, linear_anim, format, ...), any attribute,
+    kept (not used: pysolver writes no H3D file)."""
     _statement = "H3DOUTPUT"
     _any = True
 
 
+#: msolve's spelling of the class (Altair's H3dOutput).
+H3dOutput = H3DOutput
+
+
 class Output(_Settings):
-    """Output settings (reqsave, grsave): accepted, not used (pysolver writes its own)."""
+    """Output settings (reqsave, grsave, req_angle_radians, capture_max_pd, req_comment_only,
+    azero, dzero, fzero, vzero, ..., any attribute): accepted, not used (pysolver writes its
+    own outputs)."""
     _statement = "OUTPUT"
     _keys = {"reqsave": "REQSAVE", "grsave": "GRSAVE"}
+    _any = True
+
+
+class Pinput(_Element):
+    """A plant's inputs (variables: the Variables) for linearization and control
+    co-simulation: accepted, set aside with a DeckWarning (the dataset's PINPUT)."""
+    _statement = "PINPUT"
+    _keys = {"variables": "VARIABLES"}
+
+
+class Poutput(_Element):
+    """A plant's outputs (variables: the Variables): set aside as Pinput (POUTPUT)."""
+    _statement = "POUTPUT"
+    _keys = {"variables": "VARIABLES"}
 
 
 class Integrator(_Settings):
     """Integrator settings: type (DSTIFF, GSTIFF, ...: pysolver integrates with IDA's BDF),
     error, hmax, hmin, hinit; pysolver's max_num_steps, max_step_growth, nonlin_conv_coef,
-    dae_constr_tol."""
+    dae_constr_tol. kmax, maxit, pattern (Adams' INTEGRATOR keywords) and msolve's dae_index,
+    dae_jacob_init are taken and not used (IDA chooses its own order, iterations and
+    formulation: docs/numerics.md)."""
     _statement = "INTEGRATOR"
     _keys = {"type": _choices("IDA", "DSTIFF", "VSTIFF", "MSTIFF", "GSTIFF", "WSTIFF", "ABAM",
                               "I3", "SI2"),
              "error": "ERROR", "hmax": "HMAX", "hmin": "HMIN", "hinit": "HINIT",
              "max_num_steps": "MAX_NUM_STEPS", "max_step_growth": "MAX_STEP_GROWTH",
-             "nonlin_conv_coef": "NONLIN_CONV_COEF", "dae_constr_tol": "DAE_CONSTR_TOL"}
+             "nonlin_conv_coef": "NONLIN_CONV_COEF", "dae_constr_tol": "DAE_CONSTR_TOL",
+             "kmax": "KMAX", "maxit": "MAXIT", "pattern": "PATTERN"}
+    _kept = ("dae_index", "dae_jacob_init")
 
 
 DaeIntegrator = Integrator
 
 
 class Equilibrium(_Settings):
-    """Static settings: error, imbalance, maxit, stability, tlimit, alimit; pysolver's
-    method (FIM_D, FIM_S, MKEAM), max_ke_tol, max_dq_tol, compliance_delta."""
+    """Static settings: error, imbalance, maxit, stability, tlimit, alimit, type (STATIC, the
+    static equilibrium pysolver finds; DYNAMIC is set aside with a DeckWarning),
+    kinetic_energy_error (MKEAM's max_ke_tol); pysolver's method (FIM_D, FIM_S, MKEAM),
+    max_ke_tol, max_dq_tol, compliance_delta; msolve's skip_mkeam is taken and not used
+    (pysolver runs the one method `method` names)."""
     _statement = "EQUILIBRIUM"
     _keys = {"error": "ERROR", "imbalance": "IMBALANCE", "maxit": "MAXIT",
              "stability": "STABILITY", "tlimit": "TLIMIT", "alimit": "ALIMIT",
-             "method": "METHOD", "max_ke_tol": "MAX_KE_TOL", "max_dq_tol": "MAX_DQ_TOL",
-             "compliance_delta": "COMPLIANCE_DELTA"}
+             "type": _choices("STATIC", "DYNAMIC"), "method": "METHOD",
+             "max_ke_tol": "MAX_KE_TOL", "kinetic_energy_error": "MAX_KE_TOL",
+             "max_dq_tol": "MAX_DQ_TOL", "compliance_delta": "COMPLIANCE_DELTA"}
+    _kept = ("skip_mkeam",)
 
 
 class Pforce(_Element):
@@ -804,10 +853,12 @@ class Model:
     ----------
     output : str, optional
         The output name (kept as ``model.output``; pysolver writes no files unless told).
+    label : str, optional
+        The model's label (kept as ``model.label``; the title line of ``model.adm()``).
     """
 
-    def __init__(self, output=None):
-        self.output = output
+    def __init__(self, output=None, label=None):
+        self.output, self.label = output, label
         self.entities = []          # the elements, in the order they were created
         self.commands = []
         self._ids = {}
@@ -886,7 +937,8 @@ class Model:
         """
         from .deck.adams import COMMANDS_MARK
         self._check_unchanged()
-        lines, self._lines, self._made = ["pysolver msolve model"], {}, {}
+        title = " ".join(str(self.label).split()) if self.label else ""
+        lines, self._lines, self._made = [title or "pysolver msolve model"], {}, {}
         for el in self.entities:
             if not el.active:
                 continue
@@ -935,15 +987,32 @@ class Model:
         checks after the reader name them too."""
         from .deck.adams import read_elements
         text = self.adm()
+        caught = []
         try:
-            elements = read_elements(text, self._file())
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                elements = read_elements(text, self._file())
         except DeckError as err:
             where = self._python(err.file, err.line)
             if where is None:
                 raise
             raise DeckError(err.reason, file=where[0], line=where[1], element=err.element,
                             attribute=err.attribute) from None
+        finally:
+            self._warn_again(caught)
         return text, [self._located(el) for el in elements]
+
+    def _warn_again(self, caught):
+        """The reader's warnings, each DeckWarning at the Python file and line that made its
+        statement."""
+        for w in caught:
+            msg = w.message
+            if not isinstance(msg, DeckWarning):
+                warnings.warn_explicit(msg, w.category, w.filename, w.lineno)
+                continue
+            where = self._python(msg.file, msg.line) or (msg.file, msg.line)
+            warn(DeckWarning(msg.reason, file=where[0], line=where[1], element=msg.element,
+                             id=msg.id, attribute=msg.attribute))
 
     def _python(self, file, line):
         """(file, line) of the Python code behind line `line` of the dataset (`file` the
@@ -964,7 +1033,8 @@ class Model:
         return tag, attrs, where[1], {**names, **shown, "#file": where[0]}
 
     def simulate(self, type="DYNAMICS", end=None, dtout=None, steps=None, duration=None,
-                 start=None, print_increment=None, returnResults=True, **options):
+                 start=None, print_increment=None, returnResults=True,
+                 active_contact_iteration=None, **options):
         """Add a simulation command and run every command so far from the start.
 
         The model must not have changed since the previous simulate(): every command runs
@@ -974,7 +1044,8 @@ class Model:
         Parameters
         ----------
         type : {"DYNAMICS", "TRANSIENT", "KINEMATICS", "STATICS", "ASSEMBLY"}
-            STATICS with dtout or steps is a quasi-static analysis (as Adams' SIMULATE).
+            STATICS with dtout or steps is a quasi-static analysis (as Adams' SIMULATE);
+            with dtout=0 (no output step, as Inspire writes it) one equilibrium at end.
         end, duration : float
             The end time (or the duration after the previous command's end).
         dtout, steps : float, int
@@ -984,6 +1055,8 @@ class Model:
             print_increment (accepted, not used).
         returnResults : bool
             Return the Result (else None).
+        active_contact_iteration : bool, optional
+            msolve's contact iteration switch: taken, not used (pysolver has no contact).
         **options
             Run options (``integr_tol=``, ``kernel=``, ...: :meth:`pysolver.Model.run`).
 

@@ -175,7 +175,8 @@ def test_element_kinds_match_the_c_diagnosis_the_schema_and_the_statements():
     header = (ROOT / "csrc" / "include" / "pysolver.h").read_text()
     bad = re.search(r"enum \{\s*PS_BAD_NONE = 0,([^}]*)\}", header).group(1)
     element_bads = {n for n in re.findall(r"PS_BAD_\w+", bad)} - {
-        "PS_BAD_STATE", "PS_BAD_RATE", "PS_BAD_ELEMENT", "PS_BAD_RESIDUAL", "PS_BAD_JACOBIAN"}
+        "PS_BAD_STATE", "PS_BAD_RATE", "PS_BAD_ELEMENT", "PS_BAD_RESIDUAL", "PS_BAD_JACOBIAN",
+        "PS_BAD_DIRECTION"}
     declared = [e.bad for e in catalogue.ELEMENTS if e.bad]
     assert sorted(declared) == sorted(element_bads) and len(set(declared)) == len(declared)
     assert all(isinstance(getattr(lib, name), int) for name in declared)

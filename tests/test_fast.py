@@ -395,11 +395,14 @@ def test_a_root_in_a_restarts_first_step_past_print_times(monkeypatch):
 def test_a_failed_start_reports_no_records_of_the_run_before(monkeypatch):
     """The kept batched run of a LoadControl deck, after a run that logged 30 updates, runs a
     case whose initial conditions fail (a force 1e-9 / VARVAL = inf): no controller records
-    and no notes of the earlier run, as on the general loop."""
+    and no notes of the earlier run, as on the general loop. (The force acts from a ground
+    marker above the indenter: on its own marker, where it starts, a force has no
+    direction.)"""
     text = LOADCONTROL.replace('end_time="3.0"', 'end_time="0.3"').replace(
         ">10</Parameter>", ">1e-6</Parameter>").replace(
-        "<Post_Request", '<Reference_Variable id="5" expr="1"/><Force_Scalar_TwoBody id="9" '
-        'type="Force" i_marker_id="10" j_marker_id="1" expr="1e-9/VARVAL(5)"/><Post_Request')
+        "<Post_Request", '<Reference_Variable id="5" expr="1"/><Reference_Marker id="98" '
+        'body_id="1" pos_z="1"/><Force_Scalar_TwoBody id="9" type="Force" i_marker_id="10" '
+        'j_marker_id="98" expr="1e-9/VARVAL(5)"/><Post_Request')
     model = pysolver.loads(text)
     case = {"Reference_Variable/5/value": 0.0}
     for enabled in (True, False):

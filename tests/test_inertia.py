@@ -186,8 +186,8 @@ def test_an_im_that_leaves_no_inertia_at_the_centre_of_mass_is_refused(tmp_path)
     assert err.reason == (
         "the inertia about IM marker 21's origin, (0, 3, 0) from the centre of mass along the "
         "CM marker's axes, less the parallel-axis term m(|d|^2 E - d d^T) is not positive "
-        "definite (or breaks the triangle inequality): give the inertia about the IM "
-        "marker's origin, not about the centre of mass")
+        "definite: give the inertia about the IM marker's origin, not about the centre of "
+        "mass")
 
 
 MASSLESS = ("pysolver has no massless parts: give it a small mass, a centre-of-mass marker "
@@ -212,8 +212,8 @@ END
     ("MASS = 0.1, CM = 30", "IP", "missing: the part has no inertia (all its moments are "
      "0), and pysolver has no inertia-less parts: give it a small mass, a centre-of-mass "
      "marker and a small inertia (docs/deck-language.md, \"Massless parts\")"),
-    ("MASS = 0.1, CM = 30, IP = 1, 1, 3", "IP", "inertia tensor must be positive definite "
-     "and satisfy the triangle inequality"),
+    ("MASS = 0.1, CM = 30, IP = 1, 1, -3", "IP", "the inertia tensor must be positive "
+     "definite; its principal moments are -3, 1, 1"),
 ])
 def test_a_massless_part_is_refused_naming_the_datasets_keywords(tmp_path, part3, attribute,
                                                                   reason):
@@ -267,3 +267,39 @@ def test_a_sweep_keeps_the_inertia_about_the_centre_of_mass():
     res = pysolver.loads(IM_XML).run(params={"Reference_Marker/21/pos_y": 1.0},
                                      integr_tol=1e-10)
     np.testing.assert_allclose(res.request(1)[0, :3], [1 / 13, 1.0, 3 / 15], rtol=1e-8)
+
+
+#: A free part whose principal moments (1E-3, 1E-3, 4.8E-1: FAST's nacelle-like numbers,
+#: scaled) break the triangle inequality: no rigid body has them, but the tensor is positive
+#: definite, so Euler's equations hold.
+NOT_A_TRIANGLE = """a part with FAST's kind of inertia
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = SECOND
+PART/1, GROUND
+MARKER/1, PART = 1
+PART/2, MASS = 1, CM = 20, IP = 1.0E-3, 1.0E-3, 4.8E-1
+, WX = 0.3, WY = 0.1, WZ = 0.01
+MARKER/20, PART = 2
+REQUEST/1, F1 = WX(20, 1, 20)\\F2 = WY(20, 1, 20)\\F3 = WZ(20, 1, 20)\\
+END
+"""
+
+
+def test_an_inertia_breaking_the_triangle_inequality_loads_with_a_warning(tmp_path):
+    """Adams takes such a part (FAST writes 2-4 of them in each dataset): pysolver too, with
+    a DeckWarning naming the part, its line and IP, and the part tumbles as Euler's equations
+    say with that tensor."""
+    path = tmp_path / "fast_like.adm"
+    path.write_text(NOT_A_TRIANGLE)
+    with pytest.warns(DeckWarning) as caught:
+        model = pysolver.load(str(path))
+    assert [str(w.message) for w in caught] == [
+        f"{path}:5, PART/2 (Body_Rigid), attribute 'IP': the principal moments of inertia "
+        "0.001, 0.001, 0.48 break the triangle inequality (the largest is more than the sum "
+        "of the other two; a rigid body's never is); Adams takes such a part and so does "
+        "pysolver: the tensor is positive definite, so the motion is defined "
+        "(docs/deck-language.md, \"Mass properties\")"]
+    res = model.run(integr_tol=1e-10)
+    assert res.success
+    inertia = np.diag([1e-3, 1e-3, 0.48])
+    omega = res.request(1)[:, :3]
+    assert np.abs(omega - _euler(inertia, [0.3, 0.1, 0.01], res.t)).max() < 1e-7

@@ -98,8 +98,6 @@ def test_the_python_statement_drives_a_joint(tmp_path):
     ('joint_id="1" expr="TIME"', "motion_type", "CYLINDRICAL: say which"),
     ('joint_id="3" motion_type="T" expr="TIME"', "motion_type", "not a coordinate of "
                                                                "REVOLUTE"),
-    ('joint_id="3" ic_disp="0.1" expr="TIME"', "ic_disp", "of a V or A motion"),
-    ('joint_id="3" val_type="V" ic_vel="0.1" expr="1"', "ic_vel", "of a A motion"),
     ('joint_id="3" expr="DX(20)"', "expr", "time only"),
     ('expr="TIME"', "joint_id", "required"),
 ])
@@ -117,6 +115,29 @@ def test_a_bad_joint_motion_is_a_deck_error_naming_it(motion, attribute, words):
     e = err.value
     assert (e.element, e.attribute, e.line) == ("Motion_Joint", attribute, 8)
     assert words in str(e)
+
+
+@pytest.mark.parametrize("motion, attribute, words", [
+    ('ic_disp="0.1" expr="TIME"', "ic_disp", "ic_disp = 0.1 is not used: it is the "
+     "integration constant of a V or A motion, and this one is val_type D, whose function "
+     "gives the displacement itself"),
+    ('val_type="V" ic_disp="0" ic_vel="0.1" expr="1"', "ic_vel", "ic_vel = 0.1 is not used: "
+     "it is the integration constant of an A motion, and this one is val_type V, whose "
+     "function gives the velocity itself"),
+])
+def test_an_initial_condition_the_motion_does_not_integrate_is_not_used(motion, attribute,
+                                                                       words):
+    """MotionView and Inspire write ic_disp and ic_vel on every motion; only V and A motions
+    integrate from them (docs/deck-language.md): another is a DeckWarning when not 0."""
+    extra = ('<Reference_Marker id="40" body_id="4"/><Body_Rigid id="4" cg_id="40" mass="1" '
+             'inertia_xx="1" inertia_yy="1" inertia_zz="1"/>'
+             '<Constraint_Joint id="3" type="REVOLUTE" i_marker_id="40" j_marker_id="1"/>')
+    text = CYLINDER.format(motions=extra + f'\n  <Motion_Joint id="5" joint_id="3" {motion}/>')
+    with pytest.warns(pysolver.DeckWarning) as caught:
+        model = pysolver.loads(text)
+    assert [(w.message.line, w.message.attribute, w.message.reason) for w in caught] == [
+        (8, attribute, words)]
+    assert getattr(model.motions[5], attribute) is None      # not used
 
 
 def test_a_motion_joint_shares_the_motion_ids():

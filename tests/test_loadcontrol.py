@@ -173,11 +173,14 @@ def test_a_force_infinite_just_after_an_update_does_not_fail_its_restart():
     1e-9 / (TIME - 0.500001), infinite exactly at t + h of the update at 0.5 and finite at the
     update itself, leaves the restart consistent (as consistent() in Python, which reads the
     reactions' rows alone), and the run goes on through its 100 updates (the C restart failed
-    it before stop 37, a review found)."""
+    it before stop 37, a review found). The force acts from a ground marker above the
+    indenter (along z, as from marker 1 once the indenter has left it: at t = 0 the indenter
+    sits on marker 1, where a force has no direction)."""
     text = (DECKS / "loadcontrol_indenter.xml").read_text().replace(
         'end_time="3.0"', 'end_time="1.0"').replace(
-        "<Post_Request", '<Force_Scalar_TwoBody id="99" type="Force" i_marker_id="10" '
-        'j_marker_id="1" expr="1e-9/(TIME-0.500001)"/><Post_Request', 1)
+        "<Post_Request", '<Reference_Marker id="98" body_id="1" pos_z="1"/>'
+        '<Force_Scalar_TwoBody id="99" type="Force" i_marker_id="10" '
+        'j_marker_id="98" expr="1e-9/(TIME-0.500001)"/><Post_Request', 1)
     res = pysolver.loads(text).run(progress=False)
     assert res.success, res.message
     assert len(res.controller(1)["time"]) == 100

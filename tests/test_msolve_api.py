@@ -4,12 +4,13 @@ leaves the commands as they were, cm markers made without an owner, active=, nam
 Point.x, owners given twice, Motion errors in msolve's names, sweep() of an msolve Model and
 the log line of the default run. Messages are checked whole; runs against closed forms."""
 import sys
+import warnings
 
 import numpy as np
 import pytest
 
 import pysolver
-from pysolver import DeckError
+from pysolver import DeckError, DeckWarning
 from pysolver.msolve import (
     Accgrav,
     Joint,
@@ -374,11 +375,6 @@ def _motion_model(joint_type="REVOLUTE"):
     ("REVOLUTE", dict(jtype="ROTATION"), "function",
      'give function= (an expression of time), or routine= (a MOTSUB, with '
      'function="USER(...)")'),
-    ("REVOLUTE", dict(function="TIME", icdisp=0.5), "icdisp",
-     "icdisp is an initial condition of VELOCITY or ACCELERATION motions; this one is "
-     "dtype=DISPLACEMENT (the default)"),
-    ("REVOLUTE", dict(function="TIME", dtype="V", icvel=1.0), "icvel",
-     "icvel is an initial condition of ACCELERATION motions; this one is dtype=VELOCITY"),
     ("REVOLUTE", dict(function="TIME", direction="B3"), "direction",
      "direction= is a marker motion's; this one drives joint= (its coordinate: jtype=)"),
     ("CYLINDRICAL", dict(function="TIME"), "jtype",
@@ -398,6 +394,35 @@ def test_motion_errors_name_msolves_attributes(kind, motion, attribute, reason):
     with pytest.raises(DeckError) as err:
         model.load()
     assert str(err.value) == f"{__file__}:{line}, Motion id=1, attribute '{attribute}': {reason}"
+
+
+def test_initial_conditions_a_motion_does_not_integrate_are_not_used():
+    """Inspire writes icdisp=0.0, icvel=0.0 on every displacement motion; Adams' and
+    MotionSolve's ICDISP/ICVEL are the integration constants of a V or A motion only, so on
+    another they are taken and not used: quietly when 0, with a DeckWarning at the Motion's
+    line otherwise. The displacement motion follows its function from its value at 0."""
+    model, joint, pin, pivot = _motion_model()
+    Motion(joint=joint, function="0.3*TIME", icdisp=0.0, icvel=0.0)
+    Request(f1=f"AZ({pin.id},{pivot.id})", f2=f"WZ({pin.id},{pivot.id},{pivot.id})")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        res = model.simulate(type="TRANSIENT", end=1, dtout=0.5, integr_tol=1e-9)
+    np.testing.assert_allclose(res.request(1)[:, :2], [[0, 0.3], [0.15, 0.3], [0.3, 0.3]],
+                               atol=1e-9)
+    for motion, shown, text in (
+            (dict(function="TIME", icdisp=0.5), "ICDISP",
+             "ICDISP = 0.5 is not used: it is the integration constant of a V or A motion, and "
+             "this one is val_type D, whose function gives the displacement itself"),
+            (dict(function="TIME", dtype="V", icdisp=0.0, icvel=1.0), "ICVEL",
+             "ICVEL = 1 is not used: it is the integration constant of an A motion, and this "
+             "one is val_type V, whose function gives the velocity itself")):
+        model, joint, _, _ = _motion_model()
+        Motion(joint=joint, **motion)
+        line = _here() - 1
+        with pytest.warns(DeckWarning) as caught:
+            model.load()
+        assert [str(w.message) for w in caught] == [
+            f"{__file__}:{line}, MOTION/1 (Motion_Joint), attribute '{shown}': {text}"]
 
 
 def test_marker_motion_errors_and_the_datasets_checks_in_msolves_names():

@@ -107,3 +107,66 @@ def test_a_contact_at_the_first_step_with_restore_and_shrink():
     res = pysolver.loads(text).run()
     assert res.success, res.message
     assert res.t[-1] == pysolver.loads(text).commands[-1].end_time
+
+
+#: A point body whose cg marker sits on ground's origin marker, and a force between them
+#: ({force}): a translational force there acts along no line (trial 44's forces defect 6).
+COINCIDENT = """<MotionSolve><Model>
+<Body_Rigid id="1" isground="TRUE"/>
+<Reference_Marker id="1" body_id="1"/>
+<Body_Point id="2" cg_id="10" mass="1"/>
+<Reference_Marker id="10" body_id="2"/>
+{force}
+</Model></MotionSolve>
+"""
+NO_DIRECTION = ("a translational force acts along the line from J to I, which has no direction "
+                "there: place the markers apart, or give a force that is 0 where they meet "
+                "(docs/deck-language.md, \"Coincident markers\")")
+
+
+@pytest.mark.parametrize("kernel", ["tapes", "generated"])
+@pytest.mark.parametrize("force, named, value", [
+    ('<Force_Scalar_TwoBody id="1" type="Force" i_marker_id="10" j_marker_id="1" expr="5"/>',
+     "Force_Scalar_TwoBody 1 (5)", "5"),
+    # with a motion the start is made consistent in Python (pysolver.build.consistent)
+    ('<Force_Scalar_TwoBody id="1" type="Force" i_marker_id="10" j_marker_id="1" expr="5"/>'
+     '<Motion_Marker id="1" i_marker_id="10" j_marker_id="1" direction="Z" expr="0.1*TIME"/>',
+     "Force_Scalar_TwoBody 1 (5)", "5"),
+    ('<Force_SpringDamper id="3" type="TRANSLATIONAL" i_marker_id="10" j_marker_id="1" '
+     'stiffness="10" damping="1" length="1" preload="0"/>',
+     "Force_SpringDamper 3 (-k (DM(10,1) - length) - c VR(10,1) + preload)", "10"),
+])
+def test_a_force_along_no_line_fails_naming_itself(kernel, force, named, value):
+    """A run that starts with the markers on each other and a force that is not 0 there
+    fails (it was silently 0: an unstable start looked like an equilibrium), in both
+    kernels alike."""
+    res = pysolver.loads(COINCIDENT.format(force=force)).run(kernel=kernel)
+    assert (res.success, res.status) == (False, -700)
+    assert res.message == (f"initial conditions: force with no direction in {named}: its "
+                           f"markers I = 10 and J = 1 coincide (DM = 0) while its force is "
+                           f"{value}, at t = 0; {NO_DIRECTION}")
+
+
+def test_a_force_that_is_zero_where_the_markers_meet_runs():
+    """A spring of free length 0 and no preload is 0 at DM = 0: nothing to point, no load;
+    pulled by gravity the body swings on it as a mass on a spring: y = -g/w^2 (1 - cos wt)."""
+    force = ('<Force_SpringDamper id="3" type="TRANSLATIONAL" i_marker_id="10" j_marker_id="1" '
+             'stiffness="100" damping="0" length="0" preload="0"/>'
+             '<Force_Gravity grav_x="0" grav_y="-9.81" grav_z="0"/>')
+    res = pysolver.loads(COINCIDENT.format(force=force)).run(integr_tol=1e-9)
+    assert res.success
+    y = res.y[:, res.state_names.index("body2.y")]
+    np.testing.assert_allclose(y, -9.81 / 100 * (1 - np.cos(10 * res.t)), atol=1e-7)
+
+
+@pytest.mark.parametrize("i, j, what", [("10", "10", "are one marker"),
+                                        ("10", "11", "coincide on body 2")])
+def test_markers_that_coincide_for_ever_are_refused_at_load(i, j, what):
+    force = (f'<Reference_Marker id="11" body_id="2"/><Force_Scalar_TwoBody id="1" '
+             f'type="Force" i_marker_id="{i}" j_marker_id="{j}" expr="5"/>')
+    with pytest.raises(pysolver.DeckError) as err:
+        pysolver.loads(COINCIDENT.format(force=force))
+    assert (err.value.line, err.value.attribute, err.value.reason) == (
+        6, "j_marker_id", f"markers I = 10 and J = {j} {what}, so DM is 0 for ever and a "
+        "translational force, which acts along the line from J to I, has no direction "
+        "(docs/deck-language.md, \"Coincident markers\")")

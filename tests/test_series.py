@@ -240,7 +240,7 @@ def test_step_bounds_that_meet_at_run_time_stop_a_force_naming_it(kernel):
      "SIN, STEP5 and IF"),
     ("VTORQ", "force functions of Force_Vector_TwoBody are not supported yet; FX..TZ(i, j, k) "
      "give the net force and torque at a marker"),
-    ("FIELD", "pysolver does not model the Force_Field (Adams FIELD) it reads"),
+    ("FRICTION", "pysolver does not model the Force_Friction (Adams FRICTION) it reads"),
     ("DIF", "pysolver does not model the Control_Diff (Adams DIFF) it reads"),
 ])
 def test_functions_pysolver_does_not_have_are_not_supported(name, why):

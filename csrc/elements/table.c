@@ -13,10 +13,12 @@ KIND(joint)
 KIND(gcon)
 KIND(coupler)
 KIND(turn)
+int ps_el_sforce_undefined(const psModel* m, psData* d, const psuHD* c, int tape, const int* I,
+                           double* value);
 
 const psElementKind ps_element_kinds[PS_EL_COUNT] = {
   [PS_EL_PENALTY] = {ps_el_penalty, 2, 2, 1},
-  [PS_EL_SFORCE] = {ps_el_sforce, 4, 1, 0},
+  [PS_EL_SFORCE] = {ps_el_sforce, 4, 1, 0, ps_el_sforce_undefined},
   [PS_EL_VFORCE] = {ps_el_vforce, 11, 6, 0},
   [PS_EL_MOTION] = {ps_el_motion, 7, 2, 1},
   [PS_EL_JOINT] = {ps_el_joint, 4, 2, 1},

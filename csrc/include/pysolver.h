@@ -316,11 +316,13 @@ typedef struct psData {
 } psData;
 
 /* Where a non-finite value was found (psData.bad_kind): the state or its rate, an element's
- * values (bad_index its row in the element table), a Sensor_Event expression, or, when no
- * element's value is, a residual row or a Jacobian entry (a derivative overflowed). */
+ * values (bad_index its row in the element table), a Sensor_Event expression, an element
+ * whose load has no direction (PS_BAD_DIRECTION: bad_index its row, bad_value its value; a
+ * translational force whose markers coincide), or, when none is, a residual row or a
+ * Jacobian entry (a derivative overflowed). */
 enum {
   PS_BAD_NONE = 0, PS_BAD_STATE, PS_BAD_RATE, PS_BAD_ELEMENT, PS_BAD_SENSOR, PS_BAD_RESIDUAL,
-  PS_BAD_JACOBIAN
+  PS_BAD_JACOBIAN, PS_BAD_DIRECTION
 };
 
 /* The layout of element kind `kind` (PS_EL_*): its number of ints, how many leading ones are

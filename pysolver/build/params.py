@@ -27,7 +27,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..deck.bodies import centroidal, inertia_tensor, realizable, spin, velocity
+from ..deck.bodies import centroidal, inertia_tensor, positive_definite, spin, velocity
 from ..deck.schema import SCHEMA, Ctx, convert
 from ..deck.validate import value_rule
 from ..errors import DeckError
@@ -238,13 +238,13 @@ class Parameters:
             offset = b.rot.T @ (m.markers[b.im].pos - b.pos) if b.im not in (None, b.cg) \
                 else np.zeros(3)
             inertia = centroidal(b.inertia_im, b.im_rot, b.mass, offset)
-            if case is not None and not realizable(inertia):
+            if case is not None and not positive_definite(inertia):
                 self.reset()
                 paths = ", ".join(f"{p}={v:g}" for p, v in case.items())
                 raise DeckError(f"parameters {{{paths}}}: body {bid}'s inertia about its centre "
                                 f"of mass (the inertia about IM marker {b.im} less the "
                                 "parallel-axis term of its mass at the centre of mass) is not "
-                                "positive definite (or breaks the triangle inequality)",
+                                "positive definite",
                                 element="Body_Rigid", id=bid)
             _assign(b, inertia=inertia)
             row = k.layout.index[b.id]
@@ -336,9 +336,8 @@ class Parameters:
             numbers = _inertia_numbers(b.inertia_im)
             numbers[_INERTIA.index(attr[8:])] = v
             raw = inertia_tensor(*numbers)
-            if not realizable(raw):
-                raise _error(path, "inertia tensor must be positive definite and satisfy the "
-                             "triangle inequality")
+            if not positive_definite(raw):
+                raise _error(path, "the inertia tensor must be positive definite")
             _assign(b, inertia_im=raw)
             self._dirty.add(b.id)
         else:

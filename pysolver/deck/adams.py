@@ -11,11 +11,10 @@ read and what is refused).
 import difflib
 import os
 import re
-import warnings
 
 import numpy as np
 
-from ..errors import DeckError, DeckWarning
+from ..errors import DeckError, DeckWarning, warn
 from ..records import Placement
 from ..rotations import rot_313, rot_321, rot_from_e
 from . import msolve
@@ -29,7 +28,7 @@ OUTPUT_MARK = "!pysolver: output name"
 #: Statements that would change the dynamics and that pysolver does not model: a DeckError.
 UNSUPPORTED = ("CONTACT", "FLEX_BODY", "DIFF", "LSE", "GSE", "TFSISO",
                "NFORCE", "CVCV", "PTCV", "CURVE", "SURFACE", "FRICTION", "GEAR", "MFORCE",
-               "FEMDATA", "IC", "ARRAY", "STRING", "MATRIX", "PSTATE", "EXTERNAL_SYSTEM",
+               "FEMDATA", "ARRAY", "STRING", "MATRIX", "PSTATE", "EXTERNAL_SYSTEM",
                "COUSUB", "CLEARANCE", "ENVIRONMENT", "USER", "SECTION", "FE_PART", "FE_NODE",
                "FE_LOAD")
 #: Statements that only shape output or diagnostics: read and set aside with a DeckWarning.
@@ -38,7 +37,25 @@ SET_ASIDE = ("LIST", "NOLIST", "DEBUG", "MREQUEST", "PINPUT", "POUTPUT", "FEMDAT
              "MATERIAL", "LSOLVER")
 #: Why a statement of SET_ASIDE is set aside, where it does not only shape output.
 _ASIDE_WHY = {"LSOLVER": "only chooses Adams' linear solver (pysolver chooses its own, "
-                         "dense or sparse LU)"}
+                         "dense or sparse LU)",
+              "PINPUT": "only names the variables that are a plant's inputs for Adams' "
+                        "linearization and control co-simulation",
+              "POUTPUT": "only names the variables that are a plant's outputs for Adams' "
+                         "linearization and control co-simulation"}
+#: Statements (and commands) that only set the tolerances of an Adams analysis pysolver does
+#: not run as Adams does: their keywords checked, then set aside with a DeckWarning saying why.
+SETTINGS_ONLY = {
+    "KINEMATICS": (("AERROR", "ALIMIT", "AMAXIT", "APATTERN", "ERROR", "HMAX", "MAXIT",
+                    "PATTERN", "TLIMIT"),
+                   "only sets the tolerances of Adams' kinematic analysis; pysolver runs "
+                   "SIMULATE/KINEMATICS as a transient, with INTEGRATOR's settings "
+                   "(docs/adams.md, \"Commands\")"),
+    "IC": (("AERROR", "ALIMIT", "AMAXIT", "APATTERN", "ERROR", "MAXIT", "PATTERN", "TLIMIT",
+            "VERROR"),
+           "only sets the tolerances of Adams' initial-conditions analysis; pysolver "
+           "assembles the initial conditions to its own tolerances (docs/deck-language.md, "
+           "\"Initial positions\")"),
+}
 #: Commands that change the model or run what pysolver does not: a DeckError.
 _OTHER_COMMANDS = ("DEACTIVATE", "ACTIVATE", "LINEAR", "SAVE", "RELOAD", "CONTROL", "DEBUG",
                    "BUSHING", "SHOW", "SWITCH")
@@ -330,8 +347,8 @@ class _Reader:
 
     def warn(self, stmt, msg, line=None, key=None):
         where = f"{stmt.name}/{stmt.id}" if stmt.id is not None else stmt.name
-        warnings.warn(DeckWarning(msg, file=self.file, line=line or stmt.line, element=where,
-                                  attribute=key), stacklevel=3)
+        warn(DeckWarning(msg, file=self.file, line=line or stmt.line, element=where,
+                         attribute=key))
 
     def error(self, stmt, msg, key=None, line=None):
         where = f"{stmt.name}/{stmt.id}" if stmt.id is not None else stmt.name
@@ -476,6 +493,11 @@ class _Reader:
             why = _ASIDE_WHY.get(name, "only shapes Adams' output or diagnostics")
             self.warn(stmt, f"{name} {why}; set aside")
             return
+        if name in SETTINGS_ONLY:
+            keywords, why = SETTINGS_ONLY[name]
+            self.values(stmt, keywords)             # an unknown keyword is a DeckError
+            self.warn(stmt, f"{name} {why}; set aside")
+            return
         if name in QUIET or name == "END":
             return
         known, extensions, handler = table[name]
@@ -520,7 +542,8 @@ class _Reader:
     def statement_name(self, stmt, table):
         """The statement `stmt` names (a unique prefix of Adams' statements will do;
         pysolver's own are named in full)."""
-        known = tuple(table) + UNSUPPORTED + SET_ASIDE + QUIET + ("END", "STOP")
+        known = tuple(table) + UNSUPPORTED + SET_ASIDE + tuple(SETTINGS_ONLY) + QUIET + \
+            ("END", "STOP")
         w = stmt.name.upper()
         where = f"{stmt.name}/{stmt.id}" if stmt.id is not None else stmt.name
         hits = [k for k in known if k == w] or \

@@ -7,6 +7,8 @@ statement (thirty of them) and the keywords each takes, Adams' own and pysolver'
 extensions (docs/adams.md, "pysolver extensions"), which are matched by their full name
 only, so that they never make an abbreviation of an Adams keyword ambiguous.
 """
+import re
+
 from . import msolve
 
 
@@ -134,12 +136,23 @@ def _jprim(r, stmt, vals, lines):
 _SUB = ("ROUTINE", "SCRIPT", "INTERPRETER")
 
 
-def _routine(vals):
+def _routine(r, stmt, vals, lines, default):
+    """The user subroutine keywords of a statement. ``FUNCTION = USER(...)`` without ROUTINE
+    (or SCRIPT) calls Adams' `default` subroutine (VARSUB, SFOSUB, ...) of the user library
+    linked into Adams, which pysolver has not: a DeckError saying what to give."""
+    if "ROUTINE" not in vals and "SCRIPT" not in vals and \
+            re.match(r"\s*USER\s*\(", str(vals.get("FUNCTION", "")), re.I):
+        raise r.error(stmt, f"FUNCTION = USER(...) without ROUTINE calls Adams' default "
+                      f"{default}, the one linked into Adams' user library, and pysolver links "
+                      f"no library: give ROUTINE = library::{default} (a C library), or "
+                      "SCRIPT = file.py and ROUTINE = the name of its Python function "
+                      "(docs/adams.md, \"User subroutines\")", "FUNCTION", lines["FUNCTION"])
     return _same(vals, _SUB)
 
 
 def _motion(r, stmt, vals, lines):
     r.need_id(stmt)
+    sub = _routine(r, stmt, vals, lines, "MOTSUB")
     kw = _pick(vals, {"FUNCTION": "FUNCTION", "ICDISP": "IC_DISP", "ICVEL": "IC_VEL"})
     given = [k for k in ("DISPLACEMENT", "VELOCITY", "ACCELERATION") if vals.get(k)]
     if len(given) > 1:
@@ -151,18 +164,18 @@ def _motion(r, stmt, vals, lines):
             raise r.error(stmt, "give TRANSLATION or ROTATION, not both")
         if kinds:
             kw["TYPE"] = kinds[0]
-        msolve.MOTION(stmt.id, JOINT=vals["JOINT"], **kw, **_routine(vals), **_label(stmt))
+        msolve.MOTION(stmt.id, JOINT=vals["JOINT"], **kw, **sub, **_label(stmt))
         return
     direction = _one_flag(r, stmt, vals, ("X", "Y", "Z", "B1", "B2", "B3"),
                           "the direction of a marker motion, or JOINT=")
     msolve.MOTION(stmt.id, **_same(vals, ("I", "J")), DIRECTION=direction, **kw,
-                  **_routine(vals), **_label(stmt))
+                  **sub, **_label(stmt))
 
 
 def _gcon(r, stmt, vals, lines):
     r.need_id(stmt)
-    msolve.GCON(stmt.id, **_same(vals, ("FUNCTION", "I", "VIRTUAL")), **_routine(vals),
-                **_label(stmt))
+    sub = _routine(r, stmt, vals, lines, "GCOSUB")
+    msolve.GCON(stmt.id, **_same(vals, ("FUNCTION", "I", "VIRTUAL")), **sub, **_label(stmt))
 
 
 def _coupler(r, stmt, vals, lines):
@@ -177,8 +190,9 @@ def _coupler(r, stmt, vals, lines):
 
 def _sforce(r, stmt, vals, lines):
     r.need_id(stmt)
+    sub = _routine(r, stmt, vals, lines, "SFOSUB")
     msolve.SFORCE(stmt.id, **_same(vals, ("I", "J", "TRANSLATION", "ROTATION", "ACTIONONLY",
-                                          "FUNCTION")), **_routine(vals), **_label(stmt))
+                                          "FUNCTION")), **sub, **_label(stmt))
 
 
 def _springdamper(r, stmt, vals, lines):
@@ -252,8 +266,8 @@ def _vector(function, comps):
 
 def _variable(r, stmt, vals, lines):
     r.need_id(stmt)
-    msolve.VARIABLE(stmt.id, **_same(vals, ("FUNCTION", "IC")), **_routine(vals),
-                    **_label(stmt))
+    sub = _routine(r, stmt, vals, lines, "VARSUB")
+    msolve.VARIABLE(stmt.id, **_same(vals, ("FUNCTION", "IC")), **sub, **_label(stmt))
 
 
 def _spline(r, stmt, vals, lines):
@@ -287,13 +301,13 @@ def _sensor(r, stmt, vals, lines):
     if len(ops) > 1:
         raise r.error(stmt, "give one of EQ, GE, LE")
     kw["OPERATOR"] = ops[0] if ops else "EQ"
-    msolve.SENSOR(stmt.id, **kw, **_routine(vals), **_label(stmt))
+    msolve.SENSOR(stmt.id, **kw, **_routine(r, stmt, vals, lines, "SENSUB"), **_label(stmt))
 
 
 def _sensor_evaluate(r, stmt, vals, lines):
     r.need_id(stmt)
-    msolve.SENSOR_EVALUATE(stmt.id, **_same(vals, ("FUNCTION",)), **_routine(vals),
-                           **_label(stmt))
+    sub = _routine(r, stmt, vals, lines, "SEVSUB")
+    msolve.SENSOR_EVALUATE(stmt.id, **_same(vals, ("FUNCTION",)), **sub, **_label(stmt))
 
 
 REQUEST_TYPES = {"DISPLACEMENT": "MARKER_DISPLACEMENT", "VELOCITY": "MARKER_VELOCITY",
@@ -320,7 +334,7 @@ def _request(r, stmt, vals, lines):
         kw.update(TYPE=REQUEST_TYPES[kinds[0]], **_same(vals, ("I", "J", "RM")))
     if "FUNCTION" in vals:
         kw["FUNCTION"] = vals["FUNCTION"]
-    msolve.REQUEST(stmt.id, **kw, **_routine(vals), **_label(stmt))
+    msolve.REQUEST(stmt.id, **kw, **_routine(r, stmt, vals, lines, "REQSUB"), **_label(stmt))
 
 
 def _accgrav(r, stmt, vals, lines):
@@ -377,7 +391,8 @@ def _integrator(r, stmt, vals, lines):
 
 
 def _equilibrium(r, stmt, vals, lines):
-    other = [k for k in ("PATTERN", "DYNAMIC", "STATIC") if k in vals]
+    # STATIC is the static equilibrium pysolver finds; DYNAMIC and PATTERN tune Adams' own
+    other = [k for k in ("PATTERN", "DYNAMIC") if k in vals]
     if other:
         r.warn(stmt, f"{', '.join(other)} set aside: pysolver's statics are its own Newton "
                "methods (docs/statics.md)")
@@ -388,9 +403,9 @@ def _equilibrium(r, stmt, vals, lines):
 
 def _pforce(r, stmt, vals, lines):
     r.need_id(stmt)
+    sub = _routine(r, stmt, vals, lines, "PFOSUB")
     msolve.PFORCE(stmt.id, **_same(vals, ("FUNCTION", "PENALTY", "PENALTY1", "UNILATERAL",
-                                          "SMOOTHING_FACTOR")), **_routine(vals),
-                  **_label(stmt))
+                                          "SMOOTHING_FACTOR")), **sub, **_label(stmt))
 
 
 _LOADCONTROL = ("VELOCITY", "MATERIAL", "DIRECTION", "MAXVELOCITY", "LOAD_FUNCTION", "KP",
@@ -407,6 +422,10 @@ _ANALYSES = {"DYNAMICS": "TRANSIENT", "TRANSIENT": "TRANSIENT", "KINEMATICS": "T
 
 def _simulate(r, stmt, vals, lines):
     kind = _ANALYSES[_one_flag(r, stmt, vals, tuple(_ANALYSES), "the analysis")]
+    if kind == "STATIC" and vals.get("DTOUT") == 0:
+        # no output step (as Inspire writes SIMULATE/STATICS, END = 0, DTOUT = 0): one
+        # equilibrium at END
+        vals = {k: v for k, v in vals.items() if k != "DTOUT"}
     if kind == "STATIC" and any(k in vals for k in ("STEPS", "DTOUT", "DURATION")):
         kind = "QUASI-STATIC"       # Adams: STATICS to END with output steps
     msolve.SIMULATE(TYPE=kind, **_same(vals, ("END", "DURATION", "STEPS", "DTOUT", "START",

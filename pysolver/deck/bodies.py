@@ -101,18 +101,25 @@ def add_bodies(model, bodies_raw, markers_raw):
         if not Iim.any():
             raise ctx.error("missing: the part has no inertia (all its moments are 0), and "
                             f"pysolver has no inertia-less parts: {MASSLESS}", "inertia_xx")
-        if not realizable(Iim):
-            raise ctx.error("inertia tensor must be positive definite and satisfy the "
-                            "triangle inequality", "inertia_xx")
+        if not positive_definite(Iim):
+            raise ctx.error("the inertia tensor must be positive definite; its principal "
+                            f"moments are {_moments(Iim)}", "inertia_xx")
         Rb = cg.rot.T @ im.rot      # im axes in the body (cg) frame
         d = cg.rot.T @ (im.pos - cg.pos)        # the im origin from the cg, body axes
         inertia = centroidal(Iim, Rb, a["mass"], d)
-        if not realizable(inertia):
+        if not positive_definite(inertia):
             raise ctx.error(f"the inertia about IM marker {im.id}'s origin, {_offset(d)} from "
                             "the centre of mass along the CM marker's axes, less the "
-                            "parallel-axis term m(|d|^2 E - d d^T) is not positive definite "
-                            "(or breaks the triangle inequality): give the inertia about the "
-                            "IM marker's origin, not about the centre of mass", "im_id")
+                            "parallel-axis term m(|d|^2 E - d d^T) is not positive definite: "
+                            "give the inertia about the IM marker's origin, not about the "
+                            "centre of mass", "im_id")
+        bad = next((t for t in (Iim, inertia) if not triangle(t)), None)
+        if bad is not None:
+            ctx.warn(f"the principal moments of inertia {_moments(bad)} break the triangle "
+                     "inequality (the largest is more than the sum of the other two; a rigid "
+                     "body's never is); Adams takes such a part and so does pysolver: the "
+                     "tensor is positive definite, so the motion is defined "
+                     "(docs/deck-language.md, \"Mass properties\")", "inertia_xx")
         omega = spin(w_ic, cg, wm)
         model.bodies[a["id"]] = Body(a["id"], "rigid", a["mass"], inertia,
                                      cg.pos.copy(), cg.rot.copy(), vel, omega,
@@ -139,11 +146,21 @@ def centroidal(inertia_im, im_rot, mass, offset):
     return inertia - mass * (d @ d * np.eye(3) - np.outer(d, d))
 
 
-def realizable(inertia):
-    """Whether a tensor is a rigid body's inertia: positive definite, each principal moment at
-    most the sum of the other two."""
+def positive_definite(inertia):
+    """Whether a tensor can be a body's inertia in the equations of motion: positive
+    definite (every principal moment > 0)."""
+    return bool(np.linalg.eigvalsh(inertia).min() > 0)
+
+
+def triangle(inertia):
+    """Whether a positive definite tensor meets the triangle inequality (each principal moment
+    at most the sum of the other two), as every rigid body's inertia does."""
     ev = np.linalg.eigvalsh(inertia)
-    return bool(ev.min() > 0 and ev[2] <= ev[0] + ev[1] + 1e-12 * ev[2])
+    return bool(ev[2] <= ev[0] + ev[1] + 1e-12 * ev[2])
+
+
+def _moments(inertia):
+    return ", ".join(f"{v:.6g}" for v in np.linalg.eigvalsh(inertia))
 
 
 def _offset(d):

@@ -18,6 +18,9 @@ from . import expr as ex
 from . import usersubs
 from .references import velocity_level
 
+#: The motions that integrate from an initial condition, in words.
+_TYPES = {"VA": "a V or A motion", "A": "an A motion"}
+
 
 def two_bodies(model, ctx, a, noun):
     """(I's body, J's body, ground body ids) of an element holding marker I to marker J: both
@@ -74,11 +77,20 @@ def add_motion(model, ctx, a, joint=0):
                 raise ctx.error(f"a rotation ({a['direction']}) needs rigid bodies; marker "
                                 f"{a[key]} is on point body {b}", key)
     tree, text, sub = usersubs.expression_or_routine(model, ctx, a, "MOTSUB")
-    # the integration constants: a displacement for V and A, a velocity for A
+    # the integration constants: a displacement for V and A, a velocity for A; one a motion
+    # does not integrate is not used (Adams and MotionSolve take it only for those types;
+    # MotionView and Inspire write ic_disp = ic_vel = 0 on every motion): a DeckWarning when
+    # it is not 0
+    a = dict(a)
     for key, kinds in (("ic_disp", "VA"), ("ic_vel", "A")):
         if a.get(key) is not None and a["val_type"] not in kinds:
-            raise ctx.error(f"{key} is an initial condition of a {' or '.join(kinds)} motion; "
-                            f"this one is val_type {a['val_type']}", key)
+            if a[key] != 0:
+                ctx.warn(f"{ctx.names.get(key, key)} = {a[key]:g} is not used: it is the "
+                         f"integration constant of {_TYPES[kinds]}, and this one is val_type "
+                         f"{a['val_type']}, whose function gives the "
+                         f"{'displacement' if a['val_type'] == 'D' else 'velocity'} itself",
+                         key)
+            a[key] = None
     other = clashes(model, bi, bj, a["direction"], ground)
     if other is not None:
         tag = "Motion_Joint" if other > 0 and model.motions[other].joint else "Motion_Marker"

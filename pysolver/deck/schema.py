@@ -261,11 +261,9 @@ class Ctx:
 
     def warn(self, msg, attribute=None):
         """Issue a DeckWarning located at this element."""
-        import warnings
-
-        from ..errors import DeckWarning
+        from ..errors import DeckWarning, warn
         shown = self.names.get(attribute, attribute) if attribute else None
-        warnings.warn(DeckWarning(msg, **self.where(attribute), attribute=shown), stacklevel=4)
+        warn(DeckWarning(msg, **self.where(attribute), attribute=shown))
 
 
 def convert(ctx, name, kind, raw):

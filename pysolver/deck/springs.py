@@ -11,6 +11,8 @@ id (-id) beside the deck's own, so that it runs, differentiates and is diagnosed
 
 k, c, L and the preload are parameters of sweeps (``Force_SpringDamper/<id>/stiffness``, ...).
 """
+import numpy as np
+
 from ..records import ScalarForce, SpringDamper
 from . import expr as ex
 
@@ -57,3 +59,19 @@ def add_springdamper(model, ctx, a):
                                       turns=rotational)
     model._where[("sforce", -sid)] = ctx
     model._where[("springdamper", sid)] = ctx
+
+
+def fixed_line(ctx, model, a):
+    """A Force_Scalar_TwoBody acting along the line from J to I between markers that coincide
+    for ever (one marker, or two of one body at one place) has no direction: a DeckError
+    (docs/deck-language.md, "Coincident markers"; a spring-damper's markers are on two
+    bodies)."""
+    if a["type"] == "TORQUE" or a["is_action_only"]:
+        return
+    mi, mj = (model.markers[a[k]] for k in ("i_marker_id", "j_marker_id"))
+    if mi.body == mj.body and np.array_equal(mi.pos, mj.pos):
+        what = "are one marker" if mi.id == mj.id else f"coincide on body {mi.body}"
+        raise ctx.error(f"markers I = {mi.id} and J = {mj.id} {what}, so DM is 0 for ever and "
+                        "a translational force, which acts along the line from J to I, has "
+                        "no direction (docs/deck-language.md, \"Coincident markers\")",
+                        "j_marker_id")

@@ -32,10 +32,11 @@ from .joints import add_coupler, add_gcon, add_joint
 from .motions import add_joint_motion, add_motion, check_static_motions
 from .references import check_references
 from .requests import elemental_channels, marker_channels
-from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes, element_file
+from .schema import _ID_KIND, CANONICAL, SCHEMA, Ctx, attributes
 from .splinedata import add_spline
-from .springs import add_springdamper
+from .springs import add_springdamper, fixed_line
 from .tasks import add_loadcontrol
+from .unmodelled import not_in_schema
 from .vectors import add_bushing, add_vforce
 
 
@@ -58,10 +59,9 @@ def build_model(elements, source):
     sim_t = 0.0
     for tag, attrs, line, names in elements:
         canon = CANONICAL.get(tag.lower())
-        if canon is None:
-            raise DeckError(f"unknown element <{tag}>; known elements: "
-                            f"{', '.join(sorted(SCHEMA))}",
-                            file=element_file(names, source.file), line=line, element=tag)
+        if canon is None:           # a DeckError, or a DeckWarning for one set aside
+            not_in_schema(Ctx(source.file, tag, attrs, line, names))
+            continue
         ctx = Ctx(source.file, canon, attrs, line, names)
         a = attributes(ctx)
         kind = _ID_KIND.get(canon)
@@ -327,6 +327,7 @@ def _force_like(model, ctx, a):
         for key in ("i_marker_id", "j_marker_id"):
             if a[key] not in model.markers:
                 raise ctx.error(f"marker {a[key]} does not exist", key)
+        fixed_line(ctx, model, a)
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
                                              a["j_marker_id"], tree, text, a["label"], sub,
                                              action_only=a["is_action_only"])

@@ -53,6 +53,8 @@ def describe(model, kernel):
         return None
     names = kernel.layout.names
     t, y = kernel.bad_state
+    if kind == lib.PS_BAD_DIRECTION:
+        return _no_direction(model, kernel, index, value, t)
     if kind in (lib.PS_BAD_STATE, lib.PS_BAD_RATE):
         what = f"state {names[index]}" + (" rate" if kind == lib.PS_BAD_RATE else "")
     elif kind == lib.PS_BAD_RESIDUAL:
@@ -74,6 +76,18 @@ def describe(model, kernel):
     return (f"non-finite {noun} ({number}) in {what}, at t = {t:.9g}; "
             f"state: {_state(names, y)}")
 
+
+
+def _no_direction(model, kernel, index, value, t):
+    """The message for a translational force whose markers coincide while it is not 0
+    (PS_BAD_DIRECTION): the line from J to I, along which it acts, has no direction there."""
+    name, e = _element(model, kernel, lib.PS_BAD_ELEMENT, index)
+    sf = model.sforces[kernel.elements[index][1]]
+    return (f"force with no direction in {name} {e.id} ({e.text}): its markers I = {sf.i} "
+            f"and J = {sf.j} coincide (DM = 0) while its force is {value:g}, at t = {t:.9g}; "
+            "a translational force acts along the line from J to I, which has no direction "
+            "there: place the markers apart, or give a force that is 0 where they meet "
+            "(docs/deck-language.md, \"Coincident markers\")")
 
 
 def restart_reason(model, kernel, code):

@@ -149,7 +149,10 @@ class Assembly:
                 self.apply_load(tape, mj, sj, None, vec, -1.0)
             return
         rel = g.vsub(s.pos(tape, mi, si), s.pos(tape, mj, sj))
-        inv = s.norm(rel, lambda n2: g.div(g.one, g.fn("sqrt", n2)))
+        # coincident markers: no load when f is 0, else not a number (csrc/elements/sforce.c)
+        nan = g.const(float("nan"))
+        n2 = g.dot(rel, rel)
+        inv = g.ge(g.zero, n2, g.if3(f, nan, g.zero, nan), g.div(g.one, g.fn("sqrt", n2)))
         vec = [g.mul(g.mul(r, inv), f) for r in rel]
         self.apply_load(tape, mi, si, vec, None, 1.0)
         self.apply_load(tape, mj, sj, vec, None, -1.0)
