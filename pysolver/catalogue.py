@@ -261,17 +261,16 @@ TABLE = (
          "seen from l's frame"),
         ("WDTM", ("i", "j", "l"), _ACC, "magnitude of the angular acceleration of i relative "
          "to j, seen from l's frame"))),
-    _measure("AX", "ij", _POS, "angle of i's axes about j's x axis, through every turn (a "
-             "tracked angle, from its value in (-pi, pi] at the start)"),
-    _measure("AY", "ij", _POS, "angle of i's axes about j's y axis, through every turn"),
-    _measure("AZ", "ij", _POS, "angle of i's axes about j's z axis, through every turn"),
+    _measure("AX", "ij", _POS, "angle of i's axes about j's x axis, in (-pi, pi]"),
+    _measure("AY", "ij", _POS, "angle of i's axes about j's y axis, in (-pi, pi]"),
+    _measure("AZ", "ij", _POS, "angle of i's axes about j's z axis, in (-pi, pi]"),
     Function("KE", "special", ("id",), None,
              "kinetic energy of body id (0: of every body), in force times length units",
              reads=_VEL, ids=("body",), py_sysfnc=True),
     *(Function(f"A{c}U", "special", ("i", "j"), None,
-               f"MotionSolve's unwrapped A{c}: the same angle as A{c}(i, j) (one tracked "
-               "state for both)", required=1, reads=_POS, ids=("marker", "marker"),
-               py_sysfnc=True) for c in "XYZ"),
+               f"A{c}(i, j) unwrapped: continuous through every turn from its value at the "
+               "start (in (-pi, pi]; a tracked angle)", required=1, reads=_POS,
+               ids=("marker", "marker"), py_sysfnc=True) for c in "XYZ"),
     *(Function(name, "special", ("x", "z", "id", "order"), None,
                f"{what} of Reference_Spline id at x (a surface: at x and z, linear in z), or "
                "a curve's derivative of order 1 or 2", required=3,

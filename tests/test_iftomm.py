@@ -21,9 +21,8 @@ REFERENCE = json.loads((ROOT / "benchmarks" / "data" / "joint_references.json").
 @pytest.mark.parametrize("planar", ["off", "auto"])
 def test_a02_four_bar_passes_its_singular_configurations_on_the_branch(monkeypatch, planar):
     """N = 40 (81 links, 121 revolutes), the first 2.5 s, in 3-D (PYSOLVER_PLANAR=off: 120
-    redundant equations removed, 2,024 unknowns, one the request's tracked angle AZ) and as the
-    planar scene it is (971 unknowns: each revolute's 3 out-of-plane equations left out, none
-    redundant in the plane):
+    redundant equations removed, 2,023 unknowns) and as the planar scene it is (970 unknowns:
+    each revolute's 3 out-of-plane equations left out, none redundant in the plane):
     the mechanism passes the horizontal, where its constraints lose rank, at 0.72 s and
     1.24 s. Before the first crossing point B0 follows the exact 1-DOF solution of the
     parallelogram branch to the tolerance's order (below 2e-7 m at integr_tol 1e-8 and 1e-9;
@@ -50,7 +49,7 @@ def test_a02_four_bar_passes_its_singular_configurations_on_the_branch(monkeypat
     before = times[:n] < 0.7
     note = ("redundant constraints removed (120)" if planar == "off" else
             "planar scene: 81 bodies integrated in (x, y, rz)")
-    assert model.compile().kernel.ny == (2024 if planar == "off" else 971)
+    assert model.compile().kernel.ny == (2023 if planar == "off" else 970)
     for tol, bound in ((1e-8, 1e-4), (1e-9, 2e-5)):
         res = model.run(integr_tol=tol)
         assert res.success, res.message
@@ -66,9 +65,8 @@ def test_a02_four_bar_passes_its_singular_configurations_on_the_branch(monkeypat
 
 @pytest.mark.parametrize("planar", ["off", "auto"])
 def test_a03_andrews_mechanism_meets_the_test_set(monkeypatch, planar):
-    """Seven bodies, ten revolutes (9 redundant equations in 3-D: 180 unknowns, 7 of them the
-    requests' tracked angles AZ; as the planar scene it is, with its drive torque and spring in
-    the plane, 89), 0.03 s. The Test
+    """Seven bodies, ten revolutes (9 redundant equations in 3-D: 173 unknowns; as the
+    planar scene it is, with its drive torque and spring in the plane, 82), 0.03 s. The Test
     Set's error measure (benchmarks/andrews.py) falls with the tolerance: below 2e-6 at
     integr_tol 1e-9 and 2e-7 at 1e-10 (measured 1.10e-6 and 1.05e-7 in 3-D, 1.12e-6 and
     1.10e-7 planar; the penalty-joint version reached 8.4e-6)."""
@@ -79,7 +77,7 @@ def test_a03_andrews_mechanism_meets_the_test_set(monkeypatch, planar):
     finally:
         sys.path.pop(0)
     model = pysolver.load(JOINTS / "iftomm_a03_andrews.xml")
-    assert model.compile().kernel.ny == (180 if planar == "off" else 89)
+    assert model.compile().kernel.ny == (173 if planar == "off" else 82)
     errors = []
     for tol in (1e-9, 1e-10):
         res = model.run(integr_tol=tol)

@@ -37,9 +37,8 @@ def _energy(model, res):
 
 
 def test_the_four_bar_runs_planar_with_the_3d_models_motion_and_reactions(monkeypatch):
-    """Against the 3-D model at 1e-12 (75 unknowns, joint 4's out-of-plane equations found
-    redundant; two of them the tracked angles AZ(20) and AZ(43,4)): the planar run (36
-    unknowns) at 1e-11 gives the requests' positions, angles
+    """Against the 3-D model at 1e-12 (73 unknowns, joint 4's out-of-plane equations found
+    redundant): the planar run (34 unknowns) at 1e-11 gives the requests' positions, angles
     and rates within 1e-7, the joints' reactions within 1e-6 relative (measured 2.4e-10 and
     1.3e-8; the 3-D model at 1e-11: 1.5e-9 and 2.2e-8), and exactly nothing out of the
     plane. The scalar forces (a spring and a torsion spring) load the planar bodies as
@@ -49,7 +48,7 @@ def test_the_four_bar_runs_planar_with_the_3d_models_motion_and_reactions(monkey
     _, ref = _run(monkeypatch, "off", integr_tol=1e-12)
     model, res = _run(monkeypatch, "auto", integr_tol=1e-11)
     assert res.success and ref.success
-    assert model.compile().kernel.ny == 36
+    assert model.compile().kernel.ny == 34
     assert res.state_names[:6] == ["body2.x", "body2.y", "body2.rz", "body2.vx", "body2.vy",
                                    "body2.wz"]
     assert any("planar scene: 3 bodies" in line for line in res.log)
@@ -76,11 +75,10 @@ def test_the_planar_four_bar_conserves_energy(monkeypatch):
 
 
 def test_the_pendulum_and_a02_run_planar(monkeypatch):
-    """The revolute pendulum (10 unknowns instead of 23) and IFToMM A02 (971 instead of
-    2,024, one of them its request's tracked angle AZ) are planar scenes;
-    PYSOLVER_PLANAR=off keeps them in 3-D."""
+    """The revolute pendulum (10 unknowns instead of 23) and IFToMM A02 (970 instead of
+    2,023) are planar scenes; PYSOLVER_PLANAR=off keeps them in 3-D."""
     for deck, planar, three_d in (("pendulum_revolute.xml", 10, 23),
-                                  ("iftomm_a02_fourbar.xml", 971, 2024)):
+                                  ("iftomm_a02_fourbar.xml", 970, 2023)):
         for mode, ny in (("auto", planar), ("off", three_d)):
             monkeypatch.setenv("PYSOLVER_PLANAR", mode)
             assert pysolver.load(DECKS / "joints" / deck).compile().kernel.ny == ny
@@ -243,7 +241,7 @@ def test_a_driven_crank_runs_planar_with_the_3d_models_motion_and_drive(monkeypa
     _, ref = _run(monkeypatch, "off", text, integr_tol=1e-12)
     model, res = _run(monkeypatch, "auto", text, integr_tol=1e-10)
     assert res.success and ref.success
-    assert planar_bodies(model) == {2, 3, 4} and model.compile().kernel.ny == 38
+    assert planar_bodies(model) == {2, 3, 4} and model.compile().kernel.ny == 36
     assert np.abs(res.request(1)[:, :6] - ref.request(1)[:, :6]).max() < 1e-7
     drive, drive_ref = res.motion(1), ref.motion(1)
     assert np.abs(drive - drive_ref).max() <= 1e-6 * np.abs(drive_ref).max()
@@ -259,8 +257,7 @@ def test_check_says_how_many_states_run(monkeypatch, tmp_path):
     model = pysolver.loads(FOURBAR)
     assert model.summary().splitlines()[-1] == "states: 79"
     model.check()
-    # compiled, the count has the two tracked angles, AZ(20) and AZ(43,4)
-    assert model.summary().splitlines()[-1] == "states: 36 integrated (81 in 3-D; a planar scene)"
+    assert model.summary().splitlines()[-1] == "states: 34 integrated (79 in 3-D; a planar scene)"
     res = model.run(integr_tol=1e-6)
     with pytest.raises(TypeError, match=re.escape("animate() takes the Model that made the "
                                                   "run, not 'out.html': write the page with "

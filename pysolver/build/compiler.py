@@ -372,7 +372,7 @@ class Compiler:
             return tape.op(_ARITH[node[1]], self.lower(tape, node[2]), self.lower(tape, node[3]))
         name, args = node[1], node[2]
         f = catalogue.FUNCTIONS[name]
-        if name in ex.TRACKED_ANGLES:     # AX..AZ (AXU..AZU): through every turn
+        if name in ex.TRACKED_ANGLES:     # AXU..AZU: through every turn
             ids = [self.placed(int(a[1])) for a in args] + [0]
             key = ("unwrap", (name[:2], ids[0], ids[1]), 0)
             s, w = self.turn_error(tape, self.turned_angle(key), key)

@@ -410,8 +410,8 @@ def references(tree, out=None):
     return out
 
 
-#: Single-axis angles continuous through every turn (tracked angles; U forms the same angle).
-TRACKED_ANGLES = ("AX", "AY", "AZ", "AXU", "AYU", "AZU")
+#: MotionSolve's AXU..AZU: single-axis angles through every turn (tracked; AX..AZ are wrapped).
+TRACKED_ANGLES = ("AXU", "AYU", "AZU")
 
 
 def wrapped(name, i, j=0):

@@ -108,9 +108,9 @@ def _expressions(model):
 
 
 def unwrapped_angles(model):
-    """The (name, i, j) of every AX, AY, AZ call (and MotionSolve's AXU, AYU, AZU, the same
-    angle) in the model's expressions, name AX, AY or AZ, sorted: each is an angle tracked
-    through its turns, one state per name and pair of markers."""
+    """The (name, i, j) of every AXU, AYU, AZU call (MotionSolve's unwrapped AX, AY, AZ) in
+    the model's expressions, name AX, AY or AZ, sorted: each is an angle tracked through its
+    turns, one state per name and pair of markers."""
     found = set()
     for _, _, tree in _expressions(model):
         for n in ex.nodes(tree):

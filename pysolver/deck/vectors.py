@@ -12,8 +12,8 @@ the vector forces, its six components in J's axes (../shared/reference/elements.
 
 with DX = DX(I, J, J), VX = VX(I, J, J, J) (I's velocity relative to J seen from J), AX..AZ =
 AX(I, J).. (single-axis angles: the small-angle convention, one large angle at most; Adams'
-bushing page calls them "projected, small-angle rotational displacements", so they are the
-values in (-pi, pi], not the angles AX..AZ of an expression, which count every turn) and WX =
+bushing page calls them "projected, small-angle rotational displacements": the values in
+(-pi, pi], as AX..AZ in an expression, never tracked) and WX =
 WX(I, J, J). The reaction on J's body at I's point is -F and -T, which is -F and
 -T - d x F at J's origin. Its 18 numbers are sweep parameters (``Force_Bushing/<id>/kx``...).
 """
