@@ -103,17 +103,20 @@ OWNED = ("requests.csv", "states.csv", "reactions.csv", "results.npz", "requests
 _CONTROLLER_CSV = re.compile(r"requests_controller-?[0-9]+\.csv\Z")
 
 
-def _clear_earlier_run(out):
+def _clear_earlier_run(out, keep=()):
     """Remove an earlier run's files from `out` when it holds one (its stats.json names a
-    deck): the names in :data:`OWNED` and ``requests_controller<ID>.csv``, nothing else, so
-    that the folder holds this run alone (a file the new run does not write, a plot or a
-    states.csv, would show another run than the CSV beside it). Returns the paths removed."""
+    deck): the names in :data:`OWNED` and ``requests_controller<ID>.csv`` but `keep`, nothing
+    else, so that the folder holds this run alone (a file the new run does not write, a plot
+    or a states.csv, would show another run than the CSV beside it). Called once the new run
+    has ended, so a run that cannot start leaves the earlier one whole. Returns the paths
+    removed."""
     if _written_for(out) is None:
         return []
     removed = []
     for name in sorted(os.listdir(out)):
         path = os.path.join(out, name)
-        if (name in OWNED or _CONTROLLER_CSV.match(name)) and os.path.isfile(path):
+        if (name in OWNED or _CONTROLLER_CSV.match(name)) and name not in keep and \
+                os.path.isfile(path):
             os.remove(path)
             removed.append(path)
     return removed
@@ -172,11 +175,11 @@ def _run(args):
     model = load(args.deck, user_code=not args.no_user_code,
                  simulate=_command_line_simulate(args))
     out = _output_folder(args)
-    earlier = _clear_earlier_run(out)
     # the rows go to the CSV as they are made (a crashing C subroutine loses none of them); it
     # is written again only when a channel with an expression had no value at all (dropped)
     csv_path = os.path.join(out, "requests.csv")
     res = model.run(progress=None if not args.quiet else False, stream=csv_path)
+    earlier = _clear_earlier_run(out, keep=("requests.csv",))
     with open(csv_path, newline="") as fh:
         streamed = next(csv.reader(fh), None)
     if streamed != res.columns(units=True)[0] or res.controller_ids:

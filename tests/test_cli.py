@@ -239,6 +239,34 @@ def test_decks_of_one_stem_get_folders_of_their_own(tmp_path, capsys, monkeypatc
                                                           "deck_out-3"]
 
 
+def test_a_rerun_that_cannot_run_leaves_the_earlier_run_whole(tmp_path, capsys):
+    """Review 44: a rerun whose Python routine raises (after the deck loaded) emptied the
+    folder, exit 2 and the earlier run's rows gone. The earlier files are removed only once
+    the new run has ended, so they stay as they were."""
+    (tmp_path / "sub.py").write_text("def sfosub(id, time, par, npar, dflag, iflag):\n"
+                                     "    return -par[0] * py_sysfnc('DX', [20])[0]\n")
+    deck = tmp_path / "d.xml"
+    deck.write_text(
+        '<MotionSolve><Model><Body_Rigid id="1" isground="TRUE"/>'
+        '<Reference_Marker id="1" body_id="1"/><Reference_Marker id="20" body_id="2"/>'
+        '<Reference_Marker id="21" body_id="1" pos_x="-1"/>'
+        '<Body_Point id="2" cg_id="20" mass="1" v_ic_x="1"/>'
+        '<Force_Scalar_TwoBody id="1" type="FORCE" i_marker_id="20" j_marker_id="21" '
+        'usrsub_param_string="USER(10)" usrsub_fnc_name="sfosub" script_name="sub.py" '
+        'interpreter="Python"/><Post_Request id="1" expr1="DX(20)"/></Model>'
+        '<Simulate analysis_type="Transient" end_time="1" print_interval="0.1"/></MotionSolve>')
+    out = tmp_path / "out"
+    assert main(["run", str(deck), "-o", str(out), "-q", "--no-animation"]) == 0
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    assert sorted(before) == ["requests.csv", "requests.png", "stats.json"]
+    (tmp_path / "sub.py").write_text("def sfosub(id, time, par, npar, dflag, iflag):\n"
+                                     "    return -par[0] * py_sysfnc('DX', [20])[0] + typo\n")
+    capsys.readouterr()
+    assert main(["run", str(deck), "-o", str(out), "-q", "--no-animation"]) == 2
+    assert "NameError" in capsys.readouterr().err
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == before
+
+
 def test_a_rerun_removes_the_files_of_the_earlier_run_it_did_not_write(tmp_path, capsys):
     """Trial 44, defect 3: a second run into the folder left the first run's plot, scene,
     states and npz beside its own CSV. Now the folder holds the new run alone, the last line

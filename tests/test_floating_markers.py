@@ -112,6 +112,24 @@ def test_a_floating_marker_elsewhere_is_refused(tmp_path):
         "vector force only")
 
 
+@pytest.mark.parametrize("statement, tag", [
+    ("FIELD/1, I=20, J=9, KMATRIX=" + ",".join("100" if k % 7 == 0 else "0" for k in range(36)),
+     "Force_Field"),
+    ("BEAM/1, I=20, J=9, LENGTH=1, IXX=1, IYY=1, IZZ=1, AREA=1, EMODULUS=1, GMODULUS=1",
+     "Force_Beam")])
+def test_a_floating_marker_on_a_field_or_beam_is_refused(tmp_path, statement, tag):
+    """A field's or beam's J is a fixed marker: a floating one would be read at another
+    force's I marker and the element would measure nothing (review 44)."""
+    path = tmp_path / "field.adm"
+    path.write_text(_adm(statement))
+    with pytest.raises(DeckError) as err:
+        pysolver.load(path)
+    assert str(err.value) == (
+        f"{path}:10, {statement.split(',')[0]} ({tag}), attribute 'J': marker 9 is FLOATING; a "
+        "floating marker is the reaction marker (JFLOAT, j_floating_marker_id) of a two-body "
+        "vector force only")
+
+
 def test_a_floating_marker_of_two_i_markers_may_not_be_read(tmp_path):
     """Two forces with I markers 20 and 30 share floating marker 9: each reaction is at its
     own I point and the deck runs, but the marker has no one place, so a request that reads

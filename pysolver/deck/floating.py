@@ -16,8 +16,9 @@ Decisions: each force's reaction is at its own I point, whatever else uses the m
 floating marker whose forces have different I markers has no one place (``at`` is -1) and an
 expression that names it is a DeckError (give each I marker its own floating marker); a
 floating marker no force uses stays at its part's frame, as placed; a floating marker
-anywhere else (a body's cg or inertia marker, a joint's, motion's, spring's, bushing's or
-scalar force's marker, a vector force's I or reference marker) is a DeckError: Adams takes
+anywhere else (a body's cg or inertia marker, a joint's, motion's, spring's, bushing's,
+field's, beam's or scalar force's marker, a vector force's I or reference marker) is a
+DeckError: Adams takes
 floating markers on vector forces (and curve contacts, which pysolver does not model) only.
 """
 import dataclasses
@@ -73,7 +74,8 @@ def _refuse_elsewhere(model, floating):
     uses = [("joint", model.joints, ("i", "j")), ("motion", model.motions, ("i", "j")),
             ("sforce", {k: v for k, v in model.sforces.items() if k > 0}, ("i", "j")),
             ("springdamper", model.springdampers, ("i", "j")),
-            ("bushing", model.bushings, ("i", "j")),
+            ("bushing", model.bushings, ("i", "j")), ("field", model.fields, ("i", "j")),
+            ("beam", model.beams, ("i", "j")),
             ("vforce", {k: v for k, v in model.vforces.items() if k > 0}, ("i", "ref")),
             ("gcon", model.gcons, ("i",))]
     for kind, table, roles in uses:
