@@ -177,11 +177,11 @@ def _consistent(kernel, t, y, iters, initial, tol):
     # 3. accelerations and reactions (linear in them unless forces read accelerations)
     rows = np.setdiff1d(np.arange(kernel.ny), lay.algebraic)
     for _ in range(4):
-        J0 = _Jac(kernel, t, y, yp, 0.0)
-        D = _Jac(kernel, t, y, yp, 1.0).J - J0.J
         res = kernel.residual_array(t, y, yp)
         if not np.isfinite(res).all():      # d.bad_kind says where (the caller words it)
             return np.full_like(yp, np.nan)
+        J0 = _Jac(kernel, t, y, yp, 0.0)
+        D = _Jac(kernel, t, y, yp, 1.0).J - J0.J
         # the rate rows' time derivative from after t, where the run goes on (a motion's rate
         # may kink at t: a spline's data start, a STEP's end), as csrc/control.c takes it
         h = 1e-6 * max(1.0, abs(t))
