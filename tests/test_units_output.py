@@ -255,7 +255,7 @@ def test_integr_tol_is_absolute_in_the_decks_units():
     (trial 44, defect 7): the trial's pendulum (its spring at stiffness 0) in kg/m/s and in
     kg/mm/ms (its angular velocity about 1e-3 rad/ms), against the SI deck at 1e-10; forces
     are in N in both. At a loose tolerance one run's error depends on its step sequence
-    (0.11-0.37 % of the peak in SI between integr_tol 0.9e-3 and 1.1e-3), so the claim is on
+    (0.11-0.85 % of the peak in SI between integr_tol 0.9e-3 and 1.1e-3), so the claim is on
     the median over five tolerances about the default."""
     ref = pysolver.loads(PENDULUM.format(**SI)).run(integr_tol=1e-10)
     peak = np.max(ref.joint(1)[:, 0])
@@ -266,11 +266,13 @@ def test_integr_tol_is_absolute_in_the_decks_units():
         def errors(tol, model=model):
             res = model.run(integr_tol=tol)
             return (np.max(np.abs(res.joint(1)[:, 0] - ref.joint(1)[:, 0])) / peak,
-                    np.max(np.abs(res.request(1)[:, 0] - ref.request(1)[:, 0])))
+                    # AZ is in (-pi, pi], and the pendulum swings to -pi: the wrapped difference
+                    np.max(np.abs(np.angle(np.exp(1j * (res.request(1)[:, 0]
+                                                        - ref.request(1)[:, 0]))))))
         loose[name] = np.median([errors(tol) for tol in (0.9e-3, 0.95e-3, 1e-3, 1.05e-3,
                                                          1.1e-3)], axis=0)
         tight[name] = errors(1e-6)
-    # the force: 0.26 % of its peak in SI, 0.93 % in kg/mm/ms
+    # the force: 0.21 % of its peak in SI, 0.88 % in kg/mm/ms
     assert loose["si"][0] < 0.005 < loose["mm_ms"][0] < 0.02
     assert loose["mm_ms"][0] > 2.5 * loose["si"][0]
     for name in ("si", "mm_ms"):
