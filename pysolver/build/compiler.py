@@ -354,8 +354,6 @@ class Compiler:
         if tag == "turned":               # an angle unwrapped by its tracked state
             s, w = self.turn_error(tape, node[1], node[2])
             return tape.op(lib.PS_OP_ADD, s, w)
-        if tag == "wrapped":              # AX, AY, AZ in (-pi, pi]: an element's own angle
-            return self.measure(tape, node[1], [node[2], node[3]])
         if tag == "axdot":                # a joint's dot product of two markers' axes
             mi, si = self.marker(tape, node[1])
             mj, sj = self.marker(tape, node[3])
@@ -829,15 +827,15 @@ class Compiler:
         """The measured angle (in (-pi, pi]) that tracked angle `key` follows."""
         kind, eid, k = key
         if kind == "unwrap":                      # AX(i, j) of an expression: its turns
-            return ex.wrapped(*eid)
+            return ex.call(*eid)
         if kind == "sforce":
             sf = self.model.sforces[eid]
-            return ex.wrapped("AZ", sf.i, sf.j)
+            return ex.call("AZ", sf.i, sf.j)
         if kind == "joint":
             jo = self.model.joints[eid]
             return joints.lead_angle(jo.i, jo.j, catalogue.JOINT_EQUATIONS[jo.type][0])
         jo = self.model.joints[self.model.couplers[eid].joints[k]]
-        return ex.wrapped("AZ", jo.i, jo.j)
+        return ex.call("AZ", jo.i, jo.j)
 
     def new_tape(self):
         t = _Tape(self)

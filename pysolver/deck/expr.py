@@ -414,7 +414,7 @@ def references(tree, out=None):
 TRACKED_ANGLES = ("AXU", "AYU", "AZU")
 
 
-def wrapped(name, i, j=0):
-    """An internal leaf (deck text never makes one): AX, AY or AZ (`name`) of marker i about
-    j's axis in (-pi, pi], for the elements that wrap or track their own angle."""
-    return ("wrapped", name, int(i), int(j))
+def call(name, *ids):
+    """The tree of function `name` of element ids (a measure of markers: ``call("AZ", i, j)``),
+    as the parser makes it."""
+    return ("call", name, [("num", float(i)) for i in ids], 0)

@@ -73,14 +73,14 @@ def equation_tree(joint, eq):
     ``d`` and ``dJ`` forms, ``("axdot", i, axis, j, axis)`` nodes for the dot products."""
     kind = eq[0]
     if kind == "d":
-        return _call("DX DY DZ".split()[eq[1]], joint.i, joint.j)
+        return ex.call("DX DY DZ".split()[eq[1]], joint.i, joint.j)
     if kind == "dJ":
-        return _call("DX DY DZ".split()[eq[1]], joint.i, joint.j, joint.j)
+        return ex.call("DX DY DZ".split()[eq[1]], joint.i, joint.j, joint.j)
     if kind == "dot":
         return ("axdot", joint.i, eq[1], joint.j, eq[2])
     if kind == "lead":
         # d . zJ - lead theta - offset, theta unwrapped by the joint's tracked angle
-        along = _call("DZ", joint.i, joint.j, joint.j)
+        along = ex.call("DZ", joint.i, joint.j, joint.j)
         turned = ("turned", lead_angle(joint.i, joint.j, eq), ("joint", joint.id, 0))
         return ("bin", "-", ("bin", "-", along, ("bin", "*", ("num", joint.lead), turned)),
                 ("num", joint.offset))
@@ -94,10 +94,6 @@ def lead_angle(i, j, eq):
     _, a, b, sign, c, d = eq
     s = ("axdot", i, a, j, b)
     return ("call", "ATAN2", [s if sign > 0 else ("neg", s), ("axdot", i, c, j, d)], 0)
-
-
-def _call(name, *ids):
-    return ("call", name, [("num", float(i)) for i in ids], 0)
 
 
 def add_gcon(model, ctx, a):
@@ -152,8 +148,8 @@ def add_coupler(model, ctx, a):
     expr = None
     for k, (jo, kind, r) in enumerate(zip(joints, freedoms, scales)):
         # a rotation through every turn: AZ unwrapped by the coupler's tracked angle k
-        q = (("turned", ex.wrapped("AZ", jo.i, jo.j), ("coupler", a["id"], k)) if kind == "R"
-             else _call("DZ", jo.i, jo.j, jo.j))
+        q = (("turned", ex.call("AZ", jo.i, jo.j), ("coupler", a["id"], k)) if kind == "R"
+             else ex.call("DZ", jo.i, jo.j, jo.j))
         term = ("bin", "*", ("num", r), q)
         expr = term if expr is None else ("bin", "+", expr, term)
     model.couplers[a["id"]] = Coupler(a["id"], tuple(ids), tuple(freedoms), tuple(scales),

@@ -114,12 +114,10 @@ def measure(motion):
     (the motion wraps its error: Compiler.motion)."""
     if motion.direction.startswith("B"):
         if motion.joint:
-            return ex.wrapped("AZ", motion.i, motion.j)
+            return ex.call("AZ", motion.i, motion.j)
         k = int(motion.direction[1])
-        return ("call", "ORIENT", [("num", 1.0), ("num", float(k)), ("num", float(motion.i)),
-                                   ("num", float(motion.j))], 0)
-    name = "D" + motion.direction
-    return ("call", name, [("num", float(i)) for i in (motion.i, motion.j, motion.j)], 0)
+        return ex.call("ORIENT", 1, k, motion.i, motion.j)
+    return ex.call("D" + motion.direction, motion.i, motion.j, motion.j)
 
 
 def clashes(model, bi, bj, direction, ground):

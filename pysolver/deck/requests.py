@@ -12,6 +12,7 @@ radians, as every angle pysolver reports:
 - MARKER_ACCELERATION: accm, accx, accy, accz, wdtm, wdtx, wdty, wdtz (the acceleration and
   angular acceleration of I relative to J, derivatives in the global frame, in RM's axes).
 """
+from . import expr as ex
 
 #: Marker request types pysolver does not compute yet, and why.
 NOT_YET = {}
@@ -80,14 +81,10 @@ def elemental_channels(ctx, a, markers):
     if a.get("ref_marker_id") and a["ref_marker_id"] not in markers:
         raise ctx.error(f"marker {a['ref_marker_id']} does not exist", "ref_marker_id")
     texts = elemental_texts(a)
-    trees = [_call(t[:t.index("(")], [int(v) for v in t[t.index("(") + 1:-1].split(",")])
+    trees = [ex.call(t[:t.index("(")], *[int(v) for v in t[t.index("(") + 1:-1].split(",")])
              for t in texts]
     names = [a.get(f"name{k + 1}") or FORCE_NAMES[k] for k in range(8)]
     return trees, texts, names
-
-
-def _call(name, ids):
-    return ("call", name, [("num", float(i)) for i in ids], 0)
 
 
 def marker_channels(ctx, a, markers):
@@ -116,7 +113,7 @@ def marker_channels(ctx, a, markers):
             continue
         name, fn, roles = channel
         ids = [role[r] for r in roles]
-        tree = _call(fn, ids)
+        tree = ex.call(fn, *ids)
         text = f"{fn}({','.join(str(i) for i in ids)})"
         trees.append(tree)
         texts.append(text)

@@ -20,10 +20,6 @@ from . import expr as ex
 NUMBERS = ("stiffness", "damping", "length", "preload")
 
 
-def _call(name, *ids):
-    return ("call", name, [("num", float(i)) for i in ids], 0)
-
-
 def add_springdamper(model, ctx, a):
     """Validate one Force_SpringDamper, add it and the scalar force that holds it."""
     ctx.id = sid = a["id"]
@@ -46,11 +42,11 @@ def add_springdamper(model, ctx, a):
     model.springdampers[sid] = spring
     par = {k: ("param", f"Force_SpringDamper/{sid}/{k}", getattr(spring, k)) for k in NUMBERS}
     if rotational:
-        x = ("turned", ex.wrapped("AZ", i, j), ("sforce", -sid, 0))
-        rate = _call("WZ", i, j, j)
+        x = ("turned", ex.call("AZ", i, j), ("sforce", -sid, 0))
+        rate = ex.call("WZ", i, j, j)
         text = f"-k (AZ({i},{j}) - angle) - c WZ({i},{j},{j}) + preload, AZ through every turn"
     else:
-        x, rate = _call("DM", i, j), _call("VR", i, j)
+        x, rate = ex.call("DM", i, j), ex.call("VR", i, j)
         text = f"-k (DM({i},{j}) - length) - c VR({i},{j}) + preload"
     law = ("bin", "+", ("bin", "-", ("neg", ("bin", "*", par["stiffness"],
                                               ("bin", "-", x, par["length"]))),

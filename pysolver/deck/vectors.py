@@ -27,11 +27,6 @@ LOAD = ("preload_x", "preload_y", "preload_z", "preload_tx", "preload_ty", "prel
 _ZERO = ("num", 0.0)
 
 
-def _call(name, *ids):
-    """The expression tree of measure `name` of marker ids."""
-    return ("call", name, [("num", float(i)) for i in ids], 0)
-
-
 #: The deflections of I relative to J a bushing, field or beam reads (in J's axes, the
 #: rotations AX..AZ: the small-angle convention) and their rates, by the markers' roles.
 DEFLECTIONS = (("DX", "ijj"), ("DY", "ijj"), ("DZ", "ijj"), ("AX", "ij"), ("AY", "ij"),
@@ -46,8 +41,7 @@ def measures(table, i, j):
     out = []
     for name, roles in table:
         ids = [i if r == "i" else j for r in roles]
-        tree = ex.wrapped(name, *ids) if name in ("AX", "AY", "AZ") else _call(name, *ids)
-        out.append((tree, f"{name}({', '.join(map(str, ids))})"))
+        out.append((ex.call(name, *ids), f"{name}({', '.join(map(str, ids))})"))
     return out
 
 
