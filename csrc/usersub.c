@@ -10,6 +10,8 @@
  * the stack and is found by c_sysfnc through a thread-local pointer.
  */
 #define _GNU_SOURCE
+/* The copies here are of a few numbers per routine call: loops, not calls to libc's memcpy. */
+#pragma GCC optimize("no-tree-loop-distribute-patterns")
 #include <ctype.h>
 #include <dlfcn.h>
 #include <float.h>
@@ -50,7 +52,8 @@ typedef struct {
   char msg[200];
 } UserCtx;
 
-static __thread UserCtx* current = NULL;
+/* initial-exec: a load from the thread pointer, not a __tls_get_addr call per data access */
+static __thread UserCtx* current __attribute__((tls_model("initial-exec"))) = NULL;
 
 /* The expression-language functions c_sysfnc answers, in code order: those of
  * pysolver/catalogue.py with c_sysfnc (tests/test_catalogue.py checks the two agree). */
@@ -234,21 +237,38 @@ PS_EXPORT void c_syspar(const char* fnc, const int* ipar, int nsize, const doubl
   *errflg = 0;
   /* taken only when partials are wanted (not on the iflag call, nor for a plain value) */
   if (!ctx || !ctx->got) return;
-  int a = array_code(fnc), code = a < 0 ? ps_user_fn_code(fnc) : -1, n = a >= 0 ? ARRAYS[a].n : 1;
-  int what = a >= 0 ? a : NARRAYS + code;
-  /* the common case, kept fast: the partials of the value just read */
-  if (a >= 0 || code >= 0) {
-    if (nstates == n && same_read(ctx, what, ipar, nsize)) {
-      for (int i = 0; i < n; i++) {
-        ctx->part[ctx->last_keys[i]] = states[i];
-        ctx->got[ctx->last_keys[i]] = 1;
-      }
-      return;
-    }
+  /* the common cases, kept fast: time's partial, and the partials of the value just read */
+  if (nsize == 0 && nstates == 1 && same_text(fnc, "TIME")) {
+    ctx->part[ctx->nknown] = states[0];
+    ctx->got[ctx->nknown] = 1;
+    return;
   }
+  int last = ctx->last;
+  if (last >= 0 && nstates == (last < NARRAYS ? ARRAYS[last].n : 1) &&
+      same_text(fnc, last < NARRAYS ? ARRAYS[last].name : FUNCTIONS[last - NARRAYS]) &&
+      same_read(ctx, last, ipar, nsize)) {
+    for (int i = 0; i < nstates; i++) {
+      ctx->part[ctx->last_keys[i]] = states[i];
+      ctx->got[ctx->last_keys[i]] = 1;
+    }
+    return;
+  }
+  int a = array_code(fnc), code = a < 0 ? ps_user_fn_code(fnc) : -1, n = a >= 0 ? ARRAYS[a].n : 1;
   char name[16];
   clean_name(name, fnc);
   *errflg = 1;
+  if (a < 0 && code < 0 && !strcmp(name, "TIME")) {
+    if (nsize == 0 && nstates == 1) {
+      *errflg = 0;
+      ctx->part[ctx->nknown] = states[0];
+      ctx->got[ctx->nknown] = 1;
+    } else {
+      fail(ctx, "%s: TIME takes no ids and one partial, %s was given %d id%s and %d partial%s",
+           API(ctx, "syspar"), API(ctx, "syspar"), nsize, nsize == 1 ? "" : "s", nstates,
+           nstates == 1 ? "" : "s");
+    }
+    return;
+  }
   if (a < 0 && code < 0) {
     fail(ctx, "%s: unknown function or array %s", API(ctx, "syspar"), name);
     return;
@@ -326,7 +346,8 @@ static double call(void* fn, int form, int id, double t, const double* par, int 
                    int iflag, int chan) {
   double p[PS_USER_MAXPAR], val[8] = {0};
   int n = npar < PS_USER_MAXPAR ? npar : PS_USER_MAXPAR;
-  memcpy(p, par, sizeof(double) * (size_t)n);   /* the routine may not change the model */
+  /* the routine may not change the model */
+  for (int i = 0; i < n; i++) p[i] = par[i];
   int iord = 0;
   if (form == PS_USER_DFLAG)
     ((UserFnD)fn)(&id, &t, p, &n, &dflag, &iflag, val);
@@ -371,9 +392,13 @@ static double eval(const psModel* m, int k, UserCtx* ctx, const double* z, int n
  * rounded step would add an error of eps |z| / step to the partial (1e-10 relative for a
  * position of 100 mm), enough to cost IDA steps at tight tolerances. */
 static double step(double rel, double z) {
-  int e;
-  frexp(rel * fmax(1.0, fabs(z)), &e);
-  return ldexp(1.0, e - 1);
+  /* the largest power of two not above x (x normal and positive): x's exponent bits alone */
+  double x = rel * fmax(1.0, fabs(z));
+  unsigned long long b;
+  memcpy(&b, &x, sizeof b);
+  b &= 0x7ff0000000000000ULL;
+  memcpy(&x, &b, sizeof b);
+  return x;
 }
 
 /* Evaluate with input i moved by h (and input j by hj when j >= 0). */
@@ -396,7 +421,7 @@ static double eval_with(const psModel* m, int k, UserCtx* ctx, double* z, int ni
   if (i >= 0) z[i] = zi + h;
   ctx->part = part;
   ctx->got = got;
-  if (got) memset(got, 0, (size_t)nin);
+  for (int j = 0; got && j <= nin; j++) got[j] = 0;
   double f = eval(m, k, ctx, z, nin, dflag, chan);
   ctx->part = NULL;
   ctx->got = NULL;
@@ -442,8 +467,8 @@ static int check_given(const psModel* m, int k, UserCtx* ctx, double* z, int nin
   }
   for (int q = 0; q < 3; q++)
     if (fabs(given - best[q]) <= 1e-6 * (fabs(given) + fabs(best[q])) + err[q]) return 0;
-  char key[PS_USER_KEY];
-  make_key(key, FUNCTIONS[ctx->kfn[i]], ctx->kid + 4 * i, ctx->kn[i]);
+  char key[PS_USER_KEY] = "TIME";
+  if (i < nin) make_key(key, FUNCTIONS[ctx->kfn[i]], ctx->kid + 4 * i, ctx->kn[i]);
   fail(ctx, "%s gave the partial in %s as %.9g, but differences of its value give %.9g",
        API(ctx, "syspar"), key, given, best[0]);
   return -1;
@@ -456,8 +481,8 @@ static int check_given(const psModel* m, int k, UserCtx* ctx, double* z, int nin
 static int hessian_given(const psModel* m, int k, UserCtx* ctx, double* z, int nin, int chan,
                          double f0, const int* flat, double* fij) {
   int n = nin + 1;
-  double gp[PS_USER_MAXIN], gm[PS_USER_MAXIN], row[(PS_USER_MAXIN + 1) * PS_USER_MAXIN];
-  unsigned char okp[PS_USER_MAXIN], okm[PS_USER_MAXIN];
+  double gp[PS_USER_MAXIN + 1], gm[PS_USER_MAXIN + 1], row[(PS_USER_MAXIN + 1) * PS_USER_MAXIN];
+  unsigned char okp[PS_USER_MAXIN + 1], okm[PS_USER_MAXIN + 1];
   double tt = 0.0;
   for (int i = 0; i < n; i++) {
     double* r = row + i * nin;   /* d/dz_i of the given partials */
@@ -514,11 +539,11 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
   double* cache = d->user_cache + (long)cache_index * PS_USER_CACHE;
   double *cz = cache + 2, *cfi = cz + n, *cflat = cfi + n, *checked = cache + PS_USER_CACHE - 1;
   double z[PS_USER_MAXIN + 1], *fi = out + 1, *fij = out + 1 + n;
-  double given[PS_USER_MAXIN];
-  unsigned char got[PS_USER_MAXIN];
+  double given[PS_USER_MAXIN + 1];
+  unsigned char got[PS_USER_MAXIN + 1];
   int flat[PS_USER_MAXIN + 1];   /* the routine gave exactly f0 a step away in input i */
   int sup[PS_USER_MAXIN + 1];    /* the routine gave its partial in input i (c_syspar) */
-  memcpy(z, zin, sizeof(double) * (size_t)n);
+  for (int i = 0; i < n; i++) z[i] = zin[i];
   UserCtx ctx;
   ctx.recording = 0;
   ctx.error = 0;
@@ -541,16 +566,16 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
   double f0 = hit ? cache[1]
                   : eval_with(m, k, &ctx, z, nin, chan, 0, -1, 0.0, order >= 1 ? given : NULL,
                               order >= 1 ? got : NULL);
-  int nsup = 0;
+  int nsup = 0;   /* partials given in the inputs, time's apart */
   for (int i = 0; i < n; i++) {
-    sup[i] = i < nin && (hit ? cflat[i] == 2.0 : order >= 1 && got[i]);
-    nsup += sup[i];
+    sup[i] = hit ? cflat[i] == 2.0 : order >= 1 && got[i];
+    nsup += sup[i] && i < nin;
   }
   /* each partial a routine gives is checked against differences the first time it is given
    * in a run (a routine may give some only on some branches) */
-  if (!hit && nsup) {
+  if (!hit && (nsup || sup[nin])) {
     long done = (long)*checked;
-    for (int i = 0; i < nin && !ctx.error; i++)
+    for (int i = 0; i < n && !ctx.error; i++)
       if (sup[i] && !(done >> i & 1)) {
         check_given(m, k, &ctx, z, nin, chan, i, f0, given[i]);
         done |= 1L << i;

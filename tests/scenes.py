@@ -182,8 +182,15 @@ LINES_C_SYSPAR = LINES_C.replace(
     "  double dg[3] = {par[1], 0.0, -1.0};\n"
     "  c_syspar(\"TDISP\", &m, 1, dg, 3, &err);\n")
 
+#: ... and in its time argument as well (c_syspar "TIME"): not stepped in time either.
+LINES_C_SYSPAR_TIME = LINES_C_SYSPAR.replace(
+    "  c_syspar(\"TDISP\", &m, 1, dg, 3, &err);\n",
+    "  c_syspar(\"TDISP\", &m, 1, dg, 3, &err);\n"
+    "  double dt = 0.0;\n"
+    "  c_syspar(\"TIME\", NULL, 0, &dt, 1, &err);\n")
+
 USERSUB_FORMS = ("expression", "script", "callable", "branchy", "untraceable",
-                 "untraceable_syspar", "c", "c_syspar")
+                 "untraceable_syspar", "c", "c_syspar", "c_syspar_time")
 
 
 def usersub_library(folder, source=LINES_C, name="subs"):
@@ -208,8 +215,8 @@ def lines_deck(form, folder):
     ``(deck text, fmt)``. Forms: expression, script (a Python script, traced), callable (a
     function in the deck, traced), branchy (a function with a state-dependent branch, traced
     into IF), untraceable (a function through NumPy, called from the kernel), c (a C library,
-    called from the kernel), and untraceable_syspar and c_syspar (the same, giving their
-    partials with py_syspar / c_syspar)."""
+    called from the kernel), untraceable_syspar and c_syspar (the same, giving their
+    partials with py_syspar / c_syspar) and c_syspar_time (giving the partial in time too)."""
     text = (DECKS / "particle_between_lines.py").read_text()
     if form == "expression":
         return text, "py"
@@ -217,9 +224,11 @@ def lines_deck(form, folder):
     if form == "script":
         (folder / "lines.py").write_text(LINES_PFOSUB)
         how = f"SCRIPT={str(folder / 'lines.py')!r}"
-    elif form in ("c", "c_syspar"):
-        lib = usersub_library(folder, *((LINES_C, "subs") if form == "c" else
-                                        (LINES_C_SYSPAR, "subs_syspar")))
+    elif form in ("c", "c_syspar", "c_syspar_time"):
+        lib = usersub_library(folder, *{"c": (LINES_C, "subs"),
+                                        "c_syspar": (LINES_C_SYSPAR, "subs_syspar"),
+                                        "c_syspar_time": (LINES_C_SYSPAR_TIME,
+                                                          "subs_syspar_time")}[form])
         if lib is None:
             return None, "py"
         how = f"ROUTINE={str(lib) + '::PFOSUB'!r}"

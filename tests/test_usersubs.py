@@ -838,6 +838,46 @@ void CURVE(int *id, double *time, double *par, int *npar, int *dflag, int *iflag
   c_syspar("DZ", &m, 1, &one, 1, &err);
 }
 
+/* the lines moving up at par[2] mm/s (g = 1 + par[1] x - z + par[2] t), the partial in time
+ * given as par[2] times par[3] (1: right, 0: wrong); TIMEIDS names an id with TIME */
+static long moving_counts[1];
+long moving_count(void) { return moving_counts[0]; }
+void MOVING(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+            double *value) {
+  int m = (int)par[0], n, err;
+  double p[3], dt = par[2] * par[3];
+  moving_counts[0]++;
+  c_sysary("TDISP", &m, 1, p, &n, &err);
+  *value = 1.0 + par[1] * p[0] - p[2] + par[2] * *time;
+  double dg[3] = {par[1], 0.0, -1.0};
+  c_syspar("TDISP", &m, 1, dg, 3, &err);
+  c_syspar("TIME", NULL, 0, &dt, 1, &err);
+}
+void TIMEIDS(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+             double *value) {
+  int m = (int)par[0], n, err;
+  double p[3], dt = 0.0;
+  c_sysary("TDISP", &m, 1, p, &n, &err);
+  *value = 1.0 + par[1] * p[0] - p[2];
+  c_syspar("TIME", &m, 1, &dt, 1, &err);
+}
+
+/* a wave: g = z - a cos(x / L - w t), USER(marker, a, L, w), every partial given (time's too) */
+void WAVE(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+          double *value) {
+  int m = (int)par[0], err;
+  double x, z, one = -1.0, u, dx, dt;
+  c_sysfnc("DX", &m, 1, &x, &err);
+  c_sysfnc("DZ", &m, 1, &z, &err);
+  u = x / par[2] - par[3] * *time;
+  *value = par[1] * cos(u) - z;
+  dx = -par[1] / par[2] * sin(u);
+  dt = par[1] * par[3] * sin(u);
+  c_syspar("DX", &m, 1, &dx, 1, &err);
+  c_syspar("DZ", &m, 1, &one, 1, &err);
+  c_syspar("TIME", NULL, 0, &dt, 1, &err);
+}
+
 void BEAD(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
           double *value) {
   int marker = (int)par[0], err;
@@ -934,6 +974,106 @@ def test_given_partials_jacobian_is_the_exact_one(syspar_library):
         y, yp = rng.normal(size=lines.ny) * 50, rng.normal(size=lines.ny)
         np.testing.assert_allclose(lines.jacobian_array(0.3, y, yp, 7.0),
                                    exact.jacobian_array(0.3, y, yp, 7.0), rtol=1e-12, atol=1e-9)
+
+
+def _moving(lib, right=1):
+    """Seed example 3 with both lines moving up at 20 mm/s, as the routine MOVING (its partial in
+    time given: right, or as 0) or, with lib None, as expressions."""
+    text = (DECKS / "particle_between_lines.py").read_text()
+    for old, sign in (("1+DX(10)-DZ(10)", "1"), ("1-DX(10)-DZ(10)", "-1")):
+        new = (f'FUNCTION="{old}+20*TIME"' if lib is None else
+               f'FUNCTION="USER(10, {sign}, 20, {right})", ROUTINE="{lib}::MOVING"')
+        text = text.replace(f'FUNCTION="{old}"', new)
+    return pysolver.loads(text.replace("END=3.0", "END=1.0"), fmt="py")
+
+
+@pytest.mark.parametrize("tol", [1e-6, 1e-10])
+def test_given_partial_in_time_replaces_the_step_in_time(syspar_library, tol, monkeypatch):
+    """A routine that also gives its partial in time (c_syspar "TIME") runs the expression
+    version's steps and answers to rounding on lines that move with time, and is called once
+    per evaluation: value and first partials in one call, no step in time (8 calls per
+    Jacobian: central differences of the given partials in DX, DY, DZ and time)."""
+    import ctypes
+    monkeypatch.setenv("PYSOLVER_HELD", "off")
+    ref = _moving(None).run(integr_tol=tol)
+    model = _moving(syspar_library)
+    model.compile()
+    count = ctypes.CDLL(str(syspar_library)).moving_count
+    count.restype = ctypes.c_long
+    c0 = count()
+    res = model.run(integr_tol=tol)
+    calls, st = count() - c0, res.stats
+    assert res.success and st["steps"] == ref.stats["steps"]
+    assert np.abs(res.request(1)[:, :4] - ref.request(1)[:, :4]).max() <= 1e-9
+    # both lines rise 20 mm in the second: the particle, resting on them, rises with them
+    assert ref.request(1)[-1, 1] - ref.request(1)[50, 1] == pytest.approx(20 * 0.75, abs=0.5)
+    # per evaluation one call per routine; per Jacobian eight more; the check of the partials
+    # (each against differences of the value, once per run)
+    assert calls <= 2 * (st["nres"] + st["outputs"]) + 2 * 8 * st["njac"] + 2 * 4 * 20
+
+
+MOVING_NUMPY = '''def moving(id, time, par, npar, dflag, iflag):
+    import numpy as np
+    ipar = [int(par[0])]
+    x, z = np.array([py_sysfnc("DX", ipar)[0], py_sysfnc("DZ", ipar)[0]], dtype=float)
+    py_syspar("DX", ipar, [par[1]])
+    py_syspar("DZ", ipar, [-1.0])
+    py_syspar("TIME", [], [par[2]])
+    return float(1 + par[1] * x - z + par[2] * time)
+'''
+
+
+def test_python_routine_gives_its_partial_in_time(monkeypatch):
+    """py_syspar("TIME", [], [v]) from a routine the kernel calls: the expression version's
+    steps and answers on the moving lines."""
+    monkeypatch.setenv("PYSOLVER_HELD", "off")
+    ref = _moving(None).run(integr_tol=1e-8)
+    text = (DECKS / "particle_between_lines.py").read_text().replace("END=3.0", "END=1.0")
+    text = text.replace("PART(1,", MOVING_NUMPY + "\nPART(1,")
+    for old, sign in (("1+DX(10)-DZ(10)", "1"), ("1-DX(10)-DZ(10)", "-1")):
+        text = text.replace(f'FUNCTION="{old}"',
+                            f'FUNCTION="USER(10, {sign}, 20)", ROUTINE=moving')
+    res = pysolver.loads(text, fmt="py").run(integr_tol=1e-8)
+    assert res.success and res.stats["steps"] == ref.stats["steps"]
+    assert np.abs(res.request(1)[:, :4] - ref.request(1)[:, :4]).max() <= 1e-9
+
+
+def test_given_partial_in_time_is_checked(syspar_library):
+    """A partial in time that differences of the value contradict ends the run naming TIME
+    and both numbers; TIME named with ids is c_syspar's error."""
+    wrong = _moving(syspar_library, right=0).run()
+    assert not wrong.success and wrong.status == -400
+    got = re.fullmatch(r"user subroutine \(id [12]\): MOVING: c_syspar gave the partial in "
+                       r"TIME as 0, but differences of its value give (\S+) \((?:called at "
+                       r"t = (\S+); the run's last converged step: )?t = 0\)", wrong.message)
+    assert got is not None, wrong.message
+    assert float(got[1]) == pytest.approx(20, rel=1e-6)
+    assert got[2] is None or 0 < float(got[2]) < 1e-3
+    res = _lines(syspar_library, "TIMEIDS").run()
+    assert not res.success
+    assert res.message in (f"user subroutine (id {i}): TIMEIDS: c_syspar: TIME takes no ids "
+                           "and one partial, c_syspar was given 1 id and 1 partial (t = 0)"
+                           for i in (1, 2))
+
+
+def test_given_partials_in_time_jacobian_is_the_exact_one(syspar_library):
+    """A travelling wave z = a cos(x / L - w t) as a routine giving every partial: its
+    iteration matrix (second partials from central differences of the given first ones,
+    time's row included) is the expression version's to 1e-8 of its largest entry."""
+    text = CURVE_DECK.format(x=3, z=30, function="{}", routine="{}")
+    params = "10, 40, 25, 6"
+    exact = pysolver.loads(text.format("40*COS(DX(10)/25-6*TIME)-DZ(10)", ""), fmt="py")
+    routine = pysolver.loads(text.format(f"USER({params})",
+                                         f'ROUTINE="{syspar_library}::WAVE", '), fmt="py")
+    k, ke = routine.compile().kernel, exact.compile().kernel
+    rng = np.random.default_rng(8)
+    for t in (0.0, 0.13, 0.4):
+        y = ke.layout.initial_state() + rng.normal(size=ke.ny) * [5, 5, 5, 50, 50, 50][:ke.ny]
+        yp = rng.normal(size=ke.ny) * 30
+        J, Je = k.jacobian_array(t, y, yp, 7.0), ke.jacobian_array(t, y, yp, 7.0)
+        assert np.abs(J - Je).max() <= 1e-8 * np.abs(Je).max()
+        np.testing.assert_allclose(k.residual_array(t, y, yp), ke.residual_array(t, y, yp),
+                                   rtol=1e-12, atol=1e-9)
 
 
 def test_given_partials_are_checked(syspar_library):

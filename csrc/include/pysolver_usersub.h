@@ -21,6 +21,8 @@
 #ifndef PYSOLVER_USERSUB_H
 #define PYSOLVER_USERSUB_H
 
+#include <stddef.h> /* NULL, for c_syspar("TIME", NULL, 0, ...) */
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -40,11 +42,13 @@ void c_sysary(const char *fnc, const int *ipar, int nsize, double *states, int *
 /* Give the partial derivatives of the routine's result in values it read (Adams' SYSPAR):
  * fnc, ipar and nsize as in the c_sysfnc or c_sysary call, states the partials of the result
  * in each of the nstates values that call returned. pysolver then uses them instead of
- * differencing the routine in those values (it still differences time, and the rest); it
- * checks each against differences of the value the first time it is given in a run, and
- * ends the run naming the value when they disagree. Ignored on the iflag call and when
- * no partials are wanted; *errflg is 1 (and the run ends) for a value the iflag call did not
- * ask for or a wrong nstates. */
+ * differencing the routine in those values (it still differences the rest). fnc "TIME" with
+ * nsize 0 and one partial gives the partial in the time argument (a pysolver extension:
+ * without it, every evaluation that needs partials calls the routine once more, a step in
+ * time). pysolver checks each partial against differences of the value the first time it is
+ * given in a run, and ends the run naming the value when they disagree. Ignored on the iflag
+ * call and when no partials are wanted; *errflg is 1 (and the run ends) for a value the iflag
+ * call did not ask for or a wrong nstates. */
 void c_syspar(const char *fnc, const int *ipar, int nsize, const double *states, int nstates,
               int *errflg);
 
