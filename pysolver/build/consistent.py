@@ -49,13 +49,13 @@ class _Jac:
         With `scale` (one positive number per column), the least change in the norm
         ||x / scale||: C's columns are scaled, and the answer scaled back. `extra`: dense
         rows (one entry per column) below J's (a joint's initial condition, :mod:`.icjoint`),
-        whose right-hand sides end rhs."""
-        if self.sparse:
+        whose right-hand sides end rhs, solved by dense least squares: a joint's coordinate
+        can be nearly a combination of the rows it joins at the deck's positions, where C C^T
+        is then singular but for rounding, and its sparse factors garbage."""
+        if self.sparse and (extra is None or not len(extra)):
             import scipy.sparse as sp
             import scipy.sparse.linalg as spla
             C = self.J[:, cols].tocsr()[rows]
-            if extra is not None and len(extra):
-                C = sp.vstack([C, sp.csr_matrix(extra)]).tocsr()
             if scale is not None:
                 C = C @ sp.diags(scale)
             try:
@@ -68,6 +68,7 @@ class _Jac:
             C = C.toarray()
         else:
             C = self.block(rows, cols)
+            C = C.toarray() if hasattr(C, "toarray") else C
             if extra is not None and len(extra):
                 C = np.vstack([C, extra])
             if scale is not None:
