@@ -48,10 +48,8 @@ class _Jac:
         equations are out; where it has not, least squares), dense least squares otherwise.
         With `scale` (one positive number per column), the least change in the norm
         ||x / scale||: C's columns are scaled, and the answer scaled back. `extra`: dense
-        rows (one entry per column) below J's (a joint's initial condition, :mod:`.icjoint`),
-        whose right-hand sides end rhs, solved by dense least squares: a joint's coordinate
-        can be nearly a combination of the rows it joins at the deck's positions, where C C^T
-        is then singular but for rounding, and its sparse factors garbage."""
+        rows below J's (joints' initial conditions, :mod:`.icjoint`; rhs ends with theirs),
+        by dense least squares (C C^T can be singular but for rounding with them)."""
         if self.sparse and (extra is None or not len(extra)):
             import scipy.sparse as sp
             import scipy.sparse.linalg as spla
@@ -160,10 +158,8 @@ def _consistent(kernel, t, y, iters, initial, tol):
             y[w] += r[k]
             r[k] = 0.0
     held = np.nonzero((rate < 0) | np.array(given, dtype=bool))[0]
-    # a joint's initial velocity (icjoint): a row of its own, at the assembled positions
-    vics = icjoint.with_velocity(kernel) if initial else []
-    C_ic = icjoint.directions(kernel, t, y, vics, u_idx)
-    e = icjoint.rate_gaps(kernel, t, y, vics)
+    vics = icjoint.with_velocity(kernel) if initial else []     # joints' initial velocities
+    C_ic, e = icjoint.directions(kernel, t, y, vics, u_idx), icjoint.rate_gaps(kernel, t, y, vics)
     # at the initial state the velocities the deck leaves at zero change first, and all of
     # them (the given ones too) only for what those cannot do, each the least in kinetic
     # energy (icvelocity); elsewhere every velocity alike
@@ -182,17 +178,13 @@ def _consistent(kernel, t, y, iters, initial, tol):
                                       extra)
             r = kernel.residual_array(t, y, yp)[lam]
             e = icjoint.rate_gaps(kernel, t, y, vics)
-            met = np.abs(np.concatenate([r[held], e, [0.0]])).max() <= \
-                1e-14 * (1.0 + np.abs(y[u_idx]).max())
+            met = np.abs([*r[held], *e, 0.0]).max() <= 1e-14 * (1.0 + np.abs(y[u_idx]).max())
             if met:
                 break
         if met:
             break
-    if vics and np.abs(e).max() > 1e-9 * (1.0 + np.abs(y[u_idx]).max()):
-        bad = vics[int(np.argmax(np.abs(e)))]
-        raise AssemblyError(f"{icjoint.name(bad)}'s initial velocity {bad[3]:g} cannot be "
-                            "had: the other joints and motions fix that coordinate's rate "
-                            f"(off by {np.abs(e).max():.3g})")
+    if icjoint.unmet(vics, e, 1e-9 * (1.0 + np.abs(y[u_idx]).max())):
+        raise AssemblyError(icjoint.unmet(vics, e, 1e-9 * (1.0 + np.abs(y[u_idx]).max())))
     if initial:
         kernel.start_notes = moved + changed_given(lay, u_idx, deck_u, y[u_idx], ~free)
     # 3. accelerations and reactions (linear in them unless forces read accelerations)
@@ -275,8 +267,7 @@ def _assemble(kernel, t, y, initial=False, iters=ASSEMBLY_ITERS):
     below 1e-8 of the state's size (the constraints' curvature then moves its least change by
     less than 1e-8 of it). Return (rows, g, ndisp): the held equations' indices into
     layout.lam (the first `ndisp` of them held by a mu, the rest motions' ic_disp) and their
-    values at the positions it started from, then those of the joints' initial
-    displacements (:mod:`.icjoint`), which are no rows of the kernel."""
+    values at the positions it started from (then the joints' initial displacements')."""
     lay = kernel.layout
     lam, mu = np.array(lay.lam, dtype=int), np.array(lay.mu, dtype=int)
     disp = np.nonzero(mu >= 0)[0]
@@ -366,11 +357,9 @@ def _unassembled(kernel, lay, rows, g, y, ndisp, jics=()):
     joints' initial displacements `jics`)."""
     if np.max(np.abs(g)) <= 1e-9 * (1.0 + np.max(np.abs(y))):
         return
-    names = []
-    for n in np.flatnonzero(np.abs(g) > 1e-9):
-        if n >= len(rows):                # a joint's initial displacement
-            names.append(icjoint.name(jics[n - len(rows)]))
-            continue
+    big = np.flatnonzero(np.abs(g) > 1e-9)
+    names = [icjoint.name(jics[n - len(rows)]) for n in big if n >= len(rows)]
+    for n in big[big < len(rows)]:
         k = rows[n]
         if n >= ndisp:                    # a motion's ic_disp
             mid = lay.motion_ids[k]

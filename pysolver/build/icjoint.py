@@ -58,6 +58,16 @@ def directions(kernel, t, y, ics, u_idx):
     return C
 
 
+def unmet(ics, e, tol):
+    """The AssemblyError's words when a joint's initial velocity is off by more than `tol`
+    (`e`: :func:`rate_gaps` after the velocity step), else None."""
+    if not len(ics) or np.abs(e).max() <= tol:
+        return None
+    bad = ics[int(np.argmax(np.abs(e)))]
+    return (f"{name(bad)}'s initial velocity {bad[3]:g} cannot be had: the other joints "
+            f"and motions fix that coordinate's rate (off by {np.abs(e).max():.3g})")
+
+
 def name(ic):
     """An initial condition as the run's messages name it."""
     return (f"Constraint_Joint {ic[0]} (initial "
