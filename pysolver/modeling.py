@@ -393,10 +393,12 @@ _JOINTS = _choices("REVOLUTE", "TRANSLATIONAL", "SPHERICAL", "CYLINDRICAL", "UNI
 class Joint(_Element):
     """A joint: type (REVOLUTE, TRANSLATIONAL, SPHERICAL, CYLINDRICAL, UNIVERSAL, HOOKE,
     FIXED, PLANAR, CONSTANT_VELOCITY, SCREW, RACK_PINION, the primitives; pysolver's FREE),
-    i, j, pitch, pd, virtual."""
+    i, j, pitch, pd, virtual; ic (a TRANSLATIONAL or REVOLUTE joint), ictran and icrot (a
+    CYLINDRICAL joint): the initial displacement of its coordinate, or (displacement,
+    velocity), held by the initial conditions only."""
     _statement = "JOINT"
     _keys = {"type": _JOINTS, "i": "I", "j": "J", "pitch": "PITCH", "pd": "PD",
-             "virtual": "VIRTUAL"}
+             "virtual": "VIRTUAL", "ic": "IC", "ictran": "ICTRAN", "icrot": "ICROT"}
 
     def _adm(self):
         # MotionSolve's joint types include the primitives: Adams writes them as JPRIM

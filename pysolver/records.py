@@ -301,7 +301,10 @@ class Motion:
 class Joint:
     """Constraint_Joint (or Constraint_Jprim): marker I's body held to marker J's by the
     equations of `type` (pysolver.deck.joints.EQUATIONS). The reactions are res.joint(id).
-    A SCREW or RACK_PINION holds d . zJ = lead theta + offset (catalogue, "lead")."""
+    A SCREW or RACK_PINION holds d . zJ = lead theta + offset (catalogue, "lead").
+    ``ic``: the joint's initial conditions, one (coordinate, displacement, velocity) per
+    coordinate given, "T" (DZ(I, J, J)) or "R" (AZ(I, J)), either number None when not given:
+    held by the initial-conditions analysis only (pysolver.build.icjoint)."""
     id: int
     type: str
     i: int
@@ -310,6 +313,7 @@ class Joint:
     virtual: bool = False
     lead: float = 0.0      # SCREW pitch / 2 pi, RACK_PINION pitch_diameter / 2: d per radian
     offset: float = 0.0    # SCREW, RACK_PINION: d - lead theta at the deck's positions
+    ic: tuple = ()
 
 
 @record

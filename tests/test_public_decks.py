@@ -287,3 +287,37 @@ def test_the_not_modelled_list_is_the_docs_and_apart_from_the_schema():
     section = page.split("## Not modelled", 1)[1].split("\n## ", 1)[0]
     listed = set(re.findall(r"`((?:Body|Constraint|Control|Force|Reference)_\w+)`", section))
     assert listed == set(NOT_MODELLED) | set(SET_ASIDE)
+
+
+#: Fkinev1's blocker, reduced: a slider in millimetres on a TRANSLATIONAL joint whose axis
+#: (J's z) is global -y, gravity -9800 mm/s^2 along y, and the dataset's own JOINT IC line.
+FKINEV1_IC = """slider
+UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = MILLIMETER, TIME = SECOND
+PART/1, GROUND
+MARKER/4, PART = 1, QP = 0, 0, 0, REULER = 0D, 90D, 0D
+PART/2, MASS = 0.5, CM = 3, IP = 49, 23700, 23704
+MARKER/3, PART = 2, REULER = 0D, 90D, 0D
+JOINT/20
+, TRANSLATIONAL
+, I = 3
+, J = 4
+, IC = -0.1815, -146.9925875
+ACCGRAV/JGRAV = -9800
+REQUEST/1, F2 = DZ(3,4,4), F3 = VZ(3,4,4,4)
+END
+"""
+
+
+def test_a_joints_ic_as_fkinev1_writes_it_starts_the_run(tmp_path):
+    """Fkinev1 stopped at `IC = -0.1815, -146.9925875` on its JOINT/20 (trial 44); now the
+    joint starts there: DZ(3, 4, 4) = -0.1815 mm and VZ = -146.99 mm/s at t = 0, then the
+    slide along zJ = -y under gravity, d + v t + 9800 t^2 / 2, to 1e-6 mm."""
+    adm = tmp_path / "fk.adm"
+    adm.write_text(FKINEV1_IC)
+    acf = tmp_path / "fk.acf"
+    acf.write_text("fk.adm\n\nSIMULATE/DYNAMICS, END = 0.1, DTOUT = 0.01\nSTOP\n")
+    res = pysolver.load(acf).run(integr_tol=1e-9)
+    assert res.success, res.message
+    q, t = res.request(1), res.t
+    assert abs(q[0, 1] + 0.1815) < 1e-9 and abs(q[0, 2] + 146.9925875) < 1e-9
+    assert np.abs(q[:, 1] - (-0.1815 - 146.9925875 * t + 4900 * t * t)).max() < 1e-6

@@ -805,6 +805,28 @@ class Compiler:
             self.element("joint", jo.id, ti, g, gd, self.layout.lam[base + k],
                          self.layout.mu[base + k])
 
+    def joint_initial(self):
+        """The joints' initial conditions (Joint.ic), each a tape of its coordinate (DZ(I, J,
+        J) or AZ(I, J)) and of its rate (VZ(I, J, J, J) or WZ(I, J, J)), which only the
+        initial-conditions analysis reads (pysolver.build.icjoint): [(joint id, "T" or "R",
+        displacement, velocity, (tape, slot) of the coordinate, (tape, slot) of its rate,
+        the state indices of the two bodies' velocities)]."""
+        out, lay = [], self.layout
+        for jid in sorted(self.model.joints):
+            jo = self.model.joints[jid]
+            bodies = [lay.index.get(self.model.markers[m].body) for m in (jo.i, jo.j)]
+            entries = [s for bi in bodies if bi is not None
+                       for s in range(lay.uadr[bi], lay.uadr[bi] + lay.sizes[bi][1])]
+            for coord, disp, vel in jo.ic:
+                ti, tape = self.new_tape()
+                turn = coord == "R"
+                g = self.lower(tape, ex.call("AZ", jo.i, jo.j) if turn else
+                               ex.call("DZ", jo.i, jo.j, jo.j))
+                rate = self.lower(tape, ex.call("WZ", jo.i, jo.j, jo.j) if turn else
+                                  ex.call("VZ", jo.i, jo.j, jo.j, jo.j))
+                out.append((jid, coord, disp, vel, (ti, g), (ti, rate), entries))
+        return out
+
     def held_expression(self, ti, tape, kind, gc):
         """A Constraint_General's (or a coupler's) expression g(q, t) as one constraint
         equation (held like a joint's: its rate with lam, itself with mu), if it is not
@@ -875,6 +897,7 @@ class Compiler:
         for jid in sorted(model.joints):
             ti, t = self.new_tape()
             self.joint(ti, t, model.joints[jid])
+        self.joint_ic = self.joint_initial()
         for kind, table in (("gcon", model.gcons), ("coupler", model.couplers)):
             for cid in sorted(table):
                 ti, t = self.new_tape()

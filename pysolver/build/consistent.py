@@ -17,6 +17,7 @@ import numpy as np
 
 from ..options import SPARSE_THRESHOLD
 from ..rotations import G
+from . import icjoint
 from .icmetric import change, weights
 from .icposition import moved_note
 from .icvelocity import changed_given, velocity_scale
@@ -41,13 +42,15 @@ class _Jac:
         """The matrix's diagonal."""
         return self.J.diagonal() if self.sparse else np.diag(self.J).copy()
 
-    def least_change(self, rows, cols, rhs, scale=None):
+    def least_change(self, rows, cols, rhs, scale=None, extra=None):
         """The least-norm x with J[rows, cols] x = rhs: x = C^T (C C^T)^-1 rhs, by a sparse
         factorization of C C^T on the sparse path (C has full row rank once redundant
         equations are out; where it has not, least squares), dense least squares otherwise.
         With `scale` (one positive number per column), the least change in the norm
-        ||x / scale||: C's columns are scaled, and the answer scaled back."""
-        if self.sparse:
+        ||x / scale||: C's columns are scaled, and the answer scaled back. `extra`: dense
+        rows below J's (joints' initial conditions, :mod:`.icjoint`; rhs ends with theirs),
+        by dense least squares (C C^T can be singular but for rounding with them)."""
+        if self.sparse and (extra is None or not len(extra)):
             import scipy.sparse as sp
             import scipy.sparse.linalg as spla
             C = self.J[:, cols].tocsr()[rows]
@@ -63,6 +66,9 @@ class _Jac:
             C = C.toarray()
         else:
             C = self.block(rows, cols)
+            C = C.toarray() if hasattr(C, "toarray") else C
+            if extra is not None and len(extra):
+                C = np.vstack([C, extra])
             if scale is not None:
                 C = C * scale
         x = np.linalg.lstsq(C, rhs, rcond=None)[0]
@@ -152,6 +158,8 @@ def _consistent(kernel, t, y, iters, initial, tol):
             y[w] += r[k]
             r[k] = 0.0
     held = np.nonzero((rate < 0) | np.array(given, dtype=bool))[0]
+    vics = icjoint.with_velocity(kernel) if initial else []     # joints' initial velocities
+    C_ic, e = icjoint.directions(kernel, t, y, vics, u_idx), icjoint.rate_gaps(kernel, t, y, vics)
     # at the initial state the velocities the deck leaves at zero change first, and all of
     # them (the given ones too) only for what those cannot do, each the least in kinetic
     # energy (icvelocity); elsewhere every velocity alike
@@ -162,16 +170,21 @@ def _consistent(kernel, t, y, iters, initial, tol):
     # Newton on the held rates (one step when they are linear in u; a relation of velocities
     # may not be)
     met = False
-    for _ in range(iters if len(held) else 0):
+    for _ in range(iters if len(held) or vics else 0):
         J = _Jac(kernel, t, y, yp, 0.0)
-        for cols, s in stages:
-            y[cols] += J.least_change(lam[held], cols, -r[held], s)
+        for (cols, s), part in zip(stages, [free, None] if len(stages) > 1 else [None]):
+            extra = C_ic if part is None else C_ic[:, part]
+            y[cols] += J.least_change(lam[held], cols, -np.concatenate([r[held], e]), s,
+                                      extra)
             r = kernel.residual_array(t, y, yp)[lam]
-            met = np.abs(r[held]).max() <= 1e-14 * (1.0 + np.abs(y[u_idx]).max())
+            e = icjoint.rate_gaps(kernel, t, y, vics)
+            met = np.abs([*r[held], *e, 0.0]).max() <= 1e-14 * (1.0 + np.abs(y[u_idx]).max())
             if met:
                 break
         if met:
             break
+    if icjoint.unmet(vics, e, 1e-9 * (1.0 + np.abs(y[u_idx]).max())):
+        raise AssemblyError(icjoint.unmet(vics, e, 1e-9 * (1.0 + np.abs(y[u_idx]).max())))
     if initial:
         kernel.start_notes = moved + changed_given(lay, u_idx, deck_u, y[u_idx], ~free)
     # 3. accelerations and reactions (linear in them unless forces read accelerations)
@@ -254,12 +267,13 @@ def _assemble(kernel, t, y, initial=False, iters=ASSEMBLY_ITERS):
     below 1e-8 of the state's size (the constraints' curvature then moves its least change by
     less than 1e-8 of it). Return (rows, g, ndisp): the held equations' indices into
     layout.lam (the first `ndisp` of them held by a mu, the rest motions' ic_disp) and their
-    values at the positions it started from."""
+    values at the positions it started from (then the joints' initial displacements')."""
     lay = kernel.layout
     lam, mu = np.array(lay.lam, dtype=int), np.array(lay.mu, dtype=int)
     disp = np.nonzero(mu >= 0)[0]
     ic = [k for k, (d, _, _) in enumerate(lay.motion_ic) if initial and d is not None]
     rows = np.concatenate([disp, ic]).astype(int)
+    jics = icjoint.with_displacement(kernel) if initial else []
     u_idx = _velocities(lay)
     yp = np.zeros_like(y)
     first = None
@@ -274,26 +288,28 @@ def _assemble(kernel, t, y, initial=False, iters=ASSEMBLY_ITERS):
             target, _, angle = lay.motion_ic[k]
             e = kernel.eval_tape(kernel.motion_slots[lay.motion_ids[k]], t, y, yp) - target
             extra.append(np.angle(np.exp(1j * e)) if angle else e)
-        return np.concatenate([kernel.residual_array(t, y, yp)[mu[disp]], extra])
+        return np.concatenate([kernel.residual_array(t, y, yp)[mu[disp]], extra,
+                               icjoint.gaps(kernel, t, y, jics)])
 
     def dot(a, b):
         """a . b in the metric, over the velocities."""
         return float(np.sum(a * b / w[u_idx]))
-    for it in range(iters if len(rows) else 0):
+    for it in range(iters if len(rows) or jics else 0):
         g = gaps()
         first = g if first is None else first
         tol = 1.0 + np.max(np.abs(y))
         if np.max(np.abs(g)) <= 1e-13 * tol and settled:
             return rows, first, len(disp)
         J = _Jac(kernel, t, y, yp, 0.0)
+        C_ic = icjoint.directions(kernel, t, y, jics, u_idx)
         du = np.zeros(kernel.ny)
-        du[u_idx] = J.least_change(lam[rows], u_idx, -g, scale)
+        du[u_idx] = J.least_change(lam[rows], u_idx, -g, scale, C_ic)
         d = change(kernel, y0, y, w)[u_idx]
         if it < iters - PLAIN_ITERS and d.any():
             # the pull: the change's part along the constraints, taken back by alpha (1: its
             # Gauss-Newton length; then the secant length of the last two pulls)
-            pull = J.least_change(lam[rows], u_idx, J.rows_times(lam[rows], _at(d, u_idx, y)),
-                                  scale) - d
+            along = np.concatenate([J.rows_times(lam[rows], _at(d, u_idx, y)), C_ic @ d])
+            pull = J.least_change(lam[rows], u_idx, along, scale, C_ic) - d
             if before is not None:
                 bend = dot(before, before - pull)
                 alpha = (min(max(alpha * dot(before, before) / bend, PULL_BOUNDS[0]),
@@ -306,9 +322,9 @@ def _assemble(kernel, t, y, initial=False, iters=ASSEMBLY_ITERS):
                    or np.sqrt(dot(du[u_idx], du[u_idx])) <= 1e-12 * np.sqrt(dot(d, d))
                    or np.max(np.abs(du)) <= 1e-13 * tol)
         _move(lay, y, du)
-    if len(rows):
+    if len(rows) or jics:
         g = gaps()
-        _unassembled(kernel, lay, rows, g, y, len(disp))
+        _unassembled(kernel, lay, rows, g, y, len(disp), jics)
     return rows, np.zeros(0) if first is None else first, len(disp)
 
 
@@ -335,13 +351,15 @@ class AssemblyError(ValueError):
     """No positions satisfy the constraints near the initial ones."""
 
 
-def _unassembled(kernel, lay, rows, g, y, ndisp):
+def _unassembled(kernel, lay, rows, g, y, ndisp, jics=()):
     """Raise AssemblyError unless the position constraints hold after the Newton steps (rows:
-    the held equations' indices into lay.lam, the first `ndisp` of them with a mu)."""
+    the held equations' indices into lay.lam, the first `ndisp` of them with a mu; then the
+    joints' initial displacements `jics`)."""
     if np.max(np.abs(g)) <= 1e-9 * (1.0 + np.max(np.abs(y))):
         return
-    names = []
-    for n in np.flatnonzero(np.abs(g) > 1e-9):
+    big = np.flatnonzero(np.abs(g) > 1e-9)
+    names = [icjoint.name(jics[n - len(rows)]) for n in big if n >= len(rows)]
+    for n in big[big < len(rows)]:
         k = rows[n]
         if n >= ndisp:                    # a motion's ic_disp
             mid = lay.motion_ids[k]

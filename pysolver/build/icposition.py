@@ -15,6 +15,8 @@ or its turn passes them.
 """
 import numpy as np
 
+from . import icjoint
+
 #: The least relative change noted, whatever integr_tol: coordinates printed to six or seven
 #: digits (decks written by other tools) leave up to about 5e-7 of the scene; 1e-6 keeps them
 #: silent.
@@ -72,7 +74,8 @@ def body_moves(lay, before, after):
 def violations(kernel, rows, g, ndisp):
     """{(tag, id): (distance, angle, other)} of the held equations `rows` (indices into
     layout.lam, the first `ndisp` held by a mu, the rest motions' ic_disp) with their values
-    g: the root sum of squares of the equations that hold a distance; the angle whose sine is
+    g (after them those of the joints' initial displacements, :mod:`.icjoint`): the root
+    sum of squares of the equations that hold a distance; the angle whose sine is
     that of the equations that hold a dot product of axes (the tilt of a REVOLUTE's zI from
     zJ), or a rotation motion's angle from its expression; a general constraint's or
     coupler's |g|."""
@@ -90,6 +93,11 @@ def violations(kernel, rows, g, ndisp):
             part = 2 if kind != "joint" else 1 if row in lay.angular_rows else 0
         acc = sums.setdefault(key, [0.0, 0.0, 0.0, 0.0])
         acc[part] += float(value) ** 2
+    # then the joints' initial displacements (icjoint), the distance or angle from each
+    for ic, value in zip(icjoint.with_displacement(kernel), g[len(rows):]):
+        key = ("Constraint_Joint initial " + ("translation" if ic[1] == "T" else "rotation"),
+               ic[0])
+        sums.setdefault(key, [0.0, 0.0, 0.0, 0.0])[3 if ic[1] == "R" else 0] += float(value) ** 2
     return {key: (np.sqrt(d), np.arcsin(min(1.0, np.sqrt(a))) if a else np.sqrt(turn),
                   np.sqrt(o)) for key, (d, a, o, turn) in sums.items()}
 

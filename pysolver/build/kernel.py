@@ -68,6 +68,7 @@ class Kernel:
         self.model_calls_routines = bool(model.user_routines)   # C or untraced Python
         self.elements = comp.elements      # the element table: (kind, id, tape, ints)
         self.motion_slots = comp.motion_slots   # motion id -> (tape, slot) of its measure
+        self.joint_ic = comp.joint_ic           # the joints' initial conditions (icjoint)
         self.nsensor = arrays["nsensor"]
         self.ny = arrays["ny"]
         self.ntape = arrays["ntape"]

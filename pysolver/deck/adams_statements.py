@@ -118,11 +118,18 @@ JPRIM_TYPES = ("ATPOINT", "INLINE", "INPLANE", "ORIENTATION", "PARALLEL_AXES",
 
 def _joint(r, stmt, vals, lines):
     r.need_id(stmt)
-    _refuse(r, stmt, vals, lines, ("IC", "ICTRAN", "ICROT"), "initial joint coordinates; give "
-            "the markers' positions, or a MOTION with ICDISP/ICVEL")
     kind = _one_flag(r, stmt, vals, _JOINT_TYPES + ("FREE",), "the joint type")
+    ic = {k: vals[k] for k in ("IC", "ICTRAN", "ICROT") if k in vals}
+    try:
+        msolve.joint_ic(msolve._joint_type(kind)["type"], ic)
+    except msolve.BadJointIC as err:
+        raise r.error(stmt, err.args[1], err.args[0], lines[err.args[0]]) from None
     msolve.JOINT(stmt.id, TYPE=kind, **_same(vals, ("I", "J", "PD", "PITCH", "VIRTUAL")),
-                 **_label(stmt))
+                 **ic, **_label(stmt))
+    names = msolve._recorder().elements[-1][3]
+    for attr, key in list(names.items()):         # the load's checks name IC's own line
+        if key in ic:
+            names.setdefault("#lines", {})[attr] = lines[key]
 
 
 def _jprim(r, stmt, vals, lines):

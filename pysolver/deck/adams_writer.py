@@ -26,6 +26,7 @@ from . import usersubs
 from .adams import axes_from_points
 from .adams_statements import JPRIM_TYPES
 from .expr import _TOKEN
+from .msolve import JOINT_IC_KEYS
 from .requests import FORCE_NAMES, elemental_texts
 from .writer import relocate, typed
 
@@ -277,6 +278,11 @@ def _joint(el, model, els, k):
     args = [(_JOINT_NAMES.get(kind, kind), None)] + _marker_ref(el, "i_marker_id", "I") + \
         _marker_ref(el, "j_marker_id", "J") + _args(el, (("pitch", "PITCH"),
                                                          ("pitch_diameter", "PD")))
+    for key, coord in JOINT_IC_KEYS.get(kind, {}).items():       # IC, or ICTRAN and ICROT
+        values = [el.a[f"ic_{coord}_{n}"] for n in ("disp", "vel")
+                  if el.a.get(f"ic_{coord}_{n}") is not None]
+        if values:
+            args.append((key, values if len(values) > 1 else values[0]))
     return [Statement(name, el.a["id"], args + _flags(el, (("is_virtual", "VIRTUAL"),)),
                       _label(el))]
 

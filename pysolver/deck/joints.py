@@ -33,8 +33,42 @@ def add_joint(model, ctx, a):
     offset = _offset(model, a["i_marker_id"], a["j_marker_id"], lead, EQUATIONS[kind][0]) \
         if lead else 0.0
     model.joints[a["id"]] = Joint(a["id"], kind, a["i_marker_id"], a["j_marker_id"],
-                                  a["label"], bool(a.get("is_virtual")), lead, offset)
+                                  a["label"], bool(a.get("is_virtual")), lead, offset,
+                                  _initial(ctx, a))
     model._where[("joint", a["id"])] = ctx
+
+
+#: The coordinates a joint's initial conditions may set: the free ones (Adams' IC on a
+#: TRANSLATIONAL or REVOLUTE joint, ICTRAN and ICROT on a CYLINDRICAL one).
+IC_COORDINATES = {"TRANSLATIONAL": ("T",), "REVOLUTE": ("R",), "CYLINDRICAL": ("T", "R")}
+
+
+def _initial(ctx, a):
+    """The joint's initial conditions (Joint.ic) from ic_tran_disp .. ic_rot_vel, on the
+    joint types that leave that coordinate free (else a DeckError)."""
+    out = []
+    for coord, name in (("T", "tran"), ("R", "rot")):
+        keys = (f"ic_{name}_disp", f"ic_{name}_vel")
+        given = [k for k in keys if a.get(k) is not None]
+        if not given:
+            continue
+        if coord not in IC_COORDINATES.get(a["type"], ()):
+            what = "translation" if coord == "T" else "rotation"
+            has = IC_COORDINATES.get(a["type"])
+            raise ctx.error(f"a {a['type']} joint has no free {what} to start from an initial "
+                            "condition" + (f" (its free coordinate is its "
+                                           f"{'translation' if has == ('T',) else 'rotation'})"
+                                           if has else "; initial conditions belong to "
+                                           "TRANSLATIONAL, REVOLUTE and CYLINDRICAL joints"),
+                            given[0])
+        if a.get(keys[0]) is None:
+            raise ctx.error(f"an initial velocity needs the initial displacement too "
+                            f"({ctx.named(keys[0])})", keys[1])
+        for k in given:
+            if not math.isfinite(a[k]):
+                raise ctx.error(f"got {a[k]!r}; expected a finite number", k)
+        out.append((coord, a.get(keys[0]), a.get(keys[1])))
+    return tuple(out)
 
 
 def _lead(ctx, a):

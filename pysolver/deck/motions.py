@@ -12,6 +12,8 @@ R = Rx(B1) Ry(B2) Rz(B3). A Motion_Joint is the motion of its joint's markers al
 (T: DZ(I, J, J)) or about it (R: AZ(I, J)), allowed on the joint types that leave that
 coordinate free.
 """
+import dataclasses
+
 from ..errors import DeckError
 from ..model import Motion
 from . import expr as ex
@@ -64,6 +66,25 @@ def add_joint_motion(model, ctx, a):
                         f"{joint.id} (it has {' and '.join(free)})", "motion_type")
     add_motion(model, ctx, dict(a, i_marker_id=joint.i, j_marker_id=joint.j,
                                 direction="B3" if kind == "R" else "Z"), joint.id)
+    _motion_wins(model, ctx, joint, kind)
+
+
+def _motion_wins(model, ctx, joint, kind):
+    """Decision: a Motion_Joint on a coordinate the joint's initial conditions also set wins
+    (MotionSolve's precedence: motions before joints' initial conditions); the joint's are
+    dropped with a DeckWarning naming them (docs/deck-language.md, "Initial positions")."""
+    ic = [c for c in joint.ic if c[0] == kind]
+    if not ic:
+        return
+    name = "translation" if kind == "T" else "rotation"
+    jctx = model._where[("joint", joint.id)]
+    keys = [k for k, v in zip(("disp", "vel"), ic[0][1:]) if v is not None]
+    attr = f"ic_{'tran' if kind == 'T' else 'rot'}_{keys[0]}"
+    motion = ctx.names.get("#element") or f"{ctx.tag} {ctx.id}"
+    jctx.warn(f"the initial {name} is not used: {motion} drives the joint's {name}, and a "
+              "motion's own value at the start wins", attr)
+    model.joints[joint.id] = dataclasses.replace(
+        joint, ic=tuple(c for c in joint.ic if c[0] != kind))
 
 
 def add_motion(model, ctx, a, joint=0):

@@ -418,16 +418,81 @@ def _joint_type(val):
     return {"type": {"CONVEL": "CONSTANT_VELOCITY", "RACKPIN": "RACK_PINION"}.get(name, name)}
 
 
+class BadJointIC(ValueError):
+    """A joint's IC, ICTRAN or ICROT that its type cannot take: (keyword, message)."""
+
+
+#: Which of IC, ICTRAN, ICROT each joint type takes, and the coordinate each sets.
+JOINT_IC_KEYS = {"TRANSLATIONAL": {"IC": "tran"}, "REVOLUTE": {"IC": "rot"},
+                 "CYLINDRICAL": {"ICTRAN": "tran", "ICROT": "rot"}}
+
+
+def joint_ic(kind, values):
+    """The Constraint_Joint attributes (ic_tran_disp .. ic_rot_vel) of a JOINT statement's
+    IC, ICTRAN and ICROT (`values`: keyword -> one or two numbers, the displacement and the
+    velocity; None for one not given) on a joint of type `kind` (Adams: IC on a
+    TRANSLATIONAL or REVOLUTE joint, ICTRAN and ICROT on a CYLINDRICAL one). Raises
+    BadJointIC(keyword, message)."""
+    takes = JOINT_IC_KEYS.get(str(kind).upper(), {})
+    given = [k for k in ("IC", "ICTRAN", "ICROT") if values.get(k) is not None]
+    if "IC" in given and len(given) > 1:
+        raise BadJointIC(given[1], "give IC (a TRANSLATIONAL or REVOLUTE joint) or ICTRAN and "
+                         "ICROT (a CYLINDRICAL joint), not both")
+    attrs = {}
+    for key in given:
+        if key not in takes:
+            if not takes:
+                why = (f"a {kind} joint has no free coordinate to start from an initial "
+                       "condition; IC belongs to TRANSLATIONAL and REVOLUTE joints, ICTRAN and "
+                       "ICROT to CYLINDRICAL ones")
+            elif key == "IC":
+                why = "a CYLINDRICAL joint takes ICTRAN and ICROT (its two coordinates)"
+            else:
+                why = f"{key} belongs to a CYLINDRICAL joint; a {kind} joint takes IC"
+            raise BadJointIC(key, why)
+        val = values[key]
+        nums = list(val) if isinstance(val, (list, tuple, np.ndarray)) else [val]
+        if not 1 <= len(nums) <= 2 or nums[0] is None:
+            raise BadJointIC(key, f"{key} takes one or two numbers (the initial displacement, "
+                             "then the velocity), got " + (str(len(nums)) if nums and nums[0]
+                                                          is not None else "no displacement"))
+        try:
+            nums = [None if v is None else float(v) for v in nums]
+        except (TypeError, ValueError):
+            raise BadJointIC(key, f"got {val!r}; expected one or two numbers (the initial "
+                             "displacement, then the velocity)") from None
+        for name, v in zip(("disp", "vel"), nums):
+            if v is not None:
+                attrs[f"ic_{takes[key]}_{name}"] = v
+    return attrs
+
+
 def JOINT(id, **kw):
     """Joint (Constraint_Joint): TYPE (REVOLUTE, SPHERICAL, TRANSLATIONAL, CYLINDRICAL,
     UNIVERSAL, HOOKE, FIXED, PLANAR, CONSTANT_VELOCITY or CONVEL, SCREW, RACK_PINION or
     RACKPIN, the primitives INLINE, INPLANE, ORIENTATION, PARALLEL_AXES, PERPENDICULAR,
     FREE), I, J (markers: I on the first body, J on the second), PITCH (SCREW: translation
-    per turn), PD (RACK_PINION: pitch diameter), VIRTUAL (is_virtual), LABEL. The
-    reactions are res.joint(id)."""
+    per turn), PD (RACK_PINION: pitch diameter), VIRTUAL (is_virtual), LABEL; IC (a
+    TRANSLATIONAL or REVOLUTE joint), ICTRAN and ICROT (a CYLINDRICAL joint): the initial
+    displacement and velocity of its coordinate, (d, v) or d, held by the initial
+    conditions only (docs/deck-language.md, "Initial positions"). The reactions are
+    res.joint(id)."""
+    from ..errors import DeckError
+    values = {k.upper(): kw.pop(k) for k in list(kw) if k.upper() in ("IC", "ICTRAN", "ICROT")}
+    kind = next((v for k, v in kw.items() if k.upper() == "TYPE"), "")
+    kind = _joint_type(kind)["type"] if kind else ""
+    try:
+        extra = joint_ic(kind, values)
+    except BadJointIC as err:
+        rec = _recorder()
+        raise DeckError(err.args[1], file=rec.file, line=_line(rec), element="JOINT", id=id,
+                        attribute=err.args[0]) from None
+    names = {a: next(k for k in values if values[k] is not None and
+                     JOINT_IC_KEYS[kind][k] == a.split("_")[1]) for a in extra}
     _emit("JOINT", "Constraint_Joint",
           {"TYPE": _joint_type, "I": "i_marker_id", "J": "j_marker_id", "PITCH": "pitch",
-           "PD": "pitch_diameter", "VIRTUAL": "is_virtual", "LABEL": "label"}, id, **kw)
+           "PD": "pitch_diameter", "VIRTUAL": "is_virtual", "LABEL": "label"}, id, extra,
+          names, **kw)
 
 
 def _coupled_joints(val):

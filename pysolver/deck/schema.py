@@ -113,7 +113,10 @@ SCHEMA = {
                                   REQ, None),
                          "i_marker_id": ("id", REQ, None), "j_marker_id": ("id", REQ, None),
                          "pitch": ("float", OPT, None), "pitch_diameter": ("float", OPT, None),
-                         "is_virtual": ("bool", OPT, False)},
+                         "is_virtual": ("bool", OPT, False),
+                         # pysolver's: Adams' IC, ICTRAN, ICROT (the initial conditions)
+                         **{f"ic_{c}_{n}": ("float", OPT, None) for c in ("tran", "rot")
+                            for n in ("disp", "vel")}},
     "Constraint_Jprim": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
                          "type": (("ATPOINT", "INLINE", "INPLANE", "ORIENTATION",
                                    "PARALLEL_AXES", "PERPENDICULAR"), REQ, None),
