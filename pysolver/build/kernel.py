@@ -405,3 +405,14 @@ class Kernel:
             if np.max(np.abs(dyp)) <= 1e-14 * (1 + np.max(np.abs(yp))):
                 break
         return yp
+
+
+def follow(twin, kernel):
+    """Give `twin` (a kernel of the same scene) the numbers pysolver.build.params may have
+    changed in `kernel`: masses, inertias, marker positions, gravity and sweep parameters."""
+    for key in ("body_mass", "body_inertia", "body_plane", "marker_pos"):
+        twin.arrays[key][:] = kernel.arrays[key]
+    for path, slot in kernel.params.items():
+        if path in twin.params:
+            twin.arrays["consts"][twin.params[path]] = kernel.arrays["consts"][slot]
+    twin.m.gravity = list(kernel.m.gravity)

@@ -11,7 +11,7 @@ import numpy as np
 from .. import settings
 from ..build import Kernel
 from ..build.consistent import AssemblyError, redundant
-from ..build.kernel import UserFailure
+from ..build.kernel import UserFailure, follow
 from ..build.params import Parameters
 from ..build.planar import looks_planar
 from ..build.planar import why_not as why_not_planar
@@ -82,7 +82,11 @@ class CompiledModel:
                               if settings.planar() else "integrated in 3-D: PYSOLVER_PLANAR=off")
         if kind == "tapes" and not self.removed:
             return probe
-        return Kernel(self.model, False, kind, self.removed)
+        kernel = Kernel(self.model, False, kind, self.removed)
+        # the equations left out are checked on the run's rows (solve.kept) with the probe,
+        # which holds them all
+        kernel.redundancy = (probe, self.removed) if self.removed else None
+        return kernel
 
     @property
     def conservative_kernel(self):
@@ -91,7 +95,7 @@ class CompiledModel:
         kernel each time it is asked for."""
         if self._conservative is None:
             self._conservative = Kernel(self.model, True, self.kind, self.removed)
-        _follow(self._conservative, self.kernel)
+        follow(self._conservative, self.kernel)
         return self._conservative
 
     @property
@@ -111,14 +115,3 @@ class CompiledModel:
                              stream=stream)
         finally:
             self.parameters.reset()
-
-
-def _follow(twin, kernel):
-    """Give `twin` (a kernel of the same scene) the numbers pysolver.build.params may have
-    changed in `kernel`: masses, inertias, marker positions, gravity and sweep parameters."""
-    for key in ("body_mass", "body_inertia", "body_plane", "marker_pos"):
-        twin.arrays[key][:] = kernel.arrays[key]
-    for path, slot in kernel.params.items():
-        if path in twin.params:
-            twin.arrays["consts"][twin.params[path]] = kernel.arrays["consts"][slot]
-    twin.m.gravity = list(kernel.m.gravity)

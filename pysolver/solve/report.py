@@ -8,7 +8,7 @@ all its runs, so a short run's Result costs a few microseconds of Python.
 from .._version import __version__
 from ..deck.dimensions import channel_units
 from ..results import Result
-from . import nonfinite, precision
+from . import kept, nonfinite, precision
 
 
 class Reporter:
@@ -64,6 +64,10 @@ class Reporter:
         model, kernel, plan = self.model, self.kernel, self.plan
         t, y, yp, outputs = rows
         success, status, message = outcome
+        if success and len(t):
+            why = kept.check(model, kernel, t, y, self.used["integr_tol"])
+            if why:
+                success, status, message = False, kept.STATUS, why
         if success and len(t):
             why = precision.check(model, kernel, t, y, yp)
             if why:
