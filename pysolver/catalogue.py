@@ -276,7 +276,7 @@ TABLE = (
                "a curve's derivative of order 1 or 2", required=3,
                ids=(None, None, "spline", None), py_sysfnc=False)
       for name, what in (("AKISPL", "Akima's cubic spline"),
-                         ("CUBSPL", "the cubic spline (not-a-knot ends)"),
+                         ("CUBSPL", "the natural cubic spline"),
                          ("LINSPL", "the broken line"),
                          ("QUISPL", "the natural quintic spline (Herriot-Reinsch)"))),
     *(Function(name, "special", ("i", "j", "k"), None,
