@@ -324,9 +324,13 @@ def _force_like(model, ctx, a):
             if tree[0] == "user":
                 raise ctx.error("USER(...) calls a user subroutine: give the routine "
                                 "(script_name, or ROUTINE= in a Python deck)", given[0])
-        for key in ("i_marker_id", "j_marker_id"):
+        for key, body in (("i_marker_id", "body1_id"), ("j_marker_id", "body2_id")):
             if a[key] not in model.markers:
                 raise ctx.error(f"marker {a[key]} does not exist", key)
+            on = model.markers[a[key]].body
+            if a[body] is not None and a[body] != on:
+                raise ctx.error(f"got {a[body]}, but {ctx.named(key)} {a[key]} is on body "
+                                f"{on}", body)
         fixed_line(ctx, model, a)
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
                                              a["j_marker_id"], tree, text, a["label"], sub,
