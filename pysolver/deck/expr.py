@@ -37,7 +37,13 @@ REFUSED, REFUSED_NAMES = catalogue.REFUSED, catalogue.REFUSED_NAMES
 #: The interpolation functions: x and z are expressions, the spline id and order literals.
 SPLINES = ("AKISPL", "CUBSPL", "LINSPL", "QUISPL")
 
-_TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eEdD][+-]?\d+)?|\.\d+(?:[eEdD][+-]?\d+)?)"
+#: A number (Adams' rule, docs/adams.md "Numbers"): a mantissa, then an E exponent (and a D
+#: for degrees), a Fortran D exponent (1.0D-3, 1.0D3: its digits followed by no letter, digit
+#: or point), or a D for degrees (followed by no letter, digit or parenthesis: 180D, 30D+10D).
+#: Every expression that reads a D so was an error before (a name after a number).
+_NUMBER = (r"(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+(?:[dD](?![\w(]))?|[dD][+-]?\d+(?![\w.])"
+           r"|[dD](?![\w(]))?")
+_TOKEN = re.compile(rf"\s*(?:({_NUMBER})"
                     r"|([A-Za-z_][A-Za-z_0-9]*)|(\*\*|[-+*/(),:]))")
 
 
@@ -52,7 +58,11 @@ def tokenize(text):
             raise ExpressionError(f"unexpected character {text[col]!r}", col)
         col = m.start(m.lastindex)
         if m.group(1):
-            value = float(m.group(1).replace("d", "e").replace("D", "e"))
+            word = m.group(1)
+            if word[-1] in "dD":                  # degrees, read as radians
+                value = math.radians(float(word[:-1]))
+            else:
+                value = float(word.replace("d", "e").replace("D", "e"))
             if not math.isfinite(value):
                 raise ExpressionError(f"the number {m.group(1)} is too large for a double", col)
             tokens.append(("num", value, col))

@@ -218,7 +218,23 @@ def given_span(a):
     return "duration" if a["duration"] is not None else "end_time"
 
 
+def _check_start(ctx, a, model, t_prev):
+    """start_time, when given, is where the run already is: TIME = 0 before the first
+    command (a run starts there: the driver, the batched path, the sensors and LoadControl
+    take t0 = 0; docs/deck-language.md, the Simulate row), the previous command's end after."""
+    start = a["start_time"]
+    if start is None or abs(start - t_prev) <= 1e-12:
+        return
+    if not model.commands:
+        raise ctx.error(f"got {start:g}; a run starts at TIME = 0 (pysolver has no other "
+                        f"start time): leave {ctx.named('start_time')} out or give 0",
+                        "start_time")
+    raise ctx.error(f"{ctx.named('start_time')} must equal the time the previous command "
+                    f"ended ({t_prev:g})", "start_time")
+
+
 def _simulate(ctx, a, model, t_prev):
+    _check_start(ctx, a, model, t_prev)
     if a["analysis_type"] == "ASSEMBLY":
         # the initial-conditions analysis alone: positions and velocities made to satisfy the
         # joints and motions with the least change, one output row, at the current time
@@ -241,9 +257,6 @@ def _simulate(ctx, a, model, t_prev):
                             f"{t_prev:g}", "end_time")
         model.commands.append(Simulate("STATIC", end, 0.0, ctx.line, ctx.file))
         return end
-    if a["start_time"] is not None and abs(a["start_time"] - t_prev) > 1e-12:
-        raise ctx.error(f"{ctx.named('start_time')} must equal the time the previous "
-                        f"command ended ({t_prev:g})", "start_time")
     if (a["end_time"] is None) == (a["duration"] is None):
         raise ctx.error(f"give exactly one of {ctx.named('end_time')} and "
                         f"{ctx.named('duration')}", "end_time")
@@ -261,6 +274,11 @@ def _simulate(ctx, a, model, t_prev):
         dt = (end - t_prev) / a["num_step"]
     else:
         dt = (end - t_prev) / 100.0
+    if a["print_increment"] is not None:
+        ctx.warn(f"{ctx.named('print_increment')} = {a['print_increment']} is not used: "
+                 "pysolver prints at fixed times, never every n integrator steps; this "
+                 f"command prints every {dt:g} (100 intervals; give print_interval or "
+                 "num_step)", "print_increment")
     span = end - t_prev
     shortest = max(MIN_SPAN * abs(end), MIN_DURATION)
     if not span >= shortest:
