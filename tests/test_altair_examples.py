@@ -209,3 +209,25 @@ def test_a_fim_d_static_says_it_is_solved_by_fim_s():
             "follows quasi-static paths; docs/statics.md)") in res.log
     plain = pysolver.loads(text.replace("FIM_D", "FIM_S")).run()
     assert not any("FIM_D" in line for line in plain.log)
+
+
+@pytest.mark.parametrize("ext", [".xml", ".adm", ".py"])
+def test_altairs_syntax_converts_to_every_form(tmp_path, ext):
+    """joint_type, 180D, body1_id/body2_id and num_steps convert (pysolver convert) to XML
+    (written motion_type and num_step), an Adams dataset and msolve classes, each running as
+    the deck does, to the bit."""
+    from pysolver.convert import convert
+    deck = tmp_path / "tm.xml"
+    deck.write_text(pendulum(
+        TM_EXAMPLE.format(angle="180D", kind='joint_type="R"')
+        + '<Force_Scalar_TwoBody id="1" type="Torque" i_marker_id="21" body1_id="2" '
+          'j_marker_id="2" body2_id="1" val_expression="0.1*STEP(TIME,0,0,1,90D)"/>',
+        '<Simulate analysis_type="Transient" end_time="0.5" num_steps="5"/>'))
+    ref = pysolver.load(deck).run()
+    out = tmp_path / f"out{ext}"
+    convert(deck, out)
+    res = pysolver.load(out).run()
+    assert res.success and len(res.t) == 6
+    np.testing.assert_array_equal(res.request(1)[:, :2], ref.request(1)[:, :2])
+    if ext == ".xml":
+        assert 'motion_type="R"' in out.read_text() and 'num_step="5"' in out.read_text()
