@@ -25,9 +25,9 @@ from ..rotations import angles_313, rot_313, rot_321, rot_from_e
 from . import usersubs
 from .adams import axes_from_points
 from .adams_statements import JPRIM_TYPES
-from .expr import _TOKEN
 from .msolve import JOINT_IC_KEYS
 from .requests import FORCE_NAMES, elemental_texts
+from .tokens import _TOKEN
 from .writer import relocate, typed
 
 #: Lines are kept to Adams' 80 columns where a break is allowed.

@@ -219,9 +219,8 @@ def given_span(a):
 
 
 def _check_start(ctx, a, model, t_prev):
-    """start_time, when given, is where the run already is: TIME = 0 before the first
-    command (a run starts there: the driver, the batched path, the sensors and LoadControl
-    take t0 = 0; docs/deck-language.md, the Simulate row), the previous command's end after."""
+    """start_time, when given, is where the run is: 0 before the first command (a run starts
+    at TIME = 0, docs/deck-language.md's Simulate row), the previous command's end after."""
     start = a["start_time"]
     if start is None or abs(start - t_prev) <= 1e-12:
         return
@@ -345,10 +344,9 @@ def _force_like(model, ctx, a):
         for key, body in (("i_marker_id", "body1_id"), ("j_marker_id", "body2_id")):
             if a[key] not in model.markers:
                 raise ctx.error(f"marker {a[key]} does not exist", key)
-            on = model.markers[a[key]].body
-            if a[body] is not None and a[body] != on:
+            if a[body] not in (None, model.markers[a[key]].body):
                 raise ctx.error(f"got {a[body]}, but {ctx.named(key)} {a[key]} is on body "
-                                f"{on}", body)
+                                f"{model.markers[a[key]].body}", body)
         fixed_line(ctx, model, a)
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
                                              a["j_marker_id"], tree, text, a["label"], sub,
