@@ -276,7 +276,7 @@ TABLE = (
                "a curve's derivative of order 1 or 2", required=3,
                ids=(None, None, "spline", None), py_sysfnc=False)
       for name, what in (("AKISPL", "Akima's cubic spline"),
-                         ("CUBSPL", "the cubic spline (not-a-knot ends)"),
+                         ("CUBSPL", "the natural cubic spline"),
                          ("LINSPL", "the broken line"),
                          ("QUISPL", "the natural quintic spline (Herriot-Reinsch)"))),
     *(Function(name, "special", ("i", "j", "k"), None,
@@ -367,6 +367,9 @@ REFUSED = {
     "INCANG": "not yet; the included angle is ACOS of the dot product of the two "
               "displacements, written with DX, DY, DZ and DM",
     "TRIM": "MotionSolve's page does not give its formula",
+    "FITSPL": "MotionSolve's pages do not say which FITPACK B-spline fit it is (its degree "
+              "'3rd order' and 'of the 2nd degree' on one page; its knots and smoothing not "
+              "at all); use CUBSPL or AKISPL of the same Reference_Spline",
     **dict.fromkeys(("VFORCE", "VTORQ", "VTORQUE", "GFORCE"),
                     "force functions of Force_Vector_TwoBody are not supported yet; FX..TZ(i, "
                     "j, k) give the net force and torque at a marker"),

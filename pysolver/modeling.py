@@ -1053,8 +1053,9 @@ class Model:
         dtout, steps : float, int
             The output interval, or the number of output steps.
         start, print_increment : float, int
-            pysolver: MotionSolve's start_time (the previous command's end) and
-            print_increment (accepted, not used).
+            pysolver: MotionSolve's start_time (where the run is: 0 on the first command,
+            the previous command's end after; another value is a DeckError) and
+            print_increment (not used: a DeckWarning; pysolver prints at fixed times).
         returnResults : bool
             Return the Result (else None).
         active_contact_iteration : bool, optional

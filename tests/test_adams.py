@@ -326,7 +326,8 @@ END
     (["SIMULATE/DYNAMICS, END = 1, STEPS = 0"], 3, "SIMULATE (Simulate)", "STEPS",
      "got 0; expected a positive integer"),
     (["SIMULATE/DYNAMICS, START = 2, END = 3"], 3, "SIMULATE (Simulate)", "START",
-     "START must equal the time the previous command ended (0)"),
+     "got 2; a run starts at TIME = 0 (pysolver has no other start time): leave START out "
+     "or give 0"),
     (["SIMULATE/INITIAL_CONDITIONS, END = 3"], 3, "SIMULATE (Simulate)", "END",
      "an Assembly analysis takes no end time or output interval"),
     (["INTEGRATOR/ERROR = -1"], 3, "INTEGRATOR (Param_Transient)", "ERROR",

@@ -124,8 +124,8 @@ def test_converted_functions_hold_e_exponents_and_radians(tmp_path):
     ("PART/3, MASS=1.0D+3D, CM=20", "PART/3 (Body_Rigid)", "MASS",
      "got '1.0D+3D'; expected a real number"),
     ("REQUEST/2, F1=1.0D3D*TIME\\", "REQUEST/2 (Post_Request)", "F1",
-     "bad expression '1.0D3D*TIME': unexpected 'D' after the end of the expression (at "
-     "column 6)"),
+     "bad expression '1.0D3D*TIME': unexpected 'D3D' after the end of the expression (at "
+     "column 4)"),
 ])
 def test_a_malformed_number_is_a_deck_error_naming_its_line(tmp_path, statement, element,
                                                             attribute, reason):

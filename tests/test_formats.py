@@ -172,6 +172,8 @@ def test_the_committed_forms_are_what_convert_writes():
     assert shipped == set(written), "decks/forms holds files make.py does not write"
 
 
+# every_attribute.xml gives print_increment, which draws its DeckWarning
+@pytest.mark.filterwarnings("ignore::pysolver.errors.DeckWarning")
 def test_every_attribute_makes_the_round_trip_through_every_format(tmp_path):
     """Orientation forms, references, one-body forces, user subroutine scripts (named
     relative to the new folder), a Sensor_Evaluate of its own, request names with gaps,
@@ -203,6 +205,8 @@ def test_every_attribute_makes_the_round_trip_through_every_format(tmp_path):
         _runs_alike(model, model.run(progress=False), ref, res)
 
 
+# every_attribute.xml gives print_increment, which draws its DeckWarning
+@pytest.mark.filterwarnings("ignore::pysolver.errors.DeckWarning")
 def test_the_dataset_holds_adams_statements_and_pysolver_extensions(tmp_path):
     """What the .adm says: exact digits, part-relative placement as written (ZP/XP where they
     give the axes exactly, else REULER), pysolver's statements and keywords, the commands in

@@ -247,7 +247,8 @@ _RUN = 'model.simulate(type="DYNAMICS", end=1, dtout=0.1)'
     ('model.simulate(type="DYNAMICS", end=1, steps=0)', 12, "SIMULATE (Simulate)", "STEPS",
      "got 0; expected a positive integer"),
     ('model.simulate(type="DYNAMICS", end=3, start=2)', 12, "SIMULATE (Simulate)", "START",
-     "START must equal the time the previous command ended (0)"),
+     "got 2; a run starts at TIME = 0 (pysolver has no other start time): leave START out "
+     "or give 0"),
     (f'{_RUN}\nmodel.simulate(type="DYNAMICS", end=0.5)', 13, "SIMULATE (Simulate)", "END",
      "END 0.5 must be after the start time 1"),
     ('model.simulate(type="DYNAMIC", end=1)', 12, "simulate", "type",

@@ -64,7 +64,7 @@ def deck(requests, spline_attrs='num_xy_pair="7"', points=POINTS):
 @pytest.mark.parametrize("kernel", ["tapes", "generated"])
 def test_each_function_is_scipys_interpolant_with_its_derivatives(kernel):
     """Inside the data, every function and derivative order equals SciPy's (interp1d-like
-    broken line, CubicSpline not-a-knot, Akima1DInterpolator) or, for QUISPL, the natural
+    broken line, CubicSpline natural, Akima1DInterpolator) or, for QUISPL, the natural
     quintic spline solved from its conditions, to 1e-13."""
     calls = [(f, n) for f in ("LINSPL", "CUBSPL", "AKISPL", "QUISPL") for n in (0, 1, 2)]
     reqs = "".join(f'<Post_Request id="{10 + k}" ' + " ".join(
@@ -74,7 +74,7 @@ def test_each_function_is_scipys_interpolant_with_its_derivatives(kernel):
     assert res.success, res.message
     xs = -0.5 + res.t
     inside = (xs > 0) & (xs < 3.5)
-    ref = {"LINSPL": make_interp_spline(X, Y, k=1), "CUBSPL": CubicSpline(X, Y),
+    ref = {"LINSPL": make_interp_spline(X, Y, k=1), "CUBSPL": CubicSpline(X, Y, bc_type="natural"),
            "AKISPL": Akima1DInterpolator(X, Y), "QUISPL": natural_quintic(X, Y)}
     got = np.hstack([res.request(10 + k)[:, :4] for k in range(3)])
     for j, (f, n) in enumerate(calls):
@@ -103,6 +103,56 @@ def test_quispl_is_the_natural_quintic_spline_near_the_ends_too():
     k = int(np.argmin(abs(xs - 4.675)))
     assert q[k, 0] == pytest.approx(1.2551556600555565, abs=1e-12)
     assert make_interp_spline(xk, yk, k=5)(xs[k]) == pytest.approx(2.3503764141700305)
+
+
+TRIAL45 = """<MotionSolve><Model>
+<Body_Rigid id="1" isground="TRUE"/>
+<Reference_Marker id="1" body_id="1"/>
+<Reference_Marker id="20" body_id="2" pos_x="0.0"/>
+<Body_Point id="2" cg_id="20" mass="1.5" v_ic_x="1.0"/>
+<Reference_Spline id="7" num_xy_pair="6">
+-0.2 30
+0.0 5
+0.05 -2
+0.1 -10
+0.2 -40
+0.35 -70
+</Reference_Spline>
+<Force_Vector_OneBody id="1" type="FORCEONLY" marker_id="20" ref_marker_id="1"
+   fx_expression="CUBSPL(DX(20),0,7)" fy_expression="0" fz_expression="0"/>
+<Post_Request id="1" expr1="DX(20)" expr2="VX(20)" expr3="CUBSPL(DX(20),0,7)"
+   expr4="CUBSPL(DX(20),0,7,1)" expr5="CUBSPL(DX(20),0,7,2)"/>
+<Param_Transient integr_tol="1e-10"/>
+</Model><Simulate analysis_type="Transient" end_time="1.5" print_interval="0.01"/></MotionSolve>"""
+
+
+@pytest.mark.parametrize("kernel", ["tapes", "generated"])
+def test_cubspl_is_the_natural_cubic_spline(kernel):
+    """MotionSolve's Reference_Spline page: "The Cubic fitting algorithm ensures a much
+    smoother fit by utilizing natural splines". Trial 45's point mass pushed by a CUBSPL of
+    its own position: the force and its slope are SciPy's natural spline (1e-12), its second
+    derivative 0 at the first and last knots, and the motion is that spline's ODE solved by
+    SciPy (1e-8 m). The not-a-knot spline pysolver used before differs by 0.51 N on the
+    path and moves the mass 4.7e-3 m elsewhere."""
+    from scipy.integrate import solve_ivp
+    xk = np.array([-0.2, 0.0, 0.05, 0.1, 0.2, 0.35])
+    yk = np.array([30.0, 5.0, -2.0, -10.0, -40.0, -70.0])
+    natural = CubicSpline(xk, yk, bc_type="natural")
+    res = pysolver.loads(TRIAL45).run(kernel=kernel)
+    assert res.success, res.message
+    r = res.request(1)
+    x = r[:, 0]
+    assert xk[0] < x.min() and x.max() < xk[-1]
+    np.testing.assert_allclose(r[:, 2], natural(x), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(r[:, 3], natural(x, 1), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(r[:, 4], natural(x, 2), rtol=0, atol=1e-9)
+    assert natural(xk[[0, -1]], 2) == pytest.approx([0.0, 0.0], abs=1e-12)
+    ref = solve_ivp(lambda t, s: [s[1], natural(s[0]) / 1.5], (0, 1.5), [0.0, 1.0],
+                    t_eval=res.t, method="DOP853", rtol=1e-12, atol=1e-13)
+    np.testing.assert_allclose(x, ref.y[0], rtol=0, atol=1e-8)
+    np.testing.assert_allclose(r[:, 1], ref.y[1], rtol=0, atol=1e-7)
+    old = CubicSpline(xk, yk)
+    assert np.max(abs(old(x) - natural(x))) == pytest.approx(0.51, abs=0.01)
 
 
 @pytest.mark.parametrize("linear", [False, True])
@@ -180,7 +230,7 @@ def surface_deck(requests, extra=""):
 def surface_reference(f, x, z):
     """Each curve by SciPy, then the line in z through the two curves around z (the nearest
     two outside)."""
-    make = {"CUBSPL": CubicSpline, "AKISPL": Akima1DInterpolator,
+    make = {"CUBSPL": lambda a, b: CubicSpline(a, b, bc_type="natural"), "AKISPL": Akima1DInterpolator,
             "LINSPL": lambda a, b: make_interp_spline(a, b, k=1)}[f]
     curves = np.array([make(X, ys)(x) for ys in YS])
     k = np.clip(np.searchsorted(ZS, z, side="right") - 1, 0, len(ZS) - 2)

@@ -6,7 +6,10 @@ piecewise polynomial whose pieces this module computes with SciPy, at the same k
 
 - LINSPL: the broken line (scipy.interpolate.make_interp_spline, k = 1): value continuous,
   first derivative jumps at the knots, second derivative 0 (at least 2 points);
-- CUBSPL: scipy.interpolate.CubicSpline with its default not-a-knot ends (C2; at least 4);
+- CUBSPL: the natural cubic spline, its second derivative 0 at the first and last knots
+  (scipy.interpolate.CubicSpline, bc_type="natural"; C2; at least 4), as MotionSolve's
+  Reference_Spline page says ("The Cubic fitting algorithm ensures a much smoother fit by
+  utilizing natural splines");
 - AKISPL: scipy.interpolate.Akima1DInterpolator (Akima's local cubic: C1, the second
   derivative jumps at the knots; at least 4);
 - QUISPL: the natural quintic spline of Herriot and Reinsch (ACM Algorithm 507, which
@@ -42,7 +45,7 @@ def pieces(spline, method):
     from scipy.interpolate import Akima1DInterpolator, CubicSpline, PPoly, make_interp_spline
     x, y = np.asarray(spline.x, float), np.asarray(spline.y, float)
     if method == "CUBSPL":
-        pp = CubicSpline(x, y)
+        pp = CubicSpline(x, y, bc_type="natural")
     elif method == "AKISPL":
         pp = Akima1DInterpolator(x, y)
     elif method == "LINSPL":

@@ -25,9 +25,9 @@ from ..rotations import angles_313, rot_313, rot_321, rot_from_e
 from . import usersubs
 from .adams import axes_from_points
 from .adams_statements import JPRIM_TYPES
-from .expr import _TOKEN
 from .msolve import JOINT_IC_KEYS
 from .requests import FORCE_NAMES, elemental_texts
+from .tokens import _TOKEN
 from .writer import relocate, typed
 
 #: Lines are kept to Adams' 80 columns where a break is allowed.
@@ -738,7 +738,7 @@ def _value(v, st, key):
 def function_text(text):
     """An expression as a dataset writes it: on one line (a line break becomes a space, so
     each character keeps its column), numbers with a D exponent written with E (in a
-    dataset a trailing D means degrees)."""
+    dataset a trailing D means degrees, as in every deck's expressions: those stay)."""
     text = str(text).strip().translate({ord(c): " " for c in "\n\r\t\f\v"})
     out, pos = [], 0
     while pos < len(text):
@@ -747,7 +747,7 @@ def function_text(text):
             out.append(text[pos:])
             break
         tok = m.group(0)
-        if m.group(1):
+        if m.group(1) and tok[-1] not in "dD":      # a trailing D (degrees) stays
             tok = tok.replace("d", "e").replace("D", "e")
         out.append(tok)
         pos = m.end()

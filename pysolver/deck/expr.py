@@ -15,11 +15,11 @@ so ``-2**2 == -4`` and ``2**3**2 == 512``. The parser produces a small tree of t
 done here too, so that a deck fails at load time and not during a run.
 """
 import math
-import re
 
 from .. import catalogue
 from ..errors import ExpressionError
 from . import series
+from .tokens import tokenize
 
 #: Named constants.
 CONSTANTS = {name: f.py() for name, f in catalogue.NAMES.items() if f.py is not None}
@@ -36,34 +36,6 @@ REFUSED, REFUSED_NAMES = catalogue.REFUSED, catalogue.REFUSED_NAMES
 
 #: The interpolation functions: x and z are expressions, the spline id and order literals.
 SPLINES = ("AKISPL", "CUBSPL", "LINSPL", "QUISPL")
-
-_TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eEdD][+-]?\d+)?|\.\d+(?:[eEdD][+-]?\d+)?)"
-                    r"|([A-Za-z_][A-Za-z_0-9]*)|(\*\*|[-+*/(),:]))")
-
-
-def tokenize(text):
-    """Split an expression into (kind, value, column) tokens; kind is num, name or op."""
-    tokens, pos = [], 0
-    text = text.rstrip()
-    while pos < len(text):
-        m = _TOKEN.match(text, pos)
-        if not m or m.end() == pos:
-            col = pos + len(text[pos:]) - len(text[pos:].lstrip())
-            raise ExpressionError(f"unexpected character {text[col]!r}", col)
-        col = m.start(m.lastindex)
-        if m.group(1):
-            value = float(m.group(1).replace("d", "e").replace("D", "e"))
-            if not math.isfinite(value):
-                raise ExpressionError(f"the number {m.group(1)} is too large for a double", col)
-            tokens.append(("num", value, col))
-        elif m.group(2):
-            tokens.append(("name", m.group(2).upper(), col))
-        else:
-            tokens.append(("op", m.group(3), col))
-        pos = m.end()
-    tokens.append(("end", None, len(text)))
-    return tokens
-
 
 #: Deepest nesting an expression may have: parentheses, function calls, unary signs and the
 #: terms of one sum or product each add a level (the trees are walked recursively).

@@ -66,6 +66,8 @@ SCHEMA = {
     "Force_Scalar_TwoBody": {"id": ("id", REQ, None), "label": ("str", OPT, ""),
                              "type": (("FORCE", "TORQUE"), REQ, None),
                              "i_marker_id": ("id", REQ, None), "j_marker_id": ("id", REQ, None),
+                             # Altair's examples repeat the markers' bodies: checked
+                             "body1_id": ("id", OPT, None), "body2_id": ("id", OPT, None),
                              "expr": ("expr", OPT, None), "val_expression": ("expr", OPT, None),
                              "val": ("float", OPT, None),
                              "is_action_only": ("bool", OPT, False), **_USERSUB},

@@ -218,7 +218,22 @@ def given_span(a):
     return "duration" if a["duration"] is not None else "end_time"
 
 
+def _check_start(ctx, a, model, t_prev):
+    """start_time, when given, is where the run is: 0 before the first command (a run starts
+    at TIME = 0, docs/deck-language.md's Simulate row), the previous command's end after."""
+    start = a["start_time"]
+    if start is None or abs(start - t_prev) <= 1e-12:
+        return
+    if not model.commands:
+        raise ctx.error(f"got {start:g}; a run starts at TIME = 0 (pysolver has no other "
+                        f"start time): leave {ctx.named('start_time')} out or give 0",
+                        "start_time")
+    raise ctx.error(f"{ctx.named('start_time')} must equal the time the previous command "
+                    f"ended ({t_prev:g})", "start_time")
+
+
 def _simulate(ctx, a, model, t_prev):
+    _check_start(ctx, a, model, t_prev)
     if a["analysis_type"] == "ASSEMBLY":
         # the initial-conditions analysis alone: positions and velocities made to satisfy the
         # joints and motions with the least change, one output row, at the current time
@@ -241,9 +256,6 @@ def _simulate(ctx, a, model, t_prev):
                             f"{t_prev:g}", "end_time")
         model.commands.append(Simulate("STATIC", end, 0.0, ctx.line, ctx.file))
         return end
-    if a["start_time"] is not None and abs(a["start_time"] - t_prev) > 1e-12:
-        raise ctx.error(f"{ctx.named('start_time')} must equal the time the previous "
-                        f"command ended ({t_prev:g})", "start_time")
     if (a["end_time"] is None) == (a["duration"] is None):
         raise ctx.error(f"give exactly one of {ctx.named('end_time')} and "
                         f"{ctx.named('duration')}", "end_time")
@@ -261,6 +273,11 @@ def _simulate(ctx, a, model, t_prev):
         dt = (end - t_prev) / a["num_step"]
     else:
         dt = (end - t_prev) / 100.0
+    if a["print_increment"] is not None:
+        ctx.warn(f"{ctx.named('print_increment')} = {a['print_increment']} is not used: "
+                 "pysolver prints at fixed times, never every n integrator steps; this "
+                 f"command prints every {dt:g} (100 intervals; give print_interval or "
+                 "num_step)", "print_increment")
     span = end - t_prev
     shortest = max(MIN_SPAN * abs(end), MIN_DURATION)
     if not span >= shortest:
@@ -324,9 +341,12 @@ def _force_like(model, ctx, a):
             if tree[0] == "user":
                 raise ctx.error("USER(...) calls a user subroutine: give the routine "
                                 "(script_name, or ROUTINE= in a Python deck)", given[0])
-        for key in ("i_marker_id", "j_marker_id"):
+        for key, body in (("i_marker_id", "body1_id"), ("j_marker_id", "body2_id")):
             if a[key] not in model.markers:
                 raise ctx.error(f"marker {a[key]} does not exist", key)
+            if a[body] not in (None, model.markers[a[key]].body):
+                raise ctx.error(f"got {a[body]}, but {ctx.named(key)} {a[key]} is on body "
+                                f"{model.markers[a[key]].body}", body)
         fixed_line(ctx, model, a)
         model.sforces[a["id"]] = ScalarForce(a["id"], a["type"] == "TORQUE", a["i_marker_id"],
                                              a["j_marker_id"], tree, text, a["label"], sub,

@@ -106,6 +106,13 @@ def _element(el, file):
                             line=el.sourceline, element=tag, attribute=key)
         attrs[low] = val
         names[low] = etree.QName(key).localname
+    for other, key in _SYNONYMS.get(tag.lower(), {}).items():
+        if other in attrs:
+            if key in attrs:
+                raise DeckError(f"give {names[key]} or {names[other]}, not both (the same "
+                                "attribute)", file=file, line=el.sourceline, element=tag,
+                                attribute=names[other])
+            attrs[key], names[key] = attrs.pop(other), names.pop(other)
     if tag.lower() == "reference_spline" and el.text and el.text.strip():
         attrs["#text"], names["#text"] = el.text, "(the element's text)"
     if tag.lower() == "param_unit":
@@ -114,6 +121,11 @@ def _element(el, file):
         _ic_flags(attrs, names, el.sourceline, file, tag)
     return tag, attrs, el.sourceline, names
 
+
+#: Other spellings of attributes in Altair's own examples (docs/deck-language.md): the TIME
+#: and TM pages' Motion_Joint writes joint_type, the Simulate page's text num_steps.
+_SYNONYMS = {"motion_joint": {"joint_type": "motion_type"},
+             "simulate": {"num_steps": "num_step"}}
 
 _TRUE, _FALSE = ("TRUE", "YES", "1", "ON"), ("FALSE", "NO", "0", "OFF")
 

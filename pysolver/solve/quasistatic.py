@@ -123,6 +123,18 @@ def unused_note(model, options):
             "has no transient command (docs/statics.md)")
 
 
+def fim_d_note(model):
+    """A log line when FIM_D is asked of Static commands, which FIM_S solves (FIM_D follows a
+    quasi-static path; one equilibrium has none); None otherwise."""
+    times = [c.end_time for c in model.commands if c.analysis == "STATIC"]
+    if model.static.method != "FIM_D" or not times:
+        return None
+    at = ", ".join(f"{t:g}" for t in times)
+    return (f"Param_Static method FIM_D: the Static command{'s' if len(times) > 1 else ''} "
+            f"at t = {at} {'are' if len(times) > 1 else 'is'} solved by FIM_S (FIM_D follows "
+            "quasi-static paths; docs/statics.md)")
+
+
 def run_static(run, cmd):
     """A Static command of a run: one equilibrium at cmd.end_time, then an output row."""
     y, res = solve_static(run.model, cmd.end_time, run.y, run.model.static,

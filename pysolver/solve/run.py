@@ -34,6 +34,9 @@ def run_model(compiled, progress=None, overrides=None, actors=(), stream=None):
     unused = quasistatic.unused_note(compiled.model, options)
     if unused:
         log.append(unused)
+    fim_d = quasistatic.fim_d_note(compiled.model)
+    if fim_d:
+        log.append(fim_d)
     if getattr(compiled.model, "default_command", False):
         log.append("no Simulate command: the default run, a transient of 1 s with 100 "
                    "outputs (docs/deck-language.md)")
