@@ -19,7 +19,7 @@ from ..build import compliance, restart, usercalls
 from ..build.bindings import ffi, lib
 from ..build.consistent import AssemblyError
 from ..build.kernel import UserFailure
-from . import integrator, kinks, nonfinite, quasistatic
+from . import breaks, integrator, kinks, nonfinite, quasistatic
 from .actors import Actor, Flow
 from .loadcontrol import Interrupted, LoadControlTask, NonFinite
 from .outputs import Printer, Progress, command_rows, over_budget
@@ -62,8 +62,8 @@ def deck_actors(model, kernel, log, bar):
     printer.watchers = [sensors]
     controls = [LoadControlTask(model, kernel, model.controls[lid], k)
                 for k, lid in enumerate(sorted(model.controls))]
-    knots = kinks.KnotRestarts(model, kernel, log)
-    return sensors, controls, printer, [knots] if knots.times else []
+    stops = (kinks.KnotRestarts(model, kernel, log), breaks.TimeBreaks(model, kernel))
+    return sensors, controls, printer, [a for a in stops if a.times]
 
 
 def start_state(model, kernel, tol, exact_rows=True):
