@@ -645,7 +645,7 @@ int ps_interrupted(void);
  * the moving bodies, of the change the rounding of the state can make in a body's
  * translational force rows (sum over j of |dF_r/dy_j| u |y_j|, reactions left out) to the
  * forces the body carries (its mass times the larger of |gravity| and its acceleration, and
- * the net applied force without reactions), or 1e-3 carried[b] where that is larger
+ * the net applied force without reactions), or carried[b] where that is larger
  * (carried: the largest sum of the magnitudes of the forces on each body over the run,
  * ps_carried, or NULL: so that a body that comes to rest with balanced or no loads is not
  * measured against nothing; without gravity, a body on which no force acted at the deck's
