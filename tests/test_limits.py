@@ -387,3 +387,32 @@ def test_two_gravity_elements_are_a_deck_error():
     text = PENALTY_DECK.replace("</Model>", '<Force_Gravity grav_z="-9.81"/></Model>')
     with pytest.raises(pysolver.DeckError, match=r"a second Force_Gravity"):
         pysolver.loads(text)
+
+
+FAR_PENDULUM = """<MotionSolve><Model>
+<Body_Rigid id="1" isground="TRUE"/><Reference_Marker id="1" body_id="1"/>
+<Reference_Marker id="2" body_id="1" pos_x="{x}" pos_y="{x}" pos_z="{x}"/>
+<Reference_Marker id="20" body_id="2" pos_x="{x2}" pos_y="{x}" pos_z="{x}"/>
+<Reference_Marker id="21" body_id="2" pos_x="{x}" pos_y="{x}" pos_z="{x}"/>
+<Body_Rigid id="2" cg_id="20" mass="1" inertia_xx="1e-3" inertia_yy="1e-3" inertia_zz="1e-3"/>
+<Force_Gravity grav_y="-9.81"/>
+<Constraint_Joint id="1" type="REVOLUTE" i_marker_id="21" j_marker_id="2"/>
+<Param_Transient integr_tol="1e-9"/>
+</Model><Simulate analysis_type="Transient" end_time="5" print_interval="0.05"/></MotionSolve>"""
+
+
+@pytest.mark.parametrize("x, steps, advice", [
+    (1e9, 2000, "loosen integr_tol = 1e-09 to 1e-05 or more, or place the scene nearer the "
+                "origin: its coordinates reach 1e+09, where doubles are 2.2e-07 apart, not "
+                "small beside the tolerance"),
+    (0.0, 20, "loosen the scene's stiffest element")])
+def test_a_tolerance_below_the_coordinates_rounding_is_named(x, steps, advice):
+    """Trial 45: the 2 m revolute pendulum moved 1e9 m from the origin ran out of steps at
+    integr_tol 1e-9 with the advice to loosen a stiff element it does not have; the same
+    pendulum at the origin keeps that advice when its step budget is too small."""
+    res = pysolver.loads(FAR_PENDULUM.format(x=x, x2=x + 2)).run(max_num_steps=steps)
+    assert res.status == -100
+    assert re.fullmatch(
+        rf"max_num_steps = {steps} reached: the Simulate command took {steps} steps \(IDA's "
+        r"converged steps, counted from the command's start\) and stopped at t = \S+; raise "
+        r"max_num_steps \(Param_Transient\) or " + re.escape(advice), res.message)

@@ -60,6 +60,29 @@ def check(model, kernel, t, y, yp):
     return _message(model, kernel, ratio, lay.bodies[b], t[-1], q)
 
 
+#: Unit roundoff of a double's spacing, 2^-52: the gap between doubles near q is about EPS |q|.
+EPS = 2.220446049250313e-16
+
+
+def unresolved(kernel, tol):
+    """The advice for a run stopped by max_num_steps whose integr_tol is below what its
+    coordinates resolve (EPS |q| > tol / 10 for the largest coordinate of a body at the
+    deck's start: a revolute pendulum 1e9 m from the origin at 1e-9, trial 45), or None. IDA's
+    tolerance is absolute in model units as well as relative (docs/usage.md), and a joint's
+    equations are differences of coordinates, each rounded to EPS |q|."""
+    lay = kernel.layout
+    if not lay.bodies:
+        return None
+    y0 = lay.initial_state()
+    q = max(abs(float(y0[lay.qadr[b] + c])) for b in range(len(lay.bodies)) for c in range(3))
+    if not EPS * q > tol / 10:
+        return None
+    loose = 10.0 ** math.ceil(math.log10(10 * EPS * q))
+    return (f"loosen integr_tol = {tol:g} to {loose:g} or more, or place the scene nearer the "
+            f"origin: its coordinates reach {q:.3g}, where doubles are {EPS * q:.2g} apart, "
+            "not small beside the tolerance")
+
+
 def _penalty(model, kernel, pid):
     """Force_Penalty pid's penalty in this run: the kernel's constant slot, which a run's
     ``params`` may have changed, else the deck's."""
