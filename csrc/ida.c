@@ -69,6 +69,10 @@ static const struct { int lib; const char* name; } FNS[F_COUNT] = {SUNDIALS_FNS(
 #define PS_INV_MAX 16
 #define PS_INV_COND 1e8
 
+/* Where a run's rates are taken just past a break of a function of time, relative to
+ * max(1, |t|) (pysolver/solve/breaks.py's SIDE). */
+#define PS_BREAK_SIDE 1e-12
+
 /* Steps per window over which watch() counts IDA's error-test failures. */
 #define PS_IDA_WINDOW 50
 
@@ -133,8 +137,22 @@ struct psIDA {
   double wscale;          /* sqrt(nl / ny): IDA's norms over nl entries then equal
                              those over all ny, the held ones' errors being zero    */
   char msg[256];          /* message of the last error                              */
+  double* brk;            /* (nbrk) ascending times where a function of time alone
+                             has a kink or jump (ps_ida_breaks): ps_ida_controlled
+                             stops and restarts at each                             */
+  int nbrk;               /* their number                                           */
+  int kbrk;               /* the next one (those before are passed)                 */
+  double* bwork;          /* ps_consistent_yp's workspace at a break (not owned)    */
+  int* bpiv;
   void (*set_threads)(int); /* SuperLU_MT's libgomp omp_set_num_threads (NULL: none)    */
 };
+
+/* The first break after t (the breaks at t and before it are passed). */
+static int breaks_after(const psIDA* s, double t) {
+  int k = 0;
+  while (k < s->nbrk && s->brk[k] <= t) k++;
+  return k;
+}
 
 /* A linear solver object: its content first, its table of operations at word s->slot[0]
  * (SUNDIALS 7.5 put a field between the two). */
@@ -650,6 +668,7 @@ void ps_ida_delete(psIDA* s) {
   if (!s) return;
   release(s);
   free(s->hold);
+  free(s->brk);
   free(s);
 }
 
@@ -697,6 +716,7 @@ int ps_ida_init(psIDA* s, const psModel* m, psData* d, double t0, const double* 
   int n = m->ny;
   release(s);
   s->own_dense = 0;
+  s->kbrk = breaks_after(s, t0);
   s->m = m;
   s->d = d;
   s->nl = n;
@@ -942,6 +962,21 @@ int ps_ida_hold(psIDA* s, const int* hold, int nhold) {
 
 int ps_ida_held(const psIDA* s) { return s->held ? s->nhold : 0; }
 
+
+int ps_ida_breaks(psIDA* s, const double* times, int n, double* work, int* piv) {
+  free(s->brk);
+  s->brk = NULL;
+  s->nbrk = s->kbrk = 0;
+  s->bwork = work;
+  s->bpiv = piv;
+  if (n <= 0) return 0;
+  s->brk = malloc(sizeof(double) * (size_t)n);
+  if (!s->brk) return -1;
+  memcpy(s->brk, times, sizeof(double) * (size_t)n);
+  s->nbrk = n;
+  return 0;
+}
+
 long ps_ida_inverse_solves(const psIDA* s) { return s->ninv; }
 
 void ps_ida_set_stream(psIDA* s, psStream* st) { s->stream = st; }
@@ -1017,6 +1052,7 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
 }
 
 int ps_ida_rerun(psIDA* s, double t0, const double* y0, const double* yp0) {
+  s->kbrk = breaks_after(s, t0);
   if (!s->mem || s->limited_at || s->sparse == 2) return 1;
   /* a start that can hold states this integration does not, or the other way round */
   if (s->holdable && holds(s, t0, y0, yp0) != s->held) return 1;
@@ -1128,11 +1164,24 @@ static int restart(psIDA* s, psSensors* S, double t, const double* y, const doub
   return 0;
 }
 
-/* Act at t as the general driver does (Run.act_due): the updates due, then a restart. */
+/* Act at t as the general driver does (Run.act_due): the updates due, then a restart (also
+ * at a break of a function of time: solve/breaks.py's TimeBreaks). */
 static int act(psIDA* s, const psRestart* r, psControl* const* c, int nctl, psSensors* S,
                double t, double* y, double* yp, int* fresh, long* nrestarts, int* ctl) {
   int due = updates_due(s, r, c, nctl, t, y, yp, ctl);
   if (due < 0) return PS_IDA_CONTROL_FAILED;
+  if (s->kbrk < s->nbrk && s->brk[s->kbrk] <= t) {
+    /* the rates just past the break (TimeBreaks.on_time): IDA restarts with a force's value
+     * after its jump; these evaluations are not step attempts */
+    double tp = t + PS_BREAK_SIDE * fmax(1.0, fabs(t));
+    due = 1;
+    s->kbrk = breaks_after(s, t);
+    s->d->last_t = tp;
+    if (ps_consistent_yp(s->m, s->d, tp, y, yp, s->bwork, s->bpiv, 4) != PS_OK) {
+      if (s->d->user_error) return PS_IDA_USER;
+      for (int i = 0; i < s->m->ny; i++) yp[i] = NAN;
+    }
+  }
   if (due && restart(s, S, t, y, yp, s->bounds[0], s->bounds[1], 0.0, fresh, nrestarts))
     return PS_IDA_BOUNDS;
   return 0;
@@ -1295,6 +1344,8 @@ static int zc_restore(psIDA* s, psSensors* S, Rows* o, double* t, double* y, dou
     S->ev_value[S->nev] = new_hmax;
     S->ev_sensor[S->nev++] = -1 - ns - k;
   }
+  /* a remembered step at a break was taken after its restart: the breaks after tp are ahead */
+  s->kbrk = breaks_after(s, tp);
   if (restart(s, S, tp, y, yp, new_hmax, new_hmin, 0.0, fresh, nrestarts)) return PS_IDA_BOUNDS;
   return PS_IDA_RESTORED;
 }
@@ -1335,6 +1386,7 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
     /* IDA stops exactly at the next update, or the command's end */
     double tstop = tend;
     for (int i = 0; i < nctl; i++) tstop = fmin(tstop, ps_control_next(c[i]));
+    if (s->kbrk < s->nbrk) tstop = fmin(tstop, s->brk[s->kbrk]);
     if (onestep) flush_held(s, S, &o);
     if (*fresh || onestep) {
       /* the first step of a (re)start, or every step in onestep mode, toward the stop */

@@ -269,10 +269,6 @@ int ps_penalty_loads(const psModel* m, psData* d, double t, const double* y, con
 /* Unit roundoff of a double (2^-53). */
 #define PS_UNIT_ROUNDOFF 1.1102230246251565e-16
 
-/* The share of the most a body carried over the run that its final forces are measured
- * against at least (pysolver/solve/precision.py). */
-#define PS_PRECISION_CARRIED 1e-3
-
 /* The net of every force but reactions on each row at (t, y): the residual at yp = 0 with the
  * reactions zero (free_y: y with them zeroed, zero: ny zeros). */
 static void net_forces(const psModel* m, psData* d, double t, const double* y, double* free_y,
@@ -358,7 +354,8 @@ double ps_precision(const psModel* m, psData* d, double t, const double* y,
     a = sqrt(a);
     double ref = m->body_mass[b] * (a > g ? a : g) + sqrt(f);
     if (carried) {
-      if (PS_PRECISION_CARRIED * carried[b] > ref) ref = PS_PRECISION_CARRIED * carried[b];
+      /* the most it carried over the run (a load that passed through zero at the end) */
+      if (carried[b] > ref) ref = carried[b];
       /* no force acted on it at the deck's start, and none above its rounding since */
       if (g == 0.0 && at_start[b] == 0.0 && carried[b] <= most) continue;
     }

@@ -645,7 +645,7 @@ int ps_interrupted(void);
  * the moving bodies, of the change the rounding of the state can make in a body's
  * translational force rows (sum over j of |dF_r/dy_j| u |y_j|, reactions left out) to the
  * forces the body carries (its mass times the larger of |gravity| and its acceleration, and
- * the net applied force without reactions), or 1e-3 carried[b] where that is larger
+ * the net applied force without reactions), or carried[b] where that is larger
  * (carried: the largest sum of the magnitudes of the forces on each body over the run,
  * ps_carried, or NULL: so that a body that comes to rest with balanced or no loads is not
  * measured against nothing; without gravity, a body on which no force acted at the deck's
@@ -802,6 +802,15 @@ int ps_ida_held(const psIDA* s);
 /* The number of dense solves s has made by a product with the matrix's inverse (small,
  * well-conditioned systems; docs/numerics.md, "The dense solve") since it was loaded. */
 long ps_ida_inverse_solves(const psIDA* s);
+
+/* The ascending times (n of them, after the run's start) where a function of time alone has a
+ * kink or jump (pysolver/solve/breaks.py): ps_ida_controlled stops IDA at each and restarts
+ * it there with the rates of ps_consistent_yp at t + 1e-12 max(1, |t|) (work and piv
+ * its workspace, kept by the caller), as the general driver's TimeBreaks actor does (a scene
+ * without motions, constraints or tracked angles, dense); ps_ida_rerun and ps_ida_init start
+ * from the first break after their t0. The times are copied; n = 0 clears them. Returns 0,
+ * or -1 when out of memory. */
+int ps_ida_breaks(psIDA* s, const double* times, int n, double* work, int* piv);
 
 /* ps_ida_reinit's return when the integration holds states and the restart's yp0 moves one
  * (ps_ida_hold): call ps_ida_init, which then integrates every state. */

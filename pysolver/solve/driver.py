@@ -19,7 +19,7 @@ from ..build import compliance, restart, usercalls
 from ..build.bindings import ffi, lib
 from ..build.consistent import AssemblyError
 from ..build.kernel import UserFailure
-from . import integrator, kinks, nonfinite, quasistatic
+from . import breaks, integrator, kinks, nonfinite, precision, quasistatic
 from .actors import Actor, Flow
 from .loadcontrol import Interrupted, LoadControlTask, NonFinite
 from .outputs import Printer, Progress, command_rows, over_budget
@@ -27,12 +27,12 @@ from .sensors import Chatter, Sensors
 from .step import CONV_FAIL, ERR_FAIL, ROOT_RETURN, TOO_MUCH_WORK, Step
 
 
-def max_steps_message(limit, t):
-    """The message of a command stopped by max_num_steps at time t."""
+def max_steps_message(limit, t, why=None):
+    """A command stopped by max_num_steps at t (`why`: precision.unresolved's advice)."""
     return (f"max_num_steps = {limit} reached: the Simulate command took {limit} steps "
             f"(IDA's converged steps, counted from the command's start) and stopped at "
-            f"t = {t:.6g}; raise max_num_steps (Param_Transient) or loosen the scene's "
-            "stiffest element")
+            f"t = {t:.6g}; raise max_num_steps (Param_Transient) or "
+            + (why or "loosen the scene's stiffest element"))
 
 
 def user_failure(kernel, message, t):
@@ -62,8 +62,8 @@ def deck_actors(model, kernel, log, bar):
     printer.watchers = [sensors]
     controls = [LoadControlTask(model, kernel, model.controls[lid], k)
                 for k, lid in enumerate(sorted(model.controls))]
-    knots = kinks.KnotRestarts(model, kernel, log)
-    return sensors, controls, printer, [knots] if knots.times else []
+    stops = (kinks.KnotRestarts(model, kernel, log), breaks.TimeBreaks(model, kernel))
+    return sensors, controls, printer, [a for a in stops if a.times]
 
 
 def start_state(model, kernel, tol, exact_rows=True):
@@ -101,7 +101,7 @@ def failure(model, kernel, options, status, t):
     d = kernel.d
     if d.steps_exceeded or status == TOO_MUCH_WORK:
         return -100, max_steps_message(options.max_num_steps, d.last_t if d.steps_exceeded
-                                       else t)
+                                       else t, precision.unresolved(kernel, options.integr_tol))
     if d.user_error:
         return -400, user_failure(kernel, kernel.message, t)
     why = nonfinite.describe(model, kernel)

@@ -23,6 +23,7 @@ from .. import settings
 from ..build.bindings import ffi, lib
 from ..build.kernel import UserFailure
 from . import integrator, report
+from .breaks import TimeBreaks
 from .csensors import CSensors
 from .driver import Stop, deck_actors, failure, start_state, user_failure
 from .loadcontrol import NonFinite
@@ -51,15 +52,16 @@ def fast_run(compiled, options, actors):
         ok = (plan.use_c and all(cmd.analysis == "TRANSIENT" for cmd in model.commands)
               and not any(a.instants for a in (sensors, *controls, *knots, printer)))
         c_sensors = CSensors(model, kernel) if sensors.sensors and ok else None
-        cache[key] = (options, FastRun(model, kernel, options, plan, controls, c_sensors)
-                      if ok else None)
+        stops = [a.times for a in knots if isinstance(a, TimeBreaks)]
+        cache[key] = (options, FastRun(model, kernel, options, plan, controls, c_sensors,
+                                       stops[0] if stops else ()) if ok else None)
     return cache[key][1]
 
 
 class FastRun:
     """Everything a clean run of one model under one set of options needs, built once."""
 
-    def __init__(self, model, kernel, options, plan, controls=(), sensors=None):
+    def __init__(self, model, kernel, options, plan, controls=(), sensors=None, breaks=()):
         self.model, self.k, self.options, self.plan = model, kernel, options, plan
         # LoadControl tasks and sensors whose actions need no Python act inside the C loop
         # (ps_ida_controlled), one call per Simulate command (a first step after a restart may
@@ -67,7 +69,8 @@ class FastRun:
         self.controls, self.sensors = list(controls), sensors
         if sensors is not None:           # a zero-crossing restore takes the tasks back too
             sensors.tasks(self.controls)
-        self.acting = bool(self.controls or sensors)
+        # the times of solve.breaks.TimeBreaks: the C loop stops and restarts there
+        self.acting = bool(self.controls or sensors or len(breaks))
         if self.acting:
             self.ctl = ffi.new("psControl *[]", [task.c for task in self.controls] or 1)
             self.restart = self.controls[0].restart.r if self.controls else ffi.NULL
@@ -75,6 +78,12 @@ class FastRun:
         self.loop = _Loop(kernel.ny)
         self.solver = integrator.make(kernel, options, plan, (
             options.h_max or 0.0, options.h_min or 0.0, options.h0_max or 0.0))
+        ny = kernel.ny if len(breaks) else 0
+        self.bwork = np.zeros(2 * ny * ny + ny), np.zeros(ny, np.int32)
+        if lib.ps_ida_breaks(self.solver.s, ffi.new("double[]", list(breaks)), len(breaks),
+                             ffi.from_buffer("double[]", self.bwork[0]),
+                             ffi.cast("int *", ffi.from_buffer(self.bwork[1]))):
+            raise MemoryError("the times of a run's breaks")
         # each command, its start and its print times (those of outputs.Grid, bit for bit) in
         # batches of one C call; every row's time
         self.commands, t, rows = [], 0.0, [np.zeros(1)]

@@ -13,15 +13,18 @@ The check (``ps_precision`` in C: the iteration matrix at cj = 0 and one residua
 microsecond on the example decks) runs once per run, not per step. It
 measures the translational rows of each moving body; a body with no force to compare with
 (no gravity, no acceleration, no applied force) is skipped. Without gravity, a body that
-fails the check is measured again against 1e-3 (PS_PRECISION_CARRIED in C) of the most it
-carried, the magnitudes of the forces on it summed (not their net), at the deck's initial
-state or an output row, where that is larger; and it is left out when no force acted on it
-at the start and none above its rounding change since (it has no load to resolve). A damped
-oscillator, or a spring at its free length or at its static equilibrium, comes to rest with
-a net force of nothing (or a static's leftover imbalance), and its rounding was measured
-against that (-710 for a right answer); a stiff spring holding a push still is measured
-against the push. With gravity a body carries its weight, which the check keeps measuring
-against (a bead bouncing on a penalty of 1e15 carries far more than that at impacts).
+fails the check is measured again against the most it carried, the magnitudes of the forces
+on it summed (not their net), at the deck's initial state or an output row, where that is
+larger; and it is left out when no force acted on it at the start and none above its
+rounding change since (it has no load to resolve). A damped oscillator, or a spring at its
+free length or at its static equilibrium, comes to rest with a net force of nothing (or a
+static's leftover imbalance), and its rounding was measured against that (-710 for a right
+answer); a 1e6 kg body between a 1e6 N/m spring and a 1e-6 kg body on a 1 N/m spring carries
+the light spring's force, which passes through zero every cycle (trial 45: -710 at each such
+end time for a run right to 1e-11; against 1e-3 of the most it carried, too); a stiff spring
+holding a push still is measured against the push. With gravity a body carries its weight,
+which the check keeps measuring against (a bead bouncing on a penalty of 1e15 carries far
+more than that at impacts).
 """
 import math
 
@@ -52,7 +55,32 @@ def check(model, kernel, t, y, yp):
         ratio, b = _ratio(kernel, t[-1], y[-1], yp[-1], (carried, start))
     if b < 0 or not ratio > LIMIT:
         return None
-    return _message(model, kernel, ratio, kernel.layout.bodies[b], t[-1])
+    lay = kernel.layout
+    q = np.abs(y[-1][lay.qadr[b]:lay.qadr[b] + 3]).max()
+    return _message(model, kernel, ratio, lay.bodies[b], t[-1], q)
+
+
+#: Unit roundoff of a double's spacing, 2^-52: the gap between doubles near q is about EPS |q|.
+EPS = 2.220446049250313e-16
+
+
+def unresolved(kernel, tol):
+    """The advice for a run stopped by max_num_steps whose integr_tol is below what its
+    coordinates resolve (EPS |q| > tol / 10 for the largest coordinate of a body at the
+    deck's start: a revolute pendulum 1e9 m from the origin at 1e-9, trial 45), or None. IDA's
+    tolerance is absolute in model units as well as relative (docs/usage.md), and a joint's
+    equations are differences of coordinates, each rounded to EPS |q|."""
+    lay = kernel.layout
+    if not lay.bodies:
+        return None
+    y0 = lay.initial_state()
+    q = max(abs(float(y0[lay.qadr[b] + c])) for b in range(len(lay.bodies)) for c in range(3))
+    if not EPS * q > tol / 10:
+        return None
+    loose = 10.0 ** math.ceil(math.log10(10 * EPS * q))
+    return (f"loosen integr_tol = {tol:g} to {loose:g} or more, or place the scene nearer the "
+            f"origin: its coordinates reach {q:.3g}, where doubles are {EPS * q:.2g} apart, "
+            "not small beside the tolerance")
 
 
 def _penalty(model, kernel, pid):
@@ -62,7 +90,7 @@ def _penalty(model, kernel, pid):
     return model.penalties[pid].penalty if slot is None else float(kernel.arrays["consts"][slot])
 
 
-def _message(model, kernel, ratio, body, t):
+def _message(model, kernel, ratio, body, t, q):
     what = (f"at t = {t:.6g} the rounding of the state moves the forces on body {body.id} by "
             f"{ratio:.2g} of the forces it carries (more than {LIMIT:g}): the result follows "
             "rounding, not the model")
@@ -74,7 +102,10 @@ def _message(model, kernel, ratio, body, t):
         return (f"{what}; Force_Penalty {pid}'s penalty = {pen:g} is past what double "
                 f"precision can carry here: use penalty <= {better:.0e} (or make the "
                 "constraint exact)")
-    return f"{what}; lower the stiffness of the scene's stiffest force element"
+    # the change is sum_j |dF/dy_j| u |y_j|: stiffness (or damping) times the coordinates
+    return (f"{what}; the forces on body {body.id} are stiffer than the rounding of its "
+            f"coordinates (up to {q:.3g}) resolves: lower the stiffness or damping of the "
+            "force elements acting on it, or place the scene nearer the origin")
 
 
 def _carried(kernel, t, y):
