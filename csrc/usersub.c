@@ -641,11 +641,19 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
       fi[i] = 0.0;
       continue;
     }
-    fi[i] = (f1 - eval_at(m, k, &ctx, z, nin, chan, i, -h, -1, 0.0)) / (2.0 * h);
+    double fm = eval_at(m, k, &ctx, z, nin, chan, i, -h, -1, 0.0);
+    fi[i] = (f1 - fm) / (2.0 * h);
+    /* a value defined on one side only (a routine that returns NaN past x = 1, at x within a
+     * step of 1): the side it is defined on, so that the run reaches the edge and ends there
+     * as an expression's does, rather than failing every step near it */
+    if (isfinite(f0) && !isfinite(fi[i])) {
+      fi[i] = isfinite(f1) ? (f1 - f0) / h : (f0 - fm) / h;
+      continue;
+    }
     if (d->user_coarse) continue;
     double d2 = (eval_at(m, k, &ctx, z, nin, chan, i, 2.0 * h, -1, 0.0) -
                  eval_at(m, k, &ctx, z, nin, chan, i, -2.0 * h, -1, 0.0)) / (4.0 * h);
-    fi[i] = (4.0 * fi[i] - d2) / 3.0;
+    if (isfinite(d2)) fi[i] = (4.0 * fi[i] - d2) / 3.0;
   }
   if (order >= 2 && nin == 0 && m->user_timeless[k] == 2)
     fij[0] = eval(m, k, &ctx, z, nin, -2, chan);   /* its own acceleration, iord = 2 */
@@ -655,6 +663,10 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
   current = prev;
   if (ctx.error) {
     cache[0] = 0.0;
+    out[0] = NAN;
+    /* the first failure is the one reported: output rows computed together after a step
+     * (a REQSUB failing at t = 0.6 and 0.7) name the earliest */
+    if (d->user_error) return -1;
     d->user_error = 1;
     d->user_t = ctx.t_error;
     /* the routine as the deck names it, unless its own message (a Python routine's) does */

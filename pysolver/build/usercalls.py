@@ -204,6 +204,8 @@ def _callback(ctx, sub, form, model):
             out = fn(id[0], time[0], list(par), len(par), iflag) if plain else \
                 fn(id[0], time[0], list(par), len(par), dflag, iflag)
             if nvalues == 1:
+                if out is None and not iflag:   # the iflag call's value is not used
+                    raise tracer.RoutineError("returned None, not a number")
                 value[0] = math.nan if out is None else float(out)
             else:
                 for i, v in enumerate(list(out)[:nvalues]):
