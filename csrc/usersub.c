@@ -664,9 +664,6 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
   if (ctx.error) {
     cache[0] = 0.0;
     out[0] = NAN;
-    /* the first failure is the one reported: output rows computed together after a step
-     * (a REQSUB failing at t = 0.6 and 0.7) name the earliest */
-    if (d->user_error) return -1;
     d->user_error = 1;
     d->user_t = ctx.t_error;
     /* the routine as the deck names it, unless its own message (a Python routine's) does */

@@ -1,6 +1,5 @@
 """Trial 45's failures of called routines: a SENSUB's own error message, a NaN or None from a
-routine on a branch of the state (status -700 / -400 at once, not a million steps), and the
-first failure of a REQSUB at output rows."""
+routine on a branch of the state (status -700 / -400 at once, not a million steps)."""
 import pysolver
 
 SCENE = '''from pysolver.msolve import *
@@ -59,15 +58,3 @@ def test_none_from_a_routine_is_the_routines_error():
     assert (res.success, res.status) == (False, -400)
     assert res.message.startswith("user subroutine (id 1): sfo: returned None, not a number "
                                   "(called at t = 0.33")
-
-
-def test_a_reqsub_failing_at_output_rows_reports_the_first():
-    routine = ('def req(id, time, par, npar, iflag):\n'
-               '    x = float(py_sysfnc("DX", [10])[0])\n'
-               '    if time > 0.5:\n'
-               '        raise RuntimeError("request failed")\n'
-               '    return [x]\n')
-    res = _run(routine, SPRING + '\nREQUEST(1, FUNCTION="USER(10)", ROUTINE=req)')
-    assert (res.success, res.status) == (False, -400)
-    assert res.message.startswith("user subroutine (id 1): req raised RuntimeError: request "
-                                  "failed (called at t = 0.6;")

@@ -128,7 +128,8 @@ IORD_TIMES = (0.0, 0.375, 1.25)
 
 def _honours_iord(ctx, sub, fn, id, python):
     """Whether a MOTSUB gives its velocity and acceleration when asked (iord = 1, 2), as Adams
-    asks: False when it returns its value whatever iord says; DeckError when its answers
+    asks: False when it returns its value whatever iord says, or a non-finite number for
+    iord 1 or 2; DeckError when its answers
     disagree with differences of its value (relative 1e-6 for the velocity, 1e-5 for the
     acceleration, at one of the steps 1e-2, 1e-3 / 16^s of max(1, |t|))."""
     par = ffi.new("double[]", list(sub.par) or [0.0])
@@ -142,8 +143,9 @@ def _honours_iord(ctx, sub, fn, id, python):
         return out[0]
 
     answers = [(t, f(t, 0), f(t, 1), f(t, 2)) for t in IORD_TIMES]
-    if all(v1 == v0 and v2 == v0 for _, v0, v1, v2 in answers):
-        return False
+    if all(v1 == v0 and v2 == v0 for _, v0, v1, v2 in answers) or \
+            not all(math.isfinite(v) for _, _, v1, v2 in answers for v in (v1, v2)):
+        return False                    # the value whatever iord is, or none for iord > 0
     for t, v0, v1, v2 in answers:
         for iord, given, tol in ((1, v1, 1e-6), (2, v2, 1e-5)):
             diffs = [_difference(f, t, v0, h, iord) for h in _iord_steps(t)]

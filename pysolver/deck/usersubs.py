@@ -63,13 +63,14 @@ def from_attributes(model, ctx, a):
     else:
         par = ()
     routine = a.get("usrsub_fnc_name") or name
+    if isinstance(routine, str) and routine.strip().upper() == "NULL":
+        routine = name                  # MotionSolve: "NULL" is the conventional name
     if isinstance(routine, str) and ("::" in routine or "\u2237" in routine):
-        # MotionSolve's ROUTINE="path/lib.so::function" names a C library and its function
+        # MotionSolve's ROUTINE="path/lib.so::function" names a C library and its function;
+        # Adams' "lib::" its conventional one (SFOSUB, ...)
         library, _, routine = routine.replace("\u2237", "::").rpartition("::")
         a = dict(a, usrsub_dll_name=library)
-        if not routine:
-            raise ctx.error("ROUTINE=\"library::function\" names no function",
-                            "usrsub_fnc_name")
+        routine = routine.strip() or name
     if callable(routine):
         if a.get("script_name") or a.get("usrsub_dll_name"):
             raise ctx.error("give a Python function or a script/library, not both",
