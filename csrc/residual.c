@@ -438,6 +438,7 @@ int ps_roots(const psModel* m, psData* d, double t, const double* y, const doubl
              double* g) {
   d->nroots++;
   sensor_values(m, d, t, y, yp);
+  if (d->user_error) return PS_ERR_NONFINITE;   /* d->msg holds the subroutine's message */
   for (int k = 0; k < m->nsensor; k++)
     if (!isfinite(d->sensor_f[k])) {
       d->bad_t = t;

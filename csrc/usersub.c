@@ -348,7 +348,9 @@ static double call(void* fn, int form, int id, double t, const double* par, int 
   int n = npar < PS_USER_MAXPAR ? npar : PS_USER_MAXPAR;
   /* the routine may not change the model */
   for (int i = 0; i < n; i++) p[i] = par[i];
-  int iord = 0;
+  /* a MOTSUB's iord (the time derivative asked for) comes as -dflag: a difference call's dflag
+   * is 1, and asks for the value */
+  int iord = dflag < 0 ? -dflag : 0;
   if (form == PS_USER_DFLAG)
     ((UserFnD)fn)(&id, &t, p, &n, &dflag, &iflag, val);
   else if (form == PS_USER_IORD)
@@ -375,6 +377,26 @@ int ps_user_declare(void* fn, int form, int python, int id, const double* par, i
     return -1;
   }
   return ctx.nkeys > maxkeys ? maxkeys + 1 : ctx.nkeys;
+}
+
+int ps_user_motion(void* fn, int python, int id, const double* par, int npar, double t,
+                   int iord, double* value, char* msg, int msglen) {
+  UserCtx ctx;
+  char key[PS_USER_KEY];
+  memset(&ctx, 0, sizeof(ctx));
+  ctx.recording = 1;      /* a motion reads nothing: a read is counted, not answered */
+  ctx.python = python;
+  ctx.keys = key;
+  ctx.maxkeys = 0;
+  UserCtx* prev = current;
+  current = &ctx;
+  *value = call(fn, PS_USER_IORD, id, t, par, npar, -iord, 0, 0);
+  current = prev;
+  if (ctx.error || ctx.nkeys) {
+    snprintf(msg, (size_t)msglen, "%s", ctx.error ? ctx.msg : "a motion reads no values");
+    return -1;
+  }
+  return 0;
 }
 
 /* One evaluation of routine k at inputs z (declared values, then time). */
@@ -598,7 +620,11 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
       flat[i] = cflat[i] == 1.0;
       continue;
     }
-    flat[i] = i == nin && m->user_timeless[k];
+    flat[i] = i == nin && m->user_timeless[k] == 1;
+    if (i == nin && m->user_timeless[k] == 2) {   /* a MOTSUB's own velocity, iord = 1 */
+      fi[i] = eval(m, k, &ctx, z, nin, -1, chan);
+      continue;
+    }
     if (flat[i]) {
       fi[i] = 0.0;
       continue;
@@ -615,18 +641,29 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
       fi[i] = 0.0;
       continue;
     }
-    fi[i] = (f1 - eval_at(m, k, &ctx, z, nin, chan, i, -h, -1, 0.0)) / (2.0 * h);
+    double fm = eval_at(m, k, &ctx, z, nin, chan, i, -h, -1, 0.0);
+    fi[i] = (f1 - fm) / (2.0 * h);
+    /* a value defined on one side only (a routine that returns NaN past x = 1, at x within a
+     * step of 1): the side it is defined on, so that the run reaches the edge and ends there
+     * as an expression's does, rather than failing every step near it */
+    if (isfinite(f0) && !isfinite(fi[i])) {
+      fi[i] = isfinite(f1) ? (f1 - f0) / h : (f0 - fm) / h;
+      continue;
+    }
     if (d->user_coarse) continue;
     double d2 = (eval_at(m, k, &ctx, z, nin, chan, i, 2.0 * h, -1, 0.0) -
                  eval_at(m, k, &ctx, z, nin, chan, i, -2.0 * h, -1, 0.0)) / (4.0 * h);
-    fi[i] = (4.0 * fi[i] - d2) / 3.0;
+    if (isfinite(d2)) fi[i] = (4.0 * fi[i] - d2) / 3.0;
   }
-  if (order >= 2 && !(nin > 0 && nsup == nin &&
-                       hessian_given(m, k, &ctx, z, nin, chan, f0, flat, fij) == 0))
+  if (order >= 2 && nin == 0 && m->user_timeless[k] == 2)
+    fij[0] = eval(m, k, &ctx, z, nin, -2, chan);   /* its own acceleration, iord = 2 */
+  else if (order >= 2 && !(nin > 0 && nsup == nin &&
+                            hessian_given(m, k, &ctx, z, nin, chan, f0, flat, fij) == 0))
     hessian_differenced(m, k, &ctx, z, nin, chan, f0, flat, fij);
   current = prev;
   if (ctx.error) {
     cache[0] = 0.0;
+    out[0] = NAN;
     d->user_error = 1;
     d->user_t = ctx.t_error;
     /* the routine as the deck names it, unless its own message (a Python routine's) does */

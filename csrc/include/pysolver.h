@@ -250,7 +250,8 @@ typedef struct psModel {
   double* user_par;       /* (npar total x 1)                                   */
   int* user_key_adr;      /* (nuser x 1) first declared input in user_key_*     */
   int* user_nkey;         /* (nuser x 1) number of declared inputs              */
-  int* user_timeless;     /* (nuser x 1) 1: never reads its time argument       */
+  int* user_timeless;     /* (nuser x 1) 1: never reads its time argument, 2: a
+                             MOTSUB that gives its velocity and acceleration (iord) */
   int* user_python;       /* (nuser x 1) 1: a Python routine (py_syspar, ...)   */
   char** user_name;       /* (nuser x 1) the routine as the deck names it       */
   int* user_key_fn;       /* (nkey total x 1) function code (ps_user_fn_code)   */
@@ -978,6 +979,12 @@ int ps_user_point(const psModel* m, psData* d, int cache_index, int k, int chan,
  * error (c_errmes) or called an unknown function. */
 int ps_user_declare(void* fn, int form, int python, int id, const double* par, int npar,
                     char* keys, int maxkeys, char* msg, int msglen);
+
+/* Call a MOTSUB fn (python 1 for a Python routine) once at time t with iflag = 0 and iord
+ * (0: the value, 1: its velocity, 2: its acceleration) into *value. Returns 0, or -1 with a
+ * message in msg when it reported an error or read a value. */
+int ps_user_motion(void* fn, int python, int id, const double* par, int npar, double t,
+                   int iord, double* value, char* msg, int msglen);
 
 /* Return the code c_sysfnc uses for an expression-language function name (case and spaces
  * ignored), or -1 when it is not one c_sysfnc answers. */

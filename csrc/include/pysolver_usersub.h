@@ -12,6 +12,10 @@
  *   void SENSUB(int *id, double *time, double *par, int *npar, int *iflag, double *value);
  *   void SEVSUB(...same as SENSUB...);              value stored by a Sensor_Evaluate
  *   void REQSUB(...same as SENSUB..., double *result);   result[8]: a Post_Request's channels
+ *   void MOTSUB(int *id, double *time, double *par, int *npar, int *iord, int *iflag,
+ *               double *value);   a Motion_Marker's / Motion_Joint's driven value (iord 0),
+ *                                 its velocity (iord 1) and acceleration (iord 2)
+ *   void GCOSUB(...same as PFOSUB...);              the g a Constraint_General holds at 0
  * par holds the numbers of USER(p1, ..., pn); npar their count. iflag is 1 on the first call,
  * which pysolver makes once to learn which system values the routine reads (c_sysfnc then
  * returns 0): a routine must ask for every value it may use on that call. dflag is 1 while

@@ -71,6 +71,9 @@ def bind(model):
         if kind == "motion" and keys:
             raise ctx.error(f"{sub.label} declares {', '.join(keys)}: a motion is a function "
                             "of time only", sub.attribute)
+        iord = kind == "motion" and _honours_iord(ctx, sub, fn, el.id, not sub.library)
+        if iord:
+            timeless = 2                # the kernel asks it for its derivatives (iord 1, 2)
         if keep is not None:
             keep[1].keys = keys         # the Python routine reads them by name
         k = len(model.user_routines)
@@ -80,11 +83,14 @@ def bind(model):
         nvalues = CONVENTIONS[ctx.tag][2]
         trees = [("user", k, chan, inputs) for chan in range(nvalues)]
         set_trees(model, kind, el, trees)
-        model.usersub_paths[f"{ctx.tag} {el.id}"] = (
-            f"{sub.describe()}: {how}, called from the kernel; its partials in "
-            f"{', '.join(keys + ([] if timeless else ['TIME'])) or 'nothing'}"
-            + (" (not TIME: it never reads its time argument)" if timeless else "")
-            + " by central differences, except those it gives with c_syspar / py_syspar")
+        model.usersub_paths[f"{ctx.tag} {el.id}"] = f"{sub.describe()}: {how}, called " \
+            "from the kernel; " + (
+                "its velocity and acceleration from the routine itself (iord = 1, 2)" if iord
+                else "its velocity and acceleration by differences of its value in time (it "
+                "ignores iord)" if kind == "motion" else
+                f"its partials in {', '.join(keys + ([] if timeless else ['TIME'])) or 'nothing'}"
+                + (" (not TIME: it never reads its time argument)" if timeless else "")
+                + " by central differences, except those it gives with c_syspar / py_syspar")
     from ..deck.references import check_references
     check_references(model)
 
@@ -114,6 +120,57 @@ def _declare(ctx, sub, fn, form, id, python):
     raw = ffi.buffer(keys)[:]
     return [raw[i * lib.PS_USER_KEY:(i + 1) * lib.PS_USER_KEY].split(b"\0")[0].decode()
             for i in range(n)]
+
+
+#: Times at which a MOTSUB's iord answers are compared with differences of its value.
+IORD_TIMES = (0.0, 0.375, 1.25)
+
+
+def _honours_iord(ctx, sub, fn, id, python):
+    """Whether a MOTSUB gives its velocity and acceleration when asked (iord = 1, 2), as Adams
+    asks: False when it returns its value whatever iord says, or a non-finite number for
+    iord 1 or 2; DeckError when its answers
+    disagree with differences of its value (relative 1e-6 for the velocity, 1e-5 for the
+    acceleration, at one of the steps 1e-2, 1e-3 / 16^s of max(1, |t|))."""
+    par = ffi.new("double[]", list(sub.par) or [0.0])
+    out, msg = ffi.new("double *"), ffi.new("char[256]")
+
+    def f(t, iord):
+        if lib.ps_user_motion(fn, int(python), id, par, len(sub.par), t, iord, out, msg,
+                              256) != 0:
+            raise ctx.error(f"{sub.label} (iord = {iord}, t = {t:g}): "
+                            f"{ffi.string(msg).decode(errors='replace')}", sub.attribute)
+        return out[0]
+
+    answers = [(t, f(t, 0), f(t, 1), f(t, 2)) for t in IORD_TIMES]
+    if all(v1 == v0 and v2 == v0 for _, v0, v1, v2 in answers) or \
+            not all(math.isfinite(v) for _, _, v1, v2 in answers for v in (v1, v2)):
+        return False                    # the value whatever iord is, or none for iord > 0
+    for t, v0, v1, v2 in answers:
+        for iord, given, tol in ((1, v1, 1e-6), (2, v2, 1e-5)):
+            diffs = [_difference(f, t, v0, h, iord) for h in _iord_steps(t)]
+            if not any(abs(given - d) <= tol * max(abs(given), abs(d)) + noise
+                       for d, noise in diffs):
+                raise ctx.error(f"{sub.label} gives {given:.10g} for iord = {iord} at t = "
+                                f"{t:g}, but differences of its value give {diffs[1][0]:.10g}: "
+                                "give the velocity (iord = 1) and acceleration (iord = 2), or "
+                                "the value whatever iord is", sub.attribute)
+    return True
+
+
+def _iord_steps(t):
+    scale = max(1.0, abs(t))
+    return [1e-2 * scale] + [1e-3 * scale / 16 ** s for s in range(3)]
+
+
+def _difference(f, t, v0, h, iord):
+    """The fourth-order central difference of f(., 0) at t (first or second derivative), and
+    a bound on its rounding noise."""
+    p1, m1, p2, m2 = f(t + h, 0), f(t - h, 0), f(t + 2 * h, 0), f(t - 2 * h, 0)
+    noise = 64 * 2.2e-16 * max(abs(v0), abs(p1), abs(m1), abs(p2), abs(m2)) / h ** iord
+    if iord == 1:
+        return (8 * (p1 - m1) - (p2 - m2)) / (12 * h), noise
+    return (16 * (p1 + m1) - (p2 + m2) - 30 * v0) / (12 * h * h), noise
 
 
 def _key_tree(ctx, sub, key):
@@ -149,6 +206,8 @@ def _callback(ctx, sub, form, model):
             out = fn(id[0], time[0], list(par), len(par), iflag) if plain else \
                 fn(id[0], time[0], list(par), len(par), dflag, iflag)
             if nvalues == 1:
+                if out is None and not iflag:   # the iflag call's value is not used
+                    raise tracer.RoutineError("returned None, not a number")
                 value[0] = math.nan if out is None else float(out)
             else:
                 for i, v in enumerate(list(out)[:nvalues]):
@@ -167,7 +226,7 @@ def _callback(ctx, sub, form, model):
             call(id, time, dflag[0], iflag[0], value)
     elif form == lib.PS_USER_IORD:
         def entry(id, time, par, npar, iord, iflag, value):
-            call(id, time, 0, iflag[0], value)
+            call(id, time, iord[0], iflag[0], value)
     else:
         def entry(id, time, par, npar, iflag, value):
             call(id, time, 0, iflag[0], value)

@@ -50,8 +50,18 @@ def _node(v):
     if isinstance(v, np.ndarray) and v.ndim == 0:
         v = v.item()                    # NumPy's 0-d result (np.where of one value)
     if isinstance(v, Sym):
+        _fresh(v)
         return v.node
     return ("num", _number(v))
+
+
+def _fresh(sym):
+    """Refuse a traced value made on an earlier path (or call) of explore: the routine kept
+    it between calls, so its expression would mix paths."""
+    if sym.gen is not None and getattr(_ACTIVE, "paths", None) is not None \
+            and sym.gen != _ACTIVE.gen:
+        raise Untraceable("it keeps state between calls: a traced value from an earlier "
+                          "call was used")
 
 
 def _number(v):
@@ -72,13 +82,15 @@ def _refuse(what):
 
 class Sym:
     """A state-dependent value being traced: wraps an expression tree."""
-    __slots__ = ("node",)
+    __slots__ = ("node", "gen")
 
     def __init__(self, node):
         self.node = node
+        # the explore path it was made on (None outside explore)
+        self.gen = _ACTIVE.gen if getattr(_ACTIVE, "paths", None) is not None else None
 
     def _bin(self, op, other, swap=False):
-        a, b = (_node(other), self.node) if swap else (self.node, _node(other))
+        a, b = (_node(other), _node(self)) if swap else (_node(self), _node(other))
         return Sym(("bin", op, a, b))
 
     def __add__(self, o): return self._bin("+", o)
@@ -91,16 +103,16 @@ class Sym:
     def __rtruediv__(self, o): return self._bin("/", o, True)
     def __pow__(self, o): return self._bin("**", o)
     def __rpow__(self, o): return self._bin("**", o, True)
-    def __neg__(self): return Sym(("neg", self.node))
+    def __neg__(self): return Sym(("neg", _node(self)))
     def __pos__(self): return self
-    def __abs__(self): return Sym(("call", "ABS", [self.node], 0))
+    def __abs__(self): return Sym(("call", "ABS", [_node(self)], 0))
 
     def _diff(self, o):
         """a - b of a comparison (a itself against zero)."""
         zero = isinstance(o, (int, float)) and not isinstance(o, bool) and o == 0
-        return self.node if zero else self._bin("-", o).node
+        return _node(self) if zero else self._bin("-", o).node
 
-    def __bool__(self): return bool(Cond("!=", self.node))
+    def __bool__(self): return bool(Cond("!=", _node(self)))
     def __lt__(self, o): return Cond("<", self._diff(o))
     def __le__(self, o): return Cond("<=", self._diff(o))
     def __gt__(self, o): return Cond(">", self._diff(o))
@@ -144,6 +156,7 @@ class Cond(Sym):
         paths = getattr(_ACTIVE, "paths", None)
         if paths is None:
             raise Untraceable("truth value of a state-dependent value outside a traced call")
+        _fresh(self)
         return paths.decide(self)
 
 
@@ -191,6 +204,7 @@ def explore(run):
     while True:
         paths = _Paths(prefix)
         prev, _ACTIVE.paths = getattr(_ACTIVE, "paths", None), paths
+        _ACTIVE.gen = getattr(_ACTIVE, "gen", 0) + 1
         try:
             result = run()
         except (Exception, SystemExit) as err:

@@ -21,7 +21,7 @@ import numpy as np
 from .. import catalogue, settings
 from ..errors import DeckError, ExpressionError
 from ..model import UserSub
-from . import elfsyms, tracelib, tracer
+from . import elfsyms, statecheck, tracelib, tracer
 from . import expr as ex
 
 #: Element -> (conventional routine name, its Python arguments, values it returns).
@@ -63,13 +63,14 @@ def from_attributes(model, ctx, a):
     else:
         par = ()
     routine = a.get("usrsub_fnc_name") or name
+    if isinstance(routine, str) and routine.strip().upper() == "NULL":
+        routine = name                  # MotionSolve: "NULL" is the conventional name
     if isinstance(routine, str) and ("::" in routine or "\u2237" in routine):
-        # MotionSolve's ROUTINE="path/lib.so::function" names a C library and its function
+        # MotionSolve's ROUTINE="path/lib.so::function" names a C library and its function;
+        # Adams' "lib::" its conventional one (SFOSUB, ...)
         library, _, routine = routine.replace("\u2237", "::").rpartition("::")
         a = dict(a, usrsub_dll_name=library)
-        if not routine:
-            raise ctx.error("ROUTINE=\"library::function\" names no function",
-                            "usrsub_fnc_name")
+        routine = routine.strip() or name
     if callable(routine):
         if a.get("script_name") or a.get("usrsub_dll_name"):
             raise ctx.error("give a Python function or a script/library, not both",
@@ -298,7 +299,12 @@ def _where(err, file):
 def _trace(ctx, sub, id, model):
     """Call the routine as MotionSolve does (iflag pass, then an evaluation) on traced values,
     along every path of its state-dependent branches; returns the trees of its values, or
-    None when it cannot be traced (sub.untraced says why: it will be called from the kernel)."""
+    None when it cannot be traced (sub.untraced says why: it will be called from the kernel).
+    A routine that may keep state between calls (:mod:`.statecheck`) is not traced."""
+    why = statecheck.keeps_state(python_routine(ctx, sub, model))
+    if why:
+        sub.untraced = f"not traced: it may keep state between calls: {why}"
+        return None
     fn = python_routine(ctx, sub, model, traced=True)
     _, args, nvalues = CONVENTIONS[ctx.tag]
     file = sub.script or getattr(getattr(fn, "__code__", None), "co_filename", None)
