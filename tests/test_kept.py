@@ -123,3 +123,30 @@ def test_bricards_linkage_keeps_its_constraints_at_loose_tolerances(tol):
     k = model.compile().kernel
     _, _, g = kept.removed_gaps(k, res.t, res.y)
     assert g.max() <= kept.LIMIT * tol * 2.0
+
+
+@pytest.mark.parametrize("path", ["Reference_Marker/3/pos_z", "Reference_Marker/41/pos_z"])
+def test_a_case_that_breaks_a_redundant_loop_fails_at_the_start(path, monkeypatch):
+    """The exactly planar four-bar in 3-D leaves joint 4's equations 3 to 5 out as redundant
+    for the deck's numbers; a sweep case that moves a pivot 1 cm out of the plane makes the
+    loop inconsistent: the run fails at the assembled start (-720, naming the equation and
+    its 1 cm), as the same numbers edited into the deck fail assembly, at a loose tolerance
+    as at a tight one. A case in the plane runs as the hand-edited deck."""
+    monkeypatch.setenv("PYSOLVER_PLANAR", "off")
+    model = pysolver.loads(FOURBAR.format(tilt=0.0))
+    assert model.compile().removed == [("joint", 4, 2), ("joint", 4, 3), ("joint", 4, 4)]
+    for tol in (1e-3, 1e-8):
+        res = model.run(params={path: 0.01}, integr_tol=tol)
+        assert not res.success and res.status == -720
+        got = re.fullmatch(r"initial conditions: Constraint_Joint 4 \(equation \d\), left out "
+                           r"as redundant for the deck's numbers, misses by (\S+) at the "
+                           r"assembled start \(integr_tol = \S+ allows \S+\): with this run's "
+                           r"numbers the loop is not consistent", res.message)
+        assert got is not None, res.message
+        assert float(got[1]) == pytest.approx(0.01, rel=1e-6)
+        mid = path.split("/")[1]
+        edited = pysolver.loads(re.sub(rf'(<Reference_Marker id="{mid}" body_id="\d")',
+                                       r'\1 pos_z="0.01"', FOURBAR.format(tilt=0.0)))
+        assert edited.run(integr_tol=tol).status == -720
+    inplane = model.run(params={"Reference_Marker/3/pos_x": 1.02})
+    assert inplane.success, inplane.message

@@ -124,3 +124,31 @@ def test_a_scene_with_joints_stops_on_the_general_driver():
     assert model.compile().batched and list(model.compile().batched.values())[0][1] is None
     assert res.success and res.stats["nrestarts"] == 3
     assert res.request(1)[-1, 0] == pytest.approx(0.25, abs=1e-7)
+
+
+MOTION_KINK = """<MotionSolve><Model>
+<Body_Rigid id="1" isground="TRUE"/>
+<Reference_Marker id="1" body_id="1"/>
+<Reference_Marker id="20" body_id="2"/>
+<Body_Rigid id="2" cg_id="20" mass="2" inertia_xx="1" inertia_yy="1" inertia_zz="1"/>
+<Constraint_Joint id="1" type="TRANSLATIONAL" i_marker_id="20" j_marker_id="1"/>
+<Motion_Joint id="1" joint_id="1" type="EXPRESSION" val_type="D" expr="{expr}"/>
+<Post_Request id="1" expr1="DZ(20)" expr2="VZ(20)"/>
+<Param_Transient integr_tol="{tol}"/>
+</Model><Simulate analysis_type="Transient" end_time="1" print_interval="0.05"/></MotionSolve>"""
+
+
+@pytest.mark.parametrize("expr, rate", [("MAX(0, TIME-0.5)", 1.0),
+                                        ("IF(TIME-0.5: 0, 0, 0.3*(TIME-0.5))", 0.3)])
+@pytest.mark.parametrize("tol", [1e-3, 1e-6])
+def test_a_motion_whose_velocity_jumps_at_a_break(expr, rate, tol):
+    """A displacement motion with a kink at t = 0.5 (its velocity jumps from 0 to `rate`):
+    the restart there takes the impulse's velocities, as at a spline knot; the slider
+    follows the motion exactly (the restart had taken only new rates: IDA failed at 0.5)."""
+    res = pysolver.loads(MOTION_KINK.format(expr=expr, tol=tol)).run()
+    assert res.success, res.message
+    t = np.asarray(res.t)
+    z, v = res.request(1)[:, 0], res.request(1)[:, 1]
+    np.testing.assert_allclose(z, rate * np.maximum(0.0, t - 0.5), atol=1e-9)
+    np.testing.assert_allclose(v[t > 0.5], rate, atol=1e-9)
+    np.testing.assert_allclose(v[t < 0.5], 0.0, atol=1e-9)

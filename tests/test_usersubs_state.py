@@ -195,6 +195,56 @@ def test_reads_and_writes_of_state_are_found(source, name, why):
     assert keeps_state(_fn(source, name)) == why
 
 
+@pytest.mark.parametrize("source, why", [
+    ("from random import random\ndef f(t):\n    return random()*t\n",
+     "f reads the global random, a method of a Random object that can change between calls"),
+    ("from time import perf_counter\ndef f(t):\n    return perf_counter()\n",
+     "f reads the global perf_counter, a function of the module time that can change between "
+     "calls"),
+    ("_flags = set()\n_set = _flags.add\ndef f(t):\n    _set('x')\n    return t\n",
+     "f reads the global _set, a method of a set that can change between calls"),
+    ("import itertools\ncount = itertools.count().__next__\ndef f(t):\n    return count()*t\n",
+     "f reads the global count, a method of a count object that can change between calls"),
+    ("import functools\ndef _acc(store, x):\n    store.append(x)\n    return max(store)\n"
+     "track = functools.partial(_acc, [])\ndef f(t):\n    return track(t)\n",
+     "f reads the global track, a list that can change between calls"),
+    ("def f(t):\n    d = f.__dict__\n    d['m'] = max(d.get('m', 0.0), t)\n    return d['m']\n",
+     "f reads an object's __dict__"),
+    ("def f(t):\n    from numpy import random as r\n    return r.rand()*t\n",
+     "f imports the module numpy.random"),
+    ("import functools\n@functools.lru_cache\ndef h(x):\n    return x\n"
+     "def f(t):\n    return h(1)*t\n",
+     "f reads the global h, a cached function (_lru_cache_wrapper) that can change between "
+     "calls"),
+    ("import sys\ndef f(t):\n    return getattr(sys.modules['__main__'], 'x', 0)*t\n",
+     "f reads the global sys.modules, a dict that can change between calls"),
+])
+def test_state_behind_library_objects_is_found(source, why):
+    """State kept in a builtin object's bound method, a library function that keeps state
+    (random, time), a functools.partial's arguments, a function's __dict__, an import inside
+    the call, a cache, or a library module's mutable data (the review of stop 45)."""
+    assert keeps_state(_fn(source, "f")) == why
+
+
+def test_a_latch_kept_in_a_set_runs_from_the_kernel():
+    """The trial's latch written with a set's add and membership test: not traced (it had
+    been traced into IF(DX - 1.5: 0, 0, 0), the body never moving), so the spring pulls the
+    mass from x = 2 at once."""
+    routine = ("_flags = set()\n_set, _has = _flags.add, _flags.__contains__\n"
+               "def sfo(id, time, par, npar, dflag, iflag):\n"
+               "    x = py_sysfnc('DX', [10])[0]\n"
+               "    if iflag == 0 and x < 1.5:\n"
+               "        _set('latched')\n"
+               "    return 0.0 if _has('latched') else -K*(x - 1)\n")
+    res = _run(routine, "sfo")
+    assert res.success, res.message
+    assert "not traced: it may keep state between calls" in _how(res)
+    t = np.asarray(res.t)
+    early = t < 1 / 6 - 0.02
+    np.testing.assert_allclose(res.request(1)[early, 0], 1 + np.cos(2 * math.pi * t[early]),
+                               atol=1e-4)
+
+
 def test_callables_that_are_not_plain_functions_are_not_traced():
     class Obj:
         def __call__(self, t):

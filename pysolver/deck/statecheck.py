@@ -25,6 +25,7 @@ SciPy's, pysolver's) are not state. What a routine reaches through its arguments
 fresh list at every call) is not seen; nor is state kept inside a C extension.
 """
 import dis
+import functools
 import numbers
 import os
 import sys
@@ -84,6 +85,7 @@ def _function(fn, seen, depth):
     cells = dict(zip(fn.__code__.co_freevars, fn.__closure__ or ()))
     assigned = _module_assigns(fn.__globals__)
     instructions = list(_instructions(fn.__code__))
+    imported = ""
     for ins, _ in instructions:         # what it stores, then what it reads
         op, arg = ins.opname, ins.argval
         if op in ("STORE_GLOBAL", "DELETE_GLOBAL"):
@@ -94,6 +96,12 @@ def _function(fn, seen, depth):
             return f"{name} sets the attribute {arg} of an object"
         if op == "IMPORT_NAME" and not _library(arg):
             return f"{name} imports the module {arg}"
+        if op in _ATTRS and arg == "__dict__":
+            return f"{name} reads an object's __dict__"
+        if op == "IMPORT_NAME":
+            imported = arg
+        if op == "IMPORT_FROM" and f"{imported}.{arg}" in _STATEFUL_MODULES:
+            return f"{name} imports the module {imported}.{arg}"
     for ins, nxt in instructions:
         op, arg = ins.opname, ins.argval
         if op not in _LOADS:
@@ -131,7 +139,12 @@ def _value(value, where, nxt, seen, depth):
         if _library(value.__name__) and not any(
                 isinstance(getattr(value, a.argval, None), types.ModuleType) for a in nxt[:1]
                 if a.opname in _ATTRS):
-            return None                 # a library's function or constant
+            # a library's function or constant; not its mutable data (sys.modules, os.environ)
+            got = getattr(value, nxt[0].argval, None) if nxt and nxt[0].opname in _ATTRS \
+                else None
+            why = _mutable(got) if got is not None else None
+            return f"reads {where}.{nxt[0].argval}, {why} that can change between calls" \
+                if why else None
         if not nxt or nxt[0].opname not in _ATTRS:
             return None
         attrs.append(nxt[0].argval)
@@ -151,14 +164,30 @@ def _value(value, where, nxt, seen, depth):
 def _mutable(value, depth=0):
     """What `value` is, when it is an object that can change (a list, an instance, ...)."""
     if value is None or isinstance(value, (numbers.Number, str, bytes, range, slice, np.generic,
-                                           type(Ellipsis), types.ModuleType,
-                                           types.BuiltinFunctionType, np.ufunc)):
+                                           type(Ellipsis), types.ModuleType, np.ufunc)):
         return None
+    if isinstance(value, (types.BuiltinFunctionType, types.MethodWrapperType)):
+        # a C function: a module's (math.sqrt; random's and time's keep state) or a method
+        # bound to an object (set().add, a hidden Random's random) that may change
+        owner = getattr(value, "__self__", None)
+        if owner is None or isinstance(owner, types.ModuleType):
+            module = getattr(owner, "__name__", None) or value.__module__ or ""
+            stateful = any(module == m or module.startswith(m + ".") or
+                           module.lstrip("_") == m for m in _STATEFUL_MODULES)
+            return f"a function of the module {module}" if stateful else None
+        why = None if isinstance(owner, type) else _mutable(owner, depth + 1)
+        return f"a method of {why}" if why else None
+    if isinstance(value, functools.partial):
+        return next((w for w in (_mutable(v, depth + 1) for v in
+                                 [value.func, *value.args, *value.keywords.values()]) if w),
+                    None) if depth < 3 else "a functools.partial"
     if isinstance(value, (tuple, frozenset)):
         return next((w for w in (_mutable(v, depth + 1) for v in list(value)[:50]) if w), None) \
             if depth < 3 else None
     if isinstance(value, types.FunctionType):
-        return None
+        # attributes set on a function (f.calls = ...) are state; so is a cached one
+        return "a function with attributes" if value.__dict__ and set(value.__dict__) - {
+            "__wrapped__"} or hasattr(value, "cache_info") else None
     if isinstance(value, types.MethodType):
         owner = value.__self__
         return None if isinstance(owner, (types.ModuleType, type)) else \
@@ -169,10 +198,28 @@ def _mutable(value, depth=0):
         return f"the class {value.__name__} (its attributes)"
     if isinstance(value, np.ndarray):
         return "a NumPy array" if value.flags.writeable else None
-    library = _library(type(value).__module__)
-    if library and callable(value) or type(value).__module__.split(".")[0] == "pysolver":
-        return None                     # a library's function object; the tracer's math shim
+    if type(value).__module__.split(".")[0] == "pysolver":
+        return None                     # the tracer's math shim
+    if callable(value) and _library(type(value).__module__):
+        # a library's function object (np.sum's dispatcher): state only in a cache or in
+        # attributes that can change
+        if hasattr(value, "cache_info"):
+            return f"a cached function ({type(value).__name__})"
+        if depth >= 3:
+            return None
+        return next((f"{type(value).__name__} holding {w}" for w in
+                     (_mutable(v, depth + 1) for v in vars_of(value).values()) if w), None)
     return _what(value)
+
+
+def vars_of(value):
+    """The attributes an object holds in its __dict__ (none when it has no __dict__), its
+    dunder ones (__doc__, __annotations__, __wrapped__) left out."""
+    try:
+        return {k: v for k, v in vars(value).items()
+                if not (k.startswith("__") and k.endswith("__"))}
+    except TypeError:
+        return {}
 
 
 def _what(value):

@@ -30,6 +30,7 @@ from .. import catalogue
 from ..deck import expr as ex
 from ..options import SPARSE_THRESHOLD
 from .actors import Actor, Flow
+from .kinks import impulse
 
 #: Functions whose kinks are where argument 0 meets the arguments at these indices.
 _MEETS = {"STEP": (1, 3), "STEP5": (1, 3), "HAVSIN": (1, 3), "IMPACT": (2,), "BISTOP": (2, 3)}
@@ -143,11 +144,11 @@ def _expressions(model):
         yield from (e for e in vf.exprs if e is not None)
 
 
-def break_times(model):
+def break_times(model, trees=None):
     """The ascending times after 0 where a function of TIME alone in the model's forces,
-    motions and constraints has a kink or jump (the module's list)."""
+    motions and constraints (or in `trees`) has a kink or jump (the module's list)."""
     found = set()
-    for tree in _expressions(model):
+    for tree in _expressions(model) if trees is None else trees:
         found.update(t for t, _ in _in_tree(model, tree) if t > 0.0)
     return sorted(found)
 
@@ -167,6 +168,9 @@ class TimeBreaks(Actor):
     def __init__(self, model, kernel):
         self.kernel = kernel
         self.times = break_times(model)
+        # where a motion's or general constraint's rate may jump: restarts take the impulse
+        self.jumps = set(break_times(model, [el.expr for table in (model.motions, model.gcons)
+                                             for el in table.values() if el.expr is not None]))
         self.next = 0
         lay = kernel.layout
         self.in_c = not (lay.lam or lay.turns) and kernel.ny < SPARSE_THRESHOLD
@@ -186,7 +190,13 @@ class TimeBreaks(Actor):
         k, t = self.kernel, run.t
         side = t + SIDE * max(1.0, abs(t))
         k.d.last_t = side               # these evaluations are not step attempts
-        run.yp = k.consistent_yp(side, np.array(run.y, dtype=float))
+        y = np.array(run.y, dtype=float)
+        if t in self.jumps:
+            # a motion's velocity may jump here (a kink of its function of time): the
+            # velocities of the impulse, as at a spline knot (kinks.KnotRestarts)
+            impulse(k, side, y, np.asarray(run.yp, dtype=float))
+            run.y = y
+        run.yp = k.consistent_yp(side, y)
         return Flow(restart=True)
 
     def save(self):

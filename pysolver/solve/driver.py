@@ -1,14 +1,11 @@
 """The transient driver: integrate, stop at instants, ask the actors.
 
-One :class:`Run` is one run of a model. It owns the state (t, y, yp), the step bounds, the
-integrator (:mod:`.integrator`: C or scikit-sundae behind one interface) and the actors
-(:mod:`.actors`): the sensors, which act at roots of their expressions, and the printer, which
-acts at print times. Between instants the C driver runs a whole batch of print times without
-returning to Python; Python runs once per event and per batch, not per step.
-
-Scenes with a ``zero_crossing`` sensor are stepped one internal step at a time instead, and
-every converged step is kept with each actor's snapshot, so that the run can go back to the
-last one before an event (restore-and-shrink). Scenes without one pay nothing for it.
+One :class:`Run` is one run of a model: the state (t, y, yp), the step bounds, the integrator
+(:mod:`.integrator`) and the actors (:mod:`.actors`: sensors at roots, the printer at print
+times). The C driver runs a batch of print times without returning to Python: Python runs
+once per event and per batch, not per step. Scenes with a ``zero_crossing`` sensor step one
+internal step at a time, each converged step kept with the actors' snapshots, so the run can
+go back to the last one before an event (restore-and-shrink).
 """
 import collections
 import time
@@ -19,7 +16,7 @@ from ..build import compliance, restart, usercalls
 from ..build.bindings import ffi, lib
 from ..build.consistent import AssemblyError
 from ..build.kernel import UserFailure
-from . import breaks, integrator, kinks, nonfinite, precision, quasistatic
+from . import breaks, integrator, kept, kinks, nonfinite, precision, quasistatic
 from .actors import Actor, Flow
 from .loadcontrol import Interrupted, LoadControlTask, NonFinite
 from .outputs import Printer, Progress, command_rows, over_budget
@@ -87,6 +84,9 @@ def start_state(model, kernel, tol, exact_rows=True):
         if lib.ps_interrupted():
             raise Stop(False, -600, f"interrupted at t = {t0:.6g}") from None
         raise Stop(False, -400, user_failure(kernel, err, t0)) from None
+    why = kept.at_start(kernel, t0, y0, tol)
+    if why:
+        raise Stop(False, -720, f"initial conditions: {why}")
     if kernel.d.bad_kind or not np.isfinite(yp0).all():
         why = nonfinite.describe(model, kernel) or (
             "the accelerations cannot be solved for: dF/dyp is singular or not "

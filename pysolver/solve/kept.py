@@ -129,8 +129,26 @@ def _describe(model, name):
     eid = owner[len(kind):]
     what = {"joint": "Constraint_Joint", "motion": "the motion", "jprim": "Constraint_Jprim",
             "coupler": "Constraint_Coupler", "gcon": "Constraint_General"}.get(kind, kind)
-    if kind == "motion" and eid.isdigit() and int(eid) in model.motions:
+    if kind == "motion" and model is not None and eid.isdigit() and int(eid) in model.motions:
         m = model.motions[int(eid)]
         what = "Motion_Joint" if m.joint else "Motion_Marker"
     equation = row.replace("position_reaction", "equation ").strip()
     return f"{what} {eid}" + (f" ({equation})" if equation != "equation" else "")
+
+
+def at_start(kernel, t, y, tol):
+    """None, or why the assembled initial state (t, y) misses an equation left out as
+    redundant by more than integr_tol `tol` allows a position there: the redundancy was found
+    on the deck's numbers, and a run's own (a sweep case's) may break it."""
+    left = removed_gaps(kernel, np.array([t]), np.asarray(y)[None, :])
+    if left is None:
+        return None
+    names, _, g = left
+    q = np.abs(np.asarray(y)[_positions(kernel.layout)]) if len(kernel.layout.bodies) else ()
+    allowed = tol * (1.0 + (max(q) if len(q) else 0.0))
+    k = int(np.argmax(g[0]))
+    if g[0, k] <= allowed:
+        return None
+    return (f"{_describe(None, names[k])}, left out as redundant for the deck's numbers, "
+            f"misses by {g[0, k]:.3g} at the assembled start (integr_tol = {tol:g} allows "
+            f"{allowed:.3g}): with this run's numbers the loop is not consistent")
