@@ -58,6 +58,9 @@ def from_attributes(model, ctx, a):
     elif user_expr:
         par = a["expr"][0][1]
     elif a.get("expr") is not None:
+        if ctx.named("expr") != "expr":     # a Python or Adams statement: its keywords
+            raise ctx.error(f"a user subroutine takes its parameters as {ctx.named('expr')}="
+                            "\"USER(...)\", not an expression", "expr")
         raise ctx.error("with type=\"USERSUB\" the parameters go in usrsub_param_string="
                         "\"USER(...)\", not an expression", "expr")
     else:

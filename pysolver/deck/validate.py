@@ -307,6 +307,10 @@ def _expression(model, ctx, a, key="expr"):
     if usersub is not None:
         return None, usersub.describe(), usersub
     if _is_user(a.get(key)):
+        if ctx.named(key) != key:           # a Python or Adams statement: its keywords
+            routine = ctx.names.get("usrsub_fnc_name", "ROUTINE")
+            raise ctx.error(f"USER(...) calls a user subroutine: give {routine}= the "
+                            "routine", key)
         raise ctx.error("USER(...) calls a user subroutine: give type=\"USERSUB\" and the "
                         "routine (script_name, or ROUTINE= in a Python deck)", key)
     if a.get(key) is None:
