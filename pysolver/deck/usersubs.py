@@ -114,13 +114,17 @@ def expression_or_routine(model, ctx, a, routine):
 
 
 def find_file(ctx, given, deck_file, attribute):
-    """A script's or library's path: as given, relative to the deck's folder, then in the
-    folders of PYSOLVER_USERSUB_DIR."""
+    """A script's or library's path: an absolute one as given; a relative one in the deck's
+    folder (as MotionSolve looks beside the XML file), then in the current directory (the
+    only folder of a deck given as text), then in the folders of PYSOLVER_USERSUB_DIR."""
     candidates = [given]
     if not os.path.isabs(given):
+        candidates = [os.path.abspath(given)]
         if deck_file and not deck_file.startswith("<"):
-            candidates.append(os.path.join(os.path.dirname(os.path.abspath(deck_file)), given))
+            folder = os.path.dirname(os.path.abspath(deck_file))
+            candidates.insert(0, os.path.join(folder, given))
         candidates += [os.path.join(d, given) for d in settings.usersub_dirs()]
+        candidates = list(dict.fromkeys(candidates))     # the deck's folder may be the cwd
     for path in candidates:
         if os.path.isfile(path):
             return os.path.abspath(path)
