@@ -113,6 +113,16 @@ def expression_or_routine(model, ctx, a, routine):
     return tree, text, None
 
 
+def no_routine(ctx, key):
+    """The DeckError of USER(...) in attribute `key` of an element that names no routine, in
+    the deck's words: a Python or Adams statement's keywords, else XML's."""
+    if ctx.named(key) != key:
+        routine = ctx.names.get("usrsub_fnc_name", "ROUTINE")
+        return ctx.error(f"USER(...) calls a user subroutine: give {routine}= the routine", key)
+    return ctx.error("USER(...) calls a user subroutine: give type=\"USERSUB\" and the "
+                     "routine (script_name, or ROUTINE= in a Python deck)", key)
+
+
 def find_file(ctx, given, deck_file, attribute):
     """A script's or library's path: an absolute one as given; a relative one in the deck's
     folder (as MotionSolve looks beside the XML file), then in the current directory (the
