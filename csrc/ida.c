@@ -993,10 +993,12 @@ static void stream_rows(psIDA* s, int k0, int k1, const double* tout, const doub
 }
 
 /* Rows k0..k1-1: their accelerations and reactions made exact (a scene with reactions), then
- * their request channels, without streaming them. */
-static void row_channels(psIDA* s, int k0, int k1, const double* tout, double* y_out,
-                         double* yp_out, double* req_out) {
-  int n = s->m->ny;
+ * their request channels, without streaming them. Returns the first row a user routine failed
+ * at (a REQSUB, a VARSUB only a request reads: the run ends at that row, which is not kept),
+ * else k1. */
+static int row_channels(psIDA* s, int k0, int k1, const double* tout, double* y_out,
+                        double* yp_out, double* req_out) {
+  int n = s->m->ny, before = s->d->user_error;
   for (int k = k0; k < k1; k++) {
     /* the row's accelerations and reactions exact at its state (ps_row_exact) */
     if (s->d->rows)
@@ -1004,14 +1006,18 @@ static void row_channels(psIDA* s, int k0, int k1, const double* tout, double* y
     if (s->m->nout > 0)
       ps_outputs(s->m, s->d, tout[k], y_out + (long)k * n, yp_out + (long)k * n,
                  req_out + (long)k * s->m->nout);
+    if (s->d->user_error && !before) return k;
   }
+  return k1;
 }
 
-/* Write the request channels of output rows k0..k1-1 and stream the rows. */
-static void row_outputs(psIDA* s, int k0, int k1, const double* tout, double* y_out,
-                        double* yp_out, double* req_out) {
-  row_channels(s, k0, k1, tout, y_out, yp_out, req_out);
-  stream_rows(s, k0, k1, tout, req_out);
+/* Write the request channels of output rows k0..k1-1 and stream the rows; returns the rows
+ * kept's end (row_channels). */
+static int row_outputs(psIDA* s, int k0, int k1, const double* tout, double* y_out,
+                       double* yp_out, double* req_out) {
+  int end = row_channels(s, k0, k1, tout, y_out, yp_out, req_out);
+  stream_rows(s, k0, end, tout, req_out);
+  return end;
 }
 
 int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fresh,
@@ -1036,15 +1042,19 @@ int ps_ida_outputs(psIDA* s, const double* tout, int nout, double tstop, int fre
       flag = ps_ida_interpolate(s, tout[k], y_out + (long)k * n, yp_out + (long)k * n);
       if (flag < 0) return flag;
     }
-    row_outputs(s, 0, m, tout, y_out, yp_out, req_out);
-    *nreached = k = m;
-    *tret = tn;
+    *nreached = k = row_outputs(s, 0, m, tout, y_out, yp_out, req_out);
+    *tret = k < m ? tout[k] : tn;      /* the run ends at a row a routine failed at */
+    if (k < m) return PS_IDA_USER;
   }
   for (; k < nout; k++) {
     flag = ps_ida_solve(s, tout[k], tstop, 0, tret, y_out + (long)k * n, yp_out + (long)k * n,
                         rootsfound);
     if (flag < 0 || flag == 2) break;
-    row_outputs(s, k, k + 1, tout, y_out, yp_out, req_out);
+    if (row_outputs(s, k, k + 1, tout, y_out, yp_out, req_out) == k) {
+      *tret = tout[k];
+      flag = PS_IDA_USER;
+      break;
+    }
     *nreached = k + 1;
   }
   if (s->stream && ps_stream_flush(s->stream) != 0) s->stream = NULL;
@@ -1201,8 +1211,9 @@ typedef struct Rows {
 } Rows;
 
 /* Write row o->r at time tm with state (y, yp) (NULL: there already) and its request
- * channels, streaming the rows before it. */
-static void put_row(psIDA* s, Rows* o, double tm, const double* y, const double* yp) {
+ * channels, streaming the rows before it. Returns PS_IDA_USER, the row not kept, when a user
+ * routine failed at it, else 0. */
+static int put_row(psIDA* s, Rows* o, double tm, const double* y, const double* yp) {
   int n = s->m->ny;
   if (!o->hold) {
     stream_rows(s, o->streamed, o->r, o->t_out, o->req_out);
@@ -1211,11 +1222,13 @@ static void put_row(psIDA* s, Rows* o, double tm, const double* y, const double*
   o->t_out[o->r] = tm;
   if (y) memcpy(o->y_out + (long)o->r * n, y, sizeof(double) * (size_t)n);
   if (yp) memcpy(o->yp_out + (long)o->r * n, yp, sizeof(double) * (size_t)n);
-  row_channels(s, o->r, o->r + 1, o->t_out, o->y_out, o->yp_out, o->req_out);
+  if (row_channels(s, o->r, o->r + 1, o->t_out, o->y_out, o->yp_out, o->req_out) == o->r)
+    return PS_IDA_USER;
   if (o->S && o->S->nverbose)
     ps_sensors_verbose(s->m, s->d, o->S, tm, o->y_out + (long)o->r * n,
                        o->yp_out + (long)o->r * n);
   o->r++;
+  return 0;
 }
 
 /* Whether a verbose sensor is active: the general loop then writes rows one at a time. */
@@ -1231,14 +1244,13 @@ static int watching(const psSensors* S) {
 static int emit_due(psIDA* s, Rows* o, double t, const double* y, const double* yp) {
   int n = s->m->ny;
   for (; o->k < o->nout && o->tout[o->k] <= t; o->k++) {
-    if (o->tout[o->k] == t) {
-      put_row(s, o, t, y, yp);
-      continue;
-    }
-    int flag = ps_ida_interpolate(s, o->tout[o->k], o->y_out + (long)o->r * n,
-                                  o->yp_out + (long)o->r * n);
+    int flag = o->tout[o->k] == t ? 0 : ps_ida_interpolate(s, o->tout[o->k],
+                                                            o->y_out + (long)o->r * n,
+                                                            o->yp_out + (long)o->r * n);
     if (flag < 0) return flag;
-    put_row(s, o, o->tout[o->k], NULL, NULL);
+    flag = o->tout[o->k] == t ? put_row(s, o, t, y, yp)
+                              : put_row(s, o, o->tout[o->k], NULL, NULL);
+    if (flag) return flag;
   }
   return 0;
 }
@@ -1271,12 +1283,11 @@ static int instant(psIDA* s, psSensors* S, Rows* o, double t, double tend, doubl
     if (o->r > o->streamed && o->t_out[o->r - 1] == t) {
       /* it replaces the last row, which is not streamed yet */
       o->r--;
-      put_row(s, o, t, y, yp);
       S->emitted = 2;
     } else {
-      put_row(s, o, t, y, yp);
       S->emitted = 1;
     }
+    if (put_row(s, o, t, y, yp)) return PS_IDA_USER;
   }
   if (S->halt >= 0) return PS_IDA_HALTED;
   if (S->ret >= 0) return PS_IDA_RETURN;
@@ -1400,7 +1411,11 @@ int ps_ida_controlled(psIDA* s, const psRestart* r, psControl* const* c, int nct
         flag = ps_ida_solve(s, tout[o.k], tstop, 0, tret, y_out + (long)o.r * n,
                             yp_out + (long)o.r * n, roots);
         if (flag < 0 || flag == 2) break;
-        put_row(s, &o, tout[o.k], NULL, NULL);
+        if (put_row(s, &o, tout[o.k], NULL, NULL)) {
+          *tret = tout[o.k]; /* the row a routine failed at ends the run */
+          flag = PS_IDA_USER;
+          break;
+        }
         if (one) {
           o.k++;
           break;

@@ -329,15 +329,17 @@ class Kernel:
         return msg if held is None else self.layout.names[int(held[1])] + msg[held.end(1):]
 
     def outputs(self, t, y, yp, out=None, exact=True):
-        """Request channels at (t, y, yp), NaN if NULL: a copy, or into the row `out` (None).
-        In a scene with reactions (pysolver.build.restart.exact_rows) a dynamic row's
-        accelerations and reactions are first made exact at its state, in y and yp
-        themselves (`exact`; a static row keeps the equilibrium's)."""
+        """Request channels at (t, y, yp) (NaN if NULL), a copy or into `out`; `exact`: a dynamic
+        row's accelerations and reactions made exact first. UserFailure (.t) if a routine fails."""
         fb, m, d, row = ffi.from_buffer, self.m, self.d, self._out if out is None else out
-        y, yp = fb("double[]", y), fb("double[]", yp)
+        y, yp, before = fb("double[]", y), fb("double[]", yp), d.user_error
         if exact and d.rows != ffi.NULL:
             lib.ps_row_exact(m, d, d.rows, t, y, yp)
         lib.ps_outputs(m, d, t, y, yp, fb("double[]", row))
+        if d.user_error and not before:     # the run ends at the row, without it
+            err = UserFailure(self.message)
+            err.t = t
+            raise err
         return self._out[:len(self.channels)].copy() if out is None else None
 
     def power(self, y, yp):

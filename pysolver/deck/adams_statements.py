@@ -308,7 +308,29 @@ def _sensor(r, stmt, vals, lines):
     if len(ops) > 1:
         raise r.error(stmt, "give one of EQ, GE, LE")
     kw["OPERATOR"] = ops[0] if ops else "EQ"
+    kw.update(_evaluate_routine(r, stmt, vals, lines))
     msolve.SENSOR(stmt.id, **kw, **_routine(r, stmt, vals, lines, "SENSUB"), **_label(stmt))
+
+
+def _evaluate_routine(r, stmt, vals, lines):
+    """A sensor's SEVSUB: ``EVALUATE = USER(...)`` with ``EVALUATE_ROUTINE = library::name``
+    (or a function of the sensor's SCRIPT); without EVALUATE_ROUTINE Adams calls its default
+    SEVSUB of the user library linked into Adams, which pysolver has not: a DeckError."""
+    user = re.match(r"\s*USER\s*\(", str(vals.get("EVALUATE", "")), re.I)
+    if "EVALUATE_ROUTINE" in vals:
+        if not user:
+            raise r.error(stmt, "EVALUATE_ROUTINE names the SEVSUB that EVALUATE = USER(...) "
+                          "calls: give EVALUATE = USER(...) with its parameters",
+                          "EVALUATE_ROUTINE", lines["EVALUATE_ROUTINE"])
+        return {"EVALUATE_ROUTINE": vals["EVALUATE_ROUTINE"]}
+    if user:
+        raise r.error(stmt, "EVALUATE = USER(...) without EVALUATE_ROUTINE calls Adams' "
+                      "default SEVSUB, the one linked into Adams' user library, and pysolver "
+                      "links no library: give EVALUATE_ROUTINE = library::SEVSUB (a C "
+                      "library), or SCRIPT = file.py and EVALUATE_ROUTINE = the name of its "
+                      "Python function (docs/adams.md, \"User subroutines\")", "EVALUATE",
+                      lines["EVALUATE"])
+    return {}
 
 
 def _sensor_evaluate(r, stmt, vals, lines):
@@ -484,8 +506,8 @@ DATASET = {
     "SPLINE": (("X", "Y", "LINEAR_EXTRAPOLATE", "FILE", "CHANNEL", "BLOCK"), (), _spline),
     "SENSOR": (("FUNCTION", "VALUE", "ERROR", "EQ", "GE", "LE", "HALT", "RETURN", "PRINT",
                 "RESTART", "STEPSIZE", "EVALUATE", "CODGEN", "YYDUMP", "DUMP", "DT",
-                "ROUTINE"), _SUB[1:] + ("HMAX", "ZERO_CROSSING", "VERBOSE", "EVALUATE_ID"),
-               _sensor),
+                "ROUTINE", "EVALUATE_ROUTINE"),
+               _SUB[1:] + ("HMAX", "ZERO_CROSSING", "VERBOSE", "EVALUATE_ID"), _sensor),
     "REQUEST": (tuple(REQUEST_TYPES) + ("I", "J", "RM", "FUNCTION", "TITLE", "COMMENT",
                                         "CNAMES", "VARIABLES", *(f"F{k}" for k in range(1, 9)),
                                         "ROUTINE"), _SUB[1:], _request),

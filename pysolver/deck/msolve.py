@@ -549,11 +549,21 @@ def SENSOR(id, EVALUATE=None, **kw):
     the sensor's id; EVALUATE_ROUTINE= a Python SEVSUB with EVALUATE="USER(...)"); ROUTINE
     (SENSUB), SCRIPT, INTERPRETER for a user subroutine."""
     routine = kw.pop("EVALUATE_ROUTINE", None)
+    script = {k: kw[k] for k in kw if k.upper() in ("SCRIPT", "INTERPRETER")}
     if EVALUATE not in (None, "") or routine is not None:
         sub = {"ROUTINE": routine, "TYPE": "USERSUB"} if routine is not None else {}
+        if isinstance(routine, str) and "::" not in routine and "\u2237" not in routine:
+            sub.update(script)          # a function of the sensor's SCRIPT
         _emit("SENSOR", "Sensor_Evaluate", {"FUNCTION": "expr", **_USERSUB}, id,
               FUNCTION=EVALUATE, **sub)
+        # errors name the sensor's keywords of its evaluate
+        _recorder().elements[-1][3].update(
+            expr="EVALUATE", **dict.fromkeys(("usrsub_fnc_name", "usrsub_dll_name", "type"),
+                                             "EVALUATE_ROUTINE"))
         kw["EVALUATE_ID"] = id
+        own = str(kw.get("FUNCTION", "")).lstrip().upper().startswith("USER")
+        if "ROUTINE" in sub and not own and not any(k.upper() == "ROUTINE" for k in kw):
+            kw = {k: v for k, v in kw.items() if k not in script}    # the evaluate's alone
     _usersub(kw)
     _emit("SENSOR", "Sensor_Event",
           {"FUNCTION": "expr", "VALUE": "value", "ERROR": "error_tol", "OPERATOR": "compare",

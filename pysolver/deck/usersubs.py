@@ -58,6 +58,9 @@ def from_attributes(model, ctx, a):
     elif user_expr:
         par = a["expr"][0][1]
     elif a.get("expr") is not None:
+        if ctx.named("expr") != "expr":     # a Python or Adams statement: its keywords
+            raise ctx.error(f"a user subroutine takes its parameters as {ctx.named('expr')}="
+                            "\"USER(...)\", not an expression", "expr")
         raise ctx.error("with type=\"USERSUB\" the parameters go in usrsub_param_string="
                         "\"USER(...)\", not an expression", "expr")
     else:
@@ -110,14 +113,28 @@ def expression_or_routine(model, ctx, a, routine):
     return tree, text, None
 
 
+def no_routine(ctx, key):
+    """The DeckError of USER(...) in attribute `key` of an element that names no routine, in
+    the deck's words: a Python or Adams statement's keywords, else XML's."""
+    if ctx.named(key) != key:
+        routine = ctx.names.get("usrsub_fnc_name", "ROUTINE")
+        return ctx.error(f"USER(...) calls a user subroutine: give {routine}= the routine", key)
+    return ctx.error("USER(...) calls a user subroutine: give type=\"USERSUB\" and the "
+                     "routine (script_name, or ROUTINE= in a Python deck)", key)
+
+
 def find_file(ctx, given, deck_file, attribute):
-    """A script's or library's path: as given, relative to the deck's folder, then in the
-    folders of PYSOLVER_USERSUB_DIR."""
+    """A script's or library's path: an absolute one as given; a relative one in the deck's
+    folder (as MotionSolve looks beside the XML file), then in the current directory (the
+    only folder of a deck given as text), then in the folders of PYSOLVER_USERSUB_DIR."""
     candidates = [given]
     if not os.path.isabs(given):
+        candidates = [os.path.abspath(given)]
         if deck_file and not deck_file.startswith("<"):
-            candidates.append(os.path.join(os.path.dirname(os.path.abspath(deck_file)), given))
+            folder = os.path.dirname(os.path.abspath(deck_file))
+            candidates.insert(0, os.path.join(folder, given))
         candidates += [os.path.join(d, given) for d in settings.usersub_dirs()]
+        candidates = list(dict.fromkeys(candidates))     # the deck's folder may be the cwd
     for path in candidates:
         if os.path.isfile(path):
             return os.path.abspath(path)

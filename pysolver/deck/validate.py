@@ -307,8 +307,7 @@ def _expression(model, ctx, a, key="expr"):
     if usersub is not None:
         return None, usersub.describe(), usersub
     if _is_user(a.get(key)):
-        raise ctx.error("USER(...) calls a user subroutine: give type=\"USERSUB\" and the "
-                        "routine (script_name, or ROUTINE= in a Python deck)", key)
+        raise usersubs.no_routine(ctx, key)
     if a.get(key) is None:
         raise ctx.error("missing required attribute for type EXPRESSION", key)
     return a[key][0], a[key][1], None
@@ -412,8 +411,7 @@ def _force_like(model, ctx, a):
             exprs = [None] * 8
         for k, e in enumerate(exprs):
             if _is_user(e):
-                raise ctx.error("USER(...) calls a user subroutine: give type=\"USERSUB\" and "
-                                "the routine", f"expr{k + 1}")
+                raise usersubs.no_routine(ctx, f"expr{k + 1}")
         model.requests[a["id"]] = Request(a["id"], [_parsed(e) for e in exprs],
                                           [e[1] if e else None for e in exprs],
                                           [a[f"name{k}"] for k in range(1, 9)], a["label"], sub)

@@ -400,7 +400,7 @@ class Run:
             except Interrupted:
                 raise self.interrupted() from None
             except UserFailure as err:      # a user subroutine failed outside IDA's calls
-                raise Stop(False, -400, user_failure(k, err, self.t)) from None
+                raise Stop(False, -400, user_failure(k, err, getattr(err, "t", self.t))) from None
             except quasistatic.StaticFailure as err:
                 why = nonfinite.describe(self.model, k)
                 raise Stop(False, -300, f"{err}" + (f"; last {why}" if why else "")) from None

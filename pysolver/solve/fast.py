@@ -185,7 +185,7 @@ class FastRun:
         except NonFinite as err:                     # as the general loop words them
             status, message = -700, str(err)
         except UserFailure as err:
-            status, message = -400, user_failure(k, err, loop.t[0])
+            status, message = -400, user_failure(k, err, getattr(err, "t", loop.t[0]))
         finally:
             if self.sensors:
                 self.sensors.drain()
@@ -351,7 +351,7 @@ class FastRun:
             if flag == lib.PS_IDA_BOUNDS:
                 raise RuntimeError(ffi.string(lib.ps_ida_message(self.solver.s)).decode())
             if flag == lib.PS_IDA_USER:
-                return Stop(False, -400, user_failure(self.k, self.k.message, t[0]))
+                return Stop(False, -400, user_failure(self.k, self.k.message, self.tret[0]))
             if flag == lib.PS_IDA_BUDGET:
                 return Stop(False, -500, self._over_budget(cmd_end, out))
             if flag == lib.PS_IDA_HALTED:

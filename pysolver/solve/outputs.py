@@ -312,13 +312,15 @@ class Printer(Actor):
         static one."""
         if self.ts and t < self.ts.last:
             return
+        y, yp = np.array(y, dtype=float), np.array(yp, dtype=float)
+        # the channels first: a routine that fails at the row ends the run without it
+        out = self.kernel.outputs(t, y, yp, exact=exact) if out is None else out
         if self.ts and t == self.ts.last:
             self._drop_last()
-        y, yp = np.array(y, dtype=float), np.array(yp, dtype=float)
         self.ts.append(t)
         self.ys.append(y)
         self.yps.append(yp)
-        self.outs.append(self.kernel.outputs(t, y, yp, exact=exact) if out is None else out)
+        self.outs.append(out)
         for actor in self.watchers:
             actor.on_output(t, y, yp)
         self.bar.update(t)

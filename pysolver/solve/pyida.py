@@ -114,10 +114,14 @@ class PyIDA:
             step = self.step(tp, tstop)
             if not step.success or step.status == ROOT_RETURN:
                 break
+            try:
+                out = self._outputs(step.t, step.y, step.yp) if self._outputs else np.zeros(0)
+            except UserFailure:         # a routine failed at the row: the run ends there
+                step = Step(step.t, step.y, step.yp, UNRECOVERABLE)
+                break
             Y.append(step.y)
             YP.append(step.yp)
-            REQ.append(self._outputs(step.t, step.y, step.yp) if self._outputs
-                       else np.zeros(0))
+            REQ.append(out)
         n = len(Y)
         shape = (0, len(step.y) if step else 0)
         return (step, np.array(Y) if n else np.zeros(shape), np.array(YP) if n else np.zeros(shape),
