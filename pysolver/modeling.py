@@ -1055,7 +1055,7 @@ class Model:
         start, print_increment : float, int
             pysolver: MotionSolve's start_time (where the run is: 0 on the first command,
             the previous command's end after; another value is a DeckError) and
-            print_increment (not used: a DeckWarning; pysolver prints at fixed times).
+            print_increment (not used: a DeckWarning alone; with dtout or steps a DeckError).
         returnResults : bool
             Return the Result (else None).
         active_contact_iteration : bool, optional

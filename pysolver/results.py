@@ -34,7 +34,8 @@ class Result:
         -400 a user subroutine failed, -500 the outputs would pass the memory budget, -600
         interrupted (Ctrl-C; the rows up to then are kept), -700 a value became NaN or infinite
         (the message names the element, its expression, the time and the state), -710 the
-        answer is past double precision, -730 the constraints were not kept (a joint opened).
+        answer is past double precision, -720 the initial conditions could not be assembled,
+        -730 the constraints were not kept (a joint opened).
     message : str
     t : ndarray, shape (n,)
         Output times (print times of every Simulate command, the initial time first).
