@@ -243,3 +243,40 @@ def lines_deck(form, folder):
         assert old in text
         text = text.replace(old, f'FUNCTION="USER(10, {sign})", {how}')
     return text, "py"
+
+
+# -- a 1 kg point mass at x = 2 on a spring to ground, its force a C SFOSUB -----------------
+
+#: The spring's SFOSUB, stiffness %s N/m: USER(marker).
+SPRING_SFOSUB = r'''#include "pysolver_usersub.h"
+void SFOSUB(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
+            double *value) {
+  int m = (int)par[0], err;
+  double x;
+  c_sysfnc("DX", &m, 1, &x, &err);
+  *value = -%s * (x - 1.0);
+}
+'''
+
+#: The mass on that spring as a Python deck; {routine}: the SFORCE's ROUTINE.
+SPRING_PY = '''from pysolver.msolve import *
+PART(1, GROUND=True)
+MARKER(1, PART=1)
+MARKER(10, PART=2, QP=[2, 0, 0])
+POINT_MASS(2, MASS=1.0, CM=10)
+SFORCE(1, I=10, J=1, TRANSLATION=True, FUNCTION="USER(10)", ROUTINE="{routine}")
+REQUEST(1, F1="DX(10)")
+SIMULATE(TYPE="TRANSIENT", END=1.0, DTOUT=0.1)
+'''
+
+#: ... and as XML; {usersub}: the Force_Scalar_TwoBody's library attributes.
+SPRING_XML = '''<MotionSolve><Model>
+<Body_Rigid id="1" isground="TRUE"/>
+<Reference_Marker id="1" body_id="1"/>
+<Reference_Marker id="10" body_id="2" pos_x="2"/>
+<Body_Point id="2" cg_id="10" mass="1.0"/>
+<Force_Scalar_TwoBody id="1" type="Force" i_marker_id="10" j_marker_id="1"
+  {usersub} usrsub_param_string="USER(10)"/>
+<Post_Request id="1" expr1="DX(10)"/>
+</Model><Simulate analysis_type="Transient" end_time="1" print_interval="0.1"/></MotionSolve>
+'''

@@ -6,39 +6,14 @@ import pytest
 
 import pysolver
 
-from scenes import usersub_library
+from scenes import SPRING_PY, SPRING_SFOSUB, SPRING_XML, usersub_library
 
-#: The same SFOSUB with another stiffness: which library ran shows in the motion.
-SFOSUB = r'''#include "pysolver_usersub.h"
-void SFOSUB(int *id, double *time, double *par, int *npar, int *dflag, int *iflag,
-            double *value) {
-  int m = (int)par[0], err;
-  double x;
-  c_sysfnc("DX", &m, 1, &x, &err);
-  *value = -%s * (x - 1.0);
-}
-'''
+#: Which library ran shows in the motion: the deck's (10 N/m) or another folder's (40 N/m).
+PY = SPRING_PY.format(routine="sx.so::SFOSUB")
 
-XML = '''<MotionSolve><Model>
-<Body_Rigid id="1" isground="TRUE"/>
-<Reference_Marker id="1" body_id="1"/>
-<Reference_Marker id="10" body_id="2" pos_x="2"/>
-<Body_Point id="2" cg_id="10" mass="1.0"/>
-<Force_Scalar_TwoBody id="1" type="Force" i_marker_id="10" j_marker_id="1"
-  usrsub_dll_name="{lib}" usrsub_param_string="USER(10)"/>
-<Post_Request id="1" expr1="DX(10)"/>
-</Model><Simulate analysis_type="Transient" end_time="1" print_interval="0.1"/></MotionSolve>
-'''
 
-PY = '''from pysolver.msolve import *
-PART(1, GROUND=True)
-MARKER(1, PART=1)
-MARKER(10, PART=2, QP=[2, 0, 0])
-POINT_MASS(2, MASS=1.0, CM=10)
-SFORCE(1, I=10, J=1, TRANSLATION=True, FUNCTION="USER(10)", ROUTINE="sx.so::SFOSUB")
-REQUEST(1, F1="DX(10)")
-SIMULATE(TYPE="TRANSIENT", END=1.0, DTOUT=0.1)
-'''
+def _xml(lib):
+    return SPRING_XML.format(usersub=f'usrsub_dll_name="{lib}"')
 
 
 @pytest.fixture(scope="module")
@@ -49,12 +24,12 @@ def folders(tmp_path_factory):
     deck, other = root / "deck", root / "other"
     deck.mkdir()
     other.mkdir()
-    if usersub_library(deck, SFOSUB % "10.0", "sx") is None:
+    if usersub_library(deck, SPRING_SFOSUB % "10.0", "sx") is None:
         pytest.skip("no C compiler")
-    usersub_library(other, SFOSUB % "40.0", "sx")
-    usersub_library(other, SFOSUB % "40.0", "only")
-    (deck / "spring.xml").write_text(XML.format(lib="sx.so"))
-    (deck / "spring_only.xml").write_text(XML.format(lib="only.so"))
+    usersub_library(other, SPRING_SFOSUB % "40.0", "sx")
+    usersub_library(other, SPRING_SFOSUB % "40.0", "only")
+    (deck / "spring.xml").write_text(_xml("sx.so"))
+    (deck / "spring_only.xml").write_text(_xml("only.so"))
     (deck / "spring.py").write_text(PY)
     return deck, other
 
@@ -85,7 +60,7 @@ def test_a_library_not_beside_the_deck_is_found_in_the_current_directory(folders
 def test_a_deck_given_as_text_uses_the_current_directory(folders, monkeypatch, fmt):
     deck, other = folders
     monkeypatch.chdir(other)
-    text = XML.format(lib="sx.so") if fmt == "xml" else PY
+    text = _xml("sx.so") if fmt == "xml" else PY
     _check(pysolver.loads(text, fmt=fmt).run(integr_tol=1e-9), other / "sx.so", 40)
 
 
@@ -93,7 +68,7 @@ def test_a_missing_library_lists_the_folders_in_order(folders, monkeypatch):
     deck, other = folders
     monkeypatch.chdir(other)
     monkeypatch.delenv("PYSOLVER_USERSUB_DIR", raising=False)
-    (deck / "spring_none.xml").write_text(XML.format(lib="none.so"))
+    (deck / "spring_none.xml").write_text(_xml("none.so"))
     with pytest.raises(pysolver.DeckError) as err:
         pysolver.load(str(deck / "spring_none.xml"))
     assert str(err.value) == (f"{deck}/spring_none.xml:7, Force_Scalar_TwoBody id=1, attribute "
